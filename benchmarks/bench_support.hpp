@@ -1,0 +1,41 @@
+#pragma once
+// Shared pieces of the benchmarks: a ring of pre-generated samples, so that a
+// timed iteration is one observer update and nothing else.
+
+#include <adaptobs/core/dimensions.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <cstddef>
+#include <vector>
+
+namespace adaptobs::bench {
+
+/// Pre-generated samples replayed in a loop.
+template <class Sample>
+class SampleRing {
+ public:
+  explicit SampleRing(std::vector<Sample> samples) : samples_(std::move(samples)) {}
+  const Sample& next() {
+    const Sample& s = samples_[i_];
+    i_ = (i_ + 1 == samples_.size()) ? 0 : i_ + 1;
+    return s;
+  }
+
+ private:
+  std::vector<Sample> samples_;
+  std::size_t i_ = 0;
+};
+
+/// Times `observer.update(ring.next())`, one update per iteration.
+template <class Observer, class Sample>
+void time_updates(benchmark::State& state, Observer& observer, SampleRing<Sample>& ring) {
+  for (auto _ : state) {
+    auto status = observer.update(ring.next());
+    benchmark::DoNotOptimize(status);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+}  // namespace adaptobs::bench

@@ -1,0 +1,121 @@
+#pragma once
+// Command line, stdout and figure helpers shared by every example binary.
+//
+// Every example takes `--out DIR` (default: current directory), writes
+// DIR/<name>.csv, then DIR/<name>.png when gnuplot is on the PATH, and prints
+// its designed gains and final estimates as `name = value` lines.
+
+#include <adaptobs/simulation/series_table.hpp>
+
+#include <Eigen/Core>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace adaptobs::examples {
+
+/// `--key value` options with defaults; `--help` prints them.
+class Arguments {
+ public:
+  Arguments(int argc, char** argv, std::string_view program, std::map<std::string, std::string> defaults)
+      : program_(program), values_(std::move(defaults)) {
+    values_.try_emplace("out", ".");
+    for (int i = 1; i < argc; ++i) {
+      const std::string key = argv[i];
+      if (key == "--help" || key == "-h") {
+        std::cout << "usage: " << program_;
+        for (const auto& [k, v] : values_) std::cout << " [--" << k << " " << (v.empty() ? "VALUE" : v) << "]";
+        std::cout << '\n';
+        std::exit(0);
+      }
+      if (key.rfind("--", 0) != 0 || i + 1 >= argc || !values_.contains(key.substr(2)))
+        fail("unknown or incomplete option '" + key + "'");
+      values_[key.substr(2)] = argv[++i];
+    }
+  }
+
+  [[nodiscard]] std::string text(const std::string& key) const { return values_.at(key); }
+  [[nodiscard]] double number(const std::string& key) const {
+    try {
+      return std::stod(values_.at(key));
+    } catch (const std::exception&) {
+      fail("option --" + key + " expects a number, got '" + values_.at(key) + "'");
+    }
+  }
+  [[nodiscard]] std::filesystem::path out_dir() const {
+    std::filesystem::path dir(values_.at("out"));
+    std::filesystem::create_directories(dir);
+    return dir;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    std::cerr << program_ << ": " << what << " (try --help)\n";
+    std::exit(2);
+  }
+  std::string program_;
+  std::map<std::string, std::string> values_;
+};
+
+/// Prints `name = value` with full precision (vectors as space-separated lists).
+inline void print_value(std::string_view name, double value) {
+  std::ostringstream os;
+  os.precision(10);
+  os << name << " = " << value << '\n';
+  std::cout << os.str();
+}
+
+template <class Derived>
+void print_value(std::string_view name, const Eigen::DenseBase<Derived>& m) {
+  std::ostringstream os;
+  os.precision(10);
+  os << name << " = [";
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    for (Eigen::Index j = 0; j < m.cols(); ++j) os << (j ? " " : "") << m(i, j);
+    if (i + 1 < m.rows()) os << "; ";
+  }
+  os << "]\n";
+  std::cout << os.str();
+}
+
+inline void print_text(std::string_view name, std::string_view value) { std::cout << name << " = " << value << '\n'; }
+
+[[nodiscard]] inline bool gnuplot_available() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
+/// Writes DIR/<name>.csv, then renders DIR/<name>.png from a gnuplot script
+/// (the script reads the CSV as `csv` and writes `png`) when gnuplot is present.
+inline void write_outputs(const SeriesTable& table, const std::filesystem::path& dir, const std::string& name,
+                          const std::string& gnuplot_body) {
+  const std::filesystem::path csv = dir / (name + ".csv");
+  const std::filesystem::path png = dir / (name + ".png");
+  table.write_csv(csv.string());
+  print_text("csv", csv.string());
+  if (!gnuplot_available()) {
+    print_text("png", "skipped (gnuplot not found)");
+    return;
+  }
+  const std::filesystem::path script = dir / (name + ".gp");
+  {
+    std::ofstream gp(script);
+    gp << "csv = '" << csv.string() << "'\n"
+       << "png = '" << png.string() << "'\n"
+       << "set datafile separator ','\n"
+       << "set key autotitle columnhead\n"
+       << "set terminal pngcairo size 1200,900 font ',10'\n"
+       << "set output png\n"
+       << gnuplot_body << '\n'
+       << "unset output\n";
+  }
+  const std::string command = "gnuplot '" + script.string() + "'";
+  if (std::system(command.c_str()) != 0) throw std::runtime_error("gnuplot failed on " + script.string());
+  print_text("png", png.string());
+}
+
+}  // namespace adaptobs::examples

@@ -1,0 +1,30 @@
+#pragma once
+/// \file
+/// Umbrella header: every public component of adaptobs.
+
+// Core: sizes, models, the Observer concept, discretization.
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/discretization.hpp>
+#include <adaptobs/core/matrix_exponential.hpp>
+#include <adaptobs/core/observer.hpp>
+#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/spectral_norm.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+
+// Design: gains before the loop, and diagnostics.
+#include <adaptobs/design/dare.hpp>
+#include <adaptobs/design/excitation_monitor.hpp>
+#include <adaptobs/design/riccati_recursion.hpp>
+#include <adaptobs/design/stability.hpp>
+
+// Observers and the baselines they are compared with.
+#include <adaptobs/baselines/augmented_kalman.hpp>
+#include <adaptobs/observers/guyader_zhang.hpp>
+
+// Simulation and CSV output.
+#include <adaptobs/simulation/discrete_plant.hpp>
+#include <adaptobs/simulation/runner.hpp>
+#include <adaptobs/simulation/series_table.hpp>

@@ -1,0 +1,168 @@
+#pragma once
+/// \file
+/// Kalman filter on the state augmented with the unknown parameters — the
+/// classical alternative to an adaptive observer (paper 000 §1; paper 001, appendix).
+///
+/// The extended system of the discrete model \f$x_{k+1} = A_kx_k + B_ku_k + \Psi_k\theta_k\f$,
+/// \f$\theta_{k+1} = \theta_k\f$, \f$y_k = C_kx_k\f$ is
+/// \f[ \xi_{k+1} = \underbrace{\begin{bmatrix} A_k & \Psi_k \\ 0 & I\end{bmatrix}}_{F_k}\xi_k
+///     + \begin{bmatrix} B_ku_k \\ 0\end{bmatrix},\qquad
+///     y_k = \underbrace{\begin{bmatrix} C_k & 0\end{bmatrix}}_{H_k}\xi_k, \f]
+/// time varying through \f$\Psi_k\f$ even for constant \f$(A, B, C)\f$. Each update
+/// corrects with \f$y_k\f$ (covariance in Joseph form
+/// \f$(I - LH)P(I - LH)^T + LRL^T\f$) and predicts to step k + 1.
+
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <utility>
+
+namespace adaptobs {
+
+/// Covariances of the augmented Kalman filter, of size (nx + np).
+template <StateSpace D>
+struct AugmentedKalmanCovariances {
+  static constexpr int na = sum_of_sizes(D::nx, D::np);
+  using AugmentedMatrix = Eigen::Matrix<typename D::Scalar, na, na>;
+  AugmentedMatrix P0;                 ///< initial covariance of [x; θ] (positive definite)
+  AugmentedMatrix Q;                  ///< process noise of [x; θ] (positive semidefinite)
+  typename D::OutputMatrixSquare R;   ///< output noise (positive definite)
+};
+
+template <DiscreteModel Model>
+class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
+ public:
+  using Dims = typename Model::Dims;
+  using Scalar = typename Dims::Scalar;
+  using State = typename Dims::State;
+  using Parameters = typename Dims::Parameters;
+  using Sample = DiscreteSample<Dims>;
+  using Covariances = AugmentedKalmanCovariances<Dims>;
+  static constexpr int na = Covariances::na;
+  using AugmentedVector = Eigen::Matrix<Scalar, na, 1>;
+  using AugmentedMatrix = typename Covariances::AugmentedMatrix;
+
+  AugmentedKalmanFilter(Model model, State x0, Parameters theta0, Covariances covariances)
+      : model_(std::move(model)), x_(std::move(x0)), theta_(std::move(theta0)), cov_(std::move(covariances)) {
+    constexpr std::string_view who = "AugmentedKalmanFilter";
+    const Sizes s = model_.sizes();
+    const Index n = s.nx + s.np;
+    detail::require_shape(x_, s.nx, 1, who, "x0");
+    detail::require_finite(x_, who, "x0");
+    detail::require_shape(theta_, s.np, 1, who, "theta0");
+    detail::require_finite(theta_, who, "theta0");
+    detail::require_shape(cov_.P0, n, n, who, "covariances.P0");
+    detail::require_positive_definite(cov_.P0, who, "covariances.P0");
+    detail::require_shape(cov_.Q, n, n, who, "covariances.Q");
+    detail::require_positive_semidefinite(cov_.Q, who, "covariances.Q");
+    detail::require_shape(cov_.R, s.ny, s.ny, who, "covariances.R");
+    detail::require_positive_definite(cov_.R, who, "covariances.R");
+    p_ = cov_.P0;
+    w_.xi.setZero(n);
+    w_.p.setZero(n, n);
+    w_.f.setZero(n, n);
+    w_.f.bottomRightCorner(s.np, s.np).setIdentity();
+    w_.joseph.setZero(n, n);
+    w_.scratch.setZero(n, n);
+    w_.pht.setZero(n, s.ny);
+    w_.gain.setZero(n, s.ny);
+    w_.s.setZero(s.ny, s.ny);
+    w_.innovation.setZero(s.ny);
+    w_.x.setZero(s.nx);
+    w_.theta.setZero(s.np);
+    w_.llt.compute(cov_.R);
+  }
+
+  /// Correction with \f$y_k\f$, then prediction to step k + 1 with \f$(A_k, B_k, \Psi_k, u_k)\f$.
+  [[nodiscard]] UpdateStatus update(const Sample& sample) {
+    if (!detail::all_finite(sample.u, sample.y, sample.Psi)) return UpdateStatus::nonfinite_input;
+    const auto& system = model_.at(step_);
+    const Index nx = x_.rows();
+    Workspace& w = w_;
+
+    // Correction: S = C Pxx Cᵀ + R, L = P Hᵀ S⁻¹ with H = [C 0].
+    w.pht.noalias() = p_.leftCols(nx) * system.C.transpose();
+    w.s = cov_.R;
+    w.s.noalias() += system.C * w.pht.topRows(nx);
+    w.llt.compute(w.s);
+    if (w.llt.info() != Eigen::Success) return UpdateStatus::nonfinite_result;
+    w.gain.transpose() = w.llt.solve(w.pht.transpose());
+    w.innovation = sample.y;
+    w.innovation.noalias() -= system.C * x_;
+    w.xi.head(nx) = x_;
+    w.xi.tail(theta_.rows()) = theta_;
+    w.xi.noalias() += w.gain * w.innovation;
+    // Joseph form: P⁺ = (I − L H) P (I − L H)ᵀ + L R Lᵀ.
+    w.joseph.setIdentity();
+    w.joseph.leftCols(nx).noalias() -= w.gain * system.C;
+    w.scratch.noalias() = w.joseph * p_;
+    w.p.noalias() = w.scratch * w.joseph.transpose();
+    w.pht.noalias() = w.gain * cov_.R;  // reuse as L R
+    w.p.noalias() += w.pht * w.gain.transpose();
+
+    // Prediction with F_k = [A Ψ; 0 I].
+    w.f.topLeftCorner(nx, nx) = system.A;
+    w.f.topRightCorner(nx, theta_.rows()) = sample.Psi;
+    w.x.noalias() = system.A * w.xi.head(nx);
+    w.x.noalias() += sample.Psi * w.xi.tail(theta_.rows());
+    w.x.noalias() += system.B * sample.u;
+    w.theta = w.xi.tail(theta_.rows());
+    w.scratch.noalias() = w.f * w.p;
+    w.p.noalias() = w.scratch * w.f.transpose();
+    w.p += cov_.Q;
+    w.scratch = Scalar(0.5) * (w.p + w.p.transpose());
+
+    if (!detail::all_finite(w.x, w.theta, w.scratch)) return UpdateStatus::nonfinite_result;
+    detail::commit(x_, w.x);
+    detail::commit(theta_, w.theta);
+    detail::commit(p_, w.scratch);
+    ++step_;
+    return UpdateStatus::accepted;
+  }
+
+  [[nodiscard]] const State& state() const noexcept { return x_; }
+  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  /// Covariance of the augmented estimate [x̂; θ̂].
+  [[nodiscard]] const AugmentedMatrix& covariance() const noexcept { return p_; }
+  [[nodiscard]] Index step() const noexcept { return step_; }
+
+  void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
+    constexpr std::string_view who = "AugmentedKalmanFilter::reset";
+    detail::require_shape(x0, x_.rows(), 1, who, "x0");
+    detail::require_finite(x0, who, "x0");
+    detail::require_shape(theta0, theta_.rows(), 1, who, "theta0");
+    detail::require_finite(theta0, who, "theta0");
+    x_ = x0;
+    theta_ = theta0;
+    p_ = cov_.P0;
+    step_ = start_step;
+  }
+
+ private:
+  struct Workspace {
+    AugmentedVector xi;
+    AugmentedMatrix p, f, joseph, scratch;
+    Eigen::Matrix<Scalar, na, Dims::ny> pht, gain;
+    typename Dims::OutputMatrixSquare s;
+    Eigen::LLT<typename Dims::OutputMatrixSquare> llt;
+    typename Dims::Output innovation;
+    State x;
+    Parameters theta;
+  };
+
+  Model model_;
+  State x_;
+  Parameters theta_;
+  Covariances cov_;
+  AugmentedMatrix p_;
+  Index step_ = 0;
+  Workspace w_;
+};
+
+}  // namespace adaptobs

@@ -1,0 +1,39 @@
+#pragma once
+/// \file
+/// Building blocks of the compute-then-commit update used by every observer:
+/// a step is computed into workspace, checked for finiteness, and only then
+/// moved into the observer's state, so a rejected step changes nothing.
+
+#include <Eigen/Core>
+
+namespace adaptobs::detail {
+
+/// True when every coefficient of every argument is finite.
+///
+/// Sums \f$0\cdot v_i\f$ over all coefficients: the sum is 0 when every
+/// \f$v_i\f$ is finite and NaN as soon as one is NaN or ±Inf (0·Inf = NaN), so
+/// one vectorized reduction replaces a compare-and-branch per coefficient.
+/// (Like Eigen's `allFinite`, this relies on IEEE arithmetic: not valid under
+/// `-ffast-math`.)
+template <class First, class... Rest>
+[[nodiscard]] bool all_finite(const Eigen::DenseBase<First>& first, const Eigen::DenseBase<Rest>&... rest) {
+  using Scalar = typename First::Scalar;
+  const auto zero_times = [](const auto& block) {
+    return block.size() == 0 ? Scalar(0) : (block.derived().array() * Scalar(0)).sum();
+  };
+  const Scalar sum = (zero_times(first) + ... + zero_times(rest));
+  return sum == sum;
+}
+
+/// Moves a computed value into place: a pointer swap for heap storage, a copy
+/// for fixed-size storage (where a swap would cost three copies).
+template <class Derived>
+void commit(Eigen::PlainObjectBase<Derived>& destination, Eigen::PlainObjectBase<Derived>& computed) {
+  if constexpr (Derived::SizeAtCompileTime == Eigen::Dynamic) {
+    destination.swap(computed);
+  } else {
+    destination = computed;
+  }
+}
+
+}  // namespace adaptobs::detail

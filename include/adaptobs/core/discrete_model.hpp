@@ -1,0 +1,116 @@
+#pragma once
+/// \file
+/// Discrete-time linear models \f$x_{k+1} = A_k x_k + B_k u_k + \Psi_k\theta,\; y_k = C_k x_k\f$.
+///
+/// A model supplies the known matrices \f$(A_k, B_k, C_k)\f$ of step k. The
+/// regressor \f$\Psi_k\f$ is a measured signal and travels with the sample
+/// (`DiscreteSample`), not with the model.
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <concepts>
+#include <string_view>
+#include <utility>
+
+namespace adaptobs {
+
+/// The known matrices of one step of a discrete-time linear system.
+template <StateSpace D>
+struct DiscreteSystem {
+  typename D::StateMatrix A;
+  typename D::InputMatrix B;
+  typename D::OutputMatrix C;
+
+  [[nodiscard]] Sizes sizes() const noexcept { return {A.rows(), B.cols(), C.rows(), D::np}; }
+};
+
+/// One measured sample of a discrete-time system with unknown parameters:
+/// input \f$u_k\f$, output \f$y_k\f$ and known regressor \f$\Psi_k\f$.
+template <StateSpace D>
+struct DiscreteSample {
+  typename D::Input u;
+  typename D::Output y;
+  typename D::RegressorMatrix Psi;
+};
+
+/// A discrete-time model: `at(k)` gives the matrices of step k.
+template <class M>
+concept DiscreteModel = StateSpace<typename M::Dims> && requires(const M& m, Index k) {
+  { m.at(k) } -> std::convertible_to<const DiscreteSystem<typename M::Dims>&>;
+  { M::time_invariant } -> std::convertible_to<bool>;
+  { m.sizes() } -> std::same_as<Sizes>;
+};
+
+namespace detail {
+template <StateSpace D>
+void validate_system(const DiscreteSystem<D>& s, Index np, std::string_view who) {
+  require_square(s.A, who, "A");
+  require_finite(s.A, who, "A");
+  require_shape(s.B, s.A.rows(), s.B.cols(), who, "B");
+  require_finite(s.B, who, "B");
+  require_shape(s.C, s.C.rows(), s.A.rows(), who, "C");
+  require_finite(s.C, who, "C");
+  require(np >= 0, who, "np", "must be non-negative");
+}
+}  // namespace detail
+
+/// Time-invariant discrete model: the same \f$(A, B, C)\f$ at every step.
+template <StateSpace D>
+class DiscreteLtiModel : public SizedBy<D> {
+ public:
+  static constexpr bool time_invariant = true;
+
+  /// \param np number of unknown parameters (only read when `D::np` is dynamic).
+  DiscreteLtiModel(typename D::StateMatrix A, typename D::InputMatrix B, typename D::OutputMatrix C,
+                   Index np = D::np)
+      : system_{std::move(A), std::move(B), std::move(C)}, np_(np) {
+    detail::validate_system(system_, np_, "DiscreteLtiModel");
+  }
+
+  [[nodiscard]] const DiscreteSystem<D>& at(Index /*k*/) const noexcept { return system_; }
+  [[nodiscard]] const DiscreteSystem<D>& system() const noexcept { return system_; }
+  [[nodiscard]] Sizes sizes() const noexcept {
+    return {system_.A.rows(), system_.B.cols(), system_.C.rows(), np_};
+  }
+
+ private:
+  DiscreteSystem<D> system_;
+  Index np_;
+};
+
+/// Time-varying discrete model: a callable `k -> DiscreteSystem<D>` gives the
+/// matrices of each step. Sizes are stated once at construction.
+template <StateSpace D, std::invocable<Index> F>
+  requires std::convertible_to<std::invoke_result_t<const F&, Index>, DiscreteSystem<D>>
+class DiscreteLtvModel : public SizedBy<D> {
+ public:
+  static constexpr bool time_invariant = false;
+
+  explicit DiscreteLtvModel(F matrices_at, Sizes sizes = {D::nx, D::nu, D::ny, D::np})
+      : matrices_at_(std::move(matrices_at)), sizes_(sizes) {
+    constexpr std::string_view who = "DiscreteLtvModel";
+    detail::require(sizes_.nx >= 0 && sizes_.nu >= 0 && sizes_.ny >= 0 && sizes_.np >= 0, who, "sizes",
+                    "must be non-negative (dynamic dimensions need explicit sizes)");
+    const DiscreteSystem<D> first = matrices_at_(Index{0});
+    detail::validate_system(first, sizes_.np, who);
+    detail::require(first.sizes().nx == sizes_.nx && first.sizes().nu == sizes_.nu &&
+                        first.sizes().ny == sizes_.ny,
+                    who, "matrices_at", "returns matrices whose sizes differ from 'sizes'");
+  }
+
+  [[nodiscard]] DiscreteSystem<D> at(Index k) const { return matrices_at_(k); }
+  [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
+
+ private:
+  F matrices_at_;
+  Sizes sizes_;
+};
+
+/// Deduces the dimensions from the callable's result: `make_discrete_ltv_model<D>(f)`.
+template <StateSpace D, class F>
+[[nodiscard]] auto make_discrete_ltv_model(F matrices_at, Sizes sizes = {D::nx, D::nu, D::ny, D::np}) {
+  return DiscreteLtvModel<D, F>(std::move(matrices_at), sizes);
+}
+
+}  // namespace adaptobs

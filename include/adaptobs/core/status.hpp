@@ -1,0 +1,33 @@
+#pragma once
+/// \file
+/// Outcome of one observer update.
+
+#include <string_view>
+
+namespace adaptobs {
+
+/// What became of one sample given to an observer's `update`.
+///
+/// Anything but `accepted` means the observer is bit-for-bit as it was before
+/// the call: no estimate, filter or counter moved.
+enum class UpdateStatus {
+  accepted,          ///< the sample was used and the estimates advanced
+  nonfinite_input,   ///< a NaN or Inf in the sample (u, y, a regressor or premise variable)
+  nonfinite_result,  ///< the step would have produced NaN or Inf (overflow, NaN system matrix)
+};
+
+[[nodiscard]] constexpr bool accepted(UpdateStatus s) noexcept { return s == UpdateStatus::accepted; }
+
+[[nodiscard]] constexpr std::string_view to_string(UpdateStatus s) noexcept {
+  switch (s) {
+    case UpdateStatus::accepted:
+      return "accepted";
+    case UpdateStatus::nonfinite_input:
+      return "rejected: non-finite input sample";
+    case UpdateStatus::nonfinite_result:
+      return "rejected: the step would produce non-finite estimates";
+  }
+  return "unknown";
+}
+
+}  // namespace adaptobs

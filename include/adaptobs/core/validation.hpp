@@ -1,0 +1,117 @@
+#pragma once
+/// \file
+/// Configuration checks shared by every model, observer and design routine.
+///
+/// Bad configuration fails where it is given (a constructor or a design
+/// function) with a `ConfigurationError` whose message names the component and
+/// the offending argument, e.g. `GuyaderZhangObserver: argument 'mu' must be
+/// positive (got -1)`.
+
+#include <adaptobs/core/dimensions.hpp>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace adaptobs {
+
+/// Invalid configuration: wrong sizes, non-positive gains, indefinite covariances, ...
+class ConfigurationError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+namespace detail {
+
+[[noreturn]] inline void fail_argument(std::string_view who, std::string_view argument,
+                                       std::string_view problem) {
+  std::string message;
+  message.reserve(who.size() + argument.size() + problem.size() + 16);
+  message.append(who).append(": argument '").append(argument).append("' ").append(problem);
+  throw ConfigurationError(message);
+}
+
+inline void require(bool condition, std::string_view who, std::string_view argument,
+                    std::string_view problem) {
+  if (!condition) fail_argument(who, argument, problem);
+}
+
+template <typename Scalar>
+void require_positive(Scalar value, std::string_view who, std::string_view argument) {
+  if (!(value > Scalar(0)) || !std::isfinite(value)) {
+    std::ostringstream os;
+    os << "must be positive and finite (got " << value << ")";
+    fail_argument(who, argument, os.str());
+  }
+}
+
+template <class Derived>
+void require_shape(const Eigen::EigenBase<Derived>& m, Index rows, Index cols, std::string_view who,
+                   std::string_view argument) {
+  if (m.rows() != rows || m.cols() != cols) {
+    std::ostringstream os;
+    os << "must be " << rows << "x" << cols << " (got " << m.rows() << "x" << m.cols() << ")";
+    fail_argument(who, argument, os.str());
+  }
+}
+
+template <class Derived>
+void require_square(const Eigen::EigenBase<Derived>& m, std::string_view who, std::string_view argument) {
+  if (m.rows() != m.cols()) {
+    std::ostringstream os;
+    os << "must be square (got " << m.rows() << "x" << m.cols() << ")";
+    fail_argument(who, argument, os.str());
+  }
+}
+
+template <class Derived>
+void require_finite(const Eigen::DenseBase<Derived>& m, std::string_view who, std::string_view argument) {
+  if (!m.derived().allFinite()) fail_argument(who, argument, "must contain only finite numbers");
+}
+
+/// Symmetric to a relative tolerance of 100 ulp of its largest entry.
+template <class Derived>
+void require_symmetric(const Eigen::MatrixBase<Derived>& m, std::string_view who, std::string_view argument) {
+  using Scalar = typename Derived::Scalar;
+  require_square(m, who, argument);
+  const Scalar scale = m.cwiseAbs().maxCoeff();
+  const Scalar tol = Scalar(100) * std::numeric_limits<Scalar>::epsilon() * (scale > Scalar(0) ? scale : Scalar(1));
+  if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= tol)) fail_argument(who, argument, "must be symmetric");
+}
+
+/// Symmetric positive definite (a Cholesky factorization exists).
+template <class Derived>
+void require_positive_definite(const Eigen::MatrixBase<Derived>& m, std::string_view who,
+                               std::string_view argument) {
+  require_finite(m, who, argument);
+  require_symmetric(m, who, argument);
+  Eigen::LLT<typename Derived::PlainObject> llt(m.derived());
+  if (llt.info() != Eigen::Success) fail_argument(who, argument, "must be positive definite");
+}
+
+/// Symmetric positive semidefinite: no eigenvalue below −100 n ε max|λ| (round-off
+/// of a rank-deficient product such as GᵀG is accepted).
+template <class Derived>
+void require_positive_semidefinite(const Eigen::MatrixBase<Derived>& m, std::string_view who,
+                                   std::string_view argument) {
+  using Scalar = typename Derived::Scalar;
+  require_finite(m, who, argument);
+  require_symmetric(m, who, argument);
+  if (m.size() == 0) return;
+  const Eigen::SelfAdjointEigenSolver<typename Derived::PlainObject> eig(m.derived(), Eigen::EigenvaluesOnly);
+  const auto& lambda = eig.eigenvalues();
+  const Scalar tol = Scalar(100) * Scalar(m.rows()) * std::numeric_limits<Scalar>::epsilon() *
+                     std::max(std::abs(lambda(0)), std::abs(lambda(lambda.size() - 1)));
+  if (!(lambda(0) >= -tol)) fail_argument(who, argument, "must be positive semidefinite");
+}
+
+}  // namespace detail
+}  // namespace adaptobs

@@ -1,0 +1,143 @@
+#pragma once
+/// \file
+/// Discrete algebraic Riccati equation and the steady-state Kalman gain.
+///
+/// The DARE
+/// \f[ X = A^T X A - A^T X B (R + B^T X B)^{-1} B^T X A + Q \f]
+/// is solved by the structure-preserving doubling algorithm (SDA; E. K.-W. Chu,
+/// H.-Y. Fan, W.-W. Lin, "A structure-preserving doubling algorithm for
+/// discrete-time algebraic Riccati equations", Linear Algebra Appl. 396, 2005):
+/// with \f$A_0 = A,\ G_0 = B R^{-1} B^T,\ H_0 = Q\f$,
+/// \f[ A_{j+1} = A_j W_j^{-1} A_j,\quad G_{j+1} = G_j + A_j W_j^{-1} G_j A_j^T,\quad
+///     H_{j+1} = H_j + A_j^T H_j W_j^{-1} A_j,\quad W_j = I + G_j H_j, \f]
+/// and \f$H_j \to X\f$ quadratically when (A, B) is stabilizable and (A, Q) detectable.
+/// Only n × n linear solves are needed, no eigenvalue reordering.
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/stability.hpp>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <cmath>
+#include <limits>
+
+namespace adaptobs {
+
+/// Stabilizing solution of a DARE, with the figures that certify it.
+template <typename Scalar, int N>
+struct DareSolution {
+  Eigen::Matrix<Scalar, N, N> X;  ///< symmetric positive semidefinite solution
+  int iterations = 0;             ///< doubling steps taken
+  Scalar relative_residual = 0;   ///< ‖X − Ric(X)‖_F / max(1, ‖X‖_F)
+};
+
+struct DareOptions {
+  int max_iterations = 100;
+  double tolerance = 0;  ///< relative change that stops the doubling; 0 selects 100 ε
+};
+
+/// Relative residual \f$\|X - (A^TXA - A^TXB(R + B^TXB)^{-1}B^TXA + Q)\|_F / \max(1,\|X\|_F)\f$.
+template <class DX, class DA, class DB, class DQ, class DR>
+[[nodiscard]] typename DX::Scalar dare_relative_residual(const Eigen::MatrixBase<DX>& X, const Eigen::MatrixBase<DA>& A,
+                                                         const Eigen::MatrixBase<DB>& B, const Eigen::MatrixBase<DQ>& Q,
+                                                         const Eigen::MatrixBase<DR>& R) {
+  using Scalar = typename DX::Scalar;
+  using Plain = typename DX::PlainObject;
+  const auto btxa = (B.transpose() * X * A).eval();
+  const auto s = (R + B.transpose() * X * B).eval();
+  const Plain ric = A.transpose() * X * A - btxa.transpose() * s.ldlt().solve(btxa) + Q;
+  return (X - ric).norm() / std::max(Scalar(1), X.norm());
+}
+
+/// Stabilizing solution of the control-form DARE (see file comment).
+/// Throws `ConfigurationError` on invalid arguments or when no stabilizing
+/// solution exists ((A, B) not stabilizable or (A, Q) not detectable).
+template <class DA, class DB, class DQ, class DR>
+[[nodiscard]] auto solve_dare(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
+                              const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R,
+                              DareOptions options = {}) {
+  using Scalar = typename DA::Scalar;
+  constexpr int N = DA::RowsAtCompileTime;
+  using Square = Eigen::Matrix<Scalar, N, N>;
+  constexpr std::string_view who = "solve_dare";
+  detail::require_square(A, who, "A");
+  detail::require_finite(A, who, "A");
+  const Index n = A.rows();
+  detail::require_shape(B, n, B.cols(), who, "B");
+  detail::require_finite(B, who, "B");
+  detail::require_shape(Q, n, n, who, "Q");
+  detail::require_positive_semidefinite(Q, who, "Q");
+  detail::require_shape(R, B.cols(), B.cols(), who, "R");
+  detail::require_positive_definite(R, who, "R");
+
+  const Scalar tol = options.tolerance > 0 ? Scalar(options.tolerance)
+                                           : Scalar(100) * std::numeric_limits<Scalar>::epsilon();
+  const Square identity = Square::Identity(n, n);
+  Square a = A;
+  Square g = B * R.llt().solve(B.transpose());
+  Square h = Q;
+  DareSolution<Scalar, N> result;
+  bool converged = false;
+  for (int j = 0; j < options.max_iterations && !converged; ++j) {
+    const Eigen::PartialPivLU<Square> w(identity + g * h);
+    const Square w_inv_a = w.solve(a);
+    const Square w_inv_g = w.solve(g);
+    const Square h_next = h + a.transpose() * h * w_inv_a;
+    const Square g_next = g + a * w_inv_g * a.transpose();
+    a = (a * w_inv_a).eval();
+    const Scalar change = (h_next - h).norm();
+    h = Scalar(0.5) * (h_next + h_next.transpose());
+    g = Scalar(0.5) * (g_next + g_next.transpose());
+    result.iterations = j + 1;
+    if (!h.allFinite() || !g.allFinite() || !a.allFinite()) break;
+    converged = change <= tol * std::max(Scalar(1), h.norm());
+  }
+  result.X = h;
+  if (!converged || !result.X.allFinite())
+    detail::fail_argument(who, "A, B", "admit no stabilizing DARE solution: (A, B) must be stabilizable "
+                                       "and (A, Q) detectable");
+  result.relative_residual = dare_relative_residual(result.X, A, B, Q, R);
+  // The stabilizing solution makes A − B (R + BᵀXB)⁻¹ BᵀXA Schur.
+  const auto s = (R + B.transpose() * result.X * B).eval();
+  const Square closed_loop = A - B * s.ldlt().solve(B.transpose() * result.X * A);
+  if (!is_schur_stable(closed_loop))
+    detail::fail_argument(who, "A, B", "admit no stabilizing DARE solution: (A, B) must be stabilizable "
+                                       "and (A, Q) detectable");
+  return result;
+}
+
+/// Steady-state Kalman gain of \f$x_{k+1} = A x_k + w_k,\ y_k = C x_k + v_k\f$,
+/// \f$\mathrm{cov}(w) = Q,\ \mathrm{cov}(v) = R\f$, in predictor form: the
+/// one-step predictor \f$\hat x_{k+1} = A\hat x_k + K(y_k - C\hat x_k)\f$ has
+/// error dynamics \f$A - KC\f$, which is Schur. P is the a-priori error covariance.
+template <typename Scalar, int N, int M>
+struct KalmanGain {
+  Eigen::Matrix<Scalar, N, M> K;
+  Eigen::Matrix<Scalar, N, N> P;
+  Scalar relative_residual = 0;
+};
+
+/// \f$P\f$ solves the dual DARE \f$(A^T, C^T, Q, R)\f$ and
+/// \f$K = A P C^T (C P C^T + R)^{-1}\f$.
+template <class DA, class DC, class DQ, class DR>
+[[nodiscard]] auto steady_state_kalman_gain(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
+                                            const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R,
+                                            DareOptions options = {}) {
+  using Scalar = typename DA::Scalar;
+  constexpr int N = DA::RowsAtCompileTime;
+  constexpr int M = DC::RowsAtCompileTime;
+  detail::require_shape(C, C.rows(), A.cols(), "steady_state_kalman_gain", "C");
+  const auto dual = solve_dare(A.transpose(), C.transpose(), Q, R, options);
+  KalmanGain<Scalar, N, M> result;
+  result.P = dual.X;
+  result.relative_residual = dual.relative_residual;
+  const Eigen::Matrix<Scalar, M, M> s = C * result.P * C.transpose() + R;
+  // K = A P Cᵀ S⁻¹  ⇔  Kᵀ = S⁻¹ C P Aᵀ (S and P symmetric).
+  result.K = s.llt().solve(C * result.P * A.transpose()).transpose();
+  return result;
+}
+
+}  // namespace adaptobs

@@ -1,0 +1,50 @@
+#pragma once
+/// \file
+/// Eigenvalue-based stability checks of closed-loop matrices such as A − KC.
+
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include <limits>
+
+namespace adaptobs {
+
+/// Eigenvalues of a real square matrix.
+template <class Derived>
+[[nodiscard]] auto eigenvalues(const Eigen::MatrixBase<Derived>& m) {
+  detail::require_square(m, "eigenvalues", "M");
+  detail::require_finite(m, "eigenvalues", "M");
+  using Plain = typename Derived::PlainObject;
+  Eigen::EigenSolver<Plain> solver(m.derived(), /*computeEigenvectors=*/false);
+  return typename Eigen::EigenSolver<Plain>::EigenvalueType(solver.eigenvalues());
+}
+
+/// Spectral radius \f$\rho(M) = \max_i |\lambda_i(M)|\f$.
+template <class Derived>
+[[nodiscard]] typename Derived::Scalar spectral_radius(const Eigen::MatrixBase<Derived>& m) {
+  if (m.size() == 0) return typename Derived::Scalar(0);
+  return eigenvalues(m).cwiseAbs().maxCoeff();
+}
+
+/// Largest real part of the eigenvalues (the continuous-time stability abscissa).
+template <class Derived>
+[[nodiscard]] typename Derived::Scalar spectral_abscissa(const Eigen::MatrixBase<Derived>& m) {
+  if (m.size() == 0) return -std::numeric_limits<typename Derived::Scalar>::infinity();
+  return eigenvalues(m).real().maxCoeff();
+}
+
+/// Schur stability: every eigenvalue strictly inside the circle of radius 1 − margin.
+template <class Derived>
+[[nodiscard]] bool is_schur_stable(const Eigen::MatrixBase<Derived>& m, typename Derived::Scalar margin = 0) {
+  return spectral_radius(m) < typename Derived::Scalar(1) - margin;
+}
+
+/// Hurwitz stability: every eigenvalue has real part below −margin.
+template <class Derived>
+[[nodiscard]] bool is_hurwitz_stable(const Eigen::MatrixBase<Derived>& m, typename Derived::Scalar margin = 0) {
+  return spectral_abscissa(m) < -margin;
+}
+
+}  // namespace adaptobs

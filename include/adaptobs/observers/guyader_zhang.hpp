@@ -1,0 +1,254 @@
+#pragma once
+/// \file
+/// Discrete-time MIMO LTV adaptive observer of Guyader & Zhang
+/// (paper `000_3dfd8ba7c9f11f1a.txt`, eq. (2a)–(2c)).
+///
+/// System (paper 000, eq. (1), noise free):
+/// \f[ x_{k+1} = A_k x_k + B_k u_k + \Psi_k\theta,\qquad y_k = C_k x_k. \f]
+/// The observer filters the regressor through the stable error dynamics
+/// \f$A_k - K_kC_k\f$ (eq. (2a)), corrects θ̂ along \f$\Upsilon_k^TC_k^T\f$ times
+/// the output error (eq. (2b)), and moves x̂ with θ̂ through \f$\Upsilon_{k+1}\f$
+/// (eq. (2c)). With \f$\eta_k = \tilde x_k - \Upsilon_k\tilde\theta_k\f$ the
+/// errors obey (proof of theorem 1)
+/// \f[ \eta_{k+1} = (A_k - K_kC_k)\eta_k,\qquad
+///     \tilde\theta_{k+1} = (I - \mu_k\Upsilon_k^TC_k^TC_k\Upsilon_k)\tilde\theta_k
+///                         - \mu_k\Upsilon_k^TC_k^TC_k\eta_k, \f]
+/// which converge exponentially under assumptions 1–3 (theorem 1).
+
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/spectral_norm.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/excitation_monitor.hpp>
+
+#include <cmath>
+#include <optional>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+namespace adaptobs {
+
+/// Options of `GuyaderZhangObserver`.
+struct GuyaderZhangOptions {
+  /// Window L of the assumption-3 excitation monitor (eq. (4)); 0 turns it off
+  /// and saves its per-step cost (one p × p outer product).
+  Index excitation_window = 0;
+};
+
+/// Guyader–Zhang adaptive observer over a discrete model (LTI or LTV).
+///
+/// Each `update` consumes \f$(u_k, y_k, \Psi_k)\f$ and advances the estimates
+/// from step k to k + 1. The gain \f$K_k\f$ and step size \f$\mu_k\f$ are
+/// constant unless changed with `set_gain` / `set_mu` between updates.
+template <DiscreteModel Model>
+class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
+ public:
+  using Dims = typename Model::Dims;
+  using Scalar = typename Dims::Scalar;
+  using State = typename Dims::State;
+  using Parameters = typename Dims::Parameters;
+  using GainMatrix = typename Dims::GainMatrix;
+  using RegressorMatrix = typename Dims::RegressorMatrix;
+  using Sample = DiscreteSample<Dims>;
+
+  /// \param K output-injection gain making \f$A_k - KC_k\f$ exponentially stable (assumption 1);
+  /// \param mu step size \f$\mu > 0\f$ small enough for assumption 2.
+  GuyaderZhangObserver(Model model, GainMatrix K, Scalar mu, State x0, Parameters theta0,
+                       GuyaderZhangOptions options = {})
+      : model_(std::move(model)), gain_(std::move(K)), mu_(mu), x_(std::move(x0)), theta_(std::move(theta0)) {
+    constexpr std::string_view who = "GuyaderZhangObserver";
+    const Sizes s = model_.sizes();
+    detail::require_shape(gain_, s.nx, s.ny, who, "K");
+    detail::require_finite(gain_, who, "K");
+    detail::require_positive(mu_, who, "mu");
+    detail::require_shape(x_, s.nx, 1, who, "x0");
+    detail::require_finite(x_, who, "x0");
+    detail::require_shape(theta_, s.np, 1, who, "theta0");
+    detail::require_finite(theta_, who, "theta0");
+    detail::require(options.excitation_window >= 0, who, "options.excitation_window", "must be non-negative");
+    if (options.excitation_window > 0) excitation_.emplace(options.excitation_window, s.np);
+
+    upsilon_.setZero(s.nx, s.np);
+    last_c_upsilon_.setZero(s.ny, s.np);
+    if constexpr (!Dims::is_fixed) work_.resize(s);
+    if constexpr (Model::time_invariant) update_closed_loop();
+  }
+
+  /// One step of eq. (2a)–(2c) with the sample \f$(u_k, y_k, \Psi_k)\f$.
+  ///
+  /// Returns `nonfinite_input` for a NaN/Inf in the sample and
+  /// `nonfinite_result` when the step would produce one; in both cases the
+  /// observer is left exactly as it was.
+  [[nodiscard]] UpdateStatus update(const Sample& sample) {
+    if constexpr (Dims::is_fixed) {
+      // Fixed sizes: the workspace lives on the stack, where the compiler can keep it in registers.
+      Workspace w;
+      return advance(sample, w);
+    } else {
+      check_sample_sizes(sample);
+      return advance(sample, work_);
+    }
+  }
+
+  /// State estimate \f$\hat x_k\f$.
+  [[nodiscard]] const State& state() const noexcept { return x_; }
+  /// Parameter estimate \f$\hat\theta_k\f$.
+  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  /// Filtered regressor \f$\Upsilon_k\f$ (eq. (2a)).
+  [[nodiscard]] const RegressorMatrix& upsilon() const noexcept { return upsilon_; }
+  /// Number k of accepted samples since construction or the last reset.
+  [[nodiscard]] Index step() const noexcept { return step_; }
+  [[nodiscard]] const Model& model() const noexcept { return model_; }
+  [[nodiscard]] const GainMatrix& gain() const noexcept { return gain_; }
+  [[nodiscard]] Scalar mu() const noexcept { return mu_; }
+
+  /// Restarts from \f$\hat x_0, \hat\theta_0\f$ at step `start_step`, with \f$\Upsilon = 0\f$.
+  void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
+    constexpr std::string_view who = "GuyaderZhangObserver::reset";
+    detail::require_shape(x0, x_.rows(), 1, who, "x0");
+    detail::require_finite(x0, who, "x0");
+    detail::require_shape(theta0, theta_.rows(), 1, who, "theta0");
+    detail::require_finite(theta0, who, "theta0");
+    detail::require(start_step >= 0, who, "start_step", "must be non-negative");
+    x_ = x0;
+    theta_ = theta0;
+    upsilon_.setZero();
+    last_c_upsilon_.setZero();
+    last_mu_ = Scalar(0);
+    step_ = start_step;
+    if (excitation_) excitation_->reset();
+  }
+
+  /// Gain \f$K_k\f$ used from the next update on (e.g. from `KalmanGainRecursion`).
+  void set_gain(const GainMatrix& K) {
+    detail::require_shape(K, gain_.rows(), gain_.cols(), "GuyaderZhangObserver::set_gain", "K");
+    detail::require_finite(K, "GuyaderZhangObserver::set_gain", "K");
+    gain_ = K;
+    if constexpr (Model::time_invariant) update_closed_loop();
+  }
+
+  /// Step size \f$\mu_k > 0\f$ used from the next update on.
+  void set_mu(Scalar mu) {
+    detail::require_positive(mu, "GuyaderZhangObserver::set_mu", "mu");
+    mu_ = mu;
+  }
+
+  /// \f$\|\sqrt{\mu_k}C_k\Upsilon_k\|_2\f$ of the last accepted step (0 before the first).
+  [[nodiscard]] Scalar assumption2_norm() const { return std::sqrt(last_mu_) * spectral_norm(last_c_upsilon_); }
+
+  /// Assumption 2 (eq. (3)) held at the last accepted step: \f$\|\sqrt{\mu_k}C_k\Upsilon_k\| \le 1\f$.
+  [[nodiscard]] bool assumption2_holds() const { return assumption2_norm() <= Scalar(1); }
+
+  /// Excitation level α of assumption 3 (eq. (4)) over the last L accepted
+  /// steps, i.e. the smallest eigenvalue of \f$\frac1L\sum\mu_i\Upsilon_i^TC_i^TC_i\Upsilon_i\f$;
+  /// empty while the monitor is off or its window has not filled.
+  [[nodiscard]] std::optional<Scalar> excitation_level() const {
+    if (!excitation_ || !excitation_->full()) return std::nullopt;
+    return excitation_->level();
+  }
+
+ private:
+  // Intermediate results of one step, committed only when all are finite.
+  struct Workspace {
+    typename Dims::Output innovation;
+    typename Dims::OutputRegressor c_upsilon;
+    Parameters theta_step;
+    Parameters theta;
+    RegressorMatrix upsilon;
+    State x;
+    void resize(const Sizes& s) {
+      innovation.setZero(s.ny);
+      c_upsilon.setZero(s.ny, s.np);
+      theta_step.setZero(s.np);
+      theta.setZero(s.np);
+      upsilon.setZero(s.nx, s.np);
+      x.setZero(s.nx);
+    }
+  };
+
+  UpdateStatus advance(const Sample& sample, Workspace& w) {
+    if (!detail::all_finite(sample.u, sample.y, sample.Psi)) return UpdateStatus::nonfinite_input;
+    const auto& system = model_.at(step_);
+    if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
+
+    // Output error y_k − C_k x̂_k and C_k Υ_k, shared by (2a)–(2c).
+    w.innovation = sample.y;
+    w.innovation.noalias() -= system.C * x_;
+    w.c_upsilon.noalias() = detail::product(system.C, upsilon_);
+
+    /// (2b) \f$\hat\theta_{k+1} = \hat\theta_k + \mu_k\Upsilon_k^TC_k^T(y_k - C_k\hat x_k)\f$
+    w.theta_step.noalias() = mu_ * (w.c_upsilon.transpose() * w.innovation);
+    w.theta = theta_ + w.theta_step;
+
+    /// (2a) \f$\Upsilon_{k+1} = (A_k - K_kC_k)\Upsilon_k + \Psi_k\f$; for an LTV model
+    /// evaluated as \f$A_k\Upsilon_k - K_k(C_k\Upsilon_k)\f$, reusing \f$C_k\Upsilon_k\f$.
+    w.upsilon = sample.Psi;
+    if constexpr (Model::time_invariant) {
+      w.upsilon.noalias() += detail::product(closed_loop_, upsilon_);
+    } else {
+      w.upsilon.noalias() += detail::product(system.A, upsilon_);
+      w.upsilon.noalias() -= detail::product(gain_, w.c_upsilon);
+    }
+
+    /// (2c) \f$\hat x_{k+1} = A_k\hat x_k + B_ku_k + \Psi_k\hat\theta_k + K_k(y_k - C_k\hat x_k)
+    ///        + \Upsilon_{k+1}(\hat\theta_{k+1} - \hat\theta_k)\f$
+    w.x.noalias() = system.A * x_;
+    w.x.noalias() += system.B * sample.u;
+    w.x.noalias() += sample.Psi * theta_;
+    w.x.noalias() += gain_ * w.innovation;
+    w.x.noalias() += w.upsilon * w.theta_step;
+
+    if (!detail::all_finite(w.x, w.theta, w.upsilon)) return UpdateStatus::nonfinite_result;
+
+    detail::commit(x_, w.x);
+    detail::commit(theta_, w.theta);
+    detail::commit(upsilon_, w.upsilon);
+    detail::commit(last_c_upsilon_, w.c_upsilon);
+    last_mu_ = mu_;
+    if (excitation_) excitation_->add(last_c_upsilon_, last_mu_);
+    ++step_;
+    return UpdateStatus::accepted;
+  }
+
+  void update_closed_loop() {
+    const auto& system = model_.at(0);
+    closed_loop_ = system.A;
+    closed_loop_.noalias() -= gain_ * system.C;
+  }
+
+  void check_sample_sizes(const Sample& sample) const {
+    constexpr std::string_view who = "GuyaderZhangObserver::update";
+    const Sizes s = model_.sizes();
+    detail::require_shape(sample.u, s.nu, 1, who, "sample.u");
+    detail::require_shape(sample.y, s.ny, 1, who, "sample.y");
+    detail::require_shape(sample.Psi, s.nx, s.np, who, "sample.Psi");
+  }
+
+  void check_system_sizes(const DiscreteSystem<Dims>& system) const {
+    constexpr std::string_view who = "GuyaderZhangObserver::update";
+    const Sizes s = model_.sizes();
+    detail::require_shape(system.A, s.nx, s.nx, who, "model.at(k).A");
+    detail::require_shape(system.B, s.nx, s.nu, who, "model.at(k).B");
+    detail::require_shape(system.C, s.ny, s.nx, who, "model.at(k).C");
+  }
+
+  Model model_;
+  GainMatrix gain_;
+  Scalar mu_;
+  State x_;
+  Parameters theta_;
+  RegressorMatrix upsilon_;
+  typename Dims::StateMatrix closed_loop_;  // A − K C, cached for a time-invariant model
+  typename Dims::OutputRegressor last_c_upsilon_;
+  Scalar last_mu_ = Scalar(0);
+  Index step_ = 0;
+  std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;
+  // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
+  [[no_unique_address]] std::conditional_t<Dims::is_fixed, std::monostate, Workspace> work_;
+};
+
+}  // namespace adaptobs

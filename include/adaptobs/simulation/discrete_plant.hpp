@@ -1,0 +1,115 @@
+#pragma once
+/// \file
+/// Simulated discrete-time plant with unknown parameters and optional noise
+/// (paper 000, eq. (1)):
+/// \f[ \theta_{k+1} = \theta_k + e_k,\quad x_{k+1} = A_kx_k + B_ku_k + \Psi_k\theta_k + w_k,\quad
+///     y_k = C_kx_k + v_k. \f]
+/// Inputs and regressors are user callables `input(k)` and `regressor(k, u_k)`.
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <utility>
+
+namespace adaptobs {
+
+/// Noise of a simulated plant: zero mean, standard deviations per signal, from a fixed seed.
+template <typename Scalar>
+struct PlantNoise {
+  enum class Distribution { gaussian, uniform };
+  Distribution distribution = Distribution::gaussian;  ///< uniform noise is bounded, as theorem 2 assumes
+  Scalar output = 0;     ///< std of each entry of v_k
+  Scalar state = 0;      ///< std of each entry of w_k
+  Scalar parameter = 0;  ///< std of each entry of e_k
+  std::uint64_t seed = 1;
+};
+
+template <DiscreteModel Model, class InputFn, class RegressorFn>
+class DiscreteLinearPlant : public SizedBy<typename Model::Dims> {
+ public:
+  using Dims = typename Model::Dims;
+  using Scalar = typename Dims::Scalar;
+  using State = typename Dims::State;
+  using Parameters = typename Dims::Parameters;
+  using Sample = DiscreteSample<Dims>;
+
+  DiscreteLinearPlant(Model model, State x0, Parameters theta, InputFn input, RegressorFn regressor,
+                      PlantNoise<Scalar> noise = {}, Scalar sampling_period = Scalar(1))
+      : model_(std::move(model)),
+        x_(std::move(x0)),
+        theta_(std::move(theta)),
+        input_(std::move(input)),
+        regressor_(std::move(regressor)),
+        noise_(noise),
+        period_(sampling_period),
+        rng_(noise.seed) {
+    constexpr std::string_view who = "DiscreteLinearPlant";
+    const Sizes s = model_.sizes();
+    detail::require_shape(x_, s.nx, 1, who, "x0");
+    detail::require_shape(theta_, s.np, 1, who, "theta");
+    detail::require(noise.output >= 0 && noise.state >= 0 && noise.parameter >= 0, who, "noise",
+                    "standard deviations must be non-negative");
+    detail::require_positive(sampling_period, who, "sampling_period");
+    make_sample();
+  }
+
+  /// Measured sample of the current step: \f$(u_k, y_k, \Psi_k)\f$.
+  [[nodiscard]] const Sample& sample() const noexcept { return sample_; }
+  /// True state \f$x_k\f$ and parameters \f$\theta_k\f$.
+  [[nodiscard]] const State& state() const noexcept { return x_; }
+  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  [[nodiscard]] Index step() const noexcept { return k_; }
+  [[nodiscard]] double time() const noexcept { return static_cast<double>(k_) * static_cast<double>(period_); }
+  [[nodiscard]] const Model& model() const noexcept { return model_; }
+
+  /// Moves to step k + 1.
+  void advance() {
+    const auto& system = model_.at(k_);
+    State next = system.A * x_;
+    next.noalias() += system.B * sample_.u;
+    next.noalias() += sample_.Psi * theta_;
+    add_noise(next, noise_.state);
+    x_ = next;
+    add_noise(theta_, noise_.parameter);
+    ++k_;
+    make_sample();
+  }
+
+ private:
+  void make_sample() {
+    sample_.u = input_(k_);
+    sample_.Psi = regressor_(k_, std::as_const(sample_.u));
+    sample_.y = model_.at(k_).C * x_;
+    add_noise(sample_.y, noise_.output);
+  }
+
+  template <class Derived>
+  void add_noise(Eigen::MatrixBase<Derived>& v, Scalar std_dev) {
+    if (std_dev == Scalar(0)) return;
+    for (Index i = 0; i < v.size(); ++i) v(i) += draw(std_dev);
+  }
+
+  Scalar draw(Scalar std_dev) {
+    if (noise_.distribution == PlantNoise<Scalar>::Distribution::gaussian)
+      return std::normal_distribution<Scalar>(Scalar(0), std_dev)(rng_);
+    const Scalar half_width = std_dev * std::sqrt(Scalar(3));
+    return std::uniform_real_distribution<Scalar>(-half_width, half_width)(rng_);
+  }
+
+  Model model_;
+  State x_;
+  Parameters theta_;
+  InputFn input_;
+  RegressorFn regressor_;
+  PlantNoise<Scalar> noise_;
+  Scalar period_;
+  std::mt19937_64 rng_;
+  Sample sample_;
+  Index k_ = 0;
+};
+
+}  // namespace adaptobs

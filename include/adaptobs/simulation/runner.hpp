@@ -1,0 +1,109 @@
+#pragma once
+/// \file
+/// Runs observers on a simulated plant and records every series in a `SeriesTable`.
+///
+/// Written once against the `Plant` and `Observer` concepts. Row k holds
+/// \f$t_k, u_k, y_k, x_k, \hat x_k, \theta_k, \hat\theta_k\f$ — the estimates
+/// *before* the sample of step k is consumed, so that \f$\hat x_k\f$ is compared
+/// with \f$x_k\f$ — in the column order of the examples' CSV schema
+/// (`t,u_*,y_*,x_*,xhat_*,theta_*,thetahat_*`); further observers add
+/// `xhat_<suffix>_*` and `thetahat_<suffix>_*` columns.
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/observer.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/simulation/series_table.hpp>
+
+#include <array>
+#include <concepts>
+#include <string>
+#include <string_view>
+#include <utility>
+
+namespace adaptobs {
+
+/// A simulated system: current truth, current measured sample, and a way forward.
+template <class P>
+concept Plant = requires(P& p, const P& cp) {
+  typename P::Sample;
+  { cp.sample() } -> std::convertible_to<const typename P::Sample&>;
+  cp.sample().u;
+  cp.sample().y;
+  cp.state();
+  cp.parameters();
+  { cp.time() } -> std::convertible_to<double>;
+  p.advance();
+};
+
+/// An observer taking part in a simulation, and the suffix of its CSV columns
+/// (empty for the primary observer).
+template <Observer O>
+struct Tracked {
+  O& observer;
+  std::string_view suffix;
+};
+
+/// Names `observer` for a simulation: `track(akf, "akf")` writes `xhat_akf_*`, `thetahat_akf_*`.
+template <Observer O>
+[[nodiscard]] Tracked<O> track(O& observer, std::string_view suffix = {}) {
+  return {observer, suffix};
+}
+
+/// Rejected samples per tracked observer, in the order given.
+template <std::size_t N>
+struct SimulationReport {
+  std::array<Index, N> rejected{};
+  Index steps = 0;
+};
+
+namespace detail {
+inline std::string column_name(std::string_view base, std::string_view suffix) {
+  std::string name(base);
+  if (!suffix.empty()) name.append("_").append(suffix);
+  return name;
+}
+struct NoExtraColumns {
+  template <class P>
+  void operator()(SeriesTable&, const P&) const {}
+};
+}  // namespace detail
+
+/// Runs `steps` samples; `extra_columns(table, plant)` may append columns to each row
+/// (after the observers' columns).
+template <Plant P, class Extras, Observer First, Observer... Rest>
+  requires std::invocable<Extras&, SeriesTable&, const P&>
+SimulationReport<1 + sizeof...(Rest)> simulate(P& plant, Index steps, SeriesTable& table, Extras&& extra_columns,
+                                               Tracked<First> first, Tracked<Rest>... rest) {
+  SimulationReport<1 + sizeof...(Rest)> report;
+  for (Index k = 0; k < steps; ++k) {
+    const auto& sample = plant.sample();
+    table.begin_row().add("t", plant.time()).add("u", sample.u).add("y", sample.y).add("x", plant.state());
+    table.add(detail::column_name("xhat", first.suffix), first.observer.state());
+    table.add("theta", plant.parameters());
+    table.add(detail::column_name("thetahat", first.suffix), first.observer.parameters());
+    (table.add(detail::column_name("xhat", rest.suffix), rest.observer.state())
+         .add(detail::column_name("thetahat", rest.suffix), rest.observer.parameters()),
+     ...);
+    extra_columns(table, std::as_const(plant));
+
+    std::size_t i = 0;
+    const auto feed = [&](auto& tracked) {
+      if (!accepted(tracked.observer.update(sample))) ++report.rejected[i];
+      ++i;
+    };
+    feed(first);
+    (feed(rest), ...);
+    plant.advance();
+    ++report.steps;
+  }
+  return report;
+}
+
+/// As above, with no extra columns.
+template <Plant P, Observer First, Observer... Rest>
+SimulationReport<1 + sizeof...(Rest)> simulate(P& plant, Index steps, SeriesTable& table, Tracked<First> first,
+                                               Tracked<Rest>... rest) {
+  return simulate(plant, steps, table, detail::NoExtraColumns{}, first, rest...);
+}
+
+}  // namespace adaptobs

@@ -1,0 +1,131 @@
+#pragma once
+/// \file
+/// Column table of simulated series, written as CSV.
+///
+/// Rows are built with `begin_row()` followed by `add(...)` calls; the first
+/// row fixes the columns (a vector added as `"xhat"` becomes `xhat_1..xhat_n`,
+/// 1-based), every later row must add the same columns in the same order.
+/// Numbers are written in shortest round-trip form; non-finite values as
+/// `nan`, `inf` and `-inf`.
+
+#include <Eigen/Core>
+
+#include <charconv>
+#include <cstddef>
+#include <fstream>
+#include <ostream>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace adaptobs {
+
+class SeriesTable {
+ public:
+  /// Starts a new row; the previous one must be complete.
+  SeriesTable& begin_row() {
+    if (rows_ > 0 && cursor_ != names_.size())
+      throw std::logic_error("SeriesTable: row " + std::to_string(rows_ - 1) + " has " + std::to_string(cursor_) +
+                             " values, the header has " + std::to_string(names_.size()));
+    ++rows_;
+    cursor_ = 0;
+    return *this;
+  }
+
+  /// Adds one value under column `name`.
+  SeriesTable& add(std::string_view name, double value) {
+    push(name, value);
+    return *this;
+  }
+
+  /// Adds a vector (or matrix, column-major) under columns `name_1`, `name_2`, ...
+  template <class Derived>
+  SeriesTable& add(std::string_view name, const Eigen::DenseBase<Derived>& values) {
+    const auto& v = values.derived();
+    std::string column;
+    for (Eigen::Index i = 0; i < v.size(); ++i) {
+      column.assign(name).append("_").append(std::to_string(i + 1));
+      push(column, static_cast<double>(v.reshaped()(i)));
+    }
+    return *this;
+  }
+
+  [[nodiscard]] std::size_t rows() const noexcept { return rows_; }
+  [[nodiscard]] std::size_t columns() const noexcept { return names_.size(); }
+  [[nodiscard]] const std::vector<std::string>& names() const noexcept { return names_; }
+
+  /// Value of `column` in `row`; throws if the column does not exist.
+  [[nodiscard]] double at(std::size_t row, std::string_view column) const {
+    return values_.at(row * names_.size() + index_of(column));
+  }
+
+  /// All values of one column.
+  [[nodiscard]] std::vector<double> column(std::string_view name) const {
+    const std::size_t c = index_of(name);
+    std::vector<double> out;
+    out.reserve(rows_);
+    for (std::size_t r = 0; r < complete_rows(); ++r) out.push_back(values_[r * names_.size() + c]);
+    return out;
+  }
+
+  void write_csv(std::ostream& os) const {
+    for (std::size_t c = 0; c < names_.size(); ++c) os << (c ? "," : "") << names_[c];
+    os << '\n';
+    char buffer[64];
+    for (std::size_t r = 0; r < complete_rows(); ++r) {
+      for (std::size_t c = 0; c < names_.size(); ++c) {
+        if (c) os << ',';
+        os << format(values_[r * names_.size() + c], buffer);
+      }
+      os << '\n';
+    }
+  }
+
+  void write_csv(const std::string& path) const {
+    std::ofstream file(path);
+    if (!file) throw std::runtime_error("SeriesTable: cannot open '" + path + "' for writing");
+    write_csv(file);
+    if (!file) throw std::runtime_error("SeriesTable: failed writing '" + path + "'");
+  }
+
+ private:
+  void push(std::string_view name, double value) {
+    if (rows_ == 0) throw std::logic_error("SeriesTable: add() before begin_row()");
+    if (rows_ == 1) {
+      names_.emplace_back(name);
+    } else if (cursor_ >= names_.size() || names_[cursor_] != name) {
+      throw std::logic_error("SeriesTable: column '" + std::string(name) + "' does not match the header at position " +
+                             std::to_string(cursor_));
+    }
+    values_.push_back(value);
+    ++cursor_;
+  }
+
+  [[nodiscard]] std::size_t complete_rows() const noexcept {
+    if (names_.empty()) return 0;
+    return values_.size() / names_.size();
+  }
+
+  [[nodiscard]] std::size_t index_of(std::string_view name) const {
+    for (std::size_t c = 0; c < names_.size(); ++c)
+      if (names_[c] == name) return c;
+    throw std::out_of_range("SeriesTable: no column '" + std::string(name) + "'");
+  }
+
+  static std::string_view format(double v, char (&buffer)[64]) {
+    if (v != v) return "nan";
+    if (v == std::numeric_limits<double>::infinity()) return "inf";
+    if (v == -std::numeric_limits<double>::infinity()) return "-inf";
+    const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v);
+    return {buffer, static_cast<std::size_t>(result.ptr - buffer)};
+  }
+
+  std::vector<std::string> names_;
+  std::vector<double> values_;
+  std::size_t rows_ = 0;
+  std::size_t cursor_ = 0;
+};
+
+}  // namespace adaptobs

@@ -1,0 +1,43 @@
+# Installs what is missing from Debian packages, or says what to install.
+# Sourced by scripts/demo.sh and scripts/test.sh.
+#
+# ensure_packages PACKAGE...   each PACKAGE is "name" or "name:command" (a
+# command whose presence is enough, e.g. any gnuplot variant for gnuplot-nox).
+
+package_present() {
+  local package=${1%%:*} command=""
+  [[ $1 == *:* ]] && command=${1#*:}
+  if [[ -n $command ]] && command -v "$command" >/dev/null 2>&1; then
+    return 0
+  fi
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"
+}
+
+ensure_packages() {
+  local missing=() spec
+  for spec in "$@"; do
+    package_present "$spec" || missing+=("${spec%%:*}")
+  done
+  [[ ${#missing[@]} -eq 0 ]] && return 0
+
+  if ! command -v apt-get >/dev/null 2>&1; then
+    echo "error: missing packages: ${missing[*]} (and no apt-get on this machine); install them and retry." >&2
+    exit 1
+  fi
+  if [[ $(id -u) -ne 0 ]]; then
+    echo "error: missing Debian packages: ${missing[*]}" >&2
+    echo "run:   sudo apt-get update && sudo apt-get install -y ${missing[*]}" >&2
+    exit 1
+  fi
+  echo "-- installing missing Debian packages: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  if ! { apt-get update -qq && apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null; }; then
+    echo "error: apt-get could not install: ${missing[*]}" >&2
+    exit 1
+  fi
+}
+
+# Packages every build needs.
+ADAPTOBS_BUILD_PACKAGES=(cmake:cmake g++:g++ make:make libeigen3-dev)
+# Packages of the test suite, examples and benchmarks.
+ADAPTOBS_TEST_PACKAGES=(libgtest-dev libbenchmark-dev gnuplot-nox:gnuplot)

@@ -1,0 +1,37 @@
+# Installs adaptobs from its build tree into a fresh prefix, then configures,
+# builds and runs a consumer project that only knows
+#   find_package(adaptobs CONFIG REQUIRED) + target_link_libraries(... adaptobs::adaptobs).
+foreach(var ADAPTOBS_SOURCE_DIR ADAPTOBS_BINARY_DIR WORK_DIR CXX_COMPILER)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "TestInstalledPackage.cmake: ${var} is not set")
+  endif()
+endforeach()
+
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(prefix "${WORK_DIR}/prefix")
+
+function(run_step what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${out}\n${err}")
+  endif()
+  message(STATUS "${what}: ok")
+  set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+
+run_step("install" "${CMAKE_COMMAND}" --install "${ADAPTOBS_BINARY_DIR}" --prefix "${prefix}")
+if(NOT EXISTS "${prefix}/share/cmake/adaptobs/adaptobsConfigVersion.cmake")
+  message(FATAL_ERROR "install did not produce share/cmake/adaptobs/adaptobsConfigVersion.cmake")
+endif()
+run_step("configure consumer" "${CMAKE_COMMAND}"
+  -S "${ADAPTOBS_SOURCE_DIR}/tests/package/consumer"
+  -B "${WORK_DIR}/build"
+  "-DCMAKE_PREFIX_PATH=${prefix}"
+  "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}"
+  -DCMAKE_BUILD_TYPE=Release)
+run_step("build consumer" "${CMAKE_COMMAND}" --build "${WORK_DIR}/build")
+find_program(consumer NAMES adaptobs_consumer PATHS "${WORK_DIR}/build" NO_DEFAULT_PATH REQUIRED)
+run_step("run consumer" "${consumer}")
+if(NOT last_output MATCHES "adaptobs consumer ok")
+  message(FATAL_ERROR "consumer printed:\n${last_output}")
+endif()

@@ -1,0 +1,109 @@
+#pragma once
+// Test helpers shared by every test: matrix comparisons with per-scalar
+// tolerances, seeded random draws, and a geometric-rate fit.
+
+#include <Eigen/Core>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <vector>
+
+namespace adaptobs::testing {
+
+/// Tolerances that scale with the scalar's precision.
+template <typename S>
+struct Tolerance {
+  static constexpr S eps = std::numeric_limits<S>::epsilon();
+  /// Round-off level of a short computation.
+  static constexpr S tight = std::is_same_v<S, float> ? S(1e-4) : S(1e-10);
+  /// What a converged observer should reach in a noise-free run.
+  static constexpr S converged = std::is_same_v<S, float> ? S(1e-3) : S(1e-9);
+};
+
+/// |a − b| ≤ abs_tol + rel_tol·|b| entrywise; prints both matrices on failure.
+template <class DA, class DB>
+::testing::AssertionResult matrices_near(const char* a_expr, const char* b_expr, const char* /*abs_expr*/,
+                                         const char* /*rel_expr*/, const Eigen::MatrixBase<DA>& a,
+                                         const Eigen::MatrixBase<DB>& b, double abs_tol, double rel_tol) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) {
+    return ::testing::AssertionFailure() << a_expr << " is " << a.rows() << "x" << a.cols() << " but " << b_expr
+                                         << " is " << b.rows() << "x" << b.cols();
+  }
+  double worst = 0;
+  Eigen::Index wi = 0, wj = 0;
+  bool ok = true;
+  for (Eigen::Index j = 0; j < a.cols(); ++j) {
+    for (Eigen::Index i = 0; i < a.rows(); ++i) {
+      const double x = static_cast<double>(a(i, j));
+      const double y = static_cast<double>(b(i, j));
+      const double allowed = abs_tol + rel_tol * std::abs(y);
+      const double err = std::abs(x - y);
+      if (!(err <= allowed)) {
+        ok = false;
+        if (!(err <= worst)) { worst = err; wi = i; wj = j; }
+      }
+    }
+  }
+  if (ok) return ::testing::AssertionSuccess();
+  std::ostringstream os;
+  os.precision(17);
+  os << a_expr << " and " << b_expr << " differ (abs tol " << abs_tol << ", rel tol " << rel_tol
+     << "); worst at (" << wi << "," << wj << "): " << a(wi, wj) << " vs " << b(wi, wj) << "\n"
+     << a_expr << " =\n" << a << "\n" << b_expr << " =\n" << b;
+  return ::testing::AssertionFailure() << os.str();
+}
+
+#define EXPECT_MATRIX_NEAR(a, b, abs_tol, rel_tol) \
+  EXPECT_PRED_FORMAT4(::adaptobs::testing::matrices_near, a, b, abs_tol, rel_tol)
+#define ASSERT_MATRIX_NEAR(a, b, abs_tol, rel_tol) \
+  ASSERT_PRED_FORMAT4(::adaptobs::testing::matrices_near, a, b, abs_tol, rel_tol)
+
+/// Exact equality of every bit (used to check that rejected updates change nothing).
+template <class DA, class DB>
+bool bitwise_equal(const Eigen::MatrixBase<DA>& a, const Eigen::MatrixBase<DB>& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  for (Eigen::Index j = 0; j < a.cols(); ++j)
+    for (Eigen::Index i = 0; i < a.rows(); ++i)
+      if (std::memcmp(&a.derived().coeffRef(i, j), &b.derived().coeffRef(i, j), sizeof(a(i, j))) != 0) return false;
+  return true;
+}
+
+/// Seeded source of random matrices.
+class RandomMatrices {
+ public:
+  explicit RandomMatrices(std::uint64_t seed) : rng_(seed) {}
+  template <class M>
+  M uniform(Eigen::Index rows, Eigen::Index cols, double lo = -1, double hi = 1) {
+    std::uniform_real_distribution<double> d(lo, hi);
+    M m(rows, cols);
+    for (Eigen::Index j = 0; j < cols; ++j)
+      for (Eigen::Index i = 0; i < rows; ++i) m(i, j) = static_cast<typename M::Scalar>(d(rng_));
+    return m;
+  }
+  template <class M>
+  M uniform() { return uniform<M>(M::RowsAtCompileTime, M::ColsAtCompileTime); }
+  double scalar(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
+  std::mt19937_64& engine() { return rng_; }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+/// Least-squares fit of log(e_k) = c + k log(ρ) over the given samples;
+/// returns the geometric rate ρ (ρ < 1: the sequence decays geometrically).
+inline double fit_geometric_rate(const std::vector<double>& errors) {
+  double n = 0, sk = 0, sl = 0, skk = 0, skl = 0;
+  for (std::size_t k = 0; k < errors.size(); ++k) {
+    const double l = std::log(errors[k]);
+    n += 1; sk += double(k); sl += l; skk += double(k) * double(k); skl += double(k) * l;
+  }
+  const double slope = (n * skl - sk * sl) / (n * skk - sk * sk);
+  return std::exp(slope);
+}
+
+}  // namespace adaptobs::testing

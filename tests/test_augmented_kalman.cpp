@@ -1,0 +1,113 @@
+// Augmented-state Kalman filter baseline (paper 000 §1, paper 001 appendix).
+
+#include <adaptobs/baselines/augmented_kalman.hpp>
+#include <adaptobs/core/observer.hpp>
+
+#include <Eigen/Eigenvalues>
+
+#include "models/satellite.hpp"
+#include "support/eigen_testing.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+
+namespace {
+
+using adaptobs::Index;
+using adaptobs::UpdateStatus;
+namespace satellite = adaptobs::examples::satellite;
+using Dims = satellite::Dims<double>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+adaptobs::AugmentedKalmanCovariances<Dims> satellite_covariances() {
+  Matrix6 p0 = Matrix6::Zero();
+  p0.diagonal() << 0.1, 1e-4, 0.1, 1e-4, 1.0, 1.0;
+  Matrix6 q = Matrix6::Zero();
+  q.diagonal() << 1e-10, 1e-10, 1e-10, 1e-10, 0.0, 0.0;
+  return {p0, q, Eigen::Matrix2d::Identity() * 1e-4};
+}
+
+auto make_filter() {
+  return adaptobs::AugmentedKalmanFilter(satellite::model<double>(), satellite::initial_state_estimate<double>(),
+                                         satellite::initial_parameter_estimate<double>(), satellite_covariances());
+}
+
+TEST(AugmentedKalman, SatelliteConvergesToTrueParameters) {
+  auto filter = make_filter();
+  auto plant = satellite::make_plant<double>();  // σ = 0.01
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (Index k = 0; k < 3000; ++k) {
+    ASSERT_EQ(filter.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+    if (k >= 2000) sum += filter.parameters();
+  }
+  EXPECT_MATRIX_NEAR(Eigen::Vector2d(sum / 1000.0), satellite::true_parameters<double>(), 0.02, 0.0);
+  // The covariance stays symmetric positive definite.
+  const Matrix6 p = filter.covariance();
+  EXPECT_LE((p - p.transpose()).norm(), 1e-15 * p.norm());
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Matrix6>(p).eigenvalues()(0), 0.0);
+}
+
+TEST(AugmentedKalman, NoiseFreeAgreesWithExactState) {
+  auto filter = make_filter();
+  auto plant = satellite::make_plant<double>(0.0);
+  for (Index k = 0; k < 3000; ++k) {
+    ASSERT_EQ(filter.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_MATRIX_NEAR(filter.parameters(), plant.parameters(), 1e-4, 0.0);
+  EXPECT_MATRIX_NEAR(filter.state(), plant.state(), 1e-4, 1e-6);
+}
+
+TEST(AugmentedKalman, NonFiniteSamplesAreRejectedAndChangeNothing) {
+  auto filter = make_filter();
+  auto plant = satellite::make_plant<double>();
+  for (Index k = 0; k < 50; ++k) {
+    ASSERT_EQ(filter.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  const Eigen::Vector4d x = filter.state();
+  const Eigen::Vector2d theta = filter.parameters();
+  const Matrix6 p = filter.covariance();
+  auto s = plant.sample();
+  s.y(0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(filter.update(s), UpdateStatus::nonfinite_input);
+  s = plant.sample();
+  s.Psi(1, 0) = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(filter.update(s), UpdateStatus::nonfinite_input);
+  s = plant.sample();
+  s.y.setConstant(std::numeric_limits<double>::max());
+  s.Psi.setConstant(std::numeric_limits<double>::max());
+  EXPECT_EQ(filter.update(s), UpdateStatus::nonfinite_result);
+  using adaptobs::testing::bitwise_equal;
+  EXPECT_TRUE(bitwise_equal(filter.state(), x) && bitwise_equal(filter.parameters(), theta) &&
+              bitwise_equal(filter.covariance(), p));
+  EXPECT_EQ(filter.step(), 50);
+}
+
+TEST(AugmentedKalman, BadCovariancesNameTheArgument) {
+  auto message_of = [](adaptobs::AugmentedKalmanCovariances<Dims> c) -> std::string {
+    try {
+      adaptobs::AugmentedKalmanFilter f(satellite::model<double>(), Eigen::Vector4d::Zero().eval(),
+                                        Eigen::Vector2d::Zero().eval(), c);
+    } catch (const adaptobs::ConfigurationError& e) {
+      return e.what();
+    }
+    return "<no exception>";
+  };
+  auto c = satellite_covariances();
+  c.P0(4, 4) = -1;
+  EXPECT_NE(message_of(c).find("'covariances.P0'"), std::string::npos);
+  c = satellite_covariances();
+  c.Q(0, 0) = -1;
+  EXPECT_NE(message_of(c).find("'covariances.Q'"), std::string::npos);
+  c = satellite_covariances();
+  c.R(0, 1) = 0.5;
+  EXPECT_NE(message_of(c).find("'covariances.R'"), std::string::npos);
+}
+
+static_assert(adaptobs::Observer<decltype(make_filter())>);
+
+}  // namespace

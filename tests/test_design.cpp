@@ -1,0 +1,232 @@
+// Design helpers: DARE and Kalman gain, the Riccati recursion for
+// time-varying gains, stability checks, and the excitation monitor.
+
+#include <adaptobs/design/dare.hpp>
+#include <adaptobs/design/excitation_monitor.hpp>
+#include <adaptobs/design/riccati_recursion.hpp>
+#include <adaptobs/design/stability.hpp>
+
+#include "support/eigen_testing.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace {
+
+using adaptobs::ConfigurationError;
+using adaptobs::testing::RandomMatrices;
+
+// A random square matrix with prescribed spectral radius (unstable when > 1).
+Eigen::MatrixXd random_dynamics(RandomMatrices& rng, int n, double radius) {
+  Eigen::MatrixXd a = rng.uniform<Eigen::MatrixXd>(n, n);
+  return a * (radius / adaptobs::spectral_radius(a));
+}
+
+Eigen::MatrixXd random_spd(RandomMatrices& rng, int n, double floor) {
+  const Eigen::MatrixXd g = rng.uniform<Eigen::MatrixXd>(n, n);
+  return g * g.transpose() + floor * Eigen::MatrixXd::Identity(n, n);
+}
+
+TEST(Dare, RandomStabilizableDetectablePairs) {
+  RandomMatrices rng(21);
+  int cases = 0;
+  for (int n : {1, 2, 3, 5, 8, 12}) {
+    for (int m : {1, 2, 3}) {
+      for (double radius : {0.5, 0.99, 1.3, 2.0}) {
+        const Eigen::MatrixXd a = random_dynamics(rng, n, radius);
+        const Eigen::MatrixXd b = rng.uniform<Eigen::MatrixXd>(n, m);  // controllable with probability 1
+        // Q = GᵀG of rank ≤ n with G random: (A, Q) detectable with probability 1.
+        const Eigen::MatrixXd g = rng.uniform<Eigen::MatrixXd>(std::max(1, n / 2), n);
+        const Eigen::MatrixXd q = g.transpose() * g;
+        const Eigen::MatrixXd r = random_spd(rng, m, 0.1);
+        const auto solution = adaptobs::solve_dare(a, b, q, r);
+        EXPECT_LE(solution.relative_residual, 1e-10) << "n=" << n << " m=" << m << " radius=" << radius;
+        EXPECT_LE(adaptobs::dare_relative_residual(solution.X, a, b, q, r), 1e-10);
+        EXPECT_LE((solution.X - solution.X.transpose()).norm(), 1e-12 * solution.X.norm());
+        const Eigen::MatrixXd s = r + b.transpose() * solution.X * b;
+        const Eigen::MatrixXd closed = a - b * s.ldlt().solve(b.transpose() * solution.X * a);
+        EXPECT_LT(adaptobs::spectral_radius(closed), 1.0);
+        ++cases;
+      }
+    }
+  }
+  EXPECT_EQ(cases, 72);
+}
+
+TEST(Dare, ScalarClosedForm) {
+  // x = a²x − a²b²x²/(r + b²x) + q  ⇔  b²x² + (r − a²r − qb²)x − qr = 0.
+  for (double a : {0.3, 1.0, 1.7}) {
+    const double b = 0.8, q = 2.0, r = 0.5;
+    const double lin = r - a * a * r - q * b * b;
+    const double expected = (-lin + std::sqrt(lin * lin + 4 * b * b * q * r)) / (2 * b * b);
+    const auto solution = adaptobs::solve_dare(Eigen::Matrix<double, 1, 1>(a), Eigen::Matrix<double, 1, 1>(b),
+                                               Eigen::Matrix<double, 1, 1>(q), Eigen::Matrix<double, 1, 1>(r));
+    EXPECT_NEAR(solution.X(0, 0), expected, 1e-12 * expected) << "a = " << a;
+  }
+}
+
+TEST(Dare, KalmanGainMakesPredictorStable) {
+  RandomMatrices rng(22);
+  for (int n : {2, 4, 6, 10}) {
+    for (int m : {1, 2}) {
+      const Eigen::MatrixXd a = random_dynamics(rng, n, 1.4);
+      const Eigen::MatrixXd c = rng.uniform<Eigen::MatrixXd>(m, n);
+      const Eigen::MatrixXd q = random_spd(rng, n, 0.01);
+      const Eigen::MatrixXd r = random_spd(rng, m, 0.1);
+      const auto kalman = adaptobs::steady_state_kalman_gain(a, c, q, r);
+      EXPECT_LE(kalman.relative_residual, 1e-10);
+      EXPECT_TRUE(adaptobs::is_schur_stable(Eigen::MatrixXd(a - kalman.K * c))) << "n=" << n << " m=" << m;
+      // P is the fixed point of the one-step covariance recursion with this K.
+      const Eigen::MatrixXd closed = a - kalman.K * c;
+      const Eigen::MatrixXd p_next = closed * kalman.P * closed.transpose() + kalman.K * r * kalman.K.transpose() + q;
+      EXPECT_LE((p_next - kalman.P).norm(), 1e-9 * kalman.P.norm());
+    }
+  }
+}
+
+TEST(Dare, FixedSizeAgreesWithDynamic) {
+  RandomMatrices rng(23);
+  const Eigen::Matrix4d a = random_dynamics(rng, 4, 1.2);
+  const Eigen::Matrix<double, 2, 4> c = rng.uniform<Eigen::Matrix<double, 2, 4>>();
+  const auto fixed = adaptobs::steady_state_kalman_gain(a, c, Eigen::Matrix4d::Identity(), Eigen::Matrix2d::Identity());
+  const auto dynamic = adaptobs::steady_state_kalman_gain(Eigen::MatrixXd(a), Eigen::MatrixXd(c),
+                                                          Eigen::MatrixXd::Identity(4, 4), Eigen::MatrixXd::Identity(2, 2));
+  EXPECT_MATRIX_NEAR(fixed.K, dynamic.K, 1e-12, 1e-12);
+}
+
+TEST(Dare, FloatSolution) {
+  RandomMatrices rng(24);
+  const Eigen::Matrix3d a = random_dynamics(rng, 3, 1.1);
+  const Eigen::Matrix<double, 3, 1> b = rng.uniform<Eigen::Matrix<double, 3, 1>>();
+  const auto d = adaptobs::solve_dare(a, b, Eigen::Matrix3d::Identity(), Eigen::Matrix<double, 1, 1>::Ones());
+  const auto f = adaptobs::solve_dare(Eigen::Matrix3f(a.cast<float>()), Eigen::Matrix<float, 3, 1>(b.cast<float>()),
+                                      Eigen::Matrix3f::Identity(), Eigen::Matrix<float, 1, 1>::Ones());
+  EXPECT_MATRIX_NEAR(f.X.cast<double>(), d.X, 1e-3, 1e-4);
+  EXPECT_LE(f.relative_residual, 1e-5f);
+}
+
+template <class F>
+std::string configuration_error_of(F&& f) {
+  try {
+    f();
+  } catch (const ConfigurationError& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+TEST(Dare, RefusesUnstabilizablePairAndBadWeights) {
+  // The unstable mode 2 is not reachable from B.
+  const Eigen::Matrix2d a = Eigen::Vector2d(2.0, 0.5).asDiagonal();
+  const Eigen::Vector2d b(0, 1);
+  const Eigen::Matrix2d q = Eigen::Matrix2d::Identity();
+  const Eigen::Matrix<double, 1, 1> r = Eigen::Matrix<double, 1, 1>::Ones();
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, q, r); }).find("stabilizable"), std::string::npos);
+  const Eigen::Matrix<double, 1, 1> negative_r(-1.0);
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, q, negative_r); }).find("'R'"), std::string::npos);
+  Eigen::Matrix2d indefinite_q;
+  indefinite_q << 1, 0, 0, -1;
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, indefinite_q, r); }).find("'Q'"), std::string::npos);
+  Eigen::Matrix2d asymmetric_q;
+  asymmetric_q << 1, 0.5, 0, 1;
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, asymmetric_q, r); }).find("symmetric"), std::string::npos);
+}
+
+using Dims3 = adaptobs::Dimensions<double, 3, 1, 1, 1>;
+
+TEST(KalmanGainRecursion, ConvergesToSteadyStateGainForLti) {
+  RandomMatrices rng(25);
+  const Eigen::Matrix3d a = random_dynamics(rng, 3, 1.3);
+  const Eigen::RowVector3d c = rng.uniform<Eigen::RowVector3d>();
+  const Eigen::Matrix3d q = Eigen::Matrix3d::Identity() * 0.1;
+  const Eigen::Matrix<double, 1, 1> r(0.5);
+  adaptobs::KalmanGainRecursion<Dims3> recursion(Eigen::Matrix3d::Identity() * 10, q, r);
+  const adaptobs::DiscreteSystem<Dims3> system{a, Eigen::Vector3d::Zero(), c};
+  for (int k = 0; k < 500; ++k) (void)recursion.next_gain(system);
+  const auto steady = adaptobs::steady_state_kalman_gain(a, c, q, r);
+  EXPECT_MATRIX_NEAR(recursion.gain(), steady.K, 1e-10, 1e-9);
+}
+
+TEST(KalmanGainRecursion, TimeVaryingGainsMakeErrorDynamicsExponentiallyStable) {
+  // A_k rotates and stretches with k; C_k alternates its direction. Each frozen
+  // A_k is unstable (spectral radius 1.05), the pair is uniformly observable.
+  auto system_at = [](int k) {
+    const double angle = 0.3 + 0.2 * std::sin(0.05 * k);
+    Eigen::Matrix3d a;
+    a << std::cos(angle), -std::sin(angle), 0.1,  //
+        std::sin(angle), std::cos(angle), 0,      //
+        0, 0.2, 0.9;
+    a *= 1.05 / adaptobs::spectral_radius(a);
+    Eigen::RowVector3d c(1.0, 0.3 * std::cos(0.1 * k), 0.5);
+    return adaptobs::DiscreteSystem<Dims3>{a, Eigen::Vector3d::Zero(), c};
+  };
+  adaptobs::KalmanGainRecursion<Dims3> recursion(Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity() * 0.01,
+                                                 Eigen::Matrix<double, 1, 1>(0.1));
+  Eigen::Matrix3d transition = Eigen::Matrix3d::Identity();
+  std::vector<double> norms;
+  for (int k = 0; k < 400; ++k) {
+    const auto system = system_at(k);
+    const Eigen::Vector3d gain = recursion.next_gain(system);
+    transition = ((system.A - gain * system.C) * transition).eval();
+    norms.push_back(transition.norm());
+  }
+  // Definition 1 of paper 000: ‖Π (A_i − K_iC_i)‖ ≤ r q^k with q < 1.
+  EXPECT_LT(norms.back(), 1e-8);
+  EXPECT_LT(adaptobs::testing::fit_geometric_rate(norms), 0.97);
+  const Eigen::Matrix3d p = recursion.covariance();
+  EXPECT_LE((p - p.transpose()).norm(), 1e-14 * p.norm());
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(p).eigenvalues()(0), 0.0);
+}
+
+TEST(Stability, SchurAndHurwitzChecks) {
+  Eigen::Matrix2d rotation;
+  rotation << 0, 1, -1, 0;  // eigenvalues ±i
+  EXPECT_NEAR(adaptobs::spectral_radius(rotation), 1.0, 1e-15);
+  EXPECT_FALSE(adaptobs::is_schur_stable(rotation));
+  EXPECT_TRUE(adaptobs::is_schur_stable(Eigen::Matrix2d(0.99 * rotation)));
+  EXPECT_FALSE(adaptobs::is_schur_stable(Eigen::Matrix2d(0.99 * rotation), 0.02));
+  EXPECT_FALSE(adaptobs::is_hurwitz_stable(rotation));
+  Eigen::Matrix2d damped;
+  damped << -0.1, 1, -1, -0.1;
+  EXPECT_NEAR(adaptobs::spectral_abscissa(damped), -0.1, 1e-15);
+  EXPECT_TRUE(adaptobs::is_hurwitz_stable(damped));
+  EXPECT_FALSE(adaptobs::is_hurwitz_stable(damped, 0.2));
+}
+
+TEST(ExcitationMonitor, WindowedMinimumEigenvalue) {
+  adaptobs::ExcitationMonitor<double, 2> monitor(4);
+  const Eigen::RowVector2d e1(1, 0), e2(0, 1);
+  monitor.add(e1);
+  EXPECT_FALSE(monitor.full());
+  monitor.add(e2, 3.0);
+  monitor.add(e1);
+  monitor.add(e2, 3.0);
+  ASSERT_TRUE(monitor.full());
+  // (2·e1ᵀe1 + 2·3·e2ᵀe2)/4 = diag(0.5, 1.5)
+  EXPECT_NEAR(monitor.level(), 0.5, 1e-15);
+  // Only e1 over the last window: the e2 direction is not excited.
+  for (int i = 0; i < 4; ++i) monitor.add(e1);
+  EXPECT_NEAR(monitor.level(), 0.0, 1e-15);
+  EXPECT_MATRIX_NEAR(monitor.average(), Eigen::Matrix2d(Eigen::Vector2d(1, 0).asDiagonal()), 1e-15, 0.0);
+  monitor.reset();
+  EXPECT_EQ(monitor.count(), 0);
+}
+
+TEST(ExcitationMonitor, RunningSumDoesNotDrift) {
+  RandomMatrices rng(26);
+  adaptobs::ExcitationMonitor<double, 3> monitor(7);
+  std::vector<Eigen::Matrix<double, 2, 3>> last;
+  for (int k = 0; k < 100003; ++k) {
+    const Eigen::Matrix<double, 2, 3> phi = rng.uniform<Eigen::Matrix<double, 2, 3>>(2, 3, -1e3, 1e3);
+    monitor.add(phi);
+    last.push_back(phi);
+    if (last.size() > 7) last.erase(last.begin());
+  }
+  Eigen::Matrix3d expected = Eigen::Matrix3d::Zero();
+  for (const auto& phi : last) expected += phi.transpose() * phi;
+  EXPECT_MATRIX_NEAR(monitor.average(), Eigen::Matrix3d(expected / 7), 1e-9 * expected.norm(), 0.0);
+}
+
+}  // namespace

@@ -1,0 +1,432 @@
+// Guyader–Zhang adaptive observer (paper 000): theorem 1 (noise free,
+// exponential convergence), theorem 2 (noisy: bounded, unbiased), the
+// satellite example, the diagnostics of assumptions 2–3, float/double and
+// fixed/dynamic agreement, and rejection of bad input.
+
+#include <adaptobs/core/observer.hpp>
+#include <adaptobs/design/riccati_recursion.hpp>
+#include <adaptobs/observers/guyader_zhang.hpp>
+#include <adaptobs/simulation/discrete_plant.hpp>
+
+#include "models/satellite.hpp"
+#include "support/eigen_testing.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <optional>
+#include <vector>
+
+namespace {
+
+using adaptobs::Index;
+using adaptobs::UpdateStatus;
+using adaptobs::testing::Tolerance;
+namespace satellite = adaptobs::examples::satellite;
+
+template <typename S>
+auto make_satellite_observer(adaptobs::GuyaderZhangOptions options = {}) {
+  return adaptobs::GuyaderZhangObserver(satellite::model<S>(), satellite::paper_gain<S>(), S(satellite::mu),
+                                        satellite::initial_state_estimate<S>(),
+                                        satellite::initial_parameter_estimate<S>(), options);
+}
+
+struct ErrorHistory {
+  std::vector<double> state;      // ‖x̂_k − x_k‖
+  std::vector<double> parameter;  // ‖θ̂_k − θ‖
+  std::vector<double> combined;   // ‖[x̃_k; θ̃_k]‖
+};
+
+// Runs observer and plant side by side for `steps` samples.
+template <class Observer, class Plant>
+ErrorHistory run(Observer& observer, Plant& plant, Index steps) {
+  ErrorHistory h;
+  for (Index k = 0; k < steps; ++k) {
+    const double ex = static_cast<double>((observer.state() - plant.state()).norm());
+    const double et = static_cast<double>((observer.parameters() - plant.parameters()).norm());
+    h.state.push_back(ex);
+    h.parameter.push_back(et);
+    h.combined.push_back(std::hypot(ex, et));
+    EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted) << "step " << k;
+    plant.advance();
+  }
+  return h;
+}
+
+// Geometric rate of the decaying part of an error sequence: the samples from
+// the start until the error first reaches `floor`.
+double decay_rate(const std::vector<double>& errors, double floor) {
+  std::vector<double> decaying;
+  for (double e : errors) {
+    if (e <= floor) break;
+    decaying.push_back(e);
+  }
+  EXPECT_GT(decaying.size(), 20u) << "too few samples above the floor to fit a rate";
+  return adaptobs::testing::fit_geometric_rate(decaying);
+}
+
+template <typename S>
+class GuyaderZhangTyped : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(GuyaderZhangTyped, Scalars);
+
+// Theorem 1 on the satellite of §4 without noise: x̃ and θ̃ vanish exponentially.
+TYPED_TEST(GuyaderZhangTyped, Theorem1SatelliteNoiseFreeConvergesGeometrically) {
+  using S = TypeParam;
+  auto observer = make_satellite_observer<S>();
+  auto plant = satellite::make_plant<S>(S(0));
+  // 60 s: long enough to converge, short enough that the drifting orbit keeps
+  // float rounding below the tolerance.
+  const ErrorHistory h = run(observer, plant, 600);
+  // Relative to the size of the state, which drifts with the thrusts.
+  const double scale = std::max(1.0, static_cast<double>(plant.state().norm()));
+  EXPECT_LT(h.state.back() / scale, Tolerance<S>::converged);
+  EXPECT_LT(h.parameter.back(), Tolerance<S>::converged);
+  EXPECT_LT(decay_rate(h.combined, 100 * Tolerance<S>::converged), 1.0);
+}
+
+TEST(GuyaderZhang, Theorem1SatelliteRateAndFloor) {
+  auto observer = make_satellite_observer<double>();
+  auto plant = satellite::make_plant<double>(0.0);
+  const ErrorHistory h = run(observer, plant, 6000);
+  EXPECT_LT(h.state.back(), 1e-9);
+  EXPECT_LT(h.parameter.back(), 1e-9);
+  // Rate per sample over the decay, about 0.93 per sample (ρ(A − KC) = 0.932).
+  const double rate = decay_rate(h.combined, 1e-10);
+  EXPECT_LT(rate, 0.97);
+  EXPECT_GT(rate, 0.5);
+}
+
+// A genuinely time-varying system: A_k, C_k and Ψ_k vary, K_k comes from the
+// Riccati recursion (assumption 1), μ satisfies assumption 2.
+using Ltv = adaptobs::Dimensions<double, 3, 1, 1, 2>;
+
+adaptobs::DiscreteSystem<Ltv> ltv_system(Index k) {
+  const double angle = 0.3 + 0.2 * std::sin(0.05 * double(k));
+  Eigen::Matrix3d a;
+  a << std::cos(angle), -std::sin(angle), 0.1,  //
+      std::sin(angle), std::cos(angle), 0.0,    //
+      0.0, 0.2, 0.9;
+  Eigen::RowVector3d c(1.0, 0.3 * std::cos(0.1 * double(k)), 0.5);
+  return {a, Eigen::Vector3d(0, 0, 1), c};
+}
+
+Eigen::Matrix<double, 3, 2> ltv_regressor(Index k, const Eigen::Matrix<double, 1, 1>& /*u*/) {
+  Eigen::Matrix<double, 3, 2> psi;
+  const double t = double(k);
+  psi << std::sin(0.11 * t), 0.0,  //
+      0.0, std::cos(0.07 * t),     //
+      0.3, 0.2 * std::sin(0.31 * t);
+  return psi;
+}
+
+TEST(GuyaderZhang, Theorem1TimeVaryingSystemWithRiccatiGains) {
+  const auto model = adaptobs::make_discrete_ltv_model<Ltv>(ltv_system);
+  auto input = [](Index k) { return Eigen::Matrix<double, 1, 1>(std::sin(0.02 * double(k))); };
+  adaptobs::DiscreteLinearPlant plant(model, Eigen::Vector3d(1, -1, 0.5), Eigen::Vector2d(0.7, -1.2), input,
+                                      ltv_regressor);
+  adaptobs::KalmanGainRecursion<Ltv> gains(Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity() * 0.1,
+                                           Eigen::Matrix<double, 1, 1>(1.0));
+  adaptobs::GuyaderZhangObserver observer(model, Eigen::Vector3d::Zero().eval(), 0.05, Eigen::Vector3d::Zero().eval(),
+                                          Eigen::Vector2d::Zero().eval(), {.excitation_window = 200});
+  std::vector<double> combined;
+  double worst_assumption2 = 0;
+  double weakest_excitation = std::numeric_limits<double>::infinity();
+  for (Index k = 0; k < 6000; ++k) {
+    combined.push_back(std::hypot((observer.state() - plant.state()).norm(),
+                                  (observer.parameters() - plant.parameters()).norm()));
+    observer.set_gain(gains.next_gain(model.at(k)));
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    worst_assumption2 = std::max(worst_assumption2, observer.assumption2_norm());
+    if (const auto level = observer.excitation_level()) weakest_excitation = std::min(weakest_excitation, *level);
+    plant.advance();
+  }
+  EXPECT_LE(worst_assumption2, 1.0) << "assumption 2 violated: the test's μ is too large";
+  EXPECT_GT(weakest_excitation, 1e-4) << "assumption 3: Ψ_k is not persistently exciting";
+  EXPECT_LT(combined.back(), 1e-9);
+  EXPECT_LT(decay_rate(combined, 1e-10), 0.999);
+}
+
+// Theorem 2: with bounded noises, the errors stay bounded over 10⁵ steps.
+TEST(GuyaderZhang, Theorem2BoundedErrorsOverLongRun) {
+  adaptobs::PlantNoise<double> noise;
+  noise.distribution = adaptobs::PlantNoise<double>::Distribution::uniform;
+  noise.output = 0.01;
+  noise.state = 1e-4;
+  noise.seed = 7;
+  auto observer = make_satellite_observer<double>();
+  auto plant = adaptobs::DiscreteLinearPlant(satellite::model<double>(), satellite::initial_state<double>(),
+                                             satellite::true_parameters<double>(),
+                                             [](Index k) { return satellite::PulseThrusts{}.operator()<double>(k); },
+                                             satellite::ThrustRegressor<double>{}, noise, satellite::sampling_period);
+  const ErrorHistory h = run(observer, plant, 100000);
+  double early = 0, late = 0;
+  for (Index k = 10000; k < 50000; ++k) early = std::max(early, h.combined[size_t(k)]);
+  for (Index k = 50000; k < 100000; ++k) late = std::max(late, h.combined[size_t(k)]);
+  EXPECT_LT(early, 1.0);
+  EXPECT_LT(late, 2.0 * early) << "the error envelope grows: not bounded";
+}
+
+// Theorem 2: with zero-mean noise the errors converge to zero in the mean.
+// Over 200 seeds the mean final error of each component is within three
+// standard errors of zero (and the errors are small, so the test has power).
+TEST(GuyaderZhang, Theorem2ErrorsAreZeroMeanOverSeeds) {
+  constexpr int seeds = 200;
+  constexpr Index steps = 3000;
+  Eigen::Matrix<double, 6, seeds> finals;
+  for (int s = 0; s < seeds; ++s) {
+    adaptobs::PlantNoise<double> noise;
+    noise.distribution = adaptobs::PlantNoise<double>::Distribution::uniform;
+    noise.output = 0.01;
+    noise.seed = 1000 + std::uint64_t(s);
+    auto observer = make_satellite_observer<double>();
+    auto plant = adaptobs::DiscreteLinearPlant(satellite::model<double>(), satellite::initial_state<double>(),
+                                               satellite::true_parameters<double>(),
+                                               [](Index k) { return satellite::PulseThrusts{}.operator()<double>(k); },
+                                               satellite::ThrustRegressor<double>{}, noise, satellite::sampling_period);
+    for (Index k = 0; k < steps; ++k) {
+      ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+      plant.advance();
+    }
+    finals.col(s) << observer.state() - plant.state(), observer.parameters() - plant.parameters();
+  }
+  const Eigen::Matrix<double, 6, 1> mean = finals.rowwise().mean();
+  const Eigen::Matrix<double, 6, 1> sd =
+      ((finals.colwise() - mean).array().square().rowwise().sum() / (seeds - 1)).sqrt();
+  const Eigen::Matrix<double, 6, 1> standard_error = sd / std::sqrt(double(seeds));
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_LE(std::abs(mean(i)), 3 * standard_error(i)) << "component " << i << ": mean " << mean(i) << ", SE "
+                                                        << standard_error(i);
+    EXPECT_LT(sd(i), 0.1) << "component " << i;
+  }
+}
+
+// The paper's example: θ̂ averaged over the last 100 s is within 0.05 of θ.
+TEST(GuyaderZhang, SatelliteWithPaperNoiseRecoversThrustEfficiencies) {
+  auto observer = make_satellite_observer<double>();
+  auto plant = satellite::make_plant<double>();  // σ = 0.01 on both outputs
+  constexpr Index steps = 3000;                  // 300 s
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (Index k = 0; k < steps; ++k) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+    if (k >= steps - 1000) sum += observer.parameters();
+  }
+  const Eigen::Vector2d average = sum / 1000.0;
+  EXPECT_NEAR(average(0), 1.0, 0.05);
+  EXPECT_NEAR(average(1), 1.5, 0.05);
+}
+
+// Assumption 2 is what makes (10) stable: 5-s pulses break it and the observer
+// diverges, and the diagnostic says so.
+TEST(GuyaderZhang, Assumption2DiagnosticFlagsDivergentSetting) {
+  {
+    auto observer = make_satellite_observer<double>();
+    auto plant = satellite::make_plant<double>(0.0);
+    bool always = true;
+    for (Index k = 0; k < 1000; ++k) {
+      ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+      always = always && observer.assumption2_holds();
+      plant.advance();
+    }
+    EXPECT_TRUE(always);
+    EXPECT_GT(observer.assumption2_norm(), 0.0);
+  }
+  {
+    satellite::PulseThrusts long_pulses;
+    long_pulses.width = 5.0;
+    long_pulses.period = 20.0;
+    long_pulses.tangential_delay = 10.0;
+    auto observer = make_satellite_observer<double>();
+    auto plant = satellite::make_plant<double>(0.0, 1, long_pulses);
+    bool violated = false;
+    Index k = 0;
+    for (; k < 3000; ++k) {
+      if (observer.update(plant.sample()) != UpdateStatus::accepted) break;
+      violated = violated || !observer.assumption2_holds();
+      plant.advance();
+    }
+    EXPECT_TRUE(violated);
+    EXPECT_GT((observer.parameters() - plant.parameters()).norm(), 1e3) << "expected divergence";
+  }
+}
+
+// Assumption 3: without tangential thrust θ² is not identifiable and the
+// excitation level falls to zero; with both thrusts it stays positive.
+TEST(GuyaderZhang, ExcitationMonitorDetectsUnidentifiableParameter) {
+  auto level_after = [](satellite::PulseThrusts thrusts, bool tangential) {
+    auto observer = make_satellite_observer<double>({.excitation_window = 200});
+    auto input = [thrusts, tangential](Index k) {
+      Eigen::Vector2d u = thrusts.operator()<double>(k);
+      if (!tangential) u(1) = 0;
+      return u;
+    };
+    auto plant = adaptobs::DiscreteLinearPlant(satellite::model<double>(), satellite::initial_state<double>(),
+                                               satellite::true_parameters<double>(), input,
+                                               satellite::ThrustRegressor<double>{});
+    for (Index k = 0; k < 1000; ++k) {
+      EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+      plant.advance();
+    }
+    return observer.excitation_level().value();
+  };
+  EXPECT_GT(level_after({}, true), 1e-3);
+  EXPECT_LT(level_after({}, false), 1e-12);
+}
+
+TEST(GuyaderZhang, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
+  using DynDims = adaptobs::DynamicDimensions<double>;
+  const auto fixed_model = satellite::model<double>();
+  const adaptobs::DiscreteLtiModel<DynDims> dynamic_model(fixed_model.system().A, fixed_model.system().B,
+                                                          fixed_model.system().C, 2);
+  auto fixed = make_satellite_observer<double>();
+  adaptobs::GuyaderZhangObserver dynamic(dynamic_model, Eigen::MatrixXd(satellite::paper_gain<double>()), satellite::mu,
+                                         Eigen::VectorXd(satellite::initial_state_estimate<double>()),
+                                         Eigen::VectorXd(satellite::initial_parameter_estimate<double>()));
+  auto plant = satellite::make_plant<double>();
+  for (Index k = 0; k < 2000; ++k) {
+    const auto& s = plant.sample();
+    ASSERT_EQ(fixed.update(s), UpdateStatus::accepted);
+    ASSERT_EQ(dynamic.update({s.u, s.y, s.Psi}), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.upsilon(), fixed.upsilon(), 1e-12, 1e-12);
+}
+
+TEST(GuyaderZhang, ResetRestartsExactly) {
+  auto observer = make_satellite_observer<double>({.excitation_window = 50});
+  auto fresh = make_satellite_observer<double>({.excitation_window = 50});
+  auto plant = satellite::make_plant<double>();
+  for (Index k = 0; k < 300; ++k) {
+    (void)observer.update(plant.sample());
+    plant.advance();
+  }
+  observer.reset(satellite::initial_state_estimate<double>(), satellite::initial_parameter_estimate<double>());
+  auto replay = satellite::make_plant<double>();
+  for (Index k = 0; k < 300; ++k) {
+    (void)observer.update(replay.sample());
+    (void)fresh.update(replay.sample());
+    replay.advance();
+  }
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.state(), fresh.state()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.parameters(), fresh.parameters()));
+  EXPECT_EQ(observer.excitation_level(), fresh.excitation_level());
+}
+
+// Everything a user can read from the observer, to check that a rejected
+// sample changes none of it.
+template <class O>
+struct Snapshot {
+  explicit Snapshot(const O& o)
+      : x(o.state()), theta(o.parameters()), upsilon(o.upsilon()), step(o.step()),
+        assumption2(o.assumption2_norm()), excitation(o.excitation_level()) {}
+  bool operator==(const Snapshot& other) const {
+    using adaptobs::testing::bitwise_equal;
+    return bitwise_equal(x, other.x) && bitwise_equal(theta, other.theta) && bitwise_equal(upsilon, other.upsilon) &&
+           step == other.step && std::memcmp(&assumption2, &other.assumption2, sizeof(assumption2)) == 0 &&
+           excitation == other.excitation;
+  }
+  typename O::State x;
+  typename O::Parameters theta;
+  typename O::RegressorMatrix upsilon;
+  Index step;
+  typename O::Scalar assumption2;
+  std::optional<typename O::Scalar> excitation;
+};
+
+TYPED_TEST(GuyaderZhangTyped, NonFiniteSamplesAreRejectedAndChangeNothing) {
+  using S = TypeParam;
+  auto observer = make_satellite_observer<S>({.excitation_window = 20});
+  auto plant = satellite::make_plant<S>();
+  for (Index k = 0; k < 100; ++k) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  const Snapshot before(observer);
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  const S inf = std::numeric_limits<S>::infinity();
+  for (S bad : {nan, inf, -inf}) {
+    auto s = plant.sample();
+    s.y(1) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+    s = plant.sample();
+    s.u(0) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+    s = plant.sample();
+    s.Psi(2, 1) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+  }
+  // Finite but enormous output: the step would overflow.
+  auto huge = plant.sample();
+  huge.y.setConstant(std::numeric_limits<S>::max());
+  huge.Psi.setConstant(std::numeric_limits<S>::max());
+  EXPECT_EQ(observer.update(huge), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(Snapshot(observer) == before);
+  // And the observer carries on from where it was.
+  EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+  EXPECT_EQ(observer.step(), before.step + 1);
+}
+
+template <class F>
+std::string configuration_error_of(F&& f) {
+  try {
+    f();
+  } catch (const adaptobs::ConfigurationError& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+TEST(GuyaderZhang, BadConfigurationNamesTheArgument) {
+  const auto model = satellite::model<double>();
+  const Eigen::Matrix<double, 4, 2> k = satellite::paper_gain<double>();
+  const Eigen::Vector4d x0 = Eigen::Vector4d::Zero();
+  const Eigen::Vector2d th0 = Eigen::Vector2d::Zero();
+  for (double mu : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    const std::string message =
+        configuration_error_of([&] { adaptobs::GuyaderZhangObserver o(model, k, mu, x0, th0); });
+    EXPECT_NE(message.find("'mu'"), std::string::npos) << message;
+  }
+  auto observer = make_satellite_observer<double>();
+  EXPECT_NE(configuration_error_of([&] { observer.set_mu(0.0); }).find("'mu'"), std::string::npos);
+  Eigen::Matrix<double, 4, 2> nan_gain = k;
+  nan_gain(0, 0) = std::nan("");
+  EXPECT_NE(configuration_error_of([&] { observer.set_gain(nan_gain); }).find("'K'"), std::string::npos);
+
+  // Mismatched run-time sizes with dynamic dimensions.
+  using DynDims = adaptobs::DynamicDimensions<double>;
+  const adaptobs::DiscreteLtiModel<DynDims> dynamic_model(model.system().A, model.system().B, model.system().C, 2);
+  const Eigen::MatrixXd good_k = k;
+  const Eigen::VectorXd good_x = x0, good_th = th0;
+  EXPECT_NE(configuration_error_of([&] {
+              adaptobs::GuyaderZhangObserver o(dynamic_model, Eigen::MatrixXd(3, 2), 1.0, good_x, good_th);
+            }).find("'K'"),
+            std::string::npos);
+  EXPECT_NE(configuration_error_of([&] {
+              adaptobs::GuyaderZhangObserver o(dynamic_model, good_k, 1.0, Eigen::VectorXd(5), good_th);
+            }).find("'x0'"),
+            std::string::npos);
+  EXPECT_NE(configuration_error_of([&] {
+              adaptobs::GuyaderZhangObserver o(dynamic_model, good_k, 1.0, good_x, Eigen::VectorXd(3));
+            }).find("'theta0'"),
+            std::string::npos);
+  adaptobs::GuyaderZhangObserver dynamic(dynamic_model, good_k, 1.0, good_x, good_th);
+  const adaptobs::DiscreteSample<DynDims> short_y{Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1),
+                                                  Eigen::MatrixXd::Zero(4, 2)};
+  EXPECT_NE(configuration_error_of([&] { (void)dynamic.update(short_y); }).find("'sample.y'"), std::string::npos);
+  EXPECT_EQ(dynamic.step(), 0);
+  EXPECT_NE(configuration_error_of([&] {
+              adaptobs::DiscreteLtiModel<DynDims> m(Eigen::MatrixXd::Identity(3, 3), Eigen::MatrixXd::Zero(3, 1),
+                                                    Eigen::MatrixXd::Zero(1, 4), 1);
+            }).find("'C'"),
+            std::string::npos);
+}
+
+static_assert(adaptobs::Observer<decltype(make_satellite_observer<double>())>);
+static_assert(adaptobs::Observer<decltype(make_satellite_observer<float>())>);
+
+}  // namespace

@@ -1,0 +1,88 @@
+// Simulation runner and CSV table.
+
+#include <adaptobs/baselines/augmented_kalman.hpp>
+#include <adaptobs/observers/guyader_zhang.hpp>
+#include <adaptobs/simulation/runner.hpp>
+#include <adaptobs/simulation/series_table.hpp>
+
+#include "models/satellite.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <sstream>
+
+namespace {
+
+namespace satellite = adaptobs::examples::satellite;
+
+TEST(SeriesTable, WritesHeaderAndNonFiniteValues) {
+  adaptobs::SeriesTable table;
+  table.begin_row().add("t", 0.0).add("x", Eigen::Vector2d(1.5, -2)).add("v", std::numeric_limits<double>::quiet_NaN());
+  table.begin_row().add("t", 0.1).add("x", Eigen::Vector2d(0.1, 1e-300)).add("v", -std::numeric_limits<double>::infinity());
+  std::ostringstream os;
+  table.write_csv(os);
+  EXPECT_EQ(os.str(), "t,x_1,x_2,v\n0,1.5,-2,nan\n0.1,0.1,1e-300,-inf\n");
+  EXPECT_EQ(table.rows(), 2u);
+  EXPECT_EQ(table.at(1, "x_2"), 1e-300);
+  EXPECT_EQ(table.column("t"), (std::vector<double>{0.0, 0.1}));
+}
+
+TEST(SeriesTable, RoundTripsDoublesExactly) {
+  adaptobs::SeriesTable table;
+  const double value = 0.1 + 0.2;  // not representable in few digits
+  table.begin_row().add("a", value);
+  std::ostringstream os;
+  table.write_csv(os);
+  const std::string text = os.str();
+  EXPECT_EQ(std::stod(text.substr(text.find('\n') + 1)), value);
+}
+
+TEST(SeriesTable, RejectsRowsThatDoNotMatchTheHeader) {
+  adaptobs::SeriesTable table;
+  table.begin_row().add("a", 1.0).add("b", 2.0);
+  table.begin_row().add("a", 1.0);
+  EXPECT_THROW(table.add("c", 3.0), std::logic_error);
+  adaptobs::SeriesTable short_row;
+  short_row.begin_row().add("a", 1.0).add("b", 2.0);
+  short_row.begin_row().add("a", 1.0);
+  EXPECT_THROW(short_row.begin_row(), std::logic_error);
+}
+
+TEST(Simulation, RecordsTruthAndEveryObserverInSchemaOrder) {
+  auto plant = satellite::make_plant<double>();
+  adaptobs::GuyaderZhangObserver observer(satellite::model<double>(), satellite::paper_gain<double>(), satellite::mu,
+                                          satellite::initial_state_estimate<double>(),
+                                          satellite::initial_parameter_estimate<double>());
+  adaptobs::AugmentedKalmanCovariances<satellite::Dims<double>> cov{
+      Eigen::Matrix<double, 6, 6>::Identity(), Eigen::Matrix<double, 6, 6>::Zero(), Eigen::Matrix2d::Identity() * 1e-4};
+  adaptobs::AugmentedKalmanFilter akf(satellite::model<double>(), satellite::initial_state_estimate<double>(),
+                                      satellite::initial_parameter_estimate<double>(), cov);
+  adaptobs::SeriesTable table;
+  int extra_calls = 0;
+  const auto report = adaptobs::simulate(
+      plant, 25, table,
+      [&](adaptobs::SeriesTable& row, const auto& p) {
+        ++extra_calls;
+        row.add("step", double(p.step()));
+      },
+      adaptobs::track(observer), adaptobs::track(akf, "akf"));
+  EXPECT_EQ(report.steps, 25);
+  EXPECT_EQ(report.rejected[0], 0);
+  EXPECT_EQ(report.rejected[1], 0);
+  EXPECT_EQ(extra_calls, 25);
+  const std::vector<std::string> expected = {
+      "t",       "u_1",     "u_2",     "y_1",     "y_2",     "x_1",     "x_2",        "x_3",        "x_4",
+      "xhat_1",  "xhat_2",  "xhat_3",  "xhat_4",  "theta_1", "theta_2", "thetahat_1", "thetahat_2", "xhat_akf_1",
+      "xhat_akf_2", "xhat_akf_3", "xhat_akf_4", "thetahat_akf_1", "thetahat_akf_2", "step"};
+  EXPECT_EQ(table.names(), expected);
+  // Row k holds the estimates before sample k: row 0 has the initial estimates.
+  EXPECT_EQ(table.at(0, "thetahat_1"), 0.5);
+  EXPECT_EQ(table.at(0, "xhat_1"), 0.9);
+  EXPECT_DOUBLE_EQ(table.at(24, "t"), 2.4);
+  EXPECT_EQ(table.at(24, "thetahat_akf_2"), table.at(24, "thetahat_akf_2"));
+  // The last row's estimates are those after 24 updates.
+  EXPECT_EQ(observer.step(), 25);
+}
+
+}  // namespace
