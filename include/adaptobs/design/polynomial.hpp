@@ -1,0 +1,174 @@
+#pragma once
+/// \file
+/// Polynomials and SISO transfer functions of small state-space systems.
+///
+/// Coefficients are stored highest power first: \f$p(s) = p_0 s^d + p_1 s^{d-1} + \dots + p_d\f$
+/// is the vector \f$(p_0, \dots, p_d)\f$. Characteristic polynomials and
+/// adjugates come from the Faddeev–LeVerrier recursion
+/// \f$B_0 = I,\ a_k = -\mathrm{tr}(AB_{k-1})/k,\ B_k = AB_{k-1} + a_kI\f$, giving
+/// \f$\det(sI - A) = s^n + a_1s^{n-1} + \dots + a_n\f$ and
+/// \f$\mathrm{adj}(sI - A) = \sum_{k=0}^{n-1} B_k s^{n-1-k}\f$ — exact in rational
+/// arithmetic, and accurate in floating point for the small orders (n ≲ 10)
+/// of the design problems it serves.
+
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <vector>
+
+namespace adaptobs {
+
+template <typename Scalar>
+using Polynomial = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+/// Coefficients of \f$\det(sI - A)\f$ (monic, degree n).
+template <class Derived>
+[[nodiscard]] Polynomial<typename Derived::Scalar> characteristic_polynomial(const Eigen::MatrixBase<Derived>& A) {
+  using Scalar = typename Derived::Scalar;
+  detail::require_square(A, "characteristic_polynomial", "A");
+  const Index n = A.rows();
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a = A;
+  Polynomial<Scalar> p(n + 1);
+  p(0) = Scalar(1);
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> b = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Identity(n, n);
+  for (Index k = 1; k <= n; ++k) {
+    const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> ab = a * b;
+    p(k) = -ab.trace() / Scalar(k);
+    b = ab;
+    b.diagonal().array() += p(k);
+  }
+  return p;
+}
+
+/// Roots of a polynomial (eigenvalues of its companion matrix); leading zeros are ignored.
+template <typename Scalar>
+[[nodiscard]] Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1> polynomial_roots(const Polynomial<Scalar>& p) {
+  Index first = 0;
+  while (first < p.size() && p(first) == Scalar(0)) ++first;
+  const Index degree = p.size() - first - 1;
+  if (degree <= 0) return Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1>(0);
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> companion =
+      Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Zero(degree, degree);
+  for (Index j = 0; j < degree; ++j) companion(0, j) = -p(first + 1 + j) / p(first);
+  for (Index i = 1; i < degree; ++i) companion(i, i - 1) = Scalar(1);
+  return Eigen::EigenSolver<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>>(companion, false).eigenvalues();
+}
+
+/// Every root in the open left half-plane (and a non-zero leading coefficient).
+template <typename Scalar>
+[[nodiscard]] bool is_hurwitz_polynomial(const Polynomial<Scalar>& p) {
+  if (p.size() == 0 || p(0) == Scalar(0)) return false;
+  const auto roots = polynomial_roots(p);
+  return roots.size() == 0 || roots.real().maxCoeff() < Scalar(0);
+}
+
+/// Product of two polynomials (convolution of the coefficients).
+template <typename Scalar>
+[[nodiscard]] Polynomial<Scalar> multiply_polynomials(const Polynomial<Scalar>& a, const Polynomial<Scalar>& b) {
+  if (a.size() == 0 || b.size() == 0) return Polynomial<Scalar>(0);
+  Polynomial<Scalar> c = Polynomial<Scalar>::Zero(a.size() + b.size() - 1);
+  for (Index i = 0; i < a.size(); ++i)
+    for (Index j = 0; j < b.size(); ++j) c(i + j) += a(i) * b(j);
+  return c;
+}
+
+/// Monic polynomial with the given real roots: \f$\prod_i (s - r_i)\f$.
+template <typename Scalar>
+[[nodiscard]] Polynomial<Scalar> polynomial_from_roots(const std::vector<Scalar>& roots) {
+  Polynomial<Scalar> p = Polynomial<Scalar>::Ones(1);
+  Polynomial<Scalar> factor(2);
+  for (Scalar r : roots) {
+    factor << Scalar(1), -r;
+    p = multiply_polynomials<Scalar>(p, factor);
+  }
+  return p;
+}
+
+/// \f$p(M) = p_0M^d + \dots + p_dI\f$ by Horner's rule.
+template <class Derived>
+[[nodiscard]] Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic> evaluate_polynomial(
+    const Polynomial<typename Derived::Scalar>& p, const Eigen::MatrixBase<Derived>& m) {
+  using Matrix = Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  const Index n = m.rows();
+  Matrix result = Matrix::Zero(n, n);
+  for (Index i = 0; i < p.size(); ++i) {
+    result = (result * m).eval();
+    result.diagonal().array() += p(i);
+  }
+  return result;
+}
+
+/// Observability matrix \f$[C; CA; \dots; CA^{n-1}]\f$.
+template <class DA, class DC>
+[[nodiscard]] Eigen::Matrix<typename DA::Scalar, Eigen::Dynamic, Eigen::Dynamic> observability_matrix(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C) {
+  using Matrix = Eigen::Matrix<typename DA::Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  const Index n = A.rows(), m = C.rows();
+  Matrix o(n * m, n);
+  Matrix row = C;
+  for (Index k = 0; k < n; ++k) {
+    o.middleRows(k * m, m) = row;
+    row = (row * A).eval();
+  }
+  return o;
+}
+
+/// \f$G(s) = c(sI - A)^{-1}b = N(s)/D(s)\f$ with D monic of degree n and N of degree ≤ n − 1.
+template <typename Scalar>
+struct SisoTransferFunction {
+  Polynomial<Scalar> numerator;    ///< \f$N(s) = c\,\mathrm{adj}(sI - A)\,b\f$, n coefficients
+  Polynomial<Scalar> denominator;  ///< \f$D(s) = \det(sI - A)\f$, n + 1 coefficients
+};
+
+template <class DA, class DB, class DC>
+[[nodiscard]] SisoTransferFunction<typename DA::Scalar> transfer_function(const Eigen::MatrixBase<DA>& A,
+                                                                          const Eigen::MatrixBase<DB>& b,
+                                                                          const Eigen::MatrixBase<DC>& c) {
+  using Scalar = typename DA::Scalar;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  constexpr std::string_view who = "transfer_function";
+  detail::require_square(A, who, "A");
+  const Index n = A.rows();
+  detail::require_shape(b, n, 1, who, "b");
+  detail::require_shape(c, 1, n, who, "c");
+  SisoTransferFunction<Scalar> g;
+  g.denominator = characteristic_polynomial(A);
+  g.numerator.resize(n);
+  Matrix bk = Matrix::Identity(n, n);
+  const Matrix a = A;
+  for (Index k = 0; k < n; ++k) {
+    g.numerator(k) = (c * bk * b)(0, 0);
+    bk = (a * bk).eval();
+    if (k + 1 <= n) bk.diagonal().array() += g.denominator(k + 1);
+  }
+  return g;
+}
+
+/// Output-injection gain k with \f$\det(sI - A + kc) = p(s)\f$ (observer form of
+/// Ackermann's formula, \f$k = p(A)\,\mathcal O^{-1}e_n\f$). Throws when (A, c)
+/// is not observable or p is not monic of degree n.
+template <class DA, class DC>
+[[nodiscard]] Eigen::Matrix<typename DA::Scalar, DA::RowsAtCompileTime, 1> ackermann_observer_gain(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Polynomial<typename DA::Scalar>& p) {
+  using Scalar = typename DA::Scalar;
+  constexpr std::string_view who = "ackermann_observer_gain";
+  detail::require_square(A, who, "A");
+  const Index n = A.rows();
+  detail::require_shape(c, 1, n, who, "c");
+  detail::require(p.size() == n + 1 && p(0) == Scalar(1), who, "p", "must be monic of degree n");
+  const auto o = observability_matrix(A, c);
+  const Eigen::FullPivLU<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> lu(o);
+  detail::require(lu.rank() == n, who, "A, c", "must be an observable pair");
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> en = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Zero(n);
+  en(n - 1) = Scalar(1);
+  return evaluate_polynomial(p, A) * lu.solve(en);
+}
+
+}  // namespace adaptobs
