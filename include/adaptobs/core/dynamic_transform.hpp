@@ -36,6 +36,8 @@ class DynamicTransform {
   using OutputMatrix = Eigen::Matrix<S, N, R>;    ///< H
   using StateMatrix = Eigen::Matrix<S, N, N>;
   static constexpr int filter_rows = R;
+  /// G = H = I is possible only when Ξ has as many rows as the state.
+  static constexpr bool may_be_identity = N == R || N == Eigen::Dynamic || R == Eigen::Dynamic;
 
   /// F(t) = G A_o(t) H, recomputed whenever A_o changes.
   [[nodiscard]] static DynamicTransform projected(InjectionMatrix G, OutputMatrix H) {
@@ -51,14 +53,16 @@ class DynamicTransform {
   [[nodiscard]] const InjectionMatrix& G() const noexcept { return g_; }
   [[nodiscard]] const OutputMatrix& H() const noexcept { return h_; }
   [[nodiscard]] bool is_projected() const noexcept { return !f_.has_value(); }
+  /// True when G = H = I (Algorithm 4): the products by G and H are skipped.
+  [[nodiscard]] bool identity() const noexcept { return may_be_identity && identity_; }
 
   /// F at the instant where the transformed system has matrix \f$A_o\f$.
   template <class DA>
   void filter_matrix(const Eigen::MatrixBase<DA>& Ao, FilterMatrix& F) const {
     if (f_) {
       F = *f_;
-    } else if (identity_) {
-      F = Ao;
+    } else if (identity()) {
+      if constexpr (may_be_identity) F = Ao;
     } else {
       scratch_.noalias() = detail::product(Ao, h_);
       F.noalias() = detail::product(g_, scratch_);
@@ -76,8 +80,8 @@ class DynamicTransform {
   void derivative(const FilterMatrix& F, const Eigen::MatrixBase<DXi>& Xi, const Eigen::MatrixBase<DPsi>& Psi,
                   Eigen::MatrixBase<DOut>& dXi) const {
     dXi.noalias() = detail::product(F, Xi);
-    if (identity_) {
-      dXi += Psi;
+    if (identity()) {
+      if constexpr (may_be_identity) dXi += Psi;
     } else {
       dXi.noalias() += detail::product(g_, Psi);
     }
@@ -86,8 +90,8 @@ class DynamicTransform {
   /// (3b) \f$\Omega = H\Xi\f$.
   template <class DXi, class DOmega>
   void output(const Eigen::MatrixBase<DXi>& Xi, Eigen::MatrixBase<DOmega>& Omega) const {
-    if (identity_) {
-      Omega = Xi;
+    if (identity()) {
+      if constexpr (may_be_identity) Omega = Xi;
     } else {
       Omega.noalias() = detail::product(h_, Xi);
     }
@@ -118,8 +122,11 @@ class DynamicTransform {
       detail::require_shape(*f_, g_.rows(), g_.rows(), who, "F");
       detail::require_finite(*f_, who, "F");
     }
-    identity_ = g_.rows() == g_.cols() && (g_.array() == InjectionMatrix::Identity(g_.rows(), g_.cols()).array()).all() &&
-                (h_.array() == OutputMatrix::Identity(h_.rows(), h_.cols()).array()).all();
+    if constexpr (may_be_identity) {
+      identity_ = g_.rows() == g_.cols() &&
+                  (g_.array() == InjectionMatrix::Identity(g_.rows(), g_.cols()).array()).all() &&
+                  (h_.array() == OutputMatrix::Identity(h_.rows(), h_.cols()).array()).all();
+    }
     scratch_.setZero(g_.cols(), g_.rows());
   }
 

@@ -30,6 +30,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include <cmath>
 #include <optional>
 
 namespace adaptobs {

@@ -234,7 +234,7 @@ template <class DA, class DB, class DC>
 
   // T_n = [c; N⊥]: the rows of N⊥ span the orthogonal complement of b.
   const Vector bv = b;
-  const Eigen::HouseholderQR<Matrix> qr(Matrix(bv));
+  const Eigen::HouseholderQR<Matrix> qr{Matrix(bv)};
   const Matrix basis = qr.householderQ() * Matrix::Identity(n, n);
   Matrix tn(n, n);
   tn.row(0) = c;
@@ -252,8 +252,9 @@ template <class DA, class DB, class DC>
   p_prime(0, 0) = p11;
   const Scalar p_norm_tol = Scalar(1e-9);
   const auto verified = [&](const Matrix& pp) -> std::optional<KypCertificate<Scalar, DA::RowsAtCompileTime>> {
-    Matrix p = tn.transpose() * pp * tn;
-    p = Scalar(0.5) * (p + p.transpose());
+    const Matrix p_dynamic = tn.transpose() * pp * tn;
+    const Eigen::Matrix<Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime> p =
+        Scalar(0.5) * (p_dynamic + p_dynamic.transpose());
     auto k = kyp_residuals(p, A, b, c);
     const Scalar margin = p_norm_tol * p.norm() * std::max(Scalar(1), A.norm());
     if (k.equality_residual <= Scalar(1e-10) * std::max(Scalar(1), c.cwiseAbs().maxCoeff()) &&

@@ -6,8 +6,8 @@
 ///
 /// Static transform: form (7), \f$c_o = e_1^T\f$ and \f$A_o\f$ the shift matrix
 /// (`marino_tomei_form`). Dynamic transform, with chosen \f$\gamma_2, \dots, \gamma_n\f$:
-/// \f[ F = \begin{bmatrix} -\gamma_2 & 1 & & \\ \vdots & & \ddots & \\ -\gamma_{n-1} & & & 1\\
-///     -\gamma_n & 0 & \cdots & 0\end{bmatrix},\quad
+/// \f[ F = \begin{bmatrix} -\gamma_2 & 1 & & \\ \vdots & & \ddots & \\ -\gamma_{n-1} & & & 1
+///     \\ -\gamma_n & 0 & \cdots & 0\end{bmatrix},\quad
 ///     G = \begin{bmatrix} -\gamma_{2:n} & I_{n-1}\end{bmatrix},\quad H = \begin{bmatrix} 0\\ I_{n-1}\end{bmatrix}, \f]
 /// so that (4a) becomes \f$\dot z = A_oz + \varphi + \gamma\xi^T\theta\f$ with
 /// \f$\gamma = (1, \gamma_2, \dots, \gamma_n)^T\f$ and \f$\xi^T = \Xi_1 + \Psi_1\f$ (first rows).
