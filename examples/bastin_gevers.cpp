@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   print_value("K", algorithm.static_transform.K());
   print_value("A_o", so.Ao);
   print_value("c_o", so.Co);
-  print_value("eig_A22", adaptobs::eigenvalues(Eigen::Matrix2d(so.Ao.bottomRightCorner(2, 2))).real());
+  print_value("eig_A22", adaptobs::eigenvalues(Eigen::MatrixXd(so.Ao.bottomRightCorner(2, 2))).real());
   print_value("k", algorithm.k);
   print_value("Gamma", observer.law().gamma());
   const Eigen::Matrix3d closed = so.Ao - algorithm.k * so.Co;

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   print_value("T_besancon", besancon_transform.T());
   print_value("A22_besancon", bes.transformed_system(0.0).Ao.bottomRightCorner(2, 2));
   print_value("K_zhang", kalman.K);
-  print_value("eig_A_minus_KC", adaptobs::eigenvalues(Eigen::Matrix3d(siso::dynamics<double>() -
+  print_value("eig_A_minus_KC", adaptobs::eigenvalues(Eigen::MatrixXd(siso::dynamics<double>() -
                                                                       kalman.K * siso::output_matrix<double>()))
                                     .real());
 

@@ -88,7 +88,9 @@ TEST(RungeKutta, FourthOrderOnALinearSystem) {
     adaptobs::RungeKutta4<Eigen::Vector2d> rk4(x);
     rk4.integrate([&](const Eigen::Vector2d& v, Eigen::Vector2d& dv, double) { dv = a * v; }, x, 0.0, 5.0, steps);
     const double error = (x - exact(5.0)).norm();
-    if (previous_error > 0) EXPECT_NEAR(previous_error / error, 16.0, 1.0) << steps;
+    if (previous_error > 0) {
+      EXPECT_NEAR(previous_error / error, 16.0, 1.0) << steps;
+    }
     previous_error = error;
   }
   EXPECT_LT(previous_error, 1e-6);

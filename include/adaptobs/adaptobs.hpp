@@ -14,6 +14,7 @@
 #include <adaptobs/core/products.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
+#include <adaptobs/core/segments.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/status.hpp>

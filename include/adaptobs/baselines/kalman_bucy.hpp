@@ -22,6 +22,7 @@
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
+#include <adaptobs/core/segments.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -98,11 +99,11 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
   /// Right-hand side of \f$(\hat x, \hat\theta, P)\f$ (see the file comment).
   void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) const {
     const Index nx = sizes_.nx, np = sizes_.np, n = nx + np;
-    const auto x = s.template head<Dims::nx>(nx);
-    const auto theta = s.template segment<Dims::np>(nx, np);
+    const auto x = detail::segment<Dims::nx>(s, 0, nx);
+    const auto theta = detail::segment<Dims::np>(s, nx, np);
     const Eigen::Map<const AugmentedMatrix> P(s.data() + n, n, n);
-    auto dx = ds.template head<Dims::nx>(nx);
-    auto dtheta = ds.template segment<Dims::np>(nx, np);
+    auto dx = detail::segment<Dims::nx>(ds, 0, nx);
+    auto dtheta = detail::segment<Dims::np>(ds, nx, np);
     Eigen::Map<AugmentedMatrix> dP(ds.data() + n, n, n);
     Workspace& w = w_;
     decltype(auto) sys = model_.at(t);
@@ -174,15 +175,15 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
   }
 
   void set_initial(const State& eta0, const Parameters& theta0) {
-    internal_.template head<Dims::nx>(sizes_.nx) = eta0;
-    internal_.template segment<Dims::np>(sizes_.nx, sizes_.np) = theta0;
+    detail::segment<Dims::nx>(internal_, 0, sizes_.nx) = eta0;
+    detail::segment<Dims::np>(internal_, sizes_.nx, sizes_.np) = theta0;
     covariance_map() = cov_.P0;
     refresh_estimates();
   }
 
   void refresh_estimates() {
-    eta_ = internal_.template head<Dims::nx>(sizes_.nx);
-    theta_ = internal_.template segment<Dims::np>(sizes_.nx, sizes_.np);
+    eta_ = detail::segment<Dims::nx>(internal_, 0, sizes_.nx);
+    theta_ = detail::segment<Dims::np>(internal_, sizes_.nx, sizes_.np);
   }
 
   Model model_;

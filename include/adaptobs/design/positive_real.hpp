@@ -153,7 +153,7 @@ template <class DA, class DB, class DC>
   detail::require(omega_min > 0 && omega_max > omega_min && points >= 2, who, "omega_min, omega_max, points",
                   "must satisfy 0 < omega_min < omega_max and points ≥ 2");
   SprSweep<Scalar> r;
-  r.hurwitz = is_hurwitz_stable(A);
+  r.hurwitz = is_hurwitz_stable(Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>(A));
   r.high_frequency_limit = -(c * A * b)(0, 0);
   const ComplexMatrix a = A.template cast<Complex>();
   const ComplexMatrix bb = b.template cast<Complex>();

@@ -27,6 +27,7 @@
 #include <adaptobs/adaptation/gradient_law.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
+#include <adaptobs/core/segments.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/positive_real.hpp>
@@ -98,7 +99,7 @@ struct BastinGevers {
                  const Eigen::MatrixBase<DOmega>& /*Omega*/, const Eigen::MatrixBase<DPsi>& Psi,
                  Eigen::MatrixBase<DR>& R) const {
     const Index r = Xi.rows();
-    R.noalias() = so.Ao.row(0).template tail<filter_rows>(r) * Xi;
+    R.noalias() = detail::segment<filter_rows>(so.Ao.row(0), 1, r) * Xi;
     R += Psi.row(0);
   }
 
@@ -108,7 +109,8 @@ struct BastinGevers {
     detail::require(sizes.ny == 1, name, "model", "must have a single output");
     detail::require(detail::is_leading_identity(so.Co), name, "static_transform", "must give c_o = C T^-1 = e1^T");
     const Index n = sizes.nx;
-    detail::require(n == 1 || is_hurwitz_stable(so.Ao.bottomRightCorner(n - 1, n - 1)), name, "static_transform",
+    using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  // one eigen-solver instantiation per scalar
+    detail::require(n == 1 || is_hurwitz_stable(Dense(so.Ao.bottomRightCorner(n - 1, n - 1))), name, "static_transform",
                     "must give a Hurwitz A22 (form (5))");
     Eigen::Matrix<Scalar, D::nx, 1> gamma = Eigen::Matrix<Scalar, D::nx, 1>::Zero(n);
     gamma(0) = Scalar(1);

@@ -85,11 +85,12 @@ struct Besancon {
     detail::require(detail::is_leading_identity(so.Co), name, "static_transform", "must give C_o = C T^-1 = [I 0]");
     if (!time_invariant) return;
     const Index m = sizes.ny, r = sizes.nx - sizes.ny;
-    detail::require(r == 0 || is_hurwitz_stable(so.Ao.bottomRightCorner(r, r)), name, "static_transform",
+    using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  // one eigen-solver instantiation per scalar
+    detail::require(r == 0 || is_hurwitz_stable(Dense(so.Ao.bottomRightCorner(r, r))), name, "static_transform",
                     "must give a Hurwitz A22 (form (8))");
-    const OutputSquare a11 = so.Ao.topLeftCorner(m, m) - K1;
-    const OutputSquare sym = Scalar(0.5) * (a11 + a11.transpose());
-    detail::require(Eigen::SelfAdjointEigenSolver<OutputSquare>(sym, Eigen::EigenvaluesOnly).eigenvalues()(m - 1) < 0,
+    const Dense a11 = so.Ao.topLeftCorner(m, m) - K1;
+    const Dense sym = Scalar(0.5) * (a11 + a11.transpose());
+    detail::require(Eigen::SelfAdjointEigenSolver<Dense>(sym, Eigen::EigenvaluesOnly).eigenvalues()(m - 1) < 0,
                     name, "K1", "must make A11 - K1 + (A11 - K1)^T negative definite");
   }
 };

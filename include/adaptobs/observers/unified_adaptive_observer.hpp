@@ -42,6 +42,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
+#include <adaptobs/core/segments.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -162,12 +163,12 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
   /// Right-hand side of the internal state at time t for the signals u(t), y(t).
   void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) const {
     const Index n = sizes_.nx, p = sizes_.np;
-    const auto x = s.template head<Dims::nx>(n);
+    const auto x = detail::segment<Dims::nx>(s, 0, n);
     const Eigen::Map<const FilterState> Xi(s.data() + n, r_, p);
-    const auto theta = s.template tail<Dims::np>(p);
-    auto dx = ds.template head<Dims::nx>(n);
+    const auto theta = detail::segment<Dims::np>(s, n + r_ * p, p);
+    auto dx = detail::segment<Dims::nx>(ds, 0, n);
     Eigen::Map<FilterState> dXi(ds.data() + n, r_, p);
-    auto dtheta = ds.template tail<Dims::np>(p);
+    auto dtheta = detail::segment<Dims::np>(ds, n + r_ * p, p);
     Workspace& w = work_;
     const auto& st = algorithm_.static_transform;
     const auto& dt = algorithm_.dynamic_transform;
@@ -212,7 +213,7 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
   /// Time of the last accepted sample.
   [[nodiscard]] Scalar time() const noexcept { return integrator_.time(); }
   /// \f$\hat x\f$ in the coordinates of system (2).
-  [[nodiscard]] auto transformed_state() const { return internal_.template head<Dims::nx>(sizes_.nx); }
+  [[nodiscard]] auto transformed_state() const { return detail::segment<Dims::nx>(internal_, 0, sizes_.nx); }
   /// Ξ of eq. (3a).
   [[nodiscard]] Eigen::Map<const FilterState> filter() const {
     return Eigen::Map<const FilterState>(internal_.data() + sizes_.nx, r_, sizes_.np);
@@ -318,14 +319,14 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
 
   void set_initial(const State& eta0, const Parameters& theta0) {
     internal_.setZero();
-    internal_.template head<Dims::nx>(sizes_.nx) = algorithm_.static_transform.to_transformed(eta0);
-    internal_.template tail<Dims::np>(sizes_.np) = theta0;
+    detail::segment<Dims::nx>(internal_, 0, sizes_.nx) = algorithm_.static_transform.to_transformed(eta0);
+    detail::segment<Dims::np>(internal_, sizes_.nx + r_ * sizes_.np, sizes_.np) = theta0;
     refresh_estimates();
   }
 
   void refresh_estimates() {
-    algorithm_.static_transform.to_original(internal_.template head<Dims::nx>(sizes_.nx), eta_);
-    theta_ = internal_.template tail<Dims::np>(sizes_.np);
+    algorithm_.static_transform.to_original(detail::segment<Dims::nx>(internal_, 0, sizes_.nx), eta_);
+    theta_ = detail::segment<Dims::np>(internal_, sizes_.nx + r_ * sizes_.np, sizes_.np);
   }
 
   Model model_;

@@ -68,7 +68,8 @@ struct ZhangContinuous {
 
   void check(const TransformedSystem<D>& so, const Sizes& /*sizes*/, bool time_invariant) const {
     if (time_invariant)
-      detail::require(is_hurwitz_stable(so.Ao), name, "K", "must make A - K C Hurwitz (eq. (13))");
+      detail::require(is_hurwitz_stable(Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>(so.Ao)), name, "K",
+                      "must make A - K C Hurwitz (eq. (13))");
   }
 };
 
