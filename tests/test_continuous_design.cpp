@@ -189,8 +189,9 @@ TEST(CanonicalForms, BesanconFormOfRandomMimoSystems) {
     const Eigen::Matrix<double, 2, 4> c = rng.uniform<Eigen::Matrix<double, 2, 4>>();
     const auto st = adaptobs::besancon_form<D>(a, c, 0.5);
     const Eigen::Matrix4d ao = st.T() * a * st.T_inverse() - st.K() * c * st.T_inverse();
-    EXPECT_MATRIX_NEAR(Eigen::Matrix<double, 2, 4>(c * st.T_inverse()),
-                       (Eigen::Matrix<double, 2, 4>() << 1, 0, 0, 0, 0, 1, 0, 0).finished(), 1e-10, 0);
+    Eigen::Matrix<double, 2, 4> leading_identity = Eigen::Matrix<double, 2, 4>::Zero();
+    leading_identity.leftCols(2).setIdentity();
+    EXPECT_MATRIX_NEAR(Eigen::Matrix<double, 2, 4>(c * st.T_inverse()), leading_identity, 1e-10, 0);
     EXPECT_MATRIX_NEAR(ao.leftCols(2), Eigen::Matrix<double, 4, 2>::Zero(), 1e-10, 0);
     EXPECT_LT(adaptobs::spectral_abscissa(Matrix(ao.bottomRightCorner(2, 2))), -0.5);
   }
@@ -208,7 +209,7 @@ TEST(SprDesign, GainsOfAlgorithmsOneAndTwo) {
   EXPECT_MATRIX_NEAR(g1.numerator, poly({1, 4, 3}), 1e-12, 0);
   EXPECT_MATRIX_NEAR(g1.denominator, poly({1, 6, 11, 6}), 1e-12, 0);
   EXPECT_TRUE(adaptobs::strictly_positive_real(Eigen::Matrix3d(so1.Ao - k1 * so1.Co), e1, so1.Co));
-  for (const Eigen::Vector3d bad : {Eigen::Vector3d(-0.5, 0, 0), Eigen::Vector3d(2, -4, 4)})
+  for (const Eigen::Vector3d& bad : {Eigen::Vector3d(-0.5, 0, 0), Eigen::Vector3d(2, -4, 4)})
     EXPECT_FALSE(adaptobs::strictly_positive_real(Eigen::Matrix3d(so1.Ao - bad * so1.Co), e1, so1.Co)) << bad.transpose();
 
   // Algorithm 2 with γ = (1, 3, 2).

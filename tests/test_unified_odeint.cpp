@@ -40,7 +40,7 @@ void compare_with_odeint(Observer observer, Signals signals, double h, double du
   using Sample = typename Observer::Sample;
   const auto sample_at = [&](double t, bool with_midpoint) {
     Sample s;
-    s.u.resize(1);
+    s.t = t;
     signals(t, s.u, s.y);
     if (with_midpoint) {
       typename Sample::Midpoint m;
