@@ -191,8 +191,11 @@ TEST(CanonicalForms, BesanconFormOfRandomMimoSystems) {
     const Eigen::Matrix4d ao = st.T() * a * st.T_inverse() - st.K() * c * st.T_inverse();
     Eigen::Matrix<double, 2, 4> leading_identity = Eigen::Matrix<double, 2, 4>::Zero();
     leading_identity.leftCols(2).setIdentity();
-    EXPECT_MATRIX_NEAR(Eigen::Matrix<double, 2, 4>(c * st.T_inverse()), leading_identity, 1e-10, 0);
-    EXPECT_MATRIX_NEAR(ao.leftCols(2), Eigen::Matrix<double, 4, 2>::Zero(), 1e-10, 0);
+    using Output24 = Eigen::Matrix<double, 2, 4>;
+    using Block42 = Eigen::Matrix<double, 4, 2>;
+    const Output24 co = c * st.T_inverse();
+    EXPECT_MATRIX_NEAR(co, leading_identity, 1e-10, 0);
+    EXPECT_MATRIX_NEAR(ao.leftCols(2), Block42::Zero(), 1e-10, 0);
     EXPECT_LT(adaptobs::spectral_abscissa(Matrix(ao.bottomRightCorner(2, 2))), -0.5);
   }
 }
