@@ -87,6 +87,34 @@ TEST(Polynomials, CharacteristicPolynomialAndTransferFunction) {
   EXPECT_NEAR(std::abs(num / den - direct), 0.0, 1e-13);
 }
 
+// Routh–Hurwitz against polynomials with known roots, including roots on the
+// imaginary axis and a pair just to the right of it.
+TEST(Polynomials, RouthHurwitzAndSturmCounts) {
+  using adaptobs::is_hurwitz_polynomial;
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 6, 11, 6})));          // -1, -2, -3
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({-2, -12, -22, -12})));    // same roots, negative lead
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 0.2, 100.01})));       // -0.1 ± 10j
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, -0.2, 100.01})));     // +0.1 ± 10j
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, 1, 4, 4})));          // -1, ±2j
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, 3, 2, 0})));          // 0, -1, -2
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, 1, 1, 21})));         // -3, 1 ± 2.45j (all coefficients positive)
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({0, 1, 1})));             // leading zero
+  // (s+1)^2 (s^2 + 0.02 s + 1.0001) (s+4): a lightly damped pair, fifth order.
+  const Vector lightly = adaptobs::multiply_polynomials<double>(
+      adaptobs::multiply_polynomials<double>(poly({1, 2, 1}), poly({1, 0.02, 1.0001})), poly({1, 4}));
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(lightly));
+  EXPECT_TRUE(adaptobs::has_hurwitz_characteristic_polynomial(siso::dynamics<double>()));
+  EXPECT_FALSE(adaptobs::has_hurwitz_characteristic_polynomial(Eigen::Matrix2d(Eigen::Matrix2d::Identity())));
+
+  using adaptobs::count_real_roots_above;
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, -6, 11, -6}), 0.0), 3);  // 1, 2, 3
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, -6, 11, -6}), 1.5), 2);
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, 6, 11, 6}), 0.0), 0);    // -1, -2, -3
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, 0, 1}), 0.0), 0);        // ±j
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, -2, 1}), 0.0), 1);       // double root 1
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, 1, -2}), 0.0), 1);       // 1, -2
+}
+
 struct SprCase {
   const char* name;
   Vector num, den;

@@ -14,7 +14,6 @@
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -47,26 +46,98 @@ template <class Derived>
   return p;
 }
 
-/// Roots of a polynomial (eigenvalues of its companion matrix); leading zeros are ignored.
-template <typename Scalar>
-[[nodiscard]] Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1> polynomial_roots(const Polynomial<Scalar>& p) {
-  Index first = 0;
-  while (first < p.size() && p(first) == Scalar(0)) ++first;
-  const Index degree = p.size() - first - 1;
-  if (degree <= 0) return Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1>(0);
-  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> companion =
-      Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Zero(degree, degree);
-  for (Index j = 0; j < degree; ++j) companion(0, j) = -p(first + 1 + j) / p(first);
-  for (Index i = 1; i < degree; ++i) companion(i, i - 1) = Scalar(1);
-  return Eigen::EigenSolver<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>>(companion, false).eigenvalues();
-}
-
 /// Every root in the open left half-plane (and a non-zero leading coefficient).
+///
+/// Routh–Hurwitz test, no root finding: the first column of the Routh array
+/// must keep one sign. Each row is \f$r_{k+1,j} = r_{k-1,j+1} - (r_{k-1,0}/r_{k,0})\,r_{k,j+1}\f$;
+/// a zero (relative to the coefficients) in the first column means a root on
+/// or to the right of the imaginary axis, so the polynomial is not Hurwitz.
 template <typename Scalar>
 [[nodiscard]] bool is_hurwitz_polynomial(const Polynomial<Scalar>& p) {
-  if (p.size() == 0 || p(0) == Scalar(0)) return false;
-  const auto roots = polynomial_roots(p);
-  return roots.size() == 0 || roots.real().maxCoeff() < Scalar(0);
+  if (p.size() == 0 || p(0) == Scalar(0) || !p.allFinite()) return false;
+  const Index degree = p.size() - 1;
+  if (degree == 0) return true;
+  const Scalar sign = p(0) > 0 ? Scalar(1) : Scalar(-1);
+  const Scalar tol = Scalar(64) * std::numeric_limits<Scalar>::epsilon() * p.cwiseAbs().maxCoeff();
+  const Index width = degree / 2 + 1;
+  Polynomial<Scalar> upper = Polynomial<Scalar>::Zero(width), lower = Polynomial<Scalar>::Zero(width);
+  for (Index i = 0; i <= degree; ++i) (i % 2 == 0 ? upper : lower)(i / 2) = sign * p(i);
+  for (Index row = 1; row <= degree; ++row) {
+    if (!(lower(0) > tol)) return false;
+    const Scalar ratio = upper(0) / lower(0);
+    Polynomial<Scalar> next = Polynomial<Scalar>::Zero(width);
+    for (Index j = 0; j + 1 < width; ++j) next(j) = upper(j + 1) - ratio * lower(j + 1);
+    upper = lower;
+    lower = next;
+  }
+  return true;
+}
+
+/// Hurwitz test of a small square matrix without an eigen-decomposition:
+/// Routh–Hurwitz on its Faddeev–LeVerrier characteristic polynomial (orders n ≲ 10,
+/// the design-time checks of small observer blocks).
+template <class Derived>
+[[nodiscard]] bool has_hurwitz_characteristic_polynomial(const Eigen::MatrixBase<Derived>& m) {
+  if (m.size() == 0) return true;
+  return is_hurwitz_polynomial(characteristic_polynomial(m));
+}
+
+/// Number of distinct real roots of p in the half-open interval (a, ∞), by a
+/// Sturm sequence (signs of \f$p_0 = p,\ p_1 = p',\ p_{k+1} = -\mathrm{rem}(p_{k-1}, p_k)\f$
+/// at a and at +∞); `relative_tolerance` treats remainder coefficients that small
+/// against the largest as zero. No root finding.
+template <typename Scalar>
+[[nodiscard]] Index count_real_roots_above(const Polynomial<Scalar>& p, Scalar a,
+                                           Scalar relative_tolerance = Scalar(1e-10)) {
+  const auto trimmed = [&](Polynomial<Scalar> q) {
+    const Scalar scale = q.size() == 0 ? Scalar(0) : q.cwiseAbs().maxCoeff();
+    Index first = 0;
+    while (first < q.size() && std::abs(q(first)) <= relative_tolerance * scale) ++first;
+    return Polynomial<Scalar>(q.tail(q.size() - first));
+  };
+  std::vector<Polynomial<Scalar>> chain;
+  chain.push_back(trimmed(p));
+  if (chain[0].size() <= 1) return 0;
+  Polynomial<Scalar> derivative(chain[0].size() - 1);
+  const Index d = chain[0].size() - 1;
+  for (Index i = 0; i < d; ++i) derivative(i) = Scalar(d - i) * chain[0](i);
+  chain.push_back(trimmed(derivative));
+  while (chain.back().size() > 1) {
+    Polynomial<Scalar> r = chain[chain.size() - 2];
+    const Polynomial<Scalar>& q = chain.back();
+    const Scalar keep = r.cwiseAbs().maxCoeff();
+    for (Index shift = 0; shift + q.size() <= r.size(); ++shift) {
+      const Scalar factor = r(shift) / q(0);
+      r.segment(shift, q.size()) -= factor * q;
+      r(shift) = Scalar(0);
+    }
+    r = r.tail(q.size() - 1).eval();
+    // Scale-aware trim: compare with the dividend, not with the (small) remainder itself.
+    Index first = 0;
+    while (first < r.size() && std::abs(r(first)) <= relative_tolerance * keep) ++first;
+    if (first == r.size()) break;  // p has repeated roots: the chain ends at their gcd
+    chain.push_back(Polynomial<Scalar>(-r.tail(r.size() - first)));
+  }
+  const auto sign_changes = [&](auto value_of) {
+    Index changes = 0;
+    int previous = 0;
+    for (const auto& q : chain) {
+      const Scalar v = value_of(q);
+      const int s = v > 0 ? 1 : (v < 0 ? -1 : 0);
+      if (s != 0) {
+        if (previous != 0 && s != previous) ++changes;
+        previous = s;
+      }
+    }
+    return changes;
+  };
+  const auto at_a = [&](const Polynomial<Scalar>& q) {
+    Scalar v = 0;
+    for (Index i = 0; i < q.size(); ++i) v = v * a + q(i);
+    return v;
+  };
+  const auto at_infinity = [](const Polynomial<Scalar>& q) { return q(0); };
+  return sign_changes(at_a) - sign_changes(at_infinity);
 }
 
 /// Product of two polynomials (convolution of the coefficients).

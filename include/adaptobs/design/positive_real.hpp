@@ -98,13 +98,8 @@ template <typename Scalar>
   while (degree > 0 && std::abs(q_asc(degree)) <= Scalar(1e-10) * q_scale) --degree;
   r.q = q_asc.head(degree + 1).reverse();
 
-  bool nonnegative_root = false;
-  const auto roots = polynomial_roots(r.q);
-  for (Index i = 0; i < roots.size(); ++i) {
-    const Scalar magnitude = std::max(Scalar(1), std::abs(roots(i)));
-    if (std::abs(roots(i).imag()) <= Scalar(1e-8) * magnitude && roots(i).real() >= -Scalar(1e-12) * magnitude)
-      nonnegative_root = true;
-  }
+  // q(0) > 0 is checked below, so a root on [0, ∞) is a root in (0, ∞) (Sturm count).
+  const bool nonnegative_root = count_real_roots_above<Scalar>(r.q, Scalar(0)) > 0;
   r.q_positive_on_nonnegative_axis = q_asc(0) > 0 && !nonnegative_root;
   r.strict_at_infinity = degree == n - 1 && r.q(0) > 0;
   r.strictly_positive_real = r.denominator_hurwitz && r.relative_degree == 1 && r.high_frequency_gain > 0 &&

@@ -31,7 +31,7 @@
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/positive_real.hpp>
-#include <adaptobs/design/stability.hpp>
+#include <adaptobs/design/polynomial.hpp>
 #include <adaptobs/observers/unified_adaptive_observer.hpp>
 
 #include <Eigen/Core>
@@ -109,8 +109,7 @@ struct BastinGevers {
     detail::require(sizes.ny == 1, name, "model", "must have a single output");
     detail::require(detail::is_leading_identity(so.Co), name, "static_transform", "must give c_o = C T^-1 = e1^T");
     const Index n = sizes.nx;
-    using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  // one eigen-solver instantiation per scalar
-    detail::require(n == 1 || is_hurwitz_stable(Dense(so.Ao.bottomRightCorner(n - 1, n - 1))), name, "static_transform",
+    detail::require(n == 1 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(n - 1, n - 1)), name, "static_transform",
                     "must give a Hurwitz A22 (form (5))");
     Eigen::Matrix<Scalar, D::nx, 1> gamma = Eigen::Matrix<Scalar, D::nx, 1>::Zero(n);
     gamma(0) = Scalar(1);

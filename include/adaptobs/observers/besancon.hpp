@@ -27,7 +27,7 @@
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
-#include <adaptobs/design/stability.hpp>
+#include <adaptobs/design/polynomial.hpp>
 #include <adaptobs/observers/bastin_gevers.hpp>
 #include <adaptobs/observers/unified_adaptive_observer.hpp>
 
@@ -86,7 +86,7 @@ struct Besancon {
     if (!time_invariant) return;
     const Index m = sizes.ny, r = sizes.nx - sizes.ny;
     using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  // one eigen-solver instantiation per scalar
-    detail::require(r == 0 || is_hurwitz_stable(Dense(so.Ao.bottomRightCorner(r, r))), name, "static_transform",
+    detail::require(r == 0 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(r, r)), name, "static_transform",
                     "must give a Hurwitz A22 (form (8))");
     const Dense a11 = so.Ao.topLeftCorner(m, m) - K1;
     const Dense sym = Scalar(0.5) * (a11 + a11.transpose());

@@ -26,7 +26,7 @@
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
-#include <adaptobs/design/stability.hpp>
+#include <adaptobs/design/polynomial.hpp>
 #include <adaptobs/observers/unified_adaptive_observer.hpp>
 
 #include <Eigen/Core>
@@ -68,7 +68,7 @@ struct ZhangContinuous {
 
   void check(const TransformedSystem<D>& so, const Sizes& /*sizes*/, bool time_invariant) const {
     if (time_invariant)
-      detail::require(is_hurwitz_stable(Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>(so.Ao)), name, "K",
+      detail::require(has_hurwitz_characteristic_polynomial(so.Ao), name, "K",
                       "must make A - K C Hurwitz (eq. (13))");
   }
 };
