@@ -24,6 +24,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -91,7 +92,8 @@ template <class DA, class DG, class DQ>
   Scalar residual = detail::care_residual(x, a, g, q);
   for (int k = 0; k < 3 && residual > 10 * eps; ++k) {
     const Matrix closed = a - g * x;
-    if (!is_hurwitz_stable(closed)) break;
+    // A margin keeps the Lyapunov equation regular (no eigenvalue pair with λ_i + λ_j ≈ 0).
+    if (!is_hurwitz_stable(closed, std::sqrt(eps) * std::max(Scalar(1), closed.cwiseAbs().maxCoeff()))) break;
     const Matrix candidate = solve_continuous_lyapunov(closed, Matrix(q + x * g * x));
     const Scalar candidate_residual = detail::care_residual(candidate, a, g, q);
     if (!(candidate_residual < residual)) break;

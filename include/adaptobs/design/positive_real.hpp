@@ -17,6 +17,8 @@
 /// has \f$q(0) > 0\f$, no real root in \f$[0, \infty)\f$, degree n − 1 and a positive
 /// leading coefficient — the last two say \f$\lim\omega^2\mathrm{Re}\,G(j\omega) > 0\f$,
 /// the strictness condition at infinity that \f$\mathrm{Re}\,G(j\omega) > 0\f$ alone misses.
+/// D is tested by Routh–Hurwitz and the real roots of q are counted by a Sturm
+/// sequence: exact in rational arithmetic, no root finding.
 ///
 /// **Choosing k.** Output injection moves poles, never zeros:
 /// \f$c(sI - A + kc)^{-1}\gamma = N_\gamma(s)/\det(sI - A + kc)\f$ with
