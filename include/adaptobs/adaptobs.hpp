@@ -7,21 +7,31 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/discretization.hpp>
+#include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/matrix_exponential.hpp>
 #include <adaptobs/core/observer.hpp>
 #include <adaptobs/core/products.hpp>
+#include <adaptobs/core/regressor_integral.hpp>
+#include <adaptobs/core/sampled_model.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/core/sylvester.hpp>
 #include <adaptobs/core/validation.hpp>
 
 // Design: gains before the loop, and diagnostics.
 #include <adaptobs/design/dare.hpp>
 #include <adaptobs/design/excitation_monitor.hpp>
+#include <adaptobs/design/guiro_convergence.hpp>
+#include <adaptobs/design/guiro_gains.hpp>
+#include <adaptobs/design/observability.hpp>
+#include <adaptobs/design/pole_placement.hpp>
+#include <adaptobs/design/power_bound.hpp>
 #include <adaptobs/design/riccati_recursion.hpp>
 #include <adaptobs/design/stability.hpp>
 
 // Observers and the baselines they are compared with.
 #include <adaptobs/baselines/augmented_kalman.hpp>
+#include <adaptobs/observers/guiro.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
 
 // Simulation and CSV output.

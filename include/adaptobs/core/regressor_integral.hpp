@@ -13,10 +13,11 @@
 ///   by adaptive Gauss–Kronrod quadrature (7-point Gauss, 15-point Kronrod)
 ///   with bisection until the estimated error meets the requested tolerance.
 ///   The kernels \f$e^{-\sigma A}\f$ at the nodes of every bisection level are
-///   matrix exponentials computed once at construction; halves are joined by
-///   \f$\int_a^{a+h} = \int_a^{a+h/2} + e^{-(h/2)A}\int_{a+h/2}^{a+h}\f$ (each
-///   integral taken relative to its own start), so an evaluation costs 15
-///   products \f$e^{-\sigma_iA}\varphi(\sigma_i)\f$ per panel and no exponential.
+///   matrix exponentials computed once at construction; a panel [a, a + h] is
+///   integrated relative to its start and carried to \f$t_k\f$ by
+///   \f$e^{-(a-t_k)A}\f$, itself built by products of the levels' half-steps
+///   \f$e^{-(h/2)A}\f$, so an evaluation costs 15 products
+///   \f$e^{-\sigma_iA}\varphi(\sigma_i)\f$ per panel and no exponential.
 /// - `PolynomialRegressorIntegral`: φ polynomial on the period,
 ///   \f$\varphi(t_k+\tau) = \sum_{j\le d}P_j\tau^j\f$ (zero-order hold: d = 0,
 ///   linear interpolation: d = 1), exactly: the moments
@@ -49,6 +50,7 @@ struct SampledRegressor {
   /// a conservative bound for the 15-point result (0 for the exact polynomial form).
   Scalar error_estimate = 0;
   bool converged = true;  ///< the requested tolerance was met within the allowed bisections
+  int panels = 1;         ///< panels the period was split into (1 for the exact polynomial form)
 };
 
 struct RegressorIntegralOptions {
@@ -57,8 +59,11 @@ struct RegressorIntegralOptions {
   double relative_tolerance = 0;
   /// Absolute bound on the error estimate (for an H that may vanish).
   double absolute_tolerance = 0;
-  /// Most bisection levels: at most \f$2^{\text{max\_depth}}\f$ panels per period.
-  int max_depth = 10;
+  /// Deepest bisection: no panel narrower than \f$T/2^{\text{max\_depth}}\f$
+  /// (the kernels of every level are matrix exponentials computed at construction).
+  int max_depth = 20;
+  /// Most panels per period (the workspace is allocated once).
+  int max_panels = 100;
 };
 
 namespace detail {
@@ -98,6 +103,13 @@ typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& m) {
 }  // namespace detail
 
 /// \f$H_k\f$ and \f$\Psi_k\f$ of any regressor φ by adaptive Gauss–Kronrod quadrature (see file comment).
+///
+/// Error control is global, as in QUADPACK's QAG: the panel with the largest
+/// error estimate is bisected until the sum of the estimates meets the
+/// tolerance, so a kink or a jump of φ inside the period costs a few panels
+/// per bisection level around it and nothing elsewhere. The panels live in a
+/// workspace allocated at construction (first use for dynamic sizes), hence
+/// `integrate` is not const and one object must not be used by two threads at once.
 template <typename Scalar, int NX, int NP>
 class RegressorIntegral {
  public:
@@ -112,8 +124,9 @@ class RegressorIntegral {
     detail::require_square(A, who, "A");
     detail::require_finite(A, who, "A");
     detail::require_positive(period, who, "period");
-    detail::require(options.max_depth >= 0 && options.max_depth <= 30, who, "options.max_depth",
-                    "must be in [0, 30]");
+    detail::require(options.max_depth >= 0 && options.max_depth <= 40, who, "options.max_depth",
+                    "must be in [0, 40]");
+    detail::require(options.max_panels >= 1, who, "options.max_panels", "must be at least 1");
     detail::require(options.relative_tolerance >= 0 && options.absolute_tolerance >= 0, who, "options",
                     "tolerances must be non-negative");
     relative_tolerance_ = options.relative_tolerance > 0
@@ -131,15 +144,16 @@ class RegressorIntegral {
         level.kernel[i] = matrix_exponential(Dynamic(-sigma * a));
       }
       level.half = matrix_exponential(Dynamic(-h / 2 * a));
-      level.half_norm = n_ == 0 ? Scalar(0) : level.half.cwiseAbs().rowwise().sum().maxCoeff();
       h /= 2;
     }
+    panels_.resize(std::size_t(options.max_panels));
+    for (Panel& panel : panels_) panel.shift.setIdentity(n_, n_);
   }
 
   /// \f$H_k\f$ and \f$\Psi_k\f$ over \f$[t_0, t_0 + T]\f$; `phi(t)` returns \f$\varphi(t)\f$ (n × p).
   template <class Phi>
     requires std::invocable<const Phi&, Scalar>
-  [[nodiscard]] Result integrate(const Phi& phi, Scalar t0) const {
+  [[nodiscard]] Result integrate(const Phi& phi, Scalar t0) {
     Result result;
     integrate(phi, t0, result);
     return result;
@@ -148,18 +162,43 @@ class RegressorIntegral {
   /// As above, into `out` (no allocation for fixed sizes); returns `out.converged`.
   template <class Phi>
     requires std::invocable<const Phi&, Scalar>
-  bool integrate(const Phi& phi, Scalar t0, Result& out) const {
+  bool integrate(const Phi& phi, Scalar t0, Result& out) {
     Regressor gauss;
-    Scalar magnitude = 0;
-    panel(phi, t0, 0, out.H, gauss, magnitude);
+    Panel& first = panels_[0];
+    first.shift.setIdentity(n_, n_);
+    first.start = t0;
+    first.depth = 0;
+    first.shift_norm = Scalar(1);
+    evaluate(phi, first, gauss);
     const Scalar tolerance =
-        std::max(Scalar(options_.absolute_tolerance), relative_tolerance_ * detail::max_abs(out.H));
-    out.error_estimate = detail::max_abs(out.H - gauss);
-    out.converged = accept(out.error_estimate, tolerance, magnitude);
-    if (!out.converged && options_.max_depth > 0) {
-      out.converged = refine(phi, t0, 1, tolerance, out.H, out.error_estimate);
+        std::max(Scalar(options_.absolute_tolerance), relative_tolerance_ * detail::max_abs(first.integral));
+    std::size_t count = 1;
+    Scalar error = first.error;
+    while (error > std::max(tolerance, roundoff_floor(count)) && count < panels_.size()) {
+      // Bisect the panel with the largest error that can still be bisected.
+      std::size_t worst = count;
+      for (std::size_t i = 0; i < count; ++i)
+        if (!panels_[i].frozen && (worst == count || panels_[i].error > panels_[worst].error)) worst = i;
+      if (worst == count) break;
+      Panel& left = panels_[worst];
+      Panel& right = panels_[count++];
+      const Level& parent = levels_[std::size_t(left.depth)];
+      ++left.depth;
+      right.depth = left.depth;
+      right.start = left.start + std::ldexp(period_, -left.depth);
+      right.shift.noalias() = left.shift * parent.half;  // e^{−(a + h/2 − t₀)A}
+      right.shift_norm = right.shift.cwiseAbs().rowwise().sum().maxCoeff();
+      evaluate(phi, left, gauss);
+      evaluate(phi, right, gauss);
+      error = 0;
+      for (std::size_t i = 0; i < count; ++i) error += panels_[i].error;
     }
+    out.H.noalias() = first.shift * first.integral;
+    for (std::size_t i = 1; i < count; ++i) out.H.noalias() += panels_[i].shift * panels_[i].integral;
     out.Psi.noalias() = transition_ * out.H;
+    out.error_estimate = error;
+    out.converged = error <= std::max(tolerance, roundoff_floor(count));
+    out.panels = int(count);
     return out.converged;
   }
 
@@ -170,64 +209,53 @@ class RegressorIntegral {
  private:
   struct Level {
     std::array<StateMatrix, 15> kernel;  // e^{-σ_i A} at the nodes of a panel of this level
-    StateMatrix half;                    // e^{-(h/2) A}: joins the right half to the left one
-    Scalar half_norm = 0;                // its ∞-norm, which scales the right half's error
+    StateMatrix half;                    // e^{-(h/2) A}: from a panel's start to its midpoint
+  };
+  struct Panel {
+    StateMatrix shift;        // e^{-(a − t₀)A}: carries the panel's integral to t₀
+    Regressor integral;       // ∫₀^h e^{-σA} φ(a + σ) dσ, 15-point Kronrod
+    Scalar start = 0;         // a
+    Scalar shift_norm = 1;    // ‖shift‖∞
+    Scalar error = 0;         // ‖shift‖∞ · max|K₁₅ − G₇|
+    Scalar magnitude = 0;     // ‖shift‖∞ · Σ wᵢ max|termᵢ| · h/2: the round-off scale
+    int depth = 0;            // the panel is T / 2^depth wide
+    bool frozen = false;      // at the round-off level or at the deepest level
   };
 
-  // Error below the tolerance, or at the round-off level of the panel's sum.
-  static bool accept(Scalar error, Scalar tolerance, Scalar magnitude) {
-    return error <= tolerance || error <= Scalar(50) * std::numeric_limits<Scalar>::epsilon() * magnitude;
+  // Round-off floor of the sum of `count` panels.
+  Scalar roundoff_floor(std::size_t count) const {
+    Scalar magnitude = 0;
+    for (std::size_t i = 0; i < count; ++i) magnitude += panels_[i].magnitude;
+    return Scalar(50) * std::numeric_limits<Scalar>::epsilon() * magnitude;
   }
 
-  // 15-point Kronrod and 7-point Gauss sums over [a, a + T/2^depth], relative to a.
+  // 15-point Kronrod and 7-point Gauss sums over the panel, relative to its start.
   template <class Phi>
-  void panel(const Phi& phi, Scalar a, int depth, Regressor& kronrod, Regressor& gauss, Scalar& magnitude) const {
+  void evaluate(const Phi& phi, Panel& panel, Regressor& gauss) const {
     using Rule = detail::GaussKronrod15;
-    const Level& level = levels_[std::size_t(depth)];
-    const Scalar half_width = std::ldexp(period_, -depth) / 2;
+    const Level& level = levels_[std::size_t(panel.depth)];
+    const Scalar half_width = std::ldexp(period_, -panel.depth) / 2;
     Regressor term;
+    Scalar magnitude = 0;
     for (std::size_t i = 0; i < 15; ++i) {
       const Scalar sigma = half_width * (Scalar(1) + Scalar(Rule::nodes[i]));
-      term.noalias() = level.kernel[i] * phi(a + sigma);
+      term.noalias() = level.kernel[i] * phi(panel.start + sigma);
       if (i == 0) {
-        kronrod = Scalar(Rule::kronrod_weights[i]) * term;
+        panel.integral = Scalar(Rule::kronrod_weights[i]) * term;
         gauss.setZero(term.rows(), term.cols());
-        magnitude = Scalar(0);
       } else {
-        kronrod += Scalar(Rule::kronrod_weights[i]) * term;
+        panel.integral += Scalar(Rule::kronrod_weights[i]) * term;
       }
       if (i % 2 == 1) gauss += Scalar(Rule::gauss_weights[i / 2]) * term;
       magnitude += Scalar(Rule::kronrod_weights[i]) * detail::max_abs(term);
     }
-    kronrod *= half_width;
+    panel.integral *= half_width;
     gauss *= half_width;
-    magnitude *= half_width;
-  }
-
-  // Integral over [a, a + T/2^depth] (relative to a) to `tolerance`, by bisection.
-  template <class Phi>
-  bool refine(const Phi& phi, Scalar a, int depth, Scalar tolerance, Regressor& out, Scalar& error) const {
-    const Scalar width = std::ldexp(period_, -depth);
-    const Level& parent = levels_[std::size_t(depth - 1)];
-    // Left half.
-    Regressor gauss;
-    Scalar magnitude = 0;
-    panel(phi, a, depth, out, gauss, magnitude);
-    Scalar left_error = detail::max_abs(out - gauss);
-    const Scalar left_tolerance = tolerance / 2;
-    bool ok = accept(left_error, left_tolerance, magnitude);
-    if (!ok && depth < options_.max_depth) ok = refine(phi, a, depth + 1, left_tolerance, out, left_error);
-    // Right half, moved to the left end by e^{-(h/2) A}.
-    Regressor right;
-    const Scalar right_tolerance = tolerance / (2 * std::max(Scalar(1), parent.half_norm));
-    panel(phi, a + width, depth, right, gauss, magnitude);
-    Scalar right_error = detail::max_abs(right - gauss);
-    bool right_ok = accept(right_error, right_tolerance, magnitude);
-    if (!right_ok && depth < options_.max_depth)
-      right_ok = refine(phi, a + width, depth + 1, right_tolerance, right, right_error);
-    out.noalias() += parent.half * right;
-    error = left_error + parent.half_norm * right_error;
-    return ok && right_ok;
+    const Scalar difference = detail::max_abs(panel.integral - gauss);
+    panel.magnitude = panel.shift_norm * magnitude * half_width;
+    panel.error = panel.shift_norm * difference;
+    panel.frozen = panel.depth >= options_.max_depth ||
+                   difference <= Scalar(50) * std::numeric_limits<Scalar>::epsilon() * magnitude * half_width;
   }
 
   Scalar period_;
@@ -236,6 +264,7 @@ class RegressorIntegral {
   Index n_ = 0;
   StateMatrix transition_;
   std::vector<Level> levels_;
+  std::vector<Panel> panels_;
 };
 
 /// \f$H_k\f$ and \f$\Psi_k\f$, exactly, for φ polynomial on each period (see file comment).

@@ -32,7 +32,7 @@
 /// and (i) holds from some \f$k_0\f$. A failed check is not a proof of divergence.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/spectral_norm.hpp>
+#include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
 #include <adaptobs/design/power_bound.hpp>
@@ -41,7 +41,6 @@
 #include <Eigen/Core>
 
 #include <cmath>
-#include <iterator>
 #include <optional>
 #include <ranges>
 #include <sstream>
@@ -107,19 +106,23 @@ struct GuiroConvergenceReport {
   }
 };
 
-/// Checks proposition 2.2 for gains (K, Γ), nominal regressor \f$\bar H\f$ and
-/// the sequence \f$H_0, H_1, \dots\f$ of the data (a range of n × p matrices);
-/// see the file comment.
-template <class DE, class DC, class DK, class DG, class DH, std::ranges::forward_range Range>
-[[nodiscard]] auto check_guiro_convergence(const Eigen::MatrixBase<DE>& E, const Eigen::MatrixBase<DC>& C,
-                                           const Eigen::MatrixBase<DK>& K, const Eigen::MatrixBase<DG>& Gamma,
-                                           const Eigen::MatrixBase<DH>& Hbar, const Range& H_sequence) {
-  using Scalar = typename DE::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+namespace detail {
+template <typename Scalar>
+GuiroConvergenceReport<Scalar> check_guiro_convergence(const DynamicMatrix<Scalar>& E, const DynamicMatrix<Scalar>& C,
+                                                       const DynamicMatrix<Scalar>& K,
+                                                       const DynamicMatrix<Scalar>& Gamma,
+                                                       const DynamicMatrix<Scalar>& Hbar,
+                                                       const std::vector<DynamicMatrix<Scalar>>& H_sequence) {
+  using Matrix = DynamicMatrix<Scalar>;
   constexpr std::string_view who = "check_guiro_convergence";
-  const Matrix u = guiro_error_matrix(E, C, Hbar, K, Gamma);
-  detail::require_finite(u, who, "E, C, Hbar, K, Gamma");
-  const Index n = E.rows(), p = Hbar.cols();
+  require_square(E, who, "E");
+  const Index n = E.rows(), m = C.rows(), p = Hbar.cols();
+  require_shape(C, m, n, who, "C");
+  require_shape(Hbar, n, p, who, "Hbar");
+  require_shape(K, n, m, who, "K");
+  require_shape(Gamma, p, m, who, "Gamma");
+  const Matrix u = guiro_error_matrix<Scalar>(E, C, Hbar, K, Gamma);
+  require_finite(u, who, "E, C, Hbar, K, Gamma");
 
   GuiroConvergenceReport<Scalar> report;
   report.spectral_radius = spectral_radius(u);
@@ -127,10 +130,10 @@ template <class DE, class DC, class DK, class DG, class DH, std::ranges::forward
 
   // ‖W(k)‖₂ = ‖(I − KC) E (H_k − H̄)‖₂.
   const Matrix ikc_e = (Matrix::Identity(n, n) - K * C) * E;
-  for (const auto& h : H_sequence) {
-    detail::require_shape(h, n, p, who, "H_sequence");
-    detail::require_finite(h, who, "H_sequence");
-    report.w_norms.push_back(spectral_norm(Matrix(ikc_e * (h - Hbar))));
+  for (const Matrix& h : H_sequence) {
+    require_shape(h, n, p, who, "H_sequence");
+    require_finite(h, who, "H_sequence");
+    report.w_norms.push_back(detail::largest_singular_value<Scalar>(ikc_e * (h - Hbar)));
   }
   const auto& w = report.w_norms;
   const Index samples = Index(w.size());
@@ -184,6 +187,22 @@ template <class DE, class DC, class DK, class DG, class DH, std::ranges::forward
     report.condition_ii = ConditionVerdict::fails;
   }
   return report;
+}
+}  // namespace detail
+
+/// Checks proposition 2.2 for gains (K, Γ), nominal regressor \f$\bar H\f$ and
+/// the sequence \f$H_0, H_1, \dots\f$ of the data (a range of n × p matrices);
+/// see the file comment.
+template <class DE, class DC, class DK, class DG, class DH, std::ranges::forward_range Range>
+[[nodiscard]] GuiroConvergenceReport<typename DE::Scalar> check_guiro_convergence(
+    const Eigen::MatrixBase<DE>& E, const Eigen::MatrixBase<DC>& C, const Eigen::MatrixBase<DK>& K,
+    const Eigen::MatrixBase<DG>& Gamma, const Eigen::MatrixBase<DH>& Hbar, const Range& H_sequence) {
+  using Scalar = typename DE::Scalar;
+  std::vector<detail::DynamicMatrix<Scalar>> h;
+  for (const auto& hk : H_sequence) h.push_back(detail::dynamic_copy(hk));
+  return detail::check_guiro_convergence<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C),
+                                                 detail::dynamic_copy(K), detail::dynamic_copy(Gamma),
+                                                 detail::dynamic_copy(Hbar), h);
 }
 
 }  // namespace adaptobs

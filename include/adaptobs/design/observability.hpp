@@ -15,6 +15,7 @@
 /// generalized eigenstructure problem in linear system theory", IEEE TAC 26(1), 1981).
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -54,8 +55,8 @@ template <class DA, class DC>
                                             : Scalar(1e6) * std::numeric_limits<Scalar>::epsilon();
   const Scalar tol = rel * std::max({Scalar(1), Scalar(A.norm()), Scalar(C.norm())});
 
-  Matrix a = A.transpose();
-  Matrix block = C.transpose();  // the part of the input matrix not yet reached
+  Matrix a = detail::dynamic_copy(A.transpose());
+  Matrix block = detail::dynamic_copy(C.transpose());  // the part of the input matrix not yet reached
   Index offset = 0;
   while (offset < n && block.cols() > 0) {
     const Index rows = n - offset;
@@ -80,26 +81,26 @@ template <class DA, class DC>
   return report;
 }
 
-/// Popov–Belevitch–Hautus margin at a given (possibly complex) μ:
+/// Popov–Belevitch–Hautus margin at a real μ:
 /// \f$\sigma_{\min}\!\left(\begin{bmatrix} A - \mu I \\ C\end{bmatrix}\right) / \max(1, \|A\|_F, \|C\|_F)\f$,
 /// 0 exactly when μ is an unobservable eigenvalue of A. Use it at eigenvalues
-/// known in closed form, where a computed eigenvalue would be inexact.
+/// known in closed form (such as the eigenvalue 1 of an integrator), where a
+/// computed eigenvalue would be inexact.
 template <class DA, class DC>
 [[nodiscard]] typename DA::Scalar pbh_margin(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
-                                             std::complex<typename DA::Scalar> mu) {
+                                             typename DA::Scalar mu) {
   using Scalar = typename DA::Scalar;
-  using Complex = std::complex<Scalar>;
-  using ComplexMatrix = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "pbh_margin";
   detail::require_square(A, who, "A");
   detail::require_shape(C, C.rows(), A.rows(), who, "C");
   const Index n = A.rows();
   if (n == 0) return Scalar(1);
-  ComplexMatrix stacked(n + C.rows(), n);
-  stacked.topRows(n) = A.template cast<Complex>();
+  Matrix stacked(n + C.rows(), n);
+  stacked.topRows(n) = detail::dynamic_copy(A);
   stacked.topRows(n).diagonal().array() -= mu;
-  stacked.bottomRows(C.rows()) = C.template cast<Complex>();
-  const Scalar smallest = Eigen::JacobiSVD<ComplexMatrix>(stacked).singularValues()(n - 1);
+  stacked.bottomRows(C.rows()) = detail::dynamic_copy(C);
+  const Scalar smallest = Eigen::JacobiSVD<Matrix>(stacked).singularValues()(n - 1);
   return smallest / std::max({Scalar(1), Scalar(A.norm()), Scalar(C.norm())});
 }
 

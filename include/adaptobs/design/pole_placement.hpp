@@ -32,6 +32,7 @@
 /// `ConfigurationError`: no gain is ever returned that does not do its job.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/sylvester.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/observability.hpp>
@@ -185,7 +186,7 @@ template <class DM, class DP>
   detail::require(poles.size() == M.rows(), "cayley_hamilton_residual", "poles", "must have one pole per row of M");
   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> q = characteristic_polynomial(poles);
   const Index n = M.rows();
-  const Matrix m = M;
+  const Matrix m = detail::dynamic_copy(M);
   const Scalar norm = m.norm();
   Matrix r = Matrix::Zero(n, n);
   Scalar scale = 0;
@@ -217,7 +218,7 @@ template <class DM>
   using Scalar = typename DM::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   if (M.rows() == 0) return Scalar(0);
-  const ComplexVector<Scalar> eig = Eigen::EigenSolver<Matrix>(Matrix(M), false).eigenvalues();
+  const ComplexVector<Scalar> eig = Eigen::EigenSolver<Matrix>(detail::dynamic_copy(M), false).eigenvalues();
   std::vector<bool> taken(std::size_t(eig.size()), false);
   Scalar worst = 0;
   for (Index i = 0; i < poles.size(); ++i) {
@@ -360,13 +361,14 @@ struct OutputInjectionGain {
 };
 
 namespace detail {
-template <typename Scalar, int N, int M>
-OutputInjectionGain<Scalar, N, M> place_injection(const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& A,
-                                                  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& C,
-                                                  const ComplexVector<Scalar>& poles,
-                                                  const PolePlacementOptions& options, std::string_view who,
-                                                  std::string_view pair, std::string_view property) {
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+template <typename Scalar>
+OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(const DynamicMatrix<Scalar>& A,
+                                                                           const DynamicMatrix<Scalar>& C,
+                                                                           const ComplexVector<Scalar>& poles,
+                                                                           const PolePlacementOptions& options,
+                                                                           std::string_view who, std::string_view pair,
+                                                                           std::string_view property) {
+  using Matrix = DynamicMatrix<Scalar>;
   PolePlacer<Scalar> placer(A, C, poles, options, who, pair, property);
   std::optional<typename PolePlacer<Scalar>::Candidate> best;
   for (int t = 0; t < placer.draws(); ++t) {
@@ -375,7 +377,7 @@ OutputInjectionGain<Scalar, N, M> place_injection(const Eigen::Matrix<Scalar, Ei
   }
   if (!best) fail_argument(who, "poles", "could not be placed: the Sylvester transformation was singular in every draw");
   const Matrix closed = A - best->L * C;
-  OutputInjectionGain<Scalar, N, M> result;
+  OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> result;
   result.L = best->L;
   result.transformation_condition = best->x_condition;
   result.cayley_hamilton_residual = cayley_hamilton_residual(closed, poles);
@@ -398,10 +400,16 @@ template <class DA, class DC, class DP>
 [[nodiscard]] auto place_output_injection(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
                                           const Eigen::MatrixBase<DP>& poles, PolePlacementOptions options = {}) {
   using Scalar = typename DA::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "place_output_injection";
-  return detail::place_injection<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime>(
-      Matrix(A), Matrix(C), detail::complex_poles<Scalar>(poles, who), options, who, "A, C", "observable");
+  const auto d = detail::place_injection<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C),
+                                                 detail::complex_poles<Scalar>(poles, who), options, who, "A, C",
+                                                 "observable");
+  OutputInjectionGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime> result;
+  result.L = d.L;
+  result.cayley_hamilton_residual = d.cayley_hamilton_residual;
+  result.transformation_condition = d.transformation_condition;
+  result.eigenvalue_mismatch = d.eigenvalue_mismatch;
+  return result;
 }
 
 /// State-feedback gain K (m × N) with the certificate of its placement.
@@ -420,13 +428,13 @@ template <class DA, class DB, class DP>
 [[nodiscard]] auto place_state_feedback(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
                                         const Eigen::MatrixBase<DP>& poles, PolePlacementOptions options = {}) {
   using Scalar = typename DA::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "place_state_feedback";
   detail::require_square(A, who, "A");
   detail::require_shape(B, A.rows(), B.cols(), who, "B");
-  const auto dual = detail::place_injection<Scalar, DA::RowsAtCompileTime, DB::ColsAtCompileTime>(
-      Matrix(A.transpose()), Matrix(B.transpose()), detail::complex_poles<Scalar>(poles, who), options, who,
-      "A, B", "controllable");
+  const auto dual = detail::place_injection<Scalar>(detail::dynamic_copy(A.transpose()),
+                                                    detail::dynamic_copy(B.transpose()),
+                                                    detail::complex_poles<Scalar>(poles, who), options, who, "A, B",
+                                                    "controllable");
   StateFeedbackGain<Scalar, DA::RowsAtCompileTime, DB::ColsAtCompileTime> result;
   result.K = dual.L.transpose();
   result.cayley_hamilton_residual = dual.cayley_hamilton_residual;

@@ -16,11 +16,12 @@
 /// `best_power_bound` picks the λ that maximizes that margin.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/spectral_norm.hpp>
+#include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/stability.hpp>
 
 #include <Eigen/Core>
+#include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +29,15 @@
 #include <optional>
 
 namespace adaptobs {
+
+namespace detail {
+/// \f$\|M\|_2\f$ by a singular value decomposition (the one the design routines use anyway).
+template <typename Scalar>
+Scalar largest_singular_value(const DynamicMatrix<Scalar>& m) {
+  if (m.size() == 0) return Scalar(0);
+  return Eigen::JacobiSVD<DynamicMatrix<Scalar>>(m).singularValues()(0);
+}
+}  // namespace detail
 
 /// \f$\|U^k\|_2 \le M\lambda^k\f$ for every k ≥ 0.
 template <typename Scalar>
@@ -52,12 +62,12 @@ template <class Derived>
   detail::require_positive(lambda, "power_bound_constant", "lambda");
   const Index n = U.rows();
   if (n == 0) return Scalar(1);
-  const Matrix s = U / lambda;
+  const Matrix s = detail::dynamic_copy(U) / lambda;
   Matrix power = Matrix::Identity(n, n);
   Scalar m = 1;
   for (Index j = 1; j <= max_power; ++j) {
     power = (power * s).eval();
-    const Scalar norm = spectral_norm(power);
+    const Scalar norm = detail::largest_singular_value<Scalar>(power);
     if (!std::isfinite(norm)) break;
     if (norm <= Scalar(1)) return m;
     m = std::max(m, norm);
@@ -74,7 +84,7 @@ template <class Derived>
   using Scalar = typename Derived::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   detail::require(grid >= 2, "best_power_bound", "grid", "must be at least 2");
-  const Matrix u = U;
+  const Matrix u = detail::dynamic_copy(U);
   const Scalar rho = spectral_radius(u);
   if (!(rho < Scalar(1))) return std::nullopt;
   const auto margin = [&](Scalar lambda) {
