@@ -165,7 +165,7 @@ set title 'Figure 1: state x_1 and its estimate z_1'
 plot csv using 't':'x_1' with lines lw 2 title 'x_1', \
      csv using 't':'xhat_1' with linespoints pt 7 ps 0.6 title 'z_1 (designed gains)'
 set title 'Figure 2: parameter estimate (true value 5)'
-set yrange [-1:12]
+set yrange [-3:12]
 plot csv using 't':'thetahat_1' with linespoints pt 7 ps 0.6 title 'theta estimate (designed gains)', \
      csv using 't':'thetahat_printed_1' with lines dt 2 title 'printed K, Gamma = 1.8730773', \
      csv using 't':'theta_1' with lines lc 'black' dt 3 title 'theta = 5'

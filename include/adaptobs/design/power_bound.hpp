@@ -67,6 +67,8 @@ template <class Derived>
   Scalar m = 1;
   for (Index j = 1; j <= max_power; ++j) {
     power = (power * s).eval();
+    // λ ≤ ρ(U): the powers overflow. Stop before the SVD sees a non-finite matrix.
+    if (!power.allFinite()) break;
     const Scalar norm = detail::largest_singular_value<Scalar>(power);
     if (!std::isfinite(norm)) break;
     if (norm <= Scalar(1)) return m;
