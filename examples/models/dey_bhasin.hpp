@@ -38,16 +38,21 @@ namespace adaptobs::examples::dey_bhasin {
 
 /// Entry-wise \f$\hat\theta_k/\theta_k\f$ for \f$\theta = [a;\ \mathrm{vec}(B)]\f$. A true entry
 /// equal to 0 has no normalized value: it is written as NaN (`nan` in the CSV).
-template <class Observer>
-Eigen::VectorXd normalized_estimates(const Observer& observer, const Eigen::VectorXd& a,
-                                     const Eigen::MatrixXd& B) {
+inline Eigen::VectorXd normalized_estimates(const Eigen::VectorXd& a_hat, const Eigen::MatrixXd& B_hat,
+                                            const Eigen::VectorXd& a, const Eigen::MatrixXd& B) {
   Eigen::VectorXd truth(a.size() + B.size()), estimate(a.size() + B.size());
   truth << a, B.reshaped();
-  estimate << observer.a_hat().template cast<double>(), observer.B_hat().template cast<double>().reshaped();
+  estimate << a_hat, B_hat.reshaped();
   Eigen::VectorXd ratio(truth.size());
   for (Index i = 0; i < truth.size(); ++i)
     ratio(i) = truth(i) == 0.0 ? std::numeric_limits<double>::quiet_NaN() : estimate(i) / truth(i);
   return ratio;
+}
+
+/// The same for the estimates of an observer (`a_hat()`, `B_hat()`).
+template <class Observer>
+Eigen::VectorXd normalized_estimates(const Observer& observer, const Eigen::VectorXd& a, const Eigen::MatrixXd& B) {
+  return normalized_estimates(observer.a_hat().template cast<double>(), observer.B_hat().template cast<double>(), a, B);
 }
 
 /// \f$\sum_{i \ge \text{first}}\|W\,CF^i x\|\f$ for a Schur F, summed until the terms are

@@ -49,6 +49,8 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
+#include <string_view>
 #include <utility>
 
 namespace adaptobs {
@@ -109,6 +111,13 @@ class ExponentialForgettingRls {
     innovation_weight_ = weight_;
     innovation_weight_.noalias() += detail::product(phi.transpose(), gamma_phi_);
     factorization_.compute(innovation_weight_);
+    // A singular or non-finite M leaves no gain (the factorization would quietly
+    // zero it): the step breaks down, and its proposal says so with NaN.
+    if (factorization_.info() != Eigen::Success || !(factorization_.vectorD().array().abs() > Scalar(0)).all()) {
+      p_[next].setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+      gamma_[next].setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+      return false;
+    }
     gain_transposed_ = gamma_phi_.transpose();
     factorization_.solveInPlace(gain_transposed_);  // Kᵀ = M⁻¹(Γφ)ᵀ
     innovation_ = z;

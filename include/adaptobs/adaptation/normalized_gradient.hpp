@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <string_view>
 #include <utility>
 
 namespace adaptobs {

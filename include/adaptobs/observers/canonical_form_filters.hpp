@@ -38,6 +38,7 @@
 
 #include <Eigen/Core>
 
+#include <string_view>
 #include <utility>
 
 namespace adaptobs {

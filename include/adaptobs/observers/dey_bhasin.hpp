@@ -212,8 +212,8 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     detail::require_shape(B0, filters.states(), filters.inputs(), who, "B0");
     detail::require_finite(B0, who, "B0");
     Parameters p(filters.parameters());
-    p.head(r) = a0 - filters.coefficients();
-    p.tail(B0.size()) = B0.reshaped();
+    p.template head<R>(r) = a0 - filters.coefficients();
+    p.template segment<product_of_sizes(M, Dims::nx)>(r, B0.size()) = B0.reshaped();
     return p;
   }
 
