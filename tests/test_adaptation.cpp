@@ -43,6 +43,11 @@ using Regressor = Eigen::Matrix<double, 4, 2>;
 using Vector4 = Eigen::Vector4d;
 using Vector2 = Eigen::Vector2d;
 
+// Eigenvalues of a symmetric matrix in ascending order (a dynamic solver: one instantiation).
+Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& m) {
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m, Eigen::EigenvaluesOnly).eigenvalues();
+}
+
 // A symmetric positive definite matrix with eigenvalues in [lo, hi].
 template <class M>
 M random_spd(RandomMatrices& rng, Index n, double lo, double hi) {
@@ -227,7 +232,7 @@ TEST(CovarianceResetting, ResetTestIsExactAtTheThreshold) {
   // Against eigenvalues on random matrices.
   for (int i = 0; i < 200; ++i) {
     const Eigen::MatrixXd m = random_spd<Eigen::MatrixXd>(rng, 8, 1e-5, 1e3);
-    const double lmin = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m, Eigen::EigenvaluesOnly).eigenvalues()(0);
+    const double lmin = eigenvalues(m)(0);
     EXPECT_TRUE(adaptobs::smallest_eigenvalue_exceeds(m, lmin * (1 - 1e-6)));
     EXPECT_FALSE(adaptobs::smallest_eigenvalue_exceeds(m, lmin * (1 + 1e-6)));
   }
@@ -247,7 +252,7 @@ TEST(CovarianceResetting, ResetsExactlyWhenTheSmallestEigenvalueReachesKmin) {
     const Matrix4 gamma = law.covariance();
     const Eigen::Matrix2d w = (Eigen::Matrix2d::Identity() + phi.transpose() * gamma * phi).inverse();
     const Matrix4 bar = gamma - gamma * phi * w * phi.transpose() * gamma;
-    const double lmin = Eigen::SelfAdjointEigenSolver<Matrix4>(bar, Eigen::EigenvaluesOnly).eigenvalues()(0);
+    const double lmin = eigenvalues(bar)(0);
     ASSERT_TRUE(law.propose(phi, data.z[t]));
     law.commit();
     const double band = 1e-12 * k0;  // well above the rounding of Γ̄ (about 4ε k0)
@@ -263,7 +268,7 @@ TEST(CovarianceResetting, ResetsExactlyWhenTheSmallestEigenvalueReachesKmin) {
       EXPECT_TRUE(law.covariance() == k0 * Matrix4::Identity());
     }
     // Γ_t stays inside (kmin, k0], and the screening bound is a true lower bound.
-    const Eigen::Vector4d lambda = Eigen::SelfAdjointEigenSolver<Matrix4>(law.covariance()).eigenvalues();
+    const Eigen::VectorXd lambda = eigenvalues(law.covariance());
     EXPECT_GT(lambda(0), kmin);
     EXPECT_LE(lambda(3), k0 * (1 + 1e-12));
     EXPECT_LE(law.eigenvalue_lower_bound(), lambda(0) * (1 + 1e-12));

@@ -278,10 +278,13 @@ template <class Input>
 Index regressor_rank(Input input) {
   auto observer = mimo::make_observer();
   auto plant = mimo::make_plant(input);
-  Eigen::Matrix<double, 15, 15> gram = Eigen::Matrix<double, 15, 15>::Zero();
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(15, 15), phi(15, 2);
   for (Index t = 0; t < 3000; ++t) {
     EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
-    if (t >= 500) gram += observer.regressor() * observer.regressor().transpose();
+    if (t >= 500) {
+      phi = observer.regressor();
+      gram.noalias() += phi * phi.transpose();
+    }
     plant.advance();
   }
   const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram).eigenvalues();
@@ -363,8 +366,8 @@ TEST(DeyBhasin, Theorem5Step26FailsButTheWeightedNormStepHolds) {
   const Vector15 p = true_p(observer);
   const Matrix6 f = observer.filters().transition_matrix();
   Eigen::Matrix<double, 6, 1> free_error = mimo::x0() - mimo::x_hat0();  // F^t x̃_0
-  const auto weighted = [&](const Vector15& e, const Eigen::Matrix<double, 15, 15>& g) {
-    return std::sqrt(e.dot(g.llt().solve(e)));
+  const auto weighted = [&](const Vector15& e, const Eigen::MatrixXd& g) {
+    return std::sqrt(e.dot(g.llt().solve(Eigen::VectorXd(e))));
   };
   Index violations_26 = 0;
   ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);  // t = 0: no adaptation
@@ -395,23 +398,26 @@ TEST(DeyBhasin, WithoutResettingEqualsBatchLeastSquares18) {
   static_assert(adaptobs::Observer<RlsObserver>);
   using Matrix15 = Eigen::Matrix<double, 15, 15>;
   const Matrix15 gamma0 = mimo::k0 * Matrix15::Identity();
+  // The batch solution on dynamic matrices (one factorization compiled for the whole file).
   RlsObserver observer(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(),
                        {.gamma0 = gamma0, .R = Eigen::Matrix2d::Identity()});
   const Vector15 p0 = observer.parameters();
-  Matrix15 information = gamma0.inverse();
-  Vector15 rhs = information * p0;
+  Eigen::MatrixXd information = Eigen::MatrixXd::Identity(15, 15) / mimo::k0;
+  Eigen::VectorXd rhs = information * Eigen::VectorXd(p0);
   auto plant = mimo::make_plant(mimo::RichInput{});
   for (Index t = 0; t < 400; ++t) {
     ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
     if (t >= 1) {  // (18) sums from i = 1 (φ_0 = 0 anyway)
-      information += observer.regressor() * observer.regressor().transpose();
-      rhs += observer.regressor() * observer.measurement();
+      const Eigen::MatrixXd phi = observer.regressor();
+      information += phi * phi.transpose();
+      rhs += phi * Eigen::VectorXd(observer.measurement());
     }
     plant.advance();
   }
-  const Vector15 batch = information.ldlt().solve(rhs);
+  const Eigen::LLT<Eigen::MatrixXd> factor(information);
+  const Vector15 batch = factor.solve(rhs);
   EXPECT_MATRIX_NEAR(observer.parameters(), batch, 1e-9 * batch.norm(), 0.0);
-  EXPECT_MATRIX_NEAR(observer.law().covariance(), Matrix15(information.inverse()),
+  EXPECT_MATRIX_NEAR(observer.law().covariance(), Matrix15(factor.solve(Eigen::MatrixXd::Identity(15, 15))),
                      1e-9 * observer.law().covariance().norm(), 0.0);
 }
 
