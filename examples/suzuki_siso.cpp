@@ -137,9 +137,11 @@ plot csv using 't':'xerr_norm_suzuki' with lines lw 1.5 title '||x - xhat||'
 set title 'Figure 5(b): 2-norm of the state estimation error, covariance resetting'
 plot csv using 't':'xerr_norm' with lines lw 1.5 title '||x - xhat||'
 set title 'Why: largest covariance entry (forgetting overflows, resetting stays in [kmin, k0])'
+set yrange [1e-6:1e308]
 plot csv using 't':'gamma_max_suzuki' with lines lw 1.5 title 'forgetting', \
      csv using 't':'gamma_max' with lines lw 1.5 title 'resetting'
 unset logscale y
+set autoscale y
 set format y '%g'
 set title 'Input and output'
 set xrange [0:300]
