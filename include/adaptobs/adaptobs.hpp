@@ -29,8 +29,18 @@
 #include <adaptobs/design/riccati_recursion.hpp>
 #include <adaptobs/design/stability.hpp>
 
+// Adaptation laws: parameter estimators for a regression linear in the parameters.
+#include <adaptobs/adaptation/adaptation_law.hpp>
+#include <adaptobs/adaptation/covariance_resetting.hpp>
+#include <adaptobs/adaptation/exponential_forgetting.hpp>
+#include <adaptobs/adaptation/normalized_gradient.hpp>
+#include <adaptobs/adaptation/recursive_least_squares.hpp>
+#include <adaptobs/adaptation/rls_correction.hpp>
+
 // Observers and the baselines they are compared with.
 #include <adaptobs/baselines/augmented_kalman.hpp>
+#include <adaptobs/observers/canonical_form_filters.hpp>
+#include <adaptobs/observers/dey_bhasin.hpp>
 #include <adaptobs/observers/guiro.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
 
