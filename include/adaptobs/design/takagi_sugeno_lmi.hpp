@@ -35,11 +35,11 @@
 /// Schur complements (54)), with the blocks of sizes
 /// \f$n_x + n_\theta \mid n_{\tilde u} \mid n_x + n_\theta \mid n_x + n_\theta \mid 2r(n_x + n_u)\f$:
 /// \f[ M_i = \begin{bmatrix}
-///   Q_e - P & Q_{A,i} & \Phi_i^TP & 0 & T_{1,i} \\
-///   * & T_{22} & 0 & Q_B & 0 \\
-///   * & * & -P & 0 & 0 \\
-///   * & * & * & -P & T_4 \\
-///   * & * & * & * & \Lambda \end{bmatrix} \prec 0, \f]
+///   Q_e - P & Q_{A,i} & \Phi_i^TP & 0 & T_{1,i}
+///   \\ * & T_{22} & 0 & Q_B & 0
+///   \\ * & * & -P & 0 & 0
+///   \\ * & * & * & -P & T_4
+///   \\ * & * & * & * & \Lambda \end{bmatrix} \prec 0, \f]
 /// \f$P_{0,i} = A_i^TP_0 - C^TR_i^T\f$ (41),
 /// \f$\Phi_i^TP = \begin{bmatrix} P_{0,i} & -C^TF_i^T \\ 0 & \Phi_{22}^TP_1\end{bmatrix}\f$,
 /// \f$Q_{A,i} = \begin{bmatrix} 0 & 0 & -C^TF_i^TG_\theta & -C^TF_i^T \\ 0 & 0 & \Phi_{22}^TP_1G_\theta & \Phi_{22}^TP_1\end{bmatrix}\f$,

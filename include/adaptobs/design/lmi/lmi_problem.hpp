@@ -273,16 +273,16 @@ class LmiProblem {
     return c;
   }
 
-  /// \f$\max_j \lambda_{\max}(G_j(y) + \varepsilon_jI)\f$: negative iff y satisfies every constraint strictly
-  /// with its margin.
-  [[nodiscard]] double worst_violation(const Eigen::VectorXd& y) const {
+  /// \f$\max_j \lambda_{\max}(G_j(y))\f$: negative iff y satisfies every constraint strictly (the
+  /// margins ε only help a solver land strictly inside).
+  [[nodiscard]] double largest_eigenvalue(const Eigen::VectorXd& y) const {
     double worst = -std::numeric_limits<double>::infinity();
     for (const Constraint& c : constraints_) {
       const Eigen::MatrixXd g = c.G.value(y);
       if (!g.allFinite()) return std::numeric_limits<double>::infinity();
       const Eigen::MatrixXd s = 0.5 * (g + g.transpose());
       const double top = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(s, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
-      worst = std::max(worst, top + c.margin);
+      worst = std::max(worst, top);
     }
     return worst;
   }

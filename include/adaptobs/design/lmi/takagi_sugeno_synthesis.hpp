@@ -57,7 +57,13 @@ enum class TakagiSugenoObjective {
 
 struct TakagiSugenoLmiOptions {
   TakagiSugenoTheorem theorem = TakagiSugenoTheorem::constant_parameters;
-  ParameterErrorModel error_model = ParameterErrorModel::as_printed;
+  /// The parameter-error recursion the LMIs are written for. Empty: the reading under
+  /// which the theorem is feasible and certifies the observer as implemented —
+  /// `as_printed` (\f$\Phi_{22} = 0\f$) for theorem 2, whose `exact` form is infeasible for
+  /// every \f$Q_e\f$, and `exact` (\f$\Phi_{22} = I - K_\theta\f$, \f$G_\theta = K_\theta\f$) for theorem 1, whose
+  /// printed form describes the update \f$\hat\Theta_{k+1} = \sum_i\hat h_i(K_{y,i}(y_k - \hat y_k) - K_\theta\hat\Theta_k)\f$
+  /// rather than (21).
+  std::optional<ParameterErrorModel> error_model;
   Eigen::MatrixXd Q_x;      ///< \f$n_x\times n_x\f$, empty: \f$I\f$ (the theorems' "+I")
   Eigen::MatrixXd Q_theta;  ///< \f$n_\theta\times n_\theta\f$, empty: \f$I\f$
   Eigen::MatrixXd K_theta;  ///< \f$K_\theta\f$ of observer (21), theorem 1 only
@@ -278,12 +284,31 @@ inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSu
   return out;
 }
 
+/// The reading of the parameter error used when `TakagiSugenoLmiOptions::error_model` is empty.
+[[nodiscard]] constexpr ParameterErrorModel default_error_model(TakagiSugenoTheorem theorem) noexcept {
+  return theorem == TakagiSugenoTheorem::constant_parameters ? ParameterErrorModel::as_printed
+                                                             : ParameterErrorModel::exact;
+}
+
 /// The problem data of a polytopic model for the LMIs: its vertices and C in double
 /// precision, \f$Q_e\f$ and the theorem's choices from `options`.
 template <class Model>
 [[nodiscard]] TakagiSugenoLmiData takagi_sugeno_lmi_data(const Model& model, const TakagiSugenoLmiOptions& options = {}) {
+  constexpr std::string_view who = "takagi_sugeno_lmi_data";
   TakagiSugenoLmiData data;
   const Sizes s = model.sizes();
+  if (options.Q_x.size() > 0) {
+    detail::require_shape(options.Q_x, s.nx, s.nx, who, "options.Q_x");
+    detail::require_positive_semidefinite(options.Q_x, who, "options.Q_x");
+  }
+  if (options.Q_theta.size() > 0) {
+    detail::require_shape(options.Q_theta, s.np, s.np, who, "options.Q_theta");
+    detail::require_positive_semidefinite(options.Q_theta, who, "options.Q_theta");
+  }
+  if (options.theorem == TakagiSugenoTheorem::time_varying_parameters) {
+    detail::require_shape(options.K_theta, s.np, s.np, who, "options.K_theta");
+    detail::require_finite(options.K_theta, who, "options.K_theta");
+  }
   for (Index i = 0; i < model.vertex_count(); ++i) {
     data.A.push_back(model.A(i).template cast<double>());
     data.B.push_back(model.B(i).template cast<double>());
@@ -292,7 +317,7 @@ template <class Model>
   data.Q_x = options.Q_x.size() > 0 ? options.Q_x : Eigen::MatrixXd::Identity(s.nx, s.nx);
   data.Q_theta = options.Q_theta.size() > 0 ? options.Q_theta : Eigen::MatrixXd::Identity(s.np, s.np);
   data.theorem = options.theorem;
-  data.error_model = options.error_model;
+  data.error_model = options.error_model.value_or(default_error_model(options.theorem));
   data.K_theta = options.K_theta;
   return data;
 }
