@@ -33,6 +33,7 @@
 #include <cstdio>
 #include <iostream>
 #include <string>
+#include <vector>
 
 namespace wwtp = adaptobs::examples::wwtp;
 using adaptobs::examples::print_text;
@@ -138,12 +139,15 @@ int main(int argc, char** argv) {
   print_value("thetahat0", wwtp::initial_parameter_estimate<double>());
 
   adaptobs::SeriesTable table;
+  std::vector<std::string> weight_columns;
+  for (adaptobs::Index i = 0; i < model.vertex_count(); ++i) weight_columns.push_back("h_" + std::to_string(i + 1));
   const auto report = adaptobs::simulate(
       plant, steps, table,
       [&](adaptobs::SeriesTable& row, const auto&) {
         // Weights ĥ_i of the printed-gain observer at this step (figure 5).
-        row.add("h", model.weights(model.premises(observer.state(), plant.sample().u, observer.parameters()),
-                                   observer.parameters()));
+        const auto h = model.weights(model.premises(observer.state(), plant.sample().u, observer.parameters()),
+                                     observer.parameters());
+        for (adaptobs::Index i = 0; i < h.size(); ++i) row.add(weight_columns[std::size_t(i)], h(i));
       },
       adaptobs::track(observer), adaptobs::track(lmi_observer, "lmi"));
 
@@ -170,6 +174,7 @@ plot csv using 't':'x_2' with lines lw 2 lc 'black' title 'plant', \
      csv using 't':'xhat_2' with lines lw 1.5 title 'printed gains', \
      csv using 't':'xhat_lmi_2' with lines lw 1.5 dt 2 title 'LMI gains'
 set title 'Figure 3: estimation of theta'
+set yrange [-0.1:0.2]
 plot csv using 't':'theta_1' with lines lw 2 lc 'black' title 'true', \
      csv using 't':'thetahat_1' with lines lw 1.5 title 'printed gains', \
      csv using 't':'thetahat_lmi_1' with lines lw 1.5 dt 2 title 'LMI gains'
@@ -179,7 +184,7 @@ plot csv using 't':'u_1' with lines lw 1.5 title 'u'
 set autoscale y
 set title 'Figure 5: weights h_i (printed-gain observer)'
 set yrange [0:1]
-plot for [i=1:8] csv using 't':('h_'.i) with lines title 'h_'.i
+plot for [i=1:8] csv using 't':(column(sprintf('h_%d', i))) with lines lw 1.5 title sprintf('h_%d', i)
 unset multiplot)");
   return 0;
 }
