@@ -11,9 +11,9 @@
 //
 // Input: the dilution rate u_k = 0.225 + 0.05 sin(2πk/100) ∈ [0.175, 0.275] ⊂ [0, 0.4].
 // It keeps the plant inside its sector (76) for θ ∈ [−0.225, 0.3] (at a constant
-// rate u the plant washes out, x1 → 0, as u approaches a = 0.5 + θ), and its mean
-// is the rate at which the printed gains converge for the widest range of θ
-// around the nominal θ = 0 (θ ∈ [−0.125, 0.1]); the sine keeps the plant moving.
+// rate u the plant washes out, x1 → 0, as u approaches a = 0.5 + θ); at its mean
+// the window of θ where the printed gains converge, [−0.125, 0.1], is centred on
+// the nominal θ = 0; the sine keeps the plant moving.
 //
 // LMI design: theorem 2 with the error model as printed in (66), K_i = 0.03
 // imposed (Remark 6), Q_e = diag(1e-3, 1e-3, 0.1) (Remark 6), minimising β

@@ -12,6 +12,7 @@
 #include <adaptobs/core/products.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/core/takagi_sugeno_model.hpp>
 #include <adaptobs/core/validation.hpp>
 
 // Design: gains before the loop, and diagnostics.
@@ -19,12 +20,17 @@
 #include <adaptobs/design/excitation_monitor.hpp>
 #include <adaptobs/design/riccati_recursion.hpp>
 #include <adaptobs/design/stability.hpp>
+#include <adaptobs/design/takagi_sugeno_lmi.hpp>
+// Not included here: the LMI synthesis with DSDP, <adaptobs/design/lmi/takagi_sugeno_synthesis.hpp>,
+// is the optional component adaptobs::lmi.
 
 // Observers and the baselines they are compared with.
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
+#include <adaptobs/observers/takagi_sugeno.hpp>
 
 // Simulation and CSV output.
+#include <adaptobs/simulation/discrete_nonlinear_plant.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 #include <adaptobs/simulation/runner.hpp>
 #include <adaptobs/simulation/series_table.hpp>

@@ -91,8 +91,12 @@ void validate_sectors(const SectorBounds<S, N>& bounds, Index expected_size, std
 /// the expansion happens in place.
 template <typename S, class Derived>
 void expand_weights(Eigen::MatrixBase<Derived>& h, Index filled, S v, S lo, S hi) {
-  const S upper = (std::clamp(v, lo, hi) - lo) / (hi - lo);  // μ²(v), eq. (10)
-  const S lower = S(1) - upper;                              // μ¹(v) = 1 − μ²(v): the pair sums to 1 exactly
+  // μ²(v) of eq. (10), exactly 0 and 1 at and beyond the sector's ends. The reciprocal
+  // of the width does not depend on v, so its division stays off the critical path
+  // of an update; min(·, 1) absorbs its rounding (and passes a NaN on).
+  const S scaled = (v - lo) * (S(1) / (hi - lo));
+  const S upper = v >= hi ? S(1) : (v <= lo ? S(0) : std::min(scaled, S(1)));
+  const S lower = S(1) - upper;  // μ¹(v) = 1 − μ²(v) ∈ [0, 1]: the pair sums to 1 exactly
   for (Index i = filled - 1; i >= 0; --i) {
     const S hi_weight = h(i) * upper;
     h(2 * i) = h(i) * lower;
@@ -219,11 +223,7 @@ class TakagiSugenoModel : public SizedBy<D> {
         premise_bounds_(std::move(premise_bounds)),
         parameter_bounds_(std::move(parameter_bounds)) {
     constexpr std::string_view who = "TakagiSugenoModel";
-    detail::require(premise_bounds_.lower.size() == premise_bounds_.upper.size(), who, "premise_bounds",
-                    "must have lower and upper of the same size");
     detail::validate_sectors(premise_bounds_, premise_bounds_.lower.size(), who, "premise_bounds");
-    detail::require(parameter_bounds_.lower.size() == parameter_bounds_.upper.size(), who, "parameter_bounds",
-                    "must have lower and upper of the same size");
     detail::validate_sectors(parameter_bounds_, parameter_bounds_.lower.size(), who, "parameter_bounds");
     const Index k = premise_bounds_.size() + parameter_bounds_.size();
     detail::require(k <= 20, who, "premise_bounds", "with parameter_bounds gives more than 2^20 vertices");
@@ -250,7 +250,9 @@ class TakagiSugenoModel : public SizedBy<D> {
     detail::require_finite(C_, who, "C");
   }
 
-  [[nodiscard]] Sizes sizes() const noexcept { return {A_.rows(), B_.cols() / vertex_count(), C_.rows(), parameter_bounds_.size()}; }
+  [[nodiscard]] Sizes sizes() const noexcept {
+    return {A_.rows(), input_count(), C_.rows(), parameter_bounds_.size()};
+  }
   [[nodiscard]] Index premise_count() const noexcept { return premise_bounds_.size(); }
   /// \f$r = 2^{n_z + n_\theta}\f$.
   [[nodiscard]] Index vertex_count() const noexcept {
@@ -259,7 +261,7 @@ class TakagiSugenoModel : public SizedBy<D> {
 
   /// Vertex matrices \f$A_i\f$, \f$B_i\f$ (0-based i) and the output matrix C.
   [[nodiscard]] auto A(Index i) const { return A_.middleCols(i * A_.rows(), A_.rows()); }
-  [[nodiscard]] auto B(Index i) const { return B_.middleCols(i * (B_.cols() / vertex_count()), B_.cols() / vertex_count()); }
+  [[nodiscard]] auto B(Index i) const { return B_.middleCols(i * input_count(), input_count()); }
   [[nodiscard]] const OutputMatrix& C() const noexcept { return C_; }
   /// \f$\mathcal{A} = [A_1 \cdots A_r]\f$ and \f$\mathcal{B} = [B_1 \cdots B_r]\f$ (eq. (24)–(25)).
   [[nodiscard]] const VertexStateMatrices& vertex_state_matrices() const noexcept { return A_; }
@@ -293,8 +295,7 @@ class TakagiSugenoModel : public SizedBy<D> {
   }
   template <class DH>
   [[nodiscard]] InputMatrix blended_B(const Eigen::MatrixBase<DH>& h) const {
-    const Index nu = B_.cols() / vertex_count();
-    InputMatrix b = InputMatrix::Zero(B_.rows(), nu);
+    InputMatrix b = InputMatrix::Zero(B_.rows(), input_count());
     for (Index i = 0; i < vertex_count(); ++i) b += h(i) * B(i);
     return b;
   }
@@ -309,6 +310,8 @@ class TakagiSugenoModel : public SizedBy<D> {
   }
 
  private:
+  [[nodiscard]] Index input_count() const noexcept { return B_.cols() / vertex_count(); }
+
   VertexStateMatrices A_;
   VertexInputMatrices B_;
   OutputMatrix C_;

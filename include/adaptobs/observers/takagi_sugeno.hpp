@@ -28,6 +28,7 @@
 #include <adaptobs/core/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/products.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/takagi_sugeno_model.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -160,8 +161,8 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
       detail::require_finite(*gains.K_theta, who, "gains.K_theta");
     }
     gains_ = gains;
-    // V = [V_1 … V_r], V_i = [[A_i, B_i, L_i], [0, 0, K_{y,i}]], so that
-    // [x̂⁺; Δθ̂] = V (ĥ ⊗ [x̂; u; y − Cx̂]).
+    // [V_1 … V_r], V_i = [[A_i, B_i, L_i], [0, 0, K_{y,i}]], so that
+    // [x̂⁺; Δθ̂] = (Σ ĥ_i V_i) [x̂; u; y − Cx̂].
     const Index nv = s.nx + s.nu + s.ny;
     vertex_maps_.setZero(s.nx + s.np, nv * r);
     for (Index i = 0; i < r; ++i) {
@@ -184,7 +185,8 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     PremiseVector z;
     Weights h;
     Eigen::Matrix<Scalar, nv_at_compile_time, 1> v;  // [x̂; u; y − Cx̂]
-    Eigen::Matrix<Scalar, product_of_sizes(nv_at_compile_time, vertices_at_compile_time), 1> xi;  // ĥ ⊗ v
+    using Blend = Eigen::Matrix<Scalar, na_at_compile_time, nv_at_compile_time>;
+    Blend blend;  // Σ ĥ_i V_i
     Eigen::Matrix<Scalar, na_at_compile_time, 1> next;  // [x̂⁺; Δθ̂]
     State x;
     Parameters theta;
@@ -193,7 +195,7 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
       z.setZero(m.premise_count());
       h.setZero(m.vertex_count());
       v.setZero(nv);
-      xi.setZero(nv * m.vertex_count());
+      blend.setZero(s.nx + s.np, nv);
       next.setZero(s.nx + s.np);
       x.setZero(s.nx);
       theta.setZero(s.np);
@@ -210,18 +212,18 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     /// Weights \f$\hat h_i = h_i(\hat z_k, \hat\theta_k)\f$ with \f$\hat z_k, \hat\theta_k\f$ clipped to their sectors (10), Remark 1.
     model_.weights(w.z, theta_, w.h);
 
-    // v = [x̂_k; u_k; y_k − C x̂_k] and ξ = ĥ ⊗ v.
+    // v = [x̂_k; u_k; y_k − C x̂_k].
     w.v.head(nx) = x_;
     w.v.segment(nx, nu) = sample.u;
     w.v.tail(ny) = sample.y;
     w.v.tail(ny).noalias() -= model_.C() * x_;
-    const Index nv = nx + nu + ny;
-    for (Index i = 0; i < w.h.size(); ++i) w.xi.segment(i * nv, nv) = w.h(i) * w.v;
 
     /// (65) \f$\hat x_{k+1} = \sum_i\hat h_i[A_i\hat x_k + B_iu_k + L_i(y_k - C\hat x_k)]\f$ and
-    /// \f$\hat\theta_{k+1} = \hat\theta_k + \sum_i\hat h_iK_{y,i}(y_k - C\hat x_k)\f$ in one product
-    /// \f$[\hat x_{k+1}; \hat\theta_{k+1} - \hat\theta_k] = \mathcal{V}(\hat h\otimes v)\f$.
-    w.next.noalias() = vertex_maps_ * w.xi;
+    /// \f$\hat\theta_{k+1} = \hat\theta_k + \sum_i\hat h_iK_{y,i}(y_k - C\hat x_k)\f$ in one product:
+    /// \f$[\hat x_{k+1}; \hat\theta_{k+1} - \hat\theta_k] = (\sum_i\hat h_iV_i)\,v\f$ with
+    /// \f$V_i = \begin{bmatrix} A_i & B_i & L_i \\ 0 & 0 & K_{y,i}\end{bmatrix}\f$.
+    blend_vertex_maps(w.h, w.blend);
+    w.next.noalias() = detail::product(w.blend, w.v);
     w.x = w.next.head(nx);
     w.theta = theta_ + w.next.tail(np);
     /// (21) adds the leakage \f$-\sum_i\hat h_iK_\theta\hat\theta_k = -K_\theta\hat\theta_k\f$ (\f$\sum_i\hat h_i = 1\f$).
@@ -236,6 +238,31 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     detail::commit(premises_, w.z);
     ++step_;
     return UpdateStatus::accepted;
+  }
+
+  // Σ_i ĥ_i V_i, summed in two interleaved halves to shorten the chain of dependent
+  // additions (r ≥ 2 is even); fixed sizes take each V_i as a fixed-size block.
+  template <class DH, class DB>
+  void blend_vertex_maps(const Eigen::MatrixBase<DH>& h, Eigen::MatrixBase<DB>& blend) const {
+    const Index nv = blend.cols();
+    const auto V = [&](Index i) {
+      if constexpr (nv_at_compile_time != Eigen::Dynamic) {
+        return vertex_maps_.template middleCols<nv_at_compile_time>(i * nv);
+      } else {
+        return vertex_maps_.middleCols(i * nv, nv);
+      }
+    };
+    if (h.size() == 1) {
+      blend = V(0);
+      return;
+    }
+    typename Workspace::Blend odd = h(1) * V(1);
+    blend.noalias() = h(0) * V(0);
+    for (Index i = 2; i < h.size(); i += 2) {
+      blend.noalias() += h(i) * V(i);
+      odd.noalias() += h(i + 1) * V(i + 1);
+    }
+    blend += odd;
   }
 
   void check_sample_sizes(const Sample& sample) const {
