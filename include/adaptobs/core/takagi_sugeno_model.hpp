@@ -116,6 +116,7 @@ template <typename S, int NZ, int NP, class DZ, class DT, class DH>
 void sector_weights(const Eigen::MatrixBase<DZ>& z, const SectorBounds<S, NZ>& premise_bounds,
                     const Eigen::MatrixBase<DT>& theta, const SectorBounds<S, NP>& parameter_bounds,
                     Eigen::MatrixBase<DH>& h) {
+  h.setZero();  // every entry is written below; this lets compilers see it
   h(0) = S(1);
   Index filled = 1;
   for (Index j = 0; j < z.size(); ++j, filled *= 2)

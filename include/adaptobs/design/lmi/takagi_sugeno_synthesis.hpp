@@ -325,7 +325,11 @@ template <class Model>
 /// Outcome of a synthesis.
 enum class SynthesisStatus {
   feasible,      ///< the returned point was verified: every \f$M_i \prec 0\f$, \f$P_0, P_1, \lambda, \Gamma \succ 0\f$
-  infeasible,    ///< DSDP proved the LMIs infeasible (or the largest margin is ≤ 0)
+  /// DSDP reports the LMIs infeasible (DSDP_INFEASIBLE, r > 0), or the largest margin is ≤ 0.
+  /// This is DSDP's claim, not re-checked: on badly conditioned problems it can be
+  /// wrong (corollary 1 on the §6 plant's own sectors, β* ≈ 4.6e7, is reported
+  /// infeasible; the `maximize_margin` objective solves that problem).
+  infeasible,
   not_verified,  ///< DSDP did not prove infeasibility, but its point fails the independent check
   solver_failed, ///< a DSDP call failed
 };
