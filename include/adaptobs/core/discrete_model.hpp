@@ -21,8 +21,6 @@ struct DiscreteSystem {
   typename D::StateMatrix A;
   typename D::InputMatrix B;
   typename D::OutputMatrix C;
-
-  [[nodiscard]] Sizes sizes() const noexcept { return {A.rows(), B.cols(), C.rows(), D::np}; }
 };
 
 /// One measured sample of a discrete-time system with unknown parameters:
@@ -103,9 +101,8 @@ class DiscreteLtvModel : public SizedBy<D> {
                     "must be non-negative (dynamic dimensions need explicit sizes)");
     const DiscreteSystem<D> first = matrices_at_(Index{0});
     detail::validate_system(first, sizes_.np, who);
-    detail::require(first.sizes().nx == sizes_.nx && first.sizes().nu == sizes_.nu &&
-                        first.sizes().ny == sizes_.ny,
-                    who, "matrices_at", "returns matrices whose sizes differ from 'sizes'");
+    detail::require(first.A.rows() == sizes_.nx && first.B.cols() == sizes_.nu && first.C.rows() == sizes_.ny, who,
+                    "matrices_at", "returns matrices whose sizes differ from 'sizes'");
   }
 
   [[nodiscard]] DiscreteSystem<D> at(Index k) const { return matrices_at_(k); }

@@ -93,7 +93,8 @@ void require_positive_definite(const Eigen::MatrixBase<Derived>& m, std::string_
                                std::string_view argument) {
   require_finite(m, who, argument);
   require_symmetric(m, who, argument);
-  Eigen::LLT<typename Derived::PlainObject> llt(m.derived());
+  // Configuration-time check on a dynamic copy: one factorization compiled per scalar type.
+  const Eigen::LLT<Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic>> llt(m.derived());
   if (llt.info() != Eigen::Success) fail_argument(who, argument, "must be positive definite");
 }
 
@@ -106,7 +107,9 @@ void require_positive_semidefinite(const Eigen::MatrixBase<Derived>& m, std::str
   require_finite(m, who, argument);
   require_symmetric(m, who, argument);
   if (m.size() == 0) return;
-  const Eigen::SelfAdjointEigenSolver<typename Derived::PlainObject> eig(m.derived(), Eigen::EigenvaluesOnly);
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> dynamic = m;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> eig(
+      dynamic, Eigen::EigenvaluesOnly);
   const auto& lambda = eig.eigenvalues();
   const Scalar tol = Scalar(100) * Scalar(m.rows()) * std::numeric_limits<Scalar>::epsilon() *
                      std::max(std::abs(lambda(0)), std::abs(lambda(lambda.size() - 1)));

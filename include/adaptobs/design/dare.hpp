@@ -39,39 +39,39 @@ struct DareOptions {
   double tolerance = 0;  ///< relative change that stops the doubling; 0 selects 100 ε
 };
 
-/// Relative residual \f$\|X - (A^TXA - A^TXB(R + B^TXB)^{-1}B^TXA + Q)\|_F / \max(1,\|X\|_F)\f$.
-template <class DX, class DA, class DB, class DQ, class DR>
-[[nodiscard]] typename DX::Scalar dare_relative_residual(const Eigen::MatrixBase<DX>& X, const Eigen::MatrixBase<DA>& A,
-                                                         const Eigen::MatrixBase<DB>& B, const Eigen::MatrixBase<DQ>& Q,
-                                                         const Eigen::MatrixBase<DR>& R) {
-  using Scalar = typename DX::Scalar;
-  using Plain = typename DX::PlainObject;
-  const auto btxa = (B.transpose() * X * A).eval();
-  const auto s = (R + B.transpose() * X * B).eval();
-  const Plain ric = A.transpose() * X * A - btxa.transpose() * s.ldlt().solve(btxa) + Q;
+namespace detail {
+
+// Design-time computations run on dynamic-size matrices whatever the caller's
+// sizes: the factorizations they use are costly to compile, and one
+// instantiation per scalar type then serves every size.
+template <typename Scalar>
+using DynamicMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+template <typename Scalar>
+Scalar dare_relative_residual(const DynamicMatrix<Scalar>& X, const DynamicMatrix<Scalar>& A,
+                              const DynamicMatrix<Scalar>& B, const DynamicMatrix<Scalar>& Q,
+                              const DynamicMatrix<Scalar>& R) {
+  const DynamicMatrix<Scalar> btxa = B.transpose() * X * A;
+  const DynamicMatrix<Scalar> s = R + B.transpose() * X * B;
+  const DynamicMatrix<Scalar> ric = A.transpose() * X * A - btxa.transpose() * s.ldlt().solve(btxa) + Q;
   return (X - ric).norm() / std::max(Scalar(1), X.norm());
 }
 
-/// Stabilizing solution of the control-form DARE (see file comment).
-/// Throws `ConfigurationError` on invalid arguments or when no stabilizing
-/// solution exists ((A, B) not stabilizable or (A, Q) not detectable).
-template <class DA, class DB, class DQ, class DR>
-[[nodiscard]] auto solve_dare(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
-                              const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R,
-                              DareOptions options = {}) {
-  using Scalar = typename DA::Scalar;
-  constexpr int N = DA::RowsAtCompileTime;
-  using Square = Eigen::Matrix<Scalar, N, N>;
+template <typename Scalar>
+DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& B,
+                                                const DynamicMatrix<Scalar>& Q, const DynamicMatrix<Scalar>& R,
+                                                DareOptions options) {
+  using Square = DynamicMatrix<Scalar>;
   constexpr std::string_view who = "solve_dare";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
+  require_square(A, who, "A");
+  require_finite(A, who, "A");
   const Index n = A.rows();
-  detail::require_shape(B, n, B.cols(), who, "B");
-  detail::require_finite(B, who, "B");
-  detail::require_shape(Q, n, n, who, "Q");
-  detail::require_positive_semidefinite(Q, who, "Q");
-  detail::require_shape(R, B.cols(), B.cols(), who, "R");
-  detail::require_positive_definite(R, who, "R");
+  require_shape(B, n, B.cols(), who, "B");
+  require_finite(B, who, "B");
+  require_shape(Q, n, n, who, "Q");
+  require_positive_semidefinite(Q, who, "Q");
+  require_shape(R, B.cols(), B.cols(), who, "R");
+  require_positive_definite(R, who, "R");
 
   const Scalar tol = options.tolerance > 0 ? Scalar(options.tolerance)
                                            : Scalar(100) * std::numeric_limits<Scalar>::epsilon();
@@ -79,7 +79,7 @@ template <class DA, class DB, class DQ, class DR>
   Square a = A;
   Square g = B * R.llt().solve(B.transpose());
   Square h = Q;
-  DareSolution<Scalar, N> result;
+  DareSolution<Scalar, Eigen::Dynamic> result;
   bool converged = false;
   for (int j = 0; j < options.max_iterations && !converged; ++j) {
     const Eigen::PartialPivLU<Square> w(identity + g * h);
@@ -96,17 +96,39 @@ template <class DA, class DB, class DQ, class DR>
     converged = change <= tol * std::max(Scalar(1), h.norm());
   }
   result.X = h;
-  if (!converged || !result.X.allFinite())
-    detail::fail_argument(who, "A, B", "admit no stabilizing DARE solution: (A, B) must be stabilizable "
-                                       "and (A, Q) detectable");
-  result.relative_residual = dare_relative_residual(result.X, A, B, Q, R);
+  constexpr std::string_view no_solution =
+      "admit no stabilizing DARE solution: (A, B) must be stabilizable and (A, Q) detectable";
+  if (!converged || !result.X.allFinite()) fail_argument(who, "A, B", no_solution);
+  result.relative_residual = detail::dare_relative_residual<Scalar>(result.X, A, B, Q, R);
   // The stabilizing solution makes A − B (R + BᵀXB)⁻¹ BᵀXA Schur.
-  const auto s = (R + B.transpose() * result.X * B).eval();
+  const Square s = R + B.transpose() * result.X * B;
   const Square closed_loop = A - B * s.ldlt().solve(B.transpose() * result.X * A);
-  if (!is_schur_stable(closed_loop))
-    detail::fail_argument(who, "A, B", "admit no stabilizing DARE solution: (A, B) must be stabilizable "
-                                       "and (A, Q) detectable");
+  if (!is_schur_stable(closed_loop)) fail_argument(who, "A, B", no_solution);
   return result;
+}
+
+}  // namespace detail
+
+/// Relative residual \f$\|X - (A^TXA - A^TXB(R + B^TXB)^{-1}B^TXA + Q)\|_F / \max(1,\|X\|_F)\f$.
+template <class DX, class DA, class DB, class DQ, class DR>
+[[nodiscard]] typename DX::Scalar dare_relative_residual(const Eigen::MatrixBase<DX>& X, const Eigen::MatrixBase<DA>& A,
+                                                         const Eigen::MatrixBase<DB>& B, const Eigen::MatrixBase<DQ>& Q,
+                                                         const Eigen::MatrixBase<DR>& R) {
+  using Matrix = detail::DynamicMatrix<typename DA::Scalar>;
+  return detail::dare_relative_residual<typename DA::Scalar>(Matrix(X), Matrix(A), Matrix(B), Matrix(Q), Matrix(R));
+}
+
+/// Stabilizing solution of the control-form DARE (see file comment).
+/// Throws `ConfigurationError` on invalid arguments or when no stabilizing
+/// solution exists ((A, B) not stabilizable or (A, Q) not detectable).
+template <class DA, class DB, class DQ, class DR>
+[[nodiscard]] auto solve_dare(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
+                              const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R,
+                              DareOptions options = {}) {
+  using Scalar = typename DA::Scalar;
+  using Matrix = detail::DynamicMatrix<Scalar>;
+  const auto dynamic = detail::solve_dare<Scalar>(Matrix(A), Matrix(B), Matrix(Q), Matrix(R), options);
+  return DareSolution<Scalar, DA::RowsAtCompileTime>{dynamic.X, dynamic.iterations, dynamic.relative_residual};
 }
 
 /// Steady-state Kalman gain of \f$x_{k+1} = A x_k + w_k,\ y_k = C x_k + v_k\f$,
@@ -120,6 +142,27 @@ struct KalmanGain {
   Scalar relative_residual = 0;
 };
 
+namespace detail {
+template <typename Scalar>
+KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> steady_state_kalman_gain(const DynamicMatrix<Scalar>& A,
+                                                                            const DynamicMatrix<Scalar>& C,
+                                                                            const DynamicMatrix<Scalar>& Q,
+                                                                            const DynamicMatrix<Scalar>& R,
+                                                                            DareOptions options) {
+  require_shape(C, C.rows(), A.cols(), "steady_state_kalman_gain", "C");
+  const DynamicMatrix<Scalar> at = A.transpose();
+  const DynamicMatrix<Scalar> ct = C.transpose();
+  const auto dual = detail::solve_dare<Scalar>(at, ct, Q, R, options);
+  KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> result;
+  result.P = dual.X;
+  result.relative_residual = dual.relative_residual;
+  const DynamicMatrix<Scalar> s = C * result.P * ct + R;
+  // K = A P Cᵀ S⁻¹  ⇔  Kᵀ = S⁻¹ C P Aᵀ (S and P symmetric).
+  result.K = s.llt().solve(C * result.P * at).transpose();
+  return result;
+}
+}  // namespace detail
+
 /// \f$P\f$ solves the dual DARE \f$(A^T, C^T, Q, R)\f$ and
 /// \f$K = A P C^T (C P C^T + R)^{-1}\f$.
 template <class DA, class DC, class DQ, class DR>
@@ -127,17 +170,10 @@ template <class DA, class DC, class DQ, class DR>
                                             const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R,
                                             DareOptions options = {}) {
   using Scalar = typename DA::Scalar;
-  constexpr int N = DA::RowsAtCompileTime;
-  constexpr int M = DC::RowsAtCompileTime;
-  detail::require_shape(C, C.rows(), A.cols(), "steady_state_kalman_gain", "C");
-  const auto dual = solve_dare(A.transpose(), C.transpose(), Q, R, options);
-  KalmanGain<Scalar, N, M> result;
-  result.P = dual.X;
-  result.relative_residual = dual.relative_residual;
-  const Eigen::Matrix<Scalar, M, M> s = C * result.P * C.transpose() + R;
-  // K = A P Cᵀ S⁻¹  ⇔  Kᵀ = S⁻¹ C P Aᵀ (S and P symmetric).
-  result.K = s.llt().solve(C * result.P * A.transpose()).transpose();
-  return result;
+  using Matrix = detail::DynamicMatrix<Scalar>;
+  const auto dynamic = detail::steady_state_kalman_gain<Scalar>(Matrix(A), Matrix(C), Matrix(Q), Matrix(R), options);
+  return KalmanGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime>{dynamic.K, dynamic.P,
+                                                                           dynamic.relative_residual};
 }
 
 }  // namespace adaptobs

@@ -7,18 +7,25 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
+#include <complex>
 #include <limits>
 
 namespace adaptobs {
 
 /// Eigenvalues of a real square matrix.
+///
+/// A design-time check, computed on a dynamic-size copy: the real Schur
+/// decomposition behind it is costly to compile, and one instantiation per
+/// scalar type serves every matrix size.
 template <class Derived>
-[[nodiscard]] auto eigenvalues(const Eigen::MatrixBase<Derived>& m) {
+[[nodiscard]] Eigen::Matrix<std::complex<typename Derived::Scalar>, Eigen::Dynamic, 1> eigenvalues(
+    const Eigen::MatrixBase<Derived>& m) {
+  using Scalar = typename Derived::Scalar;
   detail::require_square(m, "eigenvalues", "M");
   detail::require_finite(m, "eigenvalues", "M");
-  using Plain = typename Derived::PlainObject;
-  Eigen::EigenSolver<Plain> solver(m.derived(), /*computeEigenvectors=*/false);
-  return typename Eigen::EigenSolver<Plain>::EigenvalueType(solver.eigenvalues());
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> dynamic = m;
+  Eigen::EigenSolver<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> solver(dynamic, /*computeEigenvectors=*/false);
+  return solver.eigenvalues();
 }
 
 /// Spectral radius \f$\rho(M) = \max_i |\lambda_i(M)|\f$.
