@@ -16,6 +16,7 @@
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/sylvester.hpp>
+#include <adaptobs/core/takagi_sugeno_model.hpp>
 #include <adaptobs/core/validation.hpp>
 
 // Design: gains before the loop, and diagnostics.
@@ -28,6 +29,9 @@
 #include <adaptobs/design/power_bound.hpp>
 #include <adaptobs/design/riccati_recursion.hpp>
 #include <adaptobs/design/stability.hpp>
+#include <adaptobs/design/takagi_sugeno_lmi.hpp>
+// Not included here: the LMI synthesis with DSDP, <adaptobs/design/lmi/takagi_sugeno_synthesis.hpp>,
+// is the optional component adaptobs::lmi.
 
 // Adaptation laws: parameter estimators for a regression linear in the parameters.
 #include <adaptobs/adaptation/adaptation_law.hpp>
@@ -43,8 +47,10 @@
 #include <adaptobs/observers/dey_bhasin.hpp>
 #include <adaptobs/observers/guiro.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
+#include <adaptobs/observers/takagi_sugeno.hpp>
 
 // Simulation and CSV output.
+#include <adaptobs/simulation/discrete_nonlinear_plant.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 #include <adaptobs/simulation/runner.hpp>
 #include <adaptobs/simulation/series_table.hpp>

@@ -40,4 +40,4 @@ ensure_packages() {
 # Packages every build needs.
 ADAPTOBS_BUILD_PACKAGES=(cmake:cmake g++:g++ make:make libeigen3-dev)
 # Packages of the test suite, examples and benchmarks.
-ADAPTOBS_TEST_PACKAGES=(libgtest-dev libbenchmark-dev gnuplot-nox:gnuplot)
+ADAPTOBS_TEST_PACKAGES=(libgtest-dev libbenchmark-dev gnuplot-nox:gnuplot libdsdp-dev)
