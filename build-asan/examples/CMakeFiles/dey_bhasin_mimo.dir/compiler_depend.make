@@ -1,2 +1,0 @@
-# Empty compiler generated dependencies file for dey_bhasin_mimo.
-# This may be replaced when dependencies are built.

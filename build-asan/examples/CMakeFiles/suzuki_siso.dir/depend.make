@@ -1,2 +1,0 @@
-# Empty dependencies file for suzuki_siso.
-# This may be replaced when dependencies are built.
