@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace adaptobs::examples {
 
@@ -106,6 +107,46 @@ inline void write_outputs(const SeriesTable& table, const std::filesystem::path&
     std::ofstream gp(script);
     gp << "csv = '" << csv.string() << "'\n"
        << "png = '" << png.string() << "'\n"
+       << "set datafile separator ','\n"
+       << "set key autotitle columnhead\n"
+       << "set terminal pngcairo size 1200,900 font ',10'\n"
+       << "set output png\n"
+       << gnuplot_body << '\n'
+       << "unset output\n";
+  }
+  const std::string command = "gnuplot '" + script.string() + "'";
+  if (std::system(command.c_str()) != 0) throw std::runtime_error("gnuplot failed on " + script.string());
+  print_text("png", png.string());
+}
+
+/// One CSV of a figure drawn from several runs: the table, the file name
+/// (without `.csv`) and the gnuplot variable that holds its path.
+struct FigureData {
+  const SeriesTable& table;
+  std::string file;
+  std::string variable;
+};
+
+/// Writes DIR/<file>.csv for every run, then renders DIR/<name>.png from a
+/// gnuplot script that reads each CSV through its variable, when gnuplot is present.
+inline void write_outputs(const std::vector<FigureData>& runs, const std::filesystem::path& dir,
+                          const std::string& name, const std::string& gnuplot_body) {
+  std::ostringstream variables;
+  for (const FigureData& run : runs) {
+    const std::filesystem::path csv = dir / (run.file + ".csv");
+    run.table.write_csv(csv.string());
+    print_text("csv", csv.string());
+    variables << run.variable << " = '" << csv.string() << "'\n";
+  }
+  if (!gnuplot_available()) {
+    print_text("png", "skipped (gnuplot not found)");
+    return;
+  }
+  const std::filesystem::path png = dir / (name + ".png");
+  const std::filesystem::path script = dir / (name + ".gp");
+  {
+    std::ofstream gp(script);
+    gp << variables.str() << "png = '" << png.string() << "'\n"
        << "set datafile separator ','\n"
        << "set key autotitle columnhead\n"
        << "set terminal pngcairo size 1200,900 font ',10'\n"

@@ -29,9 +29,31 @@ run_step("configure consumer" "${CMAKE_COMMAND}"
   "-DCMAKE_PREFIX_PATH=${prefix}"
   "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}"
   -DCMAKE_BUILD_TYPE=Release)
+if(EXPECT_LMI AND NOT last_output MATCHES "adaptobs lmi component: TRUE")
+  message(FATAL_ERROR "the installed package did not provide the lmi component:\n${last_output}")
+endif()
 run_step("build consumer" "${CMAKE_COMMAND}" --build "${WORK_DIR}/build")
 find_program(consumer NAMES adaptobs_consumer PATHS "${WORK_DIR}/build" NO_DEFAULT_PATH REQUIRED)
 run_step("run consumer" "${consumer}")
 if(NOT last_output MATCHES "adaptobs consumer ok")
   message(FATAL_ERROR "consumer printed:\n${last_output}")
+endif()
+
+# The optional LMI component: usable through adaptobs::lmi, and the package still
+# configures (without the component) where DSDP cannot be found.
+if(EXPECT_LMI)
+  find_program(lmi_consumer NAMES adaptobs_lmi_consumer PATHS "${WORK_DIR}/build" NO_DEFAULT_PATH REQUIRED)
+  run_step("run LMI consumer" "${lmi_consumer}")
+  if(NOT last_output MATCHES "adaptobs lmi consumer ok")
+    message(FATAL_ERROR "LMI consumer printed:\n${last_output}")
+  endif()
+  run_step("configure consumer without DSDP" "${CMAKE_COMMAND}"
+    -S "${ADAPTOBS_SOURCE_DIR}/tests/package/consumer"
+    -B "${WORK_DIR}/build-without-dsdp"
+    "-DCMAKE_PREFIX_PATH=${prefix}"
+    "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}"
+    -DCMAKE_DISABLE_FIND_PACKAGE_DSDP=ON)
+  if(NOT last_output MATCHES "adaptobs lmi component: FALSE")
+    message(FATAL_ERROR "without DSDP the lmi component should be absent:\n${last_output}")
+  endif()
 endif()

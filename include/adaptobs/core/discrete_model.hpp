@@ -32,6 +32,15 @@ struct DiscreteSample {
   typename D::RegressorMatrix Psi;
 };
 
+/// One measured sample of a system with no separately measured regressor:
+/// input \f$u_k\f$ and output \f$y_k\f$ (e.g. a Takagi–Sugeno model, where the
+/// parameters act through the model's weights).
+template <StateSpace D>
+struct InputOutputSample {
+  typename D::Input u;
+  typename D::Output y;
+};
+
 /// A discrete-time model: `at(k)` gives the matrices of step k.
 template <class M>
 concept DiscreteModel = StateSpace<typename M::Dims> && requires(const M& m, Index k) {

@@ -14,6 +14,7 @@
 /// Only n × n linear solves are needed, no eigenvalue reordering.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/stability.hpp>
 
@@ -41,11 +42,10 @@ struct DareOptions {
 
 namespace detail {
 
-// Design-time computations run on dynamic-size matrices whatever the caller's
-// sizes: the factorizations they use are costly to compile, and one
-// instantiation per scalar type then serves every size.
-template <typename Scalar>
-using DynamicMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+// Design-time computations run on dynamic-size matrices (DynamicMatrix, from
+// core/dynamic_copy.hpp) whatever the caller's sizes: the factorizations they
+// use are costly to compile, and one instantiation per scalar type then serves
+// every size.
 
 template <typename Scalar>
 Scalar dare_relative_residual(const DynamicMatrix<Scalar>& X, const DynamicMatrix<Scalar>& A,

@@ -1,0 +1,232 @@
+#pragma once
+/// \file
+/// Recursive least squares with covariance resetting on the smallest
+/// eigenvalue (paper `003_9f47869cf3ab0cdc.txt`, eq. (22)–(23)).
+///
+/// Each step computes the RLS covariance and estimate
+/// \f[ \bar\Gamma_t = \Gamma_{t-1} - \Gamma_{t-1}\varphi_tW_t\varphi_t^T\Gamma_{t-1},\qquad
+///     \hat p_t = \hat p_{t-1} + \Gamma_{t-1}\varphi_tW_t(z_t - \varphi_t^T\hat p_{t-1}),\qquad
+///     W_t = (R + \varphi_t^T\Gamma_{t-1}\varphi_t)^{-1}, \f]
+/// then resets (23)
+/// \f[ \Gamma_t = \begin{cases} k_0 I & \text{if } \lambda_{\min}(\bar\Gamma_t) \le k_{\min}, \\ \bar\Gamma_t & \text{otherwise,}\end{cases} \f]
+/// so that \f$k_{\min} I \prec \Gamma_t \preceq k_0 I\f$ at every step: the gain can
+/// neither wind up nor die out, and the estimates stay bounded without any
+/// excitation (theorem 5). \f$\Gamma_0 = k_0 I\f$.
+///
+/// Readings of the paper:
+/// - the first line of (23), like (21), ends in \f$\Gamma_{t-1}^{-1}\f$ in the
+///   extracted text; the trailing factor is \f$\Gamma_{t-1}\f$ (see
+///   `recursive_least_squares.hpp`);
+/// - (20) and (22) agree only at steps without a reset; the estimate uses (22),
+///   i.e. the gain of step t is built from the post-reset \f$\Gamma_{t-1}\f$.
+///
+/// The reset test. \f$\lambda_{\min}(\bar\Gamma) > k_{\min}\f$ holds exactly when
+/// \f$\bar\Gamma - k_{\min}I\f$ has a Cholesky factorization, which costs
+/// \f$n_p^3/6\f$ multiply-adds against about \f$9n_p^3\f$ for a symmetric
+/// eigendecomposition (\f$\tfrac43 n_p^3\f$ for eigenvalues only); a pivot
+/// \f$\le 0\f$ counts as a reset, as the "≤" of (23) asks. The factorization is
+/// moreover skipped when a bound proves that no reset is possible: from
+/// \f$\bar\Gamma^{-1} = \Gamma^{-1} + \varphi R^{-1}\varphi^T\f$,
+/// \f[ \lambda_{\min}(\bar\Gamma_t) \ge \ell_t = \Big(\frac1{\ell_{t-1}} + \frac{\|\varphi_t\|_F^2}{\lambda_{\min}(R)}\Big)^{-1} - \eta,
+///     \qquad \ell = k_0 \text{ after a reset}, \f]
+/// where \f$\eta = 8(n_p + n_z)\varepsilon k_0\f$ covers the rounding of one step
+/// (\f$\|\bar\Gamma\| \le k_0\f$). While \f$\ell_t > k_{\min}\f$ the factorization
+/// is not needed: the decision is the same, at \f$O(n_pn_z)\f$ cost.
+///
+/// Numerics: \f$k_{\min} < \lambda(\Gamma) \le k_0\f$ bounds the condition number
+/// of Γ by \f$k_0/k_{\min}\f$ (1e7 in the paper's examples), and the rounding
+/// of \f$\bar\Gamma\f$, about \f$n_p\varepsilon k_0\f$, stays far below
+/// \f$k_{\min}\f$ in double precision, so a reset fires long before rounding
+/// could make Γ indefinite. In single precision choose \f$k_0/k_{\min}\f$
+/// accordingly (about 1e4 at most).
+
+#include <adaptobs/adaptation/adaptation_law.hpp>
+#include <adaptobs/adaptation/recursive_least_squares.hpp>
+#include <adaptobs/adaptation/rls_correction.hpp>
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string_view>
+#include <utility>
+
+namespace adaptobs {
+
+namespace detail {
+
+/// Cholesky factorization of the lower triangle of `a`, in place (right-looking,
+/// column by column). Returns false at the first pivot that is not positive —
+/// NaN included — leaving `a` partly overwritten.
+template <class Derived>
+[[nodiscard]] bool cholesky_in_place(Eigen::MatrixBase<Derived>& a) {
+  using Scalar = typename Derived::Scalar;
+  const Index n = a.rows();
+  for (Index k = 0; k < n; ++k) {
+    const Scalar pivot = a(k, k);
+    if (!(pivot > Scalar(0))) return false;
+    const Scalar root = std::sqrt(pivot);
+    a(k, k) = root;
+    const Index rest = n - k - 1;
+    a.col(k).tail(rest) /= root;
+    for (Index j = k + 1; j < n; ++j) a.col(j).tail(n - j) -= a(j, k) * a.col(k).tail(n - j);
+  }
+  return true;
+}
+
+}  // namespace detail
+
+/// \f$\lambda_{\min}(\Gamma) > \text{bound}\f$ for a symmetric Γ (lower triangle
+/// read), decided exactly by a Cholesky factorization of \f$\Gamma - \text{bound}\,I\f$;
+/// false for a Γ with non-finite entries.
+template <class Derived>
+[[nodiscard]] bool smallest_eigenvalue_exceeds(const Eigen::MatrixBase<Derived>& gamma,
+                                               typename Derived::Scalar bound) {
+  if (!gamma.derived().allFinite()) return false;
+  typename Derived::PlainObject shifted = gamma;
+  shifted.diagonal().array() -= bound;
+  return detail::cholesky_in_place(shifted);
+}
+
+/// RLS with covariance resetting, eq. (22)–(23) of paper 003.
+template <typename S, int NP, int NZ>
+class CovarianceResettingRls {
+ public:
+  using Types = RegressionTypes<S, NP, NZ>;
+  using Scalar = S;
+  using Parameters = typename Types::Parameters;
+  using Regressor = typename Types::Regressor;
+  using Measurement = typename Types::Measurement;
+  using Covariance = typename Types::Covariance;
+  using MeasurementWeight = typename Types::MeasurementWeight;
+
+  struct Options {
+    Scalar k0;            ///< \f$\Gamma_0 = k_0I\f$ and the reset value, > kmin
+    Scalar kmin;          ///< reset threshold on \f$\lambda_{\min}(\bar\Gamma)\f$, > 0
+    MeasurementWeight R;  ///< weight of the output error, symmetric positive definite
+    /// Skip the Cholesky test when the eigenvalue bound \f$\ell_t\f$ already
+    /// excludes a reset (same decisions, lower cost).
+    bool screen_reset_test = true;
+  };
+
+  /// \param nz measurement count, read only when `NZ` is dynamic (default: the size of R).
+  CovarianceResettingRls(Parameters p0, Options options, Index nz = NZ)
+      : options_(std::move(options)),
+        nz_(detail::measurement_size<NZ>(nz, options_.R)),
+        correction_(p0.rows(), nz_) {
+    constexpr std::string_view who = "CovarianceResettingRls";
+    detail::require_finite(p0, who, "p0");
+    detail::require_positive(options_.k0, who, "k0");
+    detail::require_positive(options_.kmin, who, "kmin");
+    detail::require(options_.kmin < options_.k0, who, "kmin", "must be smaller than k0");
+    detail::require_shape(options_.R, nz_, nz_, who, "R");
+    detail::require_positive_definite(options_.R, who, "R");
+    const Index np = p0.rows();
+    if (nz_ > 0) {
+      // Configuration time, on a dynamic copy: one eigensolver compiled per scalar type.
+      using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+      const Eigen::SelfAdjointEigenSolver<Dense> eig(Dense(options_.R), Eigen::EigenvaluesOnly);
+      inverse_weight_bound_ = Scalar(1) / eig.eigenvalues()(0);
+    }
+    rounding_margin_ = Scalar(8) * Scalar(np + nz_) * std::numeric_limits<Scalar>::epsilon() * options_.k0;
+    shifted_.setZero(np, np);
+    gamma_[1].setZero(np, np);
+    p_[1] = p0;
+    p_[0] = std::move(p0);
+    start();
+  }
+
+  /// Estimate \f$\hat p_{t-1}\f$.
+  [[nodiscard]] const Parameters& parameters() const noexcept { return p_[current_]; }
+  /// Covariance \f$\Gamma_{t-1}\f$ (after any reset).
+  [[nodiscard]] const Covariance& covariance() const noexcept { return gamma_[current_]; }
+  [[nodiscard]] const Parameters& proposal() const noexcept { return p_[1 - current_]; }
+  [[nodiscard]] const Covariance& proposed_covariance() const noexcept { return gamma_[1 - current_]; }
+  /// Number of resets since construction or the last restart.
+  [[nodiscard]] Index reset_count() const noexcept { return track_[current_].resets; }
+  /// True when the last committed step reset the covariance.
+  [[nodiscard]] bool reset_at_last_step() const noexcept { return track_[current_].reset_last; }
+  /// Number of Cholesky reset tests run (the others were settled by the bound \f$\ell_t\f$).
+  [[nodiscard]] Index reset_tests_run() const noexcept { return track_[current_].tests; }
+  /// The bound \f$\ell\f$: \f$\lambda_{\min}(\Gamma) \ge \ell\f$ holds for the current covariance.
+  [[nodiscard]] Scalar eigenvalue_lower_bound() const noexcept { return track_[current_].bound; }
+  [[nodiscard]] const Options& options() const noexcept { return options_; }
+  [[nodiscard]] Index parameter_count() const noexcept { return p_[0].rows(); }
+  [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
+
+  /// (22), then (23), with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
+  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
+    const int next = 1 - current_;
+    Tracking& track = track_[next];
+    track = track_[current_];
+    track.reset_last = false;
+    if (!correction_.apply(gamma_[current_], options_.R, phi, z, p_[current_], Scalar(1), p_[next], gamma_[next]))
+      return false;
+    if (!detail::all_finite(p_[next], gamma_[next])) return false;
+
+    Scalar bound = -std::numeric_limits<Scalar>::infinity();
+    if (options_.screen_reset_test && track_[current_].bound > Scalar(0))
+      bound = Scalar(1) / (Scalar(1) / track_[current_].bound + inverse_weight_bound_ * phi.squaredNorm()) -
+              rounding_margin_;
+    if (bound > options_.kmin) {
+      track.bound = bound;
+      return true;
+    }
+    ++track.tests;
+    shifted_ = gamma_[next];
+    shifted_.diagonal().array() -= options_.kmin;
+    if (detail::cholesky_in_place(shifted_)) {
+      track.bound = std::max(bound, std::max(options_.kmin - rounding_margin_, Scalar(0)));
+      return true;
+    }
+    gamma_[next].setIdentity();
+    gamma_[next].diagonal().setConstant(options_.k0);
+    track.bound = options_.k0;
+    track.reset_last = true;
+    ++track.resets;
+    return true;
+  }
+
+  void commit() noexcept { current_ = 1 - current_; }
+
+  /// Back to \f$\hat p_0\f$ and \f$\Gamma_0 = k_0I\f$, counters cleared.
+  void restart(const Parameters& p0) {
+    detail::require_shape(p0, parameter_count(), 1, "CovarianceResettingRls::restart", "p0");
+    detail::require_finite(p0, "CovarianceResettingRls::restart", "p0");
+    p_[current_] = p0;
+    start();
+  }
+
+ private:
+  void start() {
+    const Index np = parameter_count();
+    gamma_[current_].setZero(np, np);
+    gamma_[current_].diagonal().setConstant(options_.k0);
+    track_[current_] = Tracking{0, 0, false, options_.k0};
+  }
+
+  struct Tracking {
+    Index resets = 0;
+    Index tests = 0;
+    bool reset_last = false;
+    Scalar bound = 0;  // ℓ: a lower bound on λ_min(Γ)
+  };
+
+  Options options_;
+  Index nz_;
+  std::array<Parameters, 2> p_;
+  std::array<Covariance, 2> gamma_;
+  std::array<Tracking, 2> track_{};
+  int current_ = 0;  // slot of the current state; the other slot holds the proposal
+  Scalar inverse_weight_bound_ = 0;  // λ_max(R⁻¹) = 1/λ_min(R)
+  Scalar rounding_margin_ = 0;       // η
+  Covariance shifted_;               // Γ̄ − kmin I, factored in place by the reset test
+  detail::RlsCorrection<S, NP, NZ> correction_;
+};
+
+}  // namespace adaptobs

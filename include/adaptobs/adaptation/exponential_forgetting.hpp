@@ -1,0 +1,157 @@
+#pragma once
+/// \file
+/// Recursive least squares with exponential forgetting: the adaptation law of
+/// the discrete adaptive observer of Suzuki, Nakamura & Koga (1980), the
+/// baseline of paper `003_9f47869cf3ab0cdc.txt` §5.
+///
+/// Minimizes the exponentially weighted cost
+/// \f[ J_t(\hat p) = \tfrac12\Big[\sum_{i=1}^t\lambda^{t-i}(z_i - \varphi_i^T\hat p)^TR^{-1}(z_i - \varphi_i^T\hat p)
+///     + \lambda^t(\hat p - \hat p_0)^T\Gamma_0^{-1}(\hat p - \hat p_0)\Big],\qquad 0 < \lambda \le 1, \f]
+/// i.e. \f$\Gamma_t^{-1} = \lambda\Gamma_{t-1}^{-1} + \varphi_tR^{-1}\varphi_t^T\f$, recursively
+/// \f[ W_t = (\lambda R + \varphi_t^T\Gamma_{t-1}\varphi_t)^{-1},\qquad
+///     \hat p_t = \hat p_{t-1} + \Gamma_{t-1}\varphi_tW_t(z_t - \varphi_t^T\hat p_{t-1}),\qquad
+///     \Gamma_t = \tfrac1\lambda\big(\Gamma_{t-1} - \Gamma_{t-1}\varphi_tW_t\varphi_t^T\Gamma_{t-1}\big). \f]
+/// λ = 1 is plain RLS.
+///
+/// Reading: paper 003 gives Suzuki's "weighting factor" as \f$\sqrt{0.5}\f$ and
+/// not the cost it enters. It is taken here as λ itself, the multiplier of the
+/// past cost (Ljung's forgetting factor, Goodwin & Sin's exponential data
+/// weighting); a convention where the weight enters squared would mean
+/// λ = 0.5. Both forget within a few samples and fail the same way.
+///
+/// Without persistent excitation this law winds up: in the directions φ does
+/// not reach, \f$\Gamma^{-1}\f$ decays as \f$\lambda^t\f$ and Γ grows as
+/// \f$\lambda^{-t}\f$ (×1.414 per step for \f$\lambda = \sqrt{0.5}\f$) until it
+/// overflows. From that step on `propose` returns false (the observer reports
+/// `nonfinite_result` and keeps its last finite estimates); `covariance()`
+/// shows the growth before it.
+///
+/// Numerics. Long before it overflows, the wound-up Γ stops being positive
+/// definite in floating point (in the SISO example of paper 003 §5: from
+/// step 96, with max|Γ| = 3e12), and \f$\lambda R + \varphi^T\Gamma\varphi\f$ can turn
+/// negative (step 108). The law is therefore computed in its textbook gain
+/// form, which assumes no definiteness: \f$K = \Gamma\varphi M^{-1}\f$ with M
+/// factored by LDLᵀ, \f$\Gamma^+ = (\Gamma - K(\Gamma\varphi)^T)/\lambda\f$ with the lower
+/// triangle mirrored; it then fails the way the literature reports, by
+/// overflow, and not by a failed square root. The least-squares laws that
+/// keep Γ bounded (`RecursiveLeastSquares`, `CovarianceResettingRls`) use
+/// the square-root form of `rls_correction.hpp` instead.
+
+#include <adaptobs/adaptation/adaptation_law.hpp>
+#include <adaptobs/adaptation/recursive_least_squares.hpp>
+#include <adaptobs/adaptation/rls_correction.hpp>
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string_view>
+#include <utility>
+
+namespace adaptobs {
+
+/// RLS with exponential forgetting (Suzuki et al. 1980; paper 003 §5).
+template <typename S, int NP, int NZ>
+class ExponentialForgettingRls {
+ public:
+  using Types = RegressionTypes<S, NP, NZ>;
+  using Scalar = S;
+  using Parameters = typename Types::Parameters;
+  using Regressor = typename Types::Regressor;
+  using Measurement = typename Types::Measurement;
+  using Covariance = typename Types::Covariance;
+  using MeasurementWeight = typename Types::MeasurementWeight;
+
+  struct Options {
+    Covariance gamma0;    ///< \f$\Gamma_0\f$, symmetric positive definite
+    MeasurementWeight R;  ///< \f$R\f$, symmetric positive definite
+    Scalar lambda;        ///< forgetting factor λ ∈ (0, 1]
+  };
+
+  /// \param nz measurement count, read only when `NZ` is dynamic (default: the size of R).
+  ExponentialForgettingRls(Parameters p0, Options options, Index nz = NZ)
+      : options_(std::move(options)),
+        nz_(detail::measurement_size<NZ>(nz, options_.R)),
+        factorization_(nz_) {
+    constexpr std::string_view who = "ExponentialForgettingRls";
+    detail::validate_least_squares(p0, options_.gamma0, options_.R, nz_, who);
+    detail::require(options_.lambda > Scalar(0) && options_.lambda <= Scalar(1), who, "lambda",
+                    "must lie in (0, 1]");
+    weight_ = options_.lambda * options_.R;
+    gamma_phi_.setZero(p0.rows(), nz_);
+    gain_transposed_.setZero(nz_, p0.rows());
+    innovation_weight_.setZero(nz_, nz_);
+    innovation_.setZero(nz_);
+    p_[0] = p0;
+    p_[1] = std::move(p0);
+    gamma_[0] = options_.gamma0;
+    gamma_[1] = options_.gamma0;
+  }
+
+  /// Estimate \f$\hat p_{t-1}\f$.
+  [[nodiscard]] const Parameters& parameters() const noexcept { return p_[current_]; }
+  /// Covariance \f$\Gamma_{t-1}\f$.
+  [[nodiscard]] const Covariance& covariance() const noexcept { return gamma_[current_]; }
+  [[nodiscard]] const Parameters& proposal() const noexcept { return p_[1 - current_]; }
+  [[nodiscard]] const Covariance& proposed_covariance() const noexcept { return gamma_[1 - current_]; }
+  [[nodiscard]] const Options& options() const noexcept { return options_; }
+  [[nodiscard]] Index parameter_count() const noexcept { return p_[0].rows(); }
+  [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
+
+  /// One weighted step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
+  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
+    const int next = 1 - current_;
+    const Covariance& gamma = gamma_[current_];
+    gamma_phi_.noalias() = detail::product(gamma, phi);
+    innovation_weight_ = weight_;
+    innovation_weight_.noalias() += detail::product(phi.transpose(), gamma_phi_);
+    factorization_.compute(innovation_weight_);
+    // A singular or non-finite M leaves no gain (the factorization would quietly
+    // zero it): the step breaks down, and its proposal says so with NaN.
+    if (factorization_.info() != Eigen::Success || !(factorization_.vectorD().array().abs() > Scalar(0)).all()) {
+      p_[next].setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+      gamma_[next].setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+      return false;
+    }
+    gain_transposed_ = gamma_phi_.transpose();
+    factorization_.solveInPlace(gain_transposed_);  // Kᵀ = M⁻¹(Γφ)ᵀ
+    innovation_ = z;
+    innovation_.noalias() -= phi.transpose() * p_[current_];
+    p_[next] = p_[current_];
+    p_[next].noalias() += gain_transposed_.transpose() * innovation_;
+    gamma_[next] = gamma;
+    gamma_[next].noalias() -= detail::product(gain_transposed_.transpose(), gamma_phi_.transpose());
+    gamma_[next] *= Scalar(1) / options_.lambda;
+    detail::mirror_lower_triangle(gamma_[next]);
+    return detail::all_finite(p_[next], gamma_[next]);
+  }
+
+  void commit() noexcept { current_ = 1 - current_; }
+
+  void restart(const Parameters& p0) {
+    detail::require_shape(p0, parameter_count(), 1, "ExponentialForgettingRls::restart", "p0");
+    detail::require_finite(p0, "ExponentialForgettingRls::restart", "p0");
+    p_[current_] = p0;
+    gamma_[current_] = options_.gamma0;
+  }
+
+ private:
+  Options options_;
+  Index nz_;
+  MeasurementWeight weight_;  // λR
+  std::array<Parameters, 2> p_;
+  std::array<Covariance, 2> gamma_;
+  int current_ = 0;  // slot of the current state; the other slot holds the proposal
+  typename Types::Gain gamma_phi_;                  // Γφ
+  Eigen::Matrix<S, NZ, NP> gain_transposed_;        // Kᵀ
+  MeasurementWeight innovation_weight_;             // M = λR + φᵀΓφ
+  Eigen::LDLT<MeasurementWeight> factorization_;    // of M, which need not be positive definite
+  Measurement innovation_;
+};
+
+}  // namespace adaptobs

@@ -1,0 +1,119 @@
+#pragma once
+/// \file
+/// Recursive least squares (paper `003_9f47869cf3ab0cdc.txt`, eq. (17)–(22)).
+///
+/// Minimizes the cost (17)
+/// \f[ J_t(\hat p) = \tfrac12\Big[\sum_{i=1}^t (z_i - \varphi_i^T\hat p)^T R^{-1}(z_i - \varphi_i^T\hat p)
+///     + (\hat p - \hat p_0)^T\Gamma_0^{-1}(\hat p - \hat p_0)\Big], \f]
+/// whose minimizer is the batch solution (18)
+/// \f$\hat p_t = \Gamma_t(\Gamma_0^{-1}\hat p_0 + \sum_{i=1}^t\varphi_iR^{-1}z_i)\f$ with
+/// \f$\Gamma_t^{-1} = \Gamma_0^{-1} + \sum_{i=1}^t\varphi_iR^{-1}\varphi_i^T\f$ (19). Recursively,
+/// with \f$W_{t+1} = (R + \varphi_{t+1}^T\Gamma_t\varphi_{t+1})^{-1}\f$,
+/// \f[ \hat p_{t+1} = \hat p_t + \Gamma_t\varphi_{t+1}W_{t+1}(z_{t+1} - \varphi_{t+1}^T\hat p_t) \quad (22),\qquad
+///     \Gamma_{t+1} = \Gamma_t - \Gamma_t\varphi_{t+1}W_{t+1}\varphi_{t+1}^T\Gamma_t \quad (21). \f]
+///
+/// Reading of the paper: the extracted text of (21) ends in \f$\Gamma_t^{-1}\f$.
+/// That form is not symmetric and does not satisfy (19); the matrix inversion
+/// lemma applied to (19) gives the trailing \f$\Gamma_t\f$ used here (a test
+/// checks (19) and the batch solution (18) against this recursion).
+
+#include <adaptobs/adaptation/adaptation_law.hpp>
+#include <adaptobs/adaptation/rls_correction.hpp>
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <string_view>
+#include <utility>
+
+namespace adaptobs {
+
+namespace detail {
+
+/// Measurement count of a law: the fixed size, else the given one, else the size of R.
+template <int NZ, class Weight>
+Index measurement_size(Index nz, const Weight& weight) {
+  if constexpr (NZ != Eigen::Dynamic) return NZ;
+  return nz >= 0 ? nz : weight.rows();
+}
+
+/// Checks shared by the least-squares laws: p0 finite, Γ0 and R symmetric positive definite.
+template <class P, class G, class W>
+void validate_least_squares(const P& p0, const G& gamma0, const W& weight, Index nz, std::string_view who) {
+  require_finite(p0, who, "p0");
+  require_shape(gamma0, p0.rows(), p0.rows(), who, "gamma0");
+  require_positive_definite(gamma0, who, "gamma0");
+  require_shape(weight, nz, nz, who, "R");
+  require_positive_definite(weight, who, "R");
+}
+
+}  // namespace detail
+
+/// Plain recursive least squares, eq. (20)–(22) of paper 003.
+template <typename S, int NP, int NZ>
+class RecursiveLeastSquares {
+ public:
+  using Types = RegressionTypes<S, NP, NZ>;
+  using Scalar = S;
+  using Parameters = typename Types::Parameters;
+  using Regressor = typename Types::Regressor;
+  using Measurement = typename Types::Measurement;
+  using Covariance = typename Types::Covariance;
+  using MeasurementWeight = typename Types::MeasurementWeight;
+
+  struct Options {
+    Covariance gamma0;    ///< \f$\Gamma_0\f$, symmetric positive definite
+    MeasurementWeight R;  ///< \f$R\f$, symmetric positive definite
+  };
+
+  /// \param nz measurement count, read only when `NZ` is dynamic (default: the size of R).
+  RecursiveLeastSquares(Parameters p0, Options options, Index nz = NZ)
+      : options_(std::move(options)),
+        nz_(detail::measurement_size<NZ>(nz, options_.R)),
+        correction_(p0.rows(), nz_) {
+    detail::validate_least_squares(p0, options_.gamma0, options_.R, nz_, "RecursiveLeastSquares");
+    p_[0] = p0;
+    p_[1] = std::move(p0);
+    gamma_[0] = options_.gamma0;
+    gamma_[1] = options_.gamma0;
+  }
+
+  /// Estimate \f$\hat p_{t-1}\f$.
+  [[nodiscard]] const Parameters& parameters() const noexcept { return p_[current_]; }
+  /// Covariance \f$\Gamma_{t-1}\f$.
+  [[nodiscard]] const Covariance& covariance() const noexcept { return gamma_[current_]; }
+  [[nodiscard]] const Parameters& proposal() const noexcept { return p_[1 - current_]; }
+  [[nodiscard]] const Covariance& proposed_covariance() const noexcept { return gamma_[1 - current_]; }
+  [[nodiscard]] const Options& options() const noexcept { return options_; }
+  [[nodiscard]] Index parameter_count() const noexcept { return p_[0].rows(); }
+  [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
+
+  /// (22) and (21) with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
+  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
+    const int next = 1 - current_;
+    if (!correction_.apply(gamma_[current_], options_.R, phi, z, p_[current_], S(1), p_[next], gamma_[next]))
+      return false;
+    return detail::all_finite(p_[next], gamma_[next]);
+  }
+
+  void commit() noexcept { current_ = 1 - current_; }
+
+  void restart(const Parameters& p0) {
+    detail::require_shape(p0, parameter_count(), 1, "RecursiveLeastSquares::restart", "p0");
+    detail::require_finite(p0, "RecursiveLeastSquares::restart", "p0");
+    p_[current_] = p0;
+    gamma_[current_] = options_.gamma0;
+  }
+
+ private:
+  Options options_;
+  Index nz_;
+  std::array<Parameters, 2> p_;
+  std::array<Covariance, 2> gamma_;
+  int current_ = 0;  // p_[current_], gamma_[current_] are current; the other slot holds the proposal
+  detail::RlsCorrection<S, NP, NZ> correction_;
+};
+
+}  // namespace adaptobs

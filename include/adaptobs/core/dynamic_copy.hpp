@@ -1,0 +1,30 @@
+#pragma once
+/// \file
+/// Copies into dynamic-size matrices, for design-time routines.
+///
+/// Design routines (pole placement, gain design, stability certificates) work
+/// on dynamic-size matrices, so that their decompositions are instantiated
+/// once per scalar type rather than once per combination of fixed sizes. The
+/// copy goes entry by entry: Eigen's vectorized copy of a fixed-size operand
+/// smaller than one SIMD packet (a 1 × 1 gain, say) into run-time-sized
+/// storage reads a whole packet, which compilers flag as an out-of-bounds read.
+
+#include <adaptobs/core/dimensions.hpp>
+
+#include <Eigen/Core>
+
+namespace adaptobs::detail {
+
+template <typename Scalar>
+using DynamicMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+/// `m` as a dynamic-size matrix.
+template <class Derived>
+[[nodiscard]] DynamicMatrix<typename Derived::Scalar> dynamic_copy(const Eigen::MatrixBase<Derived>& m) {
+  DynamicMatrix<typename Derived::Scalar> out(m.rows(), m.cols());
+  for (Index j = 0; j < m.cols(); ++j)
+    for (Index i = 0; i < m.rows(); ++i) out(i, j) = m(i, j);
+  return out;
+}
+
+}  // namespace adaptobs::detail

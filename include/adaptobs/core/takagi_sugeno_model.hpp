@@ -1,0 +1,335 @@
+#pragma once
+/// \file
+/// Takagi–Sugeno (polytopic quasi-LPV) models with unknown parameters, built by
+/// the sector-nonlinearity transformation (paper `004_9e717d6cc2be1dbf.txt`,
+/// eq. (9)–(11), Remark 1, eq. (19) and (64)).
+///
+/// A quasi-LPV system \f$x_{k+1} = A(z_k,\theta)x_k + B(z_k,\theta)u_k\f$,
+/// \f$y_k = Cx_k\f$, whose matrices are affine in each premise variable
+/// \f$z_j \in [z_j^1, z_j^2]\f$ and in each parameter \f$\theta_l \in [\theta_l^1, \theta_l^2]\f$,
+/// is exactly (inside the sectors) the convex blend of \f$r = 2^{n_z + n_\theta}\f$ vertices
+/// \f[ x_{k+1} = \sum_{i=1}^{r} h_i(z_k,\theta)\,(A_i x_k + B_i u_k),\qquad y_k = Cx_k \qquad (64). \f]
+/// Each premise variable or parameter \f$v \in [v^1, v^2]\f$ has the two memberships (10)
+/// \f$\mu^1(v) = (v^2 - v)/(v^2 - v^1)\f$ (lower bound) and \f$\mu^2(v) = (v - v^1)/(v^2 - v^1)\f$
+/// (upper bound), and the weight of a vertex is the product of one membership per
+/// premise variable and per parameter (Remark 1).
+///
+/// **Vertex order.** The premise vector is \f$v = (z_1, \dots, z_{n_z}, \theta_1, \dots, \theta_{n_\theta})\f$
+/// and vertex i (0-based) takes the upper bound of \f$v_j\f$ when bit \f$k - 1 - j\f$ of i is
+/// set, \f$k = n_z + n_\theta\f$: \f$z_1\f$ is the most significant bit and the last parameter
+/// the least significant. For the waste water plant of §6, \f$(z_1, z_2, \theta)\f$ gives
+/// \f$i = 4j_{z_1} + 2j_{z_2} + j_\theta\f$ (0 = lower bound), the order of the printed
+/// \f$A_1, \dots, A_8\f$.
+///
+/// **Convex sum.** Premise variables and parameters are clipped to their sectors
+/// before the memberships are formed, so \f$h_i \ge 0\f$ and \f$\sum_i h_i = 1\f$ for
+/// every finite input (11), also outside the sectors, where the blend is the
+/// model at the nearest point of the box.
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <concepts>
+#include <cstdint>
+#include <sstream>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace adaptobs {
+
+/// Number of vertices \f$2^{n_z + n_\theta}\f$ known at compile time (or `Eigen::Dynamic`).
+[[nodiscard]] constexpr int takagi_sugeno_vertex_count(int nz, int np) noexcept {
+  return (nz == Eigen::Dynamic || np == Eigen::Dynamic) ? Eigen::Dynamic : (1 << (nz + np));
+}
+
+/// Sector \f$[v^1, v^2]\f$ of each of N premise variables or parameters (eq. (9), (74), (76)).
+template <typename S, int N>
+struct SectorBounds {
+  Eigen::Matrix<S, N, 1> lower;
+  Eigen::Matrix<S, N, 1> upper;
+
+  [[nodiscard]] Index size() const noexcept { return lower.size(); }
+  /// True when every \f$v_j \in [v_j^1, v_j^2]\f$.
+  template <class Derived>
+  [[nodiscard]] bool contains(const Eigen::MatrixBase<Derived>& v) const {
+    return (v.array() >= lower.array()).all() && (v.array() <= upper.array()).all();
+  }
+  /// The point of the box nearest to v (each coordinate clipped to its sector).
+  template <class Derived>
+  [[nodiscard]] Eigen::Matrix<S, N, 1> clip(const Eigen::MatrixBase<Derived>& v) const {
+    return v.cwiseMax(lower).cwiseMin(upper);
+  }
+};
+
+namespace detail {
+
+template <typename S, int N>
+void validate_sectors(const SectorBounds<S, N>& bounds, Index expected_size, std::string_view who,
+                      std::string_view argument) {
+  require_shape(bounds.lower, expected_size, 1, who, argument);
+  require_shape(bounds.upper, expected_size, 1, who, argument);
+  require_finite(bounds.lower, who, argument);
+  require_finite(bounds.upper, who, argument);
+  for (Index j = 0; j < expected_size; ++j) {
+    if (!(bounds.lower(j) < bounds.upper(j))) {
+      std::ostringstream os;
+      os << "must have lower < upper in every entry (entry " << j << ": [" << bounds.lower(j) << ", "
+         << bounds.upper(j) << "])";
+      fail_argument(who, argument, os.str());
+    }
+  }
+}
+
+/// Multiplies the weights of the first `filled` vertices by the two memberships of
+/// \f$v \in [lo, hi]\f$ (clipped), doubling the filled length: entry i becomes entries
+/// 2i (lower bound, \f$\mu^1\f$) and 2i + 1 (upper bound, \f$\mu^2\f$). Run backwards, so
+/// the expansion happens in place.
+template <typename S, class Derived>
+void expand_weights(Eigen::MatrixBase<Derived>& h, Index filled, S v, S lo, S hi) {
+  // μ²(v) of eq. (10), exactly 0 and 1 at and beyond the sector's ends. The reciprocal
+  // of the width does not depend on v, so its division stays off the critical path
+  // of an update; min(·, 1) absorbs its rounding (and passes a NaN on).
+  const S scaled = (v - lo) * (S(1) / (hi - lo));
+  const S upper = v >= hi ? S(1) : (v <= lo ? S(0) : std::min(scaled, S(1)));
+  const S lower = S(1) - upper;  // μ¹(v) = 1 − μ²(v) ∈ [0, 1]: the pair sums to 1 exactly
+  for (Index i = filled - 1; i >= 0; --i) {
+    const S hi_weight = h(i) * upper;
+    h(2 * i) = h(i) * lower;
+    h(2 * i + 1) = hi_weight;
+  }
+}
+
+}  // namespace detail
+
+/// Sector-nonlinearity weights \f$h_i(z, \theta)\f$ of all \f$2^{n_z+n_\theta}\f$ vertices
+/// (eq. (10), Remark 1, (64)) into `h`, in the vertex order of this file.
+///
+/// Each premise variable and parameter is clipped to its sector first, so the
+/// weights are non-negative and sum to 1 (11) for any finite arguments. `h`
+/// must already have \f$2^{n_z+n_\theta}\f$ entries.
+template <typename S, int NZ, int NP, class DZ, class DT, class DH>
+void sector_weights(const Eigen::MatrixBase<DZ>& z, const SectorBounds<S, NZ>& premise_bounds,
+                    const Eigen::MatrixBase<DT>& theta, const SectorBounds<S, NP>& parameter_bounds,
+                    Eigen::MatrixBase<DH>& h) {
+  h.setZero();  // every entry is written below; this lets compilers see it
+  h(0) = S(1);
+  Index filled = 1;
+  for (Index j = 0; j < z.size(); ++j, filled *= 2)
+    detail::expand_weights(h, filled, S(z(j)), premise_bounds.lower(j), premise_bounds.upper(j));
+  for (Index l = 0; l < theta.size(); ++l, filled *= 2)
+    detail::expand_weights(h, filled, S(theta(l)), parameter_bounds.lower(l), parameter_bounds.upper(l));
+}
+
+/// Matrices of a quasi-LPV system at one point \f$(z, \theta)\f$, or of one vertex.
+template <StateSpace D>
+struct TakagiSugenoVertex {
+  typename D::StateMatrix A;
+  typename D::InputMatrix B;
+};
+
+/// The vertex values \f$(z^{(i)}, \theta^{(i)})\f$ of vertex i (0-based): each coordinate at the
+/// lower or upper end of its sector according to the bits of i.
+template <typename S, int NZ, int NP>
+void vertex_point(Index i, const SectorBounds<S, NZ>& premise_bounds, const SectorBounds<S, NP>& parameter_bounds,
+                  Eigen::Matrix<S, NZ, 1>& z, Eigen::Matrix<S, NP, 1>& theta) {
+  const Index nz = premise_bounds.size();
+  const Index k = nz + parameter_bounds.size();
+  z.resize(nz);
+  theta.resize(parameter_bounds.size());
+  for (Index j = 0; j < k; ++j) {
+    const bool upper = ((i >> (k - 1 - j)) & 1) != 0;
+    if (j < nz) {
+      z(j) = upper ? premise_bounds.upper(j) : premise_bounds.lower(j);
+    } else {
+      theta(j - nz) = upper ? parameter_bounds.upper(j - nz) : parameter_bounds.lower(j - nz);
+    }
+  }
+}
+
+/// The \f$2^{n_z+n_\theta}\f$ vertices \f$(A_i, B_i)\f$ of a quasi-LPV description
+/// `matrices_at(z, θ) -> TakagiSugenoVertex<D>` by the sector-nonlinearity
+/// transformation (eq. (16)–(20), (64)): \f$A_i = A(z^{(i)}, \theta^{(i)})\f$.
+///
+/// The polytopic model reproduces the quasi-LPV one exactly inside the sectors
+/// when \f$A(z,\theta)\f$ and \f$B(z,\theta)\f$ are affine in each premise variable and
+/// each parameter separately (e.g. \f$a\,z_2 = (a_0 + \theta)z_2\f$).
+template <StateSpace D, int NZ, class F>
+  requires std::invocable<const F&, const Eigen::Matrix<typename D::Scalar, NZ, 1>&, const typename D::Parameters&>
+[[nodiscard]] std::vector<TakagiSugenoVertex<D>> sector_vertices(
+    const F& matrices_at, const SectorBounds<typename D::Scalar, NZ>& premise_bounds,
+    const SectorBounds<typename D::Scalar, D::np>& parameter_bounds) {
+  constexpr std::string_view who = "sector_vertices";
+  using S = typename D::Scalar;
+  detail::validate_sectors(premise_bounds, premise_bounds.lower.size(), who, "premise_bounds");
+  detail::validate_sectors(parameter_bounds, parameter_bounds.lower.size(), who, "parameter_bounds");
+  const Index k = premise_bounds.size() + parameter_bounds.size();
+  detail::require(k <= 20, who, "premise_bounds", "with parameter_bounds gives more than 2^20 vertices");
+  const Index r = Index(1) << k;
+  std::vector<TakagiSugenoVertex<D>> vertices;
+  vertices.reserve(static_cast<std::size_t>(r));
+  Eigen::Matrix<S, NZ, 1> z;
+  typename D::Parameters theta;
+  for (Index i = 0; i < r; ++i) {
+    vertex_point(i, premise_bounds, parameter_bounds, z, theta);
+    vertices.push_back(matrices_at(std::as_const(z), std::as_const(theta)));
+  }
+  return vertices;
+}
+
+/// Polytopic (Takagi–Sugeno) model (64) with unknown parameters: vertices
+/// \f$(A_i, B_i)\f$, output matrix C, the premise variables as a user function of
+/// \f$(x, u, \theta)\f$ and the sectors of premise variables and parameters.
+///
+/// The premise function may use states that are not measured (the plant of §6
+/// has \f$z_2 = x_1/(x_2 + b)\f$); an observer then evaluates it at the estimates
+/// \f$(\hat x, u, \hat\theta)\f$. It is called as `premises(x, u, theta)` and returns the
+/// \f$n_z\f$ premise variables.
+///
+/// The vertex matrices are stored side by side as
+/// \f$\mathcal{A} = [A_1 \cdots A_r]\f$ and \f$\mathcal{B} = [B_1 \cdots B_r]\f$ (eq. (24)–(25)).
+template <StateSpace D, int NZ, class PremiseFn>
+class TakagiSugenoModel : public SizedBy<D> {
+ public:
+  using Scalar = typename D::Scalar;
+  using State = typename D::State;
+  using Input = typename D::Input;
+  using Parameters = typename D::Parameters;
+  using StateMatrix = typename D::StateMatrix;
+  using InputMatrix = typename D::InputMatrix;
+  using OutputMatrix = typename D::OutputMatrix;
+  static constexpr int nz = NZ;
+  static constexpr int vertices_at_compile_time = takagi_sugeno_vertex_count(NZ, D::np);
+  using PremiseVector = Eigen::Matrix<Scalar, NZ, 1>;
+  using Weights = Eigen::Matrix<Scalar, vertices_at_compile_time, 1>;
+  using VertexStateMatrices = Eigen::Matrix<Scalar, D::nx, product_of_sizes(D::nx, vertices_at_compile_time)>;
+  using VertexInputMatrices = Eigen::Matrix<Scalar, D::nx, product_of_sizes(D::nu, vertices_at_compile_time)>;
+  using PremiseSectors = SectorBounds<Scalar, NZ>;
+  using ParameterSectors = SectorBounds<Scalar, D::np>;
+
+  static_assert(std::is_invocable_v<const PremiseFn&, const State&, const Input&, const Parameters&>,
+                "TakagiSugenoModel: the premise function must be callable as premises(x, u, theta)");
+
+  /// \param vertices \f$(A_i, B_i)\f$ in the vertex order of this file (see `sector_vertices`);
+  /// \param C output matrix; \param premises `premises(x, u, theta)` → \f$z\f$;
+  /// \param premise_bounds, parameter_bounds the sectors of \f$z\f$ and \f$\theta\f$.
+  TakagiSugenoModel(const std::vector<TakagiSugenoVertex<D>>& vertices, OutputMatrix C, PremiseFn premises,
+                    PremiseSectors premise_bounds, ParameterSectors parameter_bounds)
+      : C_(std::move(C)),
+        premises_(std::move(premises)),
+        premise_bounds_(std::move(premise_bounds)),
+        parameter_bounds_(std::move(parameter_bounds)) {
+    constexpr std::string_view who = "TakagiSugenoModel";
+    detail::validate_sectors(premise_bounds_, premise_bounds_.lower.size(), who, "premise_bounds");
+    detail::validate_sectors(parameter_bounds_, parameter_bounds_.lower.size(), who, "parameter_bounds");
+    const Index k = premise_bounds_.size() + parameter_bounds_.size();
+    detail::require(k <= 20, who, "premise_bounds", "with parameter_bounds gives more than 2^20 vertices");
+    const Index r = Index(1) << k;
+    if (static_cast<Index>(vertices.size()) != r) {
+      std::ostringstream os;
+      os << "must hold 2^(nz + np) = " << r << " vertices (got " << vertices.size() << ")";
+      detail::fail_argument(who, "vertices", os.str());
+    }
+    const Index nx = vertices.front().A.rows();
+    const Index nu = vertices.front().B.cols();
+    A_.resize(nx, nx * r);
+    B_.resize(nx, nu * r);
+    for (Index i = 0; i < r; ++i) {
+      const auto& v = vertices[static_cast<std::size_t>(i)];
+      detail::require_shape(v.A, nx, nx, who, "vertices[i].A");
+      detail::require_finite(v.A, who, "vertices[i].A");
+      detail::require_shape(v.B, nx, nu, who, "vertices[i].B");
+      detail::require_finite(v.B, who, "vertices[i].B");
+      A_.middleCols(i * nx, nx) = v.A;
+      B_.middleCols(i * nu, nu) = v.B;
+    }
+    detail::require_shape(C_, C_.rows(), nx, who, "C");
+    detail::require_finite(C_, who, "C");
+  }
+
+  [[nodiscard]] Sizes sizes() const noexcept {
+    return {A_.rows(), input_count(), C_.rows(), parameter_bounds_.size()};
+  }
+  [[nodiscard]] Index premise_count() const noexcept { return premise_bounds_.size(); }
+  /// \f$r = 2^{n_z + n_\theta}\f$.
+  [[nodiscard]] Index vertex_count() const noexcept {
+    return Index(1) << (premise_bounds_.size() + parameter_bounds_.size());
+  }
+
+  /// Vertex matrices \f$A_i\f$, \f$B_i\f$ (0-based i) and the output matrix C.
+  [[nodiscard]] auto A(Index i) const { return A_.middleCols(i * A_.rows(), A_.rows()); }
+  [[nodiscard]] auto B(Index i) const { return B_.middleCols(i * input_count(), input_count()); }
+  [[nodiscard]] const OutputMatrix& C() const noexcept { return C_; }
+  /// \f$\mathcal{A} = [A_1 \cdots A_r]\f$ and \f$\mathcal{B} = [B_1 \cdots B_r]\f$ (eq. (24)–(25)).
+  [[nodiscard]] const VertexStateMatrices& vertex_state_matrices() const noexcept { return A_; }
+  [[nodiscard]] const VertexInputMatrices& vertex_input_matrices() const noexcept { return B_; }
+  [[nodiscard]] const PremiseSectors& premise_bounds() const noexcept { return premise_bounds_; }
+  [[nodiscard]] const ParameterSectors& parameter_bounds() const noexcept { return parameter_bounds_; }
+  [[nodiscard]] const PremiseFn& premise_function() const noexcept { return premises_; }
+
+  /// Premise variables \f$z = z(x, u, \theta)\f$ (unclipped).
+  [[nodiscard]] PremiseVector premises(const State& x, const Input& u, const Parameters& theta) const {
+    return premises_(x, u, theta);
+  }
+
+  /// Weights \f$h_i(z, \theta)\f$ of every vertex (clipped to the sectors; Remark 1).
+  template <class DZ, class DT, class DH>
+  void weights(const Eigen::MatrixBase<DZ>& z, const Eigen::MatrixBase<DT>& theta, Eigen::MatrixBase<DH>& h) const {
+    sector_weights(z, premise_bounds_, theta, parameter_bounds_, h);
+  }
+  [[nodiscard]] Weights weights(const PremiseVector& z, const Parameters& theta) const {
+    Weights h(vertex_count());
+    weights(z, theta, h);
+    return h;
+  }
+
+  /// \f$\sum_i h_i A_i\f$ and \f$\sum_i h_i B_i\f$ for given weights.
+  template <class DH>
+  [[nodiscard]] StateMatrix blended_A(const Eigen::MatrixBase<DH>& h) const {
+    StateMatrix a = StateMatrix::Zero(A_.rows(), A_.rows());
+    for (Index i = 0; i < vertex_count(); ++i) a += h(i) * A(i);
+    return a;
+  }
+  template <class DH>
+  [[nodiscard]] InputMatrix blended_B(const Eigen::MatrixBase<DH>& h) const {
+    InputMatrix b = InputMatrix::Zero(B_.rows(), input_count());
+    for (Index i = 0; i < vertex_count(); ++i) b += h(i) * B(i);
+    return b;
+  }
+
+  /// One step of the polytopic model (64):
+  /// \f$x_{k+1} = \sum_i h_i(z(x_k, u_k, \theta), \theta)(A_i x_k + B_i u_k)\f$.
+  [[nodiscard]] State step(const State& x, const Input& u, const Parameters& theta) const {
+    const Weights h = weights(premises(x, u, theta), theta);
+    State next = blended_A(h) * x;
+    next.noalias() += blended_B(h) * u;
+    return next;
+  }
+
+ private:
+  [[nodiscard]] Index input_count() const noexcept { return B_.cols() / vertex_count(); }
+
+  VertexStateMatrices A_;
+  VertexInputMatrices B_;
+  OutputMatrix C_;
+  PremiseFn premises_;
+  PremiseSectors premise_bounds_;
+  ParameterSectors parameter_bounds_;
+};
+
+/// Builds the polytopic model of a quasi-LPV description in one call: the vertices
+/// come from `sector_vertices(matrices_at, premise_bounds, parameter_bounds)`.
+template <StateSpace D, int NZ, class F, class PremiseFn>
+[[nodiscard]] TakagiSugenoModel<D, NZ, PremiseFn> make_takagi_sugeno_model(
+    const F& matrices_at, typename D::OutputMatrix C, PremiseFn premises,
+    SectorBounds<typename D::Scalar, NZ> premise_bounds, SectorBounds<typename D::Scalar, D::np> parameter_bounds) {
+  return TakagiSugenoModel<D, NZ, PremiseFn>(sector_vertices<D, NZ>(matrices_at, premise_bounds, parameter_bounds),
+                                             std::move(C), std::move(premises), std::move(premise_bounds),
+                                             std::move(parameter_bounds));
+}
+
+}  // namespace adaptobs

@@ -1,0 +1,446 @@
+#pragma once
+/// \file
+/// Eigenvalue assignment by output injection (\f$A - LC\f$) or state feedback
+/// (\f$A - BK\f$), for any number of outputs or inputs.
+///
+/// Method (Sylvester-equation placement; S. P. Bhattacharyya, E. de Souza,
+/// "Pole assignment via Sylvester's equation", Systems & Control Letters 1(4),
+/// 1982): choose a real matrix F whose spectrum is the requested one and a
+/// free parameter \f$G \in \mathbb{R}^{N\times m}\f$, solve
+/// \f[ XA - FX = GC \f]
+/// and set \f$L = X^{-1}G\f$; then \f$A - LC = X^{-1}FX\f$ has the spectrum of F.
+/// X is invertible for almost every G when (A, C) is observable and (F, G)
+/// controllable. With one output L is unique; with m > 1 outputs the gains
+/// that place a spectrum form a family of dimension N(m − 1), and the draw of G
+/// whose X is best conditioned is kept (X⁻¹ maps the eigenvectors of F, which
+/// are orthonormal for distinct poles, to those of \f$A - LC\f$, so cond(X)
+/// bounds the sensitivity of the placed eigenvalues).
+///
+/// F is block diagonal: 1 × 1 blocks for real poles, \f$\begin{bmatrix}\alpha&\beta\\-\beta&\alpha\end{bmatrix}\f$
+/// for pairs \f$\alpha\pm i\beta\f$; blocks of a repeated pole are chained by
+/// a 1 on the superdiagonal so that F stays nonderogatory (one Jordan chain
+/// per pole, as a single output requires). When a requested pole is close to
+/// an eigenvalue of A, the Sylvester equation is ill conditioned; A is then
+/// first moved by a random injection \f$L_0\f$.
+///
+/// The result is verified, not trusted: the normalized Cayley–Hamilton
+/// residual \f$\|q(A - LC)\|_F / \sum_i |q_i|\,\|A - LC\|_F^{N-i}\f$ of the
+/// requested characteristic polynomial q is a backward error that stays
+/// meaningful for repeated poles (deadbeat designs), where computed
+/// eigenvalues are only accurate to \f$\varepsilon^{1/k}\f$. An unobservable pair,
+/// a singular transformation or a failed verification throws
+/// `ConfigurationError`: no gain is ever returned that does not do its job.
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/sylvester.hpp>
+#include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/observability.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <complex>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace adaptobs {
+
+struct PolePlacementOptions {
+  /// Draws of the free parameter G when there are several outputs (one draw
+  /// suffices for a single output: the gain is then unique). The draw with the
+  /// best-conditioned transformation is kept.
+  int tries = 20;
+  /// Seed of those draws: designs are reproducible.
+  std::uint64_t seed = 1;
+  /// Relative rank tolerance of the observability staircase; 0 selects \f$10^6\varepsilon\f$.
+  double observability_tolerance = 0;
+  /// Largest accepted Cayley–Hamilton residual; 0 selects \f$10^5\varepsilon\f$.
+  double verification_tolerance = 0;
+};
+
+template <typename Scalar>
+using ComplexVector = Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1>;
+
+namespace detail {
+
+template <typename Scalar>
+Scalar default_verification_tolerance(double requested) {
+  return requested > 0 ? Scalar(requested) : Scalar(1e5) * std::numeric_limits<Scalar>::epsilon();
+}
+
+template <typename Scalar>
+std::string format_complex_list(const ComplexVector<Scalar>& values) {
+  std::ostringstream os;
+  os.precision(6);
+  for (Index i = 0; i < values.size(); ++i) {
+    if (i) os << ", ";
+    const auto v = values(i);
+    os << v.real();
+    if (v.imag() != Scalar(0)) os << (v.imag() < 0 ? " - " : " + ") << std::abs(v.imag()) << "i";
+  }
+  return os.str();
+}
+
+/// Poles as a complex vector, checked finite.
+template <typename Scalar, class DP>
+ComplexVector<Scalar> complex_poles(const Eigen::MatrixBase<DP>& poles, std::string_view who) {
+  require(poles.cols() == 1 || poles.rows() == 1, who, "poles", "must be a vector");
+  ComplexVector<Scalar> p(poles.size());
+  for (Index i = 0; i < poles.size(); ++i) p(i) = std::complex<Scalar>(poles.derived().reshaped()(i));
+  for (Index i = 0; i < p.size(); ++i)
+    if (!std::isfinite(p(i).real()) || !std::isfinite(p(i).imag()))
+      fail_argument(who, "poles", "must contain only finite numbers");
+  return p;
+}
+
+/// A real block-diagonal matrix with the given conjugate-closed spectrum (see file comment).
+template <typename Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> real_matrix_with_spectrum(const ComplexVector<Scalar>& poles,
+                                                                               std::string_view who) {
+  using std::abs;
+  const Scalar pair_tol = std::sqrt(std::numeric_limits<Scalar>::epsilon());
+  struct Block {
+    Scalar re, im;  // im > 0 for a conjugate pair, 0 for a real pole
+  };
+  std::vector<Block> blocks;
+  std::vector<bool> used(std::size_t(poles.size()), false);
+  for (Index i = 0; i < poles.size(); ++i) {
+    if (used[std::size_t(i)]) continue;
+    const auto p = poles(i);
+    const Scalar scale = std::max(Scalar(1), abs(p));
+    used[std::size_t(i)] = true;
+    if (abs(p.imag()) <= Scalar(100) * std::numeric_limits<Scalar>::epsilon() * scale) {
+      blocks.push_back({p.real(), Scalar(0)});
+      continue;
+    }
+    Index partner = -1;
+    for (Index j = i + 1; j < poles.size() && partner < 0; ++j)
+      if (!used[std::size_t(j)] && abs(poles(j) - std::conj(p)) <= pair_tol * scale) partner = j;
+    if (partner < 0) fail_argument(who, "poles", "must be closed under complex conjugation (a real gain is sought)");
+    used[std::size_t(partner)] = true;
+    blocks.push_back({p.real(), abs(p.imag())});
+  }
+  std::sort(blocks.begin(), blocks.end(), [](const Block& a, const Block& b) {
+    if ((a.im > 0) != (b.im > 0)) return a.im > 0;
+    if (a.re != b.re) return a.re < b.re;
+    return a.im < b.im;
+  });
+  const Index n = poles.size();
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> f = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Zero(n, n);
+  Index at = 0;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    const Block& blk = blocks[b];
+    const Index d = blk.im > 0 ? 2 : 1;
+    f(at, at) = blk.re;
+    if (d == 2) {
+      f(at + 1, at + 1) = blk.re;
+      f(at, at + 1) = blk.im;
+      f(at + 1, at) = -blk.im;
+    }
+    if (b + 1 < blocks.size()) {
+      const Block& next = blocks[b + 1];
+      const Scalar scale = std::max({Scalar(1), abs(blk.re), blk.im});
+      const bool same = (next.im > 0) == (blk.im > 0) && abs(next.re - blk.re) <= pair_tol * scale &&
+                        abs(next.im - blk.im) <= pair_tol * scale;
+      if (same) f(at + d - 1, at + d) = Scalar(1);  // chain the Jordan blocks of a repeated pole
+    }
+    at += d;
+  }
+  return f;
+}
+
+}  // namespace detail
+
+/// Coefficients \f$(1, q_1, \dots, q_N)\f$ of the monic real polynomial
+/// \f$q(z) = \prod_i (z - \lambda_i) = z^N + q_1 z^{N-1} + \dots + q_N\f$.
+template <class DP>
+[[nodiscard]] auto characteristic_polynomial(const Eigen::MatrixBase<DP>& poles) {
+  using Scalar = typename Eigen::NumTraits<typename DP::Scalar>::Real;
+  const ComplexVector<Scalar> p = detail::complex_poles<Scalar>(poles, "characteristic_polynomial");
+  ComplexVector<Scalar> q = ComplexVector<Scalar>::Zero(p.size() + 1);
+  q(0) = Scalar(1);
+  for (Index i = 0; i < p.size(); ++i)
+    for (Index j = i + 1; j >= 1; --j) q(j) -= p(i) * q(j - 1);
+  return Eigen::Matrix<Scalar, Eigen::Dynamic, 1>(q.real());
+}
+
+/// Normalized Cayley–Hamilton residual \f$\|q(M)\|_F / \sum_i |q_i|\,\|M\|_F^{N-i}\f$
+/// of the polynomial q with roots `poles`: a backward error, small exactly when
+/// M has (nearly) the requested spectrum.
+template <class DM, class DP>
+[[nodiscard]] typename DM::Scalar cayley_hamilton_residual(const Eigen::MatrixBase<DM>& M,
+                                                           const Eigen::MatrixBase<DP>& poles) {
+  using Scalar = typename DM::Scalar;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  detail::require_square(M, "cayley_hamilton_residual", "M");
+  detail::require(poles.size() == M.rows(), "cayley_hamilton_residual", "poles", "must have one pole per row of M");
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> q = characteristic_polynomial(poles);
+  const Index n = M.rows();
+  const Matrix m = detail::dynamic_copy(M);
+  const Scalar norm = m.norm();
+  Matrix r = Matrix::Zero(n, n);
+  Scalar scale = 0;
+  for (Index i = 0; i <= n; ++i) {
+    r = (r * m).eval();
+    r.diagonal().array() += q(i);
+    scale += std::abs(q(i)) * std::pow(norm, Scalar(n - i));
+  }
+  return scale > 0 ? r.norm() / scale : Scalar(0);
+}
+
+/// `count` distinct real poles spread over (0, radius]: radius·(count − i)/count.
+/// A simple target when only a stability margin (spectral radius ≤ radius) is wanted.
+template <typename Scalar>
+[[nodiscard]] Eigen::Matrix<Scalar, Eigen::Dynamic, 1> spread_poles(Index count, Scalar radius) {
+  detail::require(count >= 0, "spread_poles", "count", "must be non-negative");
+  detail::require(radius >= Scalar(0) && radius < std::numeric_limits<Scalar>::infinity(), "spread_poles", "radius",
+                  "must be non-negative and finite");
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> p(count);
+  for (Index i = 0; i < count; ++i) p(i) = radius * Scalar(count - i) / Scalar(count);
+  return p;
+}
+
+/// Largest distance between the eigenvalues of M and the requested poles,
+/// matched greedily (each pole to the nearest eigenvalue not yet taken).
+template <class DM>
+[[nodiscard]] typename DM::Scalar eigenvalue_mismatch(const Eigen::MatrixBase<DM>& M,
+                                                      const ComplexVector<typename DM::Scalar>& poles) {
+  using Scalar = typename DM::Scalar;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  if (M.rows() == 0) return Scalar(0);
+  const ComplexVector<Scalar> eig = Eigen::EigenSolver<Matrix>(detail::dynamic_copy(M), false).eigenvalues();
+  std::vector<bool> taken(std::size_t(eig.size()), false);
+  Scalar worst = 0;
+  for (Index i = 0; i < poles.size(); ++i) {
+    Index best = -1;
+    Scalar best_distance = std::numeric_limits<Scalar>::infinity();
+    for (Index j = 0; j < eig.size(); ++j) {
+      const Scalar d = std::abs(eig(j) - poles(i));
+      if (!taken[std::size_t(j)] && d < best_distance) {
+        best_distance = d;
+        best = j;
+      }
+    }
+    if (best >= 0) taken[std::size_t(best)] = true;
+    worst = std::max(worst, best_distance);
+  }
+  return worst;
+}
+
+/// The Sylvester placement machinery for one pair (A, C) and one spectrum:
+/// candidates \f$L\f$ for given free parameters G. `place_output_injection`
+/// uses it with its default choice of G; designs with constraints on L (such as
+/// `design_guiro_gains`) draw candidates and score them themselves.
+template <typename Scalar>
+class PolePlacer {
+ public:
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  /// One placing gain: \f$A - LC = X^{-1}(F + \dots)X\f$ with F the target matrix.
+  struct Candidate {
+    Matrix L;                ///< N × m gain
+    Matrix X;                ///< transformation of the Sylvester equation
+    Scalar x_condition = 0;  ///< cond₂(X)
+  };
+
+  /// \param who, pair, property: names used in error messages ("<who>: argument '<pair>' is not <property>").
+  PolePlacer(const Matrix& A, const Matrix& C, const ComplexVector<Scalar>& poles, const PolePlacementOptions& options,
+             std::string_view who = "PolePlacer", std::string_view pair = "A, C",
+             std::string_view property = "observable")
+      : options_(options), rng_(options.seed) {
+    detail::require_square(A, who, "A");
+    detail::require_finite(A, who, "A");
+    detail::require_shape(C, C.rows(), A.rows(), who, "C");
+    detail::require_finite(C, who, "C");
+    detail::require(poles.size() == A.rows(), who, "poles", "must hold one pole per state");
+    detail::require(options.tries >= 1, who, "options.tries", "must be at least 1");
+    const Index n = A.rows();
+    outputs_ = C.rows();
+    detail::require(outputs_ >= 1 || n == 0, who, pair, "has no output to inject");
+
+    const auto report = observability(A, C, Scalar(options.observability_tolerance));
+    if (!report.observable()) {
+      detail::fail_argument(who, pair,
+                            "is not " + std::string(property) + ": its mode(s) " +
+                                detail::format_complex_list(report.unobservable_modes) + " cannot be moved");
+    }
+    f_ = detail::real_matrix_with_spectrum(poles, who);
+    c_ = C;
+    l0_ = Matrix::Zero(n, outputs_);
+    Matrix a0 = A;
+    // Keep the requested poles away from the eigenvalues of the matrix the Sylvester equation sees.
+    const Scalar scale = std::max(Scalar(1), Scalar(A.norm()));
+    const auto separation = [&](const Matrix& m) {
+      if (n == 0) return std::numeric_limits<Scalar>::infinity();
+      const ComplexVector<Scalar> e = Eigen::EigenSolver<Matrix>(m, false).eigenvalues();
+      Scalar gap = std::numeric_limits<Scalar>::infinity();
+      for (Index i = 0; i < e.size(); ++i)
+        for (Index j = 0; j < poles.size(); ++j) gap = std::min(gap, std::abs(e(i) - poles(j)));
+      return gap / scale;
+    };
+    Scalar gap = separation(a0);
+    if (gap < Scalar(1e-3)) {
+      const Scalar gain_scale = scale / std::max(Scalar(C.norm()), std::numeric_limits<Scalar>::min());
+      Matrix best_l0 = l0_;
+      for (int attempt = 0; attempt < 50 && gap < Scalar(1e-2); ++attempt) {
+        const Matrix l0 = gaussian(n, outputs_) * gain_scale;
+        const Scalar g = separation(Matrix(A - l0 * C));
+        if (g > gap) {
+          gap = g;
+          best_l0 = l0;
+        }
+      }
+      l0_ = best_l0;
+      a0 = A - l0_ * C;
+    }
+    solver_.emplace(Matrix(-f_), a0);
+  }
+
+  /// Candidate for the free parameter G (N × m), or none when X is singular.
+  [[nodiscard]] std::optional<Candidate> candidate(const Matrix& G) const {
+    Candidate c;
+    c.X = solver_->solve(G * c_);  // X A0 − F X = G C
+    if (!c.X.allFinite()) return std::nullopt;
+    if (c.X.rows() == 0) {
+      c.L = Matrix::Zero(0, outputs_);
+      c.x_condition = Scalar(1);
+      return c;
+    }
+    const Eigen::JacobiSVD<Matrix> svd(c.X, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const auto& sigma = svd.singularValues();
+    if (!(sigma(sigma.size() - 1) > Scalar(100) * std::numeric_limits<Scalar>::epsilon() * sigma(0)))
+      return std::nullopt;
+    c.x_condition = sigma(0) / sigma(sigma.size() - 1);
+    c.L = l0_ + svd.solve(G);
+    if (!c.L.allFinite()) return std::nullopt;
+    return c;
+  }
+
+  /// A fresh standard-normal draw of G (N × m) from the seeded generator.
+  [[nodiscard]] Matrix draw_parameter() { return gaussian(f_.rows(), outputs_); }
+
+  /// How many draws are worth making: 1 with a single output (L is unique), else `options.tries`.
+  [[nodiscard]] int draws() const noexcept { return outputs_ == 1 ? 1 : options_.tries; }
+
+  /// The real matrix F carrying the requested spectrum.
+  [[nodiscard]] const Matrix& target_matrix() const noexcept { return f_; }
+
+ private:
+  Matrix gaussian(Index rows, Index cols) {
+    std::normal_distribution<double> normal(0.0, 1.0);
+    Matrix g(rows, cols);
+    for (Index j = 0; j < cols; ++j)
+      for (Index i = 0; i < rows; ++i) g(i, j) = Scalar(normal(rng_));
+    return g;
+  }
+
+  PolePlacementOptions options_;
+  std::mt19937_64 rng_;
+  Index outputs_ = 0;
+  Matrix f_, c_, l0_;
+  std::optional<SylvesterSolver<Scalar>> solver_;
+};
+
+/// Output-injection gain L with the certificate of its placement.
+template <typename Scalar, int N, int M>
+struct OutputInjectionGain {
+  Eigen::Matrix<Scalar, N, M> L;       ///< \f$A - LC\f$ has the requested spectrum
+  Scalar cayley_hamilton_residual = 0; ///< verified below the tolerance
+  Scalar transformation_condition = 0; ///< cond₂(X): sensitivity of the placed eigenvalues
+  Scalar eigenvalue_mismatch = 0;      ///< largest |computed − requested| eigenvalue (greedy matching)
+};
+
+namespace detail {
+template <typename Scalar>
+OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(const DynamicMatrix<Scalar>& A,
+                                                                           const DynamicMatrix<Scalar>& C,
+                                                                           const ComplexVector<Scalar>& poles,
+                                                                           const PolePlacementOptions& options,
+                                                                           std::string_view who, std::string_view pair,
+                                                                           std::string_view property) {
+  using Matrix = DynamicMatrix<Scalar>;
+  PolePlacer<Scalar> placer(A, C, poles, options, who, pair, property);
+  std::optional<typename PolePlacer<Scalar>::Candidate> best;
+  for (int t = 0; t < placer.draws(); ++t) {
+    auto c = placer.candidate(placer.draw_parameter());
+    if (c && (!best || c->x_condition < best->x_condition)) best = std::move(c);
+  }
+  if (!best) fail_argument(who, "poles", "could not be placed: the Sylvester transformation was singular in every draw");
+  const Matrix closed = A - best->L * C;
+  OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> result;
+  result.L = best->L;
+  result.transformation_condition = best->x_condition;
+  result.cayley_hamilton_residual = cayley_hamilton_residual(closed, poles);
+  result.eigenvalue_mismatch = eigenvalue_mismatch(closed, poles);
+  const Scalar tol = default_verification_tolerance<Scalar>(options.verification_tolerance);
+  if (!(result.cayley_hamilton_residual <= tol)) {
+    std::ostringstream os;
+    os << "could not be placed to the required accuracy (Cayley-Hamilton residual "
+       << result.cayley_hamilton_residual << " > " << tol << "): the pair is nearly not " << property;
+    fail_argument(who, "poles", os.str());
+  }
+  return result;
+}
+}  // namespace detail
+
+/// Gain L (N × m) such that \f$A - LC\f$ has the spectrum `poles` (real or
+/// complex vector, closed under conjugation). Throws `ConfigurationError` when
+/// (A, C) is not observable or the placement cannot be verified.
+template <class DA, class DC, class DP>
+[[nodiscard]] auto place_output_injection(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
+                                          const Eigen::MatrixBase<DP>& poles, PolePlacementOptions options = {}) {
+  using Scalar = typename DA::Scalar;
+  constexpr std::string_view who = "place_output_injection";
+  const auto d = detail::place_injection<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C),
+                                                 detail::complex_poles<Scalar>(poles, who), options, who, "A, C",
+                                                 "observable");
+  OutputInjectionGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime> result;
+  result.L = d.L;
+  result.cayley_hamilton_residual = d.cayley_hamilton_residual;
+  result.transformation_condition = d.transformation_condition;
+  result.eigenvalue_mismatch = d.eigenvalue_mismatch;
+  return result;
+}
+
+/// State-feedback gain K (m × N) with the certificate of its placement.
+template <typename Scalar, int N, int M>
+struct StateFeedbackGain {
+  Eigen::Matrix<Scalar, M, N> K;       ///< \f$A - BK\f$ has the requested spectrum
+  Scalar cayley_hamilton_residual = 0;
+  Scalar transformation_condition = 0;
+  Scalar eigenvalue_mismatch = 0;
+};
+
+/// Gain K (m × N) such that \f$A - BK\f$ has the spectrum `poles`, by duality
+/// (\f$K^T\f$ places \f$A^T - K^TB^T\f$). Throws `ConfigurationError` when (A, B)
+/// is not controllable or the placement cannot be verified.
+template <class DA, class DB, class DP>
+[[nodiscard]] auto place_state_feedback(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
+                                        const Eigen::MatrixBase<DP>& poles, PolePlacementOptions options = {}) {
+  using Scalar = typename DA::Scalar;
+  constexpr std::string_view who = "place_state_feedback";
+  detail::require_square(A, who, "A");
+  detail::require_shape(B, A.rows(), B.cols(), who, "B");
+  const auto dual = detail::place_injection<Scalar>(detail::dynamic_copy(A.transpose()),
+                                                    detail::dynamic_copy(B.transpose()),
+                                                    detail::complex_poles<Scalar>(poles, who), options, who, "A, B",
+                                                    "controllable");
+  StateFeedbackGain<Scalar, DA::RowsAtCompileTime, DB::ColsAtCompileTime> result;
+  result.K = dual.L.transpose();
+  result.cayley_hamilton_residual = dual.cayley_hamilton_residual;
+  result.transformation_condition = dual.transformation_condition;
+  result.eigenvalue_mismatch = dual.eigenvalue_mismatch;
+  return result;
+}
+
+}  // namespace adaptobs

@@ -1,0 +1,292 @@
+#pragma once
+/// \file
+/// Adaptive observer for MIMO discrete LTI systems of Dey & Bhasin (paper
+/// `003_9f47869cf3ab0cdc.txt`, eq. (3)–(23)), and the Suzuki-style observer
+/// it is compared with (the same filters with exponential forgetting, §5).
+///
+/// The plant is unknown but for its structure: order r, q outputs, m inputs,
+/// observable canonical form (3)–(4), \f$x_{t+1} = Ax_t + Bu_t\f$, \f$y_t = Cx_t\f$.
+/// With a Schur design matrix F of the same structure (6) it reads (7)
+/// \f$x_{t+1} = Fx_t + (I_r\otimes y_t)(a - f) + Bu_t\f$, so that the filters
+/// (8)–(11) give (12)
+/// \f[ x_t = S_tp + F^tx_0,\qquad y_t = \varphi_t^Tp + CF^tx_0,\qquad \varphi_t = S_t^TC^T,\qquad
+///     p = [(a - f)^T\ \mathrm{vec}(B)^T]^T, \f]
+/// and the observer (13) \f$\hat x_t = S_t\hat p_t + F^t\hat x_0\f$ with \f$\hat p_t\f$ from an
+/// adaptation law fed with \f$(\varphi_t,\ z_t = y_t - CF^t\hat x_0)\f$ (16), which
+/// obey \f$z_t = \varphi_t^Tp + CF^t\tilde x_0\f$: a linear regression with a
+/// vanishing perturbation. The law is a template parameter; the paper's is RLS
+/// with covariance resetting (22)–(23), under which \f$\hat p_t\f$ and \f$\hat x_t\f$
+/// stay bounded for any bounded input that keeps the plant bounded (theorem 5),
+/// and converge when the input is sufficiently rich (theorem 6).
+///
+/// Timing. `update` with \f$(u_t, y_t)\f$ forms \f$\varphi_t, z_t\f$ from the filters
+/// (which hold data up to t − 1), moves \f$\hat p_{t-1}\to\hat p_t\f$ (from t = 1 on:
+/// \f$\varphi_0 = 0\f$), forms \f$\hat x_t\f$ (13), and feeds \f$(y_t, u_t)\f$ to the
+/// filters. As for every observer of the library, `state()` is then the
+/// estimate of the *next* state, here \f$\hat x_{t+1|t} = S_{t+1}\hat p_t + F^{t+1}\hat x_0
+/// = F\hat x_t + (I_r\otimes y_t)(\hat a_t - f) + \hat B_tu_t\f$; the paper's \f$\hat x_t\f$
+/// of (13), which also uses \f$y_t\f$, is `current_state()`.
+///
+/// Theorem 5 as printed bounds \f$\|\tilde p_t\|\f$ by
+/// \f$\|\tilde p_0\| + k_0\beta_\varphi\beta_W\sum_{i\ge0}\|CF^{i+1}\tilde x_0\|\f$, but its step
+/// (26) uses \f$\|(I + \Gamma\varphi R^{-1}\varphi^T)^{-1}\|_2 \le 1\f$, false for this
+/// non-symmetric matrix (Γ = diag(1, 100), φ = [1 1]ᵀ, R = 1 give 1.394). The
+/// weighted norm \f$N_t = \|\tilde p_t\|_{\Gamma_t^{-1}}\f$ repairs the proof: it
+/// obeys \f$N_t \le N_{t-1} + \|R^{-1/2}CF^t\tilde x_0\|\f$ and a reset to \f$k_0I\f$
+/// does not increase it, hence the tighter bound
+/// \f[ \|\tilde p_t\| \le \|\tilde p_0\| + \sqrt{k_0}\sum_{i\ge1}\|R^{-1/2}CF^i\tilde x_0\|. \f]
+/// Tests check both bounds.
+
+#include <adaptobs/adaptation/adaptation_law.hpp>
+#include <adaptobs/adaptation/covariance_resetting.hpp>
+#include <adaptobs/adaptation/exponential_forgetting.hpp>
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+#include <adaptobs/observers/canonical_form_filters.hpp>
+
+#include <Eigen/Core>
+
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+namespace adaptobs {
+
+/// Dey–Bhasin adaptive observer of order `R` with `Q` outputs and `M` inputs
+/// (`Eigen::Dynamic` allowed), adapting with `Law` (default: covariance
+/// resetting, eq. (23)).
+template <typename S, int R, int Q, int M, template <typename, int, int> class Law = CovarianceResettingRls>
+class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, M>::Dims> {
+ public:
+  using Filters = CanonicalFormFilters<S, R, Q, M>;
+  using Dims = typename Filters::Dims;
+  using Scalar = S;
+  using State = typename Dims::State;
+  using Input = typename Dims::Input;
+  using Output = typename Dims::Output;
+  using Parameters = typename Dims::Parameters;
+  using StateMatrix = typename Dims::StateMatrix;
+  using InputMatrix = typename Dims::InputMatrix;
+  using Coefficients = typename Filters::Coefficients;
+  using Regressor = typename Filters::Regressor;
+  using Bank = typename Filters::Bank;
+  using AdaptationLawType = Law<S, Dims::np, Dims::ny>;
+  using LawOptions = typename AdaptationLawType::Options;
+  static_assert(AdaptationLaw<AdaptationLawType>, "DeyBhasinObserver: Law must model adaptobs::AdaptationLaw");
+
+  /// One measured sample: input \f$u_t\f$ and output \f$y_t\f$.
+  struct Sample {
+    Input u;
+    Output y;
+  };
+
+  /// \param f  first-column entries of F (eq. (6), the paper's vector f); F must be Schur stable;
+  /// \param x0 initial state estimate \f$\hat x_0\f$ (n = rq entries, fixing q);
+  /// \param a0 first-column entries of \f$\hat A_0\f$ (the paper's \f$\hat a_0\f$);
+  /// \param B0 initial estimate \f$\hat B_0\f$ (n × m);
+  /// \param options the adaptation law's options, e.g. `{.k0 = 1000, .kmin = 1e-4, .R = I}`.
+  DeyBhasinObserver(const Coefficients& f, State x0, const Coefficients& a0, const InputMatrix& B0, LawOptions options)
+      : filters_(f, outputs_of(f, x0), B0.cols()),
+        law_(initial_parameters(filters_, a0, B0), std::move(options), filters_.outputs()),
+        x0_(std::move(x0)) {
+    constexpr std::string_view who = "DeyBhasinObserver";
+    detail::require_finite(x0_, who, "x0");
+    const Sizes s = filters_.sizes();
+    bank_.setZero(s.ny + s.nu, filters_.order());
+    last_.setZero(s.ny + s.nu);
+    phi_.setZero(s.np, s.ny);
+    z_.setZero(s.ny);
+    if constexpr (!Dims::is_fixed) work_.resize(filters_);
+    restart_filters();
+  }
+
+  /// Eq. (16), (22)–(23) and (13) with the sample \f$(u_t, y_t)\f$ (any type with members `u`, `y`).
+  ///
+  /// Returns `nonfinite_input` for a NaN/Inf in the sample and
+  /// `nonfinite_result` when the step would produce one (or the law broke
+  /// down); in both cases the observer is left exactly as it was.
+  template <class AnySample>
+    requires requires(const AnySample& s) {
+      s.u;
+      s.y;
+    }
+  [[nodiscard]] UpdateStatus update(const AnySample& sample) {
+    if constexpr (Dims::is_fixed) {
+      Workspace w;
+      return advance(sample.u, sample.y, w);
+    } else {
+      detail::require_shape(sample.u, filters_.inputs(), 1, "DeyBhasinObserver::update", "sample.u");
+      detail::require_shape(sample.y, filters_.outputs(), 1, "DeyBhasinObserver::update", "sample.y");
+      return advance(sample.u, sample.y, work_);
+    }
+  }
+
+  /// \f$\hat x_{t+1|t} = S_{t+1}\hat p_t + F^{t+1}\hat x_0\f$: the estimate of the next state
+  /// (\f$\hat x_0\f$ before the first sample).
+  [[nodiscard]] const State& state() const noexcept { return next_state_; }
+  /// \f$\hat x_t = S_t\hat p_t + F^t\hat x_0\f$ (13) at the last sample t (\f$\hat x_0\f$ before the first).
+  [[nodiscard]] const State& current_state() const noexcept { return state_; }
+  /// \f$\hat p_t = [(\hat a_t - f)^T\ \mathrm{vec}(\hat B_t)^T]^T\f$.
+  [[nodiscard]] const Parameters& parameters() const noexcept { return law_.parameters(); }
+  /// \f$\hat a_t\f$: first-column entries of \f$\hat A_t\f$.
+  [[nodiscard]] Coefficients a_hat() const {
+    return parameters().template head<R>(filters_.order()) + filters_.coefficients();
+  }
+  /// \f$\hat A_t = \bar A(\hat a_t)\otimes I_q\f$ (3).
+  [[nodiscard]] StateMatrix A_hat() const { return block_companion_matrix<Q>(a_hat(), filters_.outputs()); }
+  /// \f$\hat B_t\f$ (n × m).
+  [[nodiscard]] InputMatrix B_hat() const {
+    return Eigen::Map<const InputMatrix>(parameters().data() + filters_.order(), filters_.states(), filters_.inputs());
+  }
+  /// \f$\varphi_t\f$ of the last sample (zero before the first).
+  [[nodiscard]] const Regressor& regressor() const noexcept { return phi_; }
+  /// \f$z_t = y_t - CF^t\hat x_0\f$ (16) of the last sample.
+  [[nodiscard]] const Output& measurement() const noexcept { return z_; }
+  /// \f$S_tp + F^t\hat x_0\f$ for any p at the last sample t: the state (12) of the model
+  /// with parameters p (with \f$\hat x_0 = x_0\f$ and the true p it is \f$x_t\f$).
+  [[nodiscard]] State state_with(const Parameters& p) const {
+    State x(filters_.states());
+    filters_.state(bank_, p, current_free_, x);
+    return x;
+  }
+  /// The filter bank \f$\Sigma_t^T\f$ ((q + m) × r).
+  [[nodiscard]] const Bank& filter_bank() const noexcept { return bank_; }
+  [[nodiscard]] const Filters& filters() const noexcept { return filters_; }
+  [[nodiscard]] const AdaptationLawType& law() const noexcept { return law_; }
+  /// Number of accepted samples since construction or the last reset.
+  [[nodiscard]] Index step() const noexcept { return step_; }
+  [[nodiscard]] Sizes sizes() const noexcept { return filters_.sizes(); }
+  [[nodiscard]] const State& initial_state() const noexcept { return x0_; }
+
+  /// Restarts from \f$\hat x_0\f$ and \f$\hat p_0\f$ at t = 0: filters cleared, law restarted.
+  void reset(const State& x0, const Parameters& p0) {
+    constexpr std::string_view who = "DeyBhasinObserver::reset";
+    detail::require_shape(x0, filters_.states(), 1, who, "x0");
+    detail::require_finite(x0, who, "x0");
+    detail::require_shape(p0, filters_.parameters(), 1, who, "p0");
+    detail::require_finite(p0, who, "p0");
+    law_.restart(p0);
+    x0_ = x0;
+    restart_filters();
+  }
+
+  /// \f$[(a - f)^T\ \mathrm{vec}(B)^T]^T\f$ for first-column entries a and input matrix B.
+  [[nodiscard]] Parameters parameters_of(const Coefficients& a, const InputMatrix& B) const {
+    return initial_parameters(filters_, a, B);
+  }
+
+ private:
+  struct Workspace {
+    Bank bank;
+    State free;
+    Regressor phi;
+    Output z;
+    State x;
+    State next;
+    void resize(const Filters& filters) {
+      const Sizes s = filters.sizes();
+      bank.setZero(s.ny + s.nu, filters.order());
+      free.setZero(s.nx);
+      phi.setZero(s.np, s.ny);
+      z.setZero(s.ny);
+      x.setZero(s.nx);
+      next.setZero(s.nx);
+    }
+  };
+
+  static Index outputs_of(const Coefficients& f, const State& x0) {
+    detail::require(f.size() >= 1, "DeyBhasinObserver", "f", "must have at least one entry (the order r)");
+    detail::require(x0.size() >= f.size() && x0.size() % f.size() == 0, "DeyBhasinObserver", "x0",
+                    "must have n = r q entries, a multiple of the order r = size of f");
+    return x0.size() / f.size();
+  }
+
+  static Parameters initial_parameters(const Filters& filters, const Coefficients& a0, const InputMatrix& B0) {
+    constexpr std::string_view who = "DeyBhasinObserver";
+    const Index r = filters.order();
+    detail::require_shape(a0, r, 1, who, "a0");
+    detail::require_finite(a0, who, "a0");
+    detail::require_shape(B0, filters.states(), filters.inputs(), who, "B0");
+    detail::require_finite(B0, who, "B0");
+    Parameters p(filters.parameters());
+    p.template head<R>(r) = a0 - filters.coefficients();
+    p.template segment<product_of_sizes(M, Dims::nx)>(r, B0.size()) = B0.reshaped();
+    return p;
+  }
+
+  void restart_filters() {
+    bank_.setZero();
+    last_.setZero();
+    phi_.setZero();
+    z_.setZero();
+    current_free_ = x0_;
+    state_ = x0_;
+    next_state_ = x0_;
+    step_ = 0;
+  }
+
+  template <class U, class Y>
+  UpdateStatus advance(const Eigen::MatrixBase<U>& u, const Eigen::MatrixBase<Y>& y, Workspace& w) {
+    if (!detail::all_finite(u, y)) return UpdateStatus::nonfinite_input;
+    const Index q = filters_.outputs();
+    const bool first = step_ == 0;
+
+    // Filters (8)–(9) and F^t x̂_0, advanced with the previous sample.
+    w.bank = bank_;
+    w.free = current_free_;
+    if (!first) {
+      filters_.advance(w.bank, last_);
+      filters_.apply_transition_to_state(w.free);
+    }
+    /// (12) \f$\varphi_t = S_t^TC^T\f$ and (16) \f$z_t = y_t - CF^t\hat x_0\f$.
+    filters_.regressor(w.bank, w.phi);
+    w.z = y - w.free.head(q);
+
+    /// (22)–(23) (or the chosen law): \f$\hat p_{t-1} \to \hat p_t\f$ from t = 1 on.
+    const Parameters* p = &law_.parameters();
+    if (!first) {
+      if (!law_.propose(w.phi, w.z)) return UpdateStatus::nonfinite_result;
+      p = &law_.proposal();
+    }
+    /// (13) \f$\hat x_t = S_t\hat p_t + F^t\hat x_0\f$, and the prediction of \f$x_{t+1}\f$.
+    filters_.state(w.bank, *p, w.free, w.x);
+    filters_.predict(w.x, *p, y, u, w.next);
+    if (!detail::all_finite(w.x, w.next, w.bank, w.phi)) return UpdateStatus::nonfinite_result;
+
+    if (!first) law_.commit();
+    detail::commit(bank_, w.bank);
+    detail::commit(current_free_, w.free);
+    detail::commit(phi_, w.phi);
+    detail::commit(z_, w.z);
+    detail::commit(state_, w.x);
+    detail::commit(next_state_, w.next);
+    last_.head(q) = y;
+    last_.tail(filters_.inputs()) = u;
+    ++step_;
+    return UpdateStatus::accepted;
+  }
+
+  Filters filters_;
+  AdaptationLawType law_;
+  State x0_;
+  Bank bank_;                                // Σ_tᵀ
+  typename Filters::Channels last_;          // [y_t; u_t], fed to the bank at the next sample
+  State current_free_;                       // F^t x̂_0
+  Regressor phi_;                            // φ_t
+  Output z_;                                 // z_t
+  State state_;                              // x̂_t (13)
+  State next_state_;                         // x̂_{t+1|t}
+  Index step_ = 0;
+  // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
+  [[no_unique_address]] std::conditional_t<Dims::is_fixed, std::monostate, Workspace> work_;
+};
+
+/// The Suzuki–Nakamura–Koga style observer of paper 003 §5: the same filters,
+/// adapted by RLS with exponential forgetting (`ExponentialForgettingRls`).
+template <typename S, int R, int Q, int M>
+using SuzukiObserver = DeyBhasinObserver<S, R, Q, M, ExponentialForgettingRls>;
+
+}  // namespace adaptobs

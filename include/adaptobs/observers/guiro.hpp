@@ -1,0 +1,228 @@
+#pragma once
+/// \file
+/// Continuous-discrete adaptive observer of Guiro, Iggidr, Ngom and Touré
+/// (paper `002_690eeac12a57821f.txt`, eq. (2)), generalized to p parameters,
+/// m outputs, a sampling period T and known inputs.
+///
+/// System (paper 002, eq. (1)): \f$\dot x = Ax + Bu(t) + \varphi(t)\theta\f$,
+/// \f$y_k = Cx(kT)\f$, with \f$\theta\in\mathbb{R}^p\f$ and \f$\varphi(t)\in\mathbb{R}^{n\times p}\f$.
+/// Between samples the observer integrates \f$\dot z = Az + Bu + \varphi(t)\hat\theta_k\f$;
+/// at the samples it corrects z with the output and θ̂ with the previous
+/// a-posteriori output error:
+/// \f[ z^-_{k+1} = E z_k + \Psi_k\hat\theta_k + B_du_k,\qquad
+///     z_{k+1} = z^-_{k+1} - K(Cz^-_{k+1} - y_{k+1}),\qquad
+///     \hat\theta_{k+1} = \hat\theta_k - \Gamma(Cz_k - y_k), \f]
+/// with \f$E = e^{AT}\f$, \f$\Psi_k = EH_k\f$, \f$H_k = \int_{kT}^{(k+1)T}e^{(kT-s)A}\varphi(s)ds\f$
+/// (`RegressorIntegral`) and \f$B_du_k\f$ the input's contribution over the
+/// period (`sampled_lti_model`). The errors obey \f$v_{k+1} = (U + W(k))v_k\f$
+/// (eq. (4)–(5)); gains come from `design_guiro_gains`, and
+/// `check_guiro_convergence` checks proposition 2.2.
+///
+/// Readings of the paper:
+///  - θ̂ is updated with \f$Cz_k - y_k\f$ of the previous sample and the
+///    propagation over \f$[kT, (k+1)T]\f$ uses \f$\hat\theta_k\f$, not
+///    \f$\hat\theta_{k+1}\f$: this is what eq. (2) states and what makes its
+///    error matrix U (§2.2, §3) come out as printed, with \f$-\Gamma C\f$ and 1
+///    in its last block row.
+///  - The introduction's \f$C = (1\ 0 \dots 0)\f$ with the lower-shift A of
+///    §3 is not observable; the example's \f$C = [0\ 1]\f$ is the one used.
+///
+/// **Sample convention.** Like the library's other observers, `update`
+/// consumes the sample of step k, \f$(u_k, y_k, \Psi_k)\f$ (a `DiscreteSample`
+/// whose `Psi` is \f$\Psi_k = EH_k\f$, the regressor of the period that starts
+/// at \f$t_k\f$), and moves from step k to k + 1: it corrects the prediction
+/// \f$z^-_k\f$ with \f$y_k\f$ into the paper's \f$z_k\f$, updates θ̂ and
+/// predicts \f$z^-_{k+1}\f$. `state()` is the prediction \f$z^-_k\f$ of the
+/// current step (before its output is seen) and `corrected_state()` the
+/// paper's \f$z_{k-1}\f$, corrected with the last consumed output. The paper
+/// starts from an uncorrected \f$z_0\f$; `GuiroOptions::correct_initial_estimate
+/// = false` replays that exactly.
+
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+namespace adaptobs {
+
+struct GuiroOptions {
+  /// Correct the initial estimate with the first output (true), or use it
+  /// unchanged as the paper's \f$z_0\f$ (false: the paper's eq. (2) from k = 0).
+  bool correct_initial_estimate = true;
+};
+
+/// Guiro–Iggidr–Ngom–Touré observer over the sampled model \f$(E, B_d, C)\f$
+/// of a continuous system (see file comment); an LTV discrete model
+/// \f$(E_k, B_k, C_k)\f$ is accepted too.
+template <DiscreteModel Model>
+class GuiroObserver : public SizedBy<typename Model::Dims> {
+ public:
+  using Dims = typename Model::Dims;
+  using Scalar = typename Dims::Scalar;
+  using State = typename Dims::State;
+  using Parameters = typename Dims::Parameters;
+  using GainMatrix = typename Dims::GainMatrix;                     ///< K, n × m
+  using ParameterGain = typename Dims::template Matrix<Dims::np, Dims::ny>;  ///< Γ, p × m
+  using Sample = DiscreteSample<Dims>;
+
+  /// \param model sampled model \f$(e^{AT}, B_d, C)\f$, e.g. from `sampled_lti_model`;
+  /// \param K, Gamma gains, e.g. from `design_guiro_gains`;
+  /// \param z0, theta0 initial estimates of \f$x_0\f$ and θ.
+  GuiroObserver(Model model, GainMatrix K, ParameterGain Gamma, State z0, Parameters theta0, GuiroOptions options = {})
+      : model_(std::move(model)),
+        gain_(std::move(K)),
+        parameter_gain_(std::move(Gamma)),
+        z_(std::move(z0)),
+        theta_(std::move(theta0)),
+        options_(options) {
+    constexpr std::string_view who = "GuiroObserver";
+    const Sizes s = model_.sizes();
+    detail::require_shape(gain_, s.nx, s.ny, who, "K");
+    detail::require_finite(gain_, who, "K");
+    detail::require_shape(parameter_gain_, s.np, s.ny, who, "Gamma");
+    detail::require_finite(parameter_gain_, who, "Gamma");
+    detail::require_shape(z_, s.nx, 1, who, "z0");
+    detail::require_finite(z_, who, "z0");
+    detail::require_shape(theta_, s.np, 1, who, "theta0");
+    detail::require_finite(theta_, who, "theta0");
+    corrected_ = z_;
+    if constexpr (!Dims::is_fixed) work_.resize(s);
+  }
+
+  /// One sample: correction of \f$z^-_k\f$ with \f$y_k\f$, θ̂ update, prediction
+  /// over the period with \f$\Psi_k\f$ and \f$u_k\f$ (eq. (2)).
+  ///
+  /// Returns `nonfinite_input` for a NaN/Inf in the sample and
+  /// `nonfinite_result` when the step would produce one; in both cases the
+  /// observer is left exactly as it was.
+  [[nodiscard]] UpdateStatus update(const Sample& sample) {
+    if constexpr (Dims::is_fixed) {
+      Workspace w;
+      return advance(sample, w);
+    } else {
+      check_sample_sizes(sample);
+      return advance(sample, work_);
+    }
+  }
+
+  /// Prediction \f$z^-_k\f$ of the state at the current step, before its output is consumed.
+  [[nodiscard]] const State& state() const noexcept { return z_; }
+  /// The paper's \f$z_{k-1}\f$: the estimate at the last consumed sample after
+  /// its correction (the initial estimate before any update).
+  [[nodiscard]] const State& corrected_state() const noexcept { return corrected_; }
+  /// Parameter estimate \f$\hat\theta_k\f$.
+  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  /// Number k of accepted samples since construction or the last reset.
+  [[nodiscard]] Index step() const noexcept { return step_; }
+  [[nodiscard]] const Model& model() const noexcept { return model_; }
+  [[nodiscard]] const GainMatrix& gain() const noexcept { return gain_; }
+  [[nodiscard]] const ParameterGain& parameter_gain() const noexcept { return parameter_gain_; }
+
+  /// Restarts from \f$z_0, \hat\theta_0\f$ at step `start_step`.
+  void reset(const State& z0, const Parameters& theta0, Index start_step = 0) {
+    constexpr std::string_view who = "GuiroObserver::reset";
+    detail::require_shape(z0, z_.rows(), 1, who, "z0");
+    detail::require_finite(z0, who, "z0");
+    detail::require_shape(theta0, theta_.rows(), 1, who, "theta0");
+    detail::require_finite(theta0, who, "theta0");
+    detail::require(start_step >= 0, who, "start_step", "must be non-negative");
+    z_ = z0;
+    corrected_ = z0;
+    theta_ = theta0;
+    step_ = start_step;
+    started_ = false;
+  }
+
+  /// Gains used from the next update on.
+  void set_gains(const GainMatrix& K, const ParameterGain& Gamma) {
+    constexpr std::string_view who = "GuiroObserver::set_gains";
+    detail::require_shape(K, gain_.rows(), gain_.cols(), who, "K");
+    detail::require_finite(K, who, "K");
+    detail::require_shape(Gamma, parameter_gain_.rows(), parameter_gain_.cols(), who, "Gamma");
+    detail::require_finite(Gamma, who, "Gamma");
+    gain_ = K;
+    parameter_gain_ = Gamma;
+  }
+
+ private:
+  struct Workspace {
+    typename Dims::Output residual;  // y_k − C z^-_k, then C z_k − y_k
+    State corrected;                 // z_k
+    State predicted;                 // z^-_{k+1}
+    Parameters theta;                // θ̂_{k+1}
+    void resize(const Sizes& s) {
+      residual.setZero(s.ny);
+      corrected.setZero(s.nx);
+      predicted.setZero(s.nx);
+      theta.setZero(s.np);
+    }
+  };
+
+  UpdateStatus advance(const Sample& sample, Workspace& w) {
+    if (!detail::all_finite(sample.u, sample.y, sample.Psi)) return UpdateStatus::nonfinite_input;
+    const auto& system = model_.at(step_);
+    if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
+
+    /// Eq. (2), second line: \f$z_k = z^-_k - K(Cz^-_k - y_k)\f$ (skipped for the
+    /// paper's uncorrected \f$z_0\f$).
+    w.residual = sample.y;
+    w.residual.noalias() -= system.C * z_;  // innovation y_k − C z⁻_k
+    w.corrected = z_;
+    if (started_ || options_.correct_initial_estimate) w.corrected.noalias() += gain_ * w.residual;
+    w.residual.noalias() = system.C * w.corrected;
+    w.residual -= sample.y;  // a-posteriori output error C z_k − y_k
+
+    /// Eq. (2), third line: \f$\hat\theta_{k+1} = \hat\theta_k - \Gamma(Cz_k - y_k)\f$.
+    w.theta = theta_;
+    w.theta.noalias() -= parameter_gain_ * w.residual;
+
+    /// Eq. (2), first line integrated over the period with \f$\hat\theta_k\f$:
+    /// \f$z^-_{k+1} = Ez_k + \Psi_k\hat\theta_k + B_du_k\f$, \f$\Psi_k = EH_k\f$.
+    w.predicted.noalias() = detail::product(system.A, w.corrected);
+    w.predicted.noalias() += detail::product(sample.Psi, theta_);
+    w.predicted.noalias() += system.B * sample.u;
+
+    if (!detail::all_finite(w.predicted, w.corrected, w.theta)) return UpdateStatus::nonfinite_result;
+    detail::commit(z_, w.predicted);
+    detail::commit(corrected_, w.corrected);
+    detail::commit(theta_, w.theta);
+    started_ = true;
+    ++step_;
+    return UpdateStatus::accepted;
+  }
+
+  void check_sample_sizes(const Sample& sample) const {
+    constexpr std::string_view who = "GuiroObserver::update";
+    const Sizes s = model_.sizes();
+    detail::require_shape(sample.u, s.nu, 1, who, "sample.u");
+    detail::require_shape(sample.y, s.ny, 1, who, "sample.y");
+    detail::require_shape(sample.Psi, s.nx, s.np, who, "sample.Psi");
+  }
+
+  void check_system_sizes(const DiscreteSystem<Dims>& system) const {
+    constexpr std::string_view who = "GuiroObserver::update";
+    const Sizes s = model_.sizes();
+    detail::require_shape(system.A, s.nx, s.nx, who, "model.at(k).A");
+    detail::require_shape(system.B, s.nx, s.nu, who, "model.at(k).B");
+    detail::require_shape(system.C, s.ny, s.nx, who, "model.at(k).C");
+  }
+
+  Model model_;
+  GainMatrix gain_;
+  ParameterGain parameter_gain_;
+  State z_;          // z^-_k
+  State corrected_;  // z_{k−1}
+  Parameters theta_;
+  GuiroOptions options_;
+  Index step_ = 0;
+  bool started_ = false;
+  [[no_unique_address]] std::conditional_t<Dims::is_fixed, std::monostate, Workspace> work_;
+};
+
+}  // namespace adaptobs

@@ -1,0 +1,290 @@
+#pragma once
+/// \file
+/// Takagi–Sugeno polytopic adaptive observer of Srinivasarengan, Ragot, Aubrun
+/// and Maquin (paper `004_9e717d6cc2be1dbf.txt`, eq. (65) for constant
+/// parameters, eq. (21) with Remark 5 for time-varying ones).
+///
+/// For the polytopic model (64) \f$x_{k+1} = \sum_i h_i(z_k,\theta)(A_ix_k + B_iu_k)\f$,
+/// \f$y_k = Cx_k\f$ (see `TakagiSugenoModel`) the observer runs on the weights
+/// \f$\hat h_i = h_i(\hat z_k, \hat\theta_k)\f$, where \f$\hat z_k = z(\hat x_k, u_k, \hat\theta_k)\f$
+/// is the premise vector at the estimates and both \f$\hat z_k\f$ and \f$\hat\theta_k\f$ are
+/// clipped to their sectors before the memberships are formed:
+/// \f[ \hat x_{k+1} = \sum_{i=1}^{r}\hat h_i\left[A_i\hat x_k + B_iu_k + L_i(y_k - C\hat x_k)\right], \f]
+/// \f[ \hat\theta_{k+1} = \hat\theta_k + \sum_{i=1}^{r}\hat h_i\left[K_{y,i}(y_k - C\hat x_k) - K_\theta\hat\theta_k\right]. \f]
+/// With no \f$K_\theta\f$ this is eq. (65) (constant θ); with \f$K_\theta\f$ it is eq. (21),
+/// extended to state premises as in Remark 5 (time-varying θ).
+///
+/// Readings of the printed text:
+/// - (65) prints \f$\hat y_k = Cx_k\f$; the output estimate is \f$C\hat x_k\f$ as in (21).
+/// - θ̂ reaches the state prediction only through the weights: because the
+///   model is affine in θ, \f$\sum_i\hat h_iA_i = A(\hat z, \hat\theta)\f$ inside the sectors.
+///   The parameter law is an integrator of the output error (no regressor), so it
+///   converges only where the sign and size of \f$K_{y,i}\f$ suit the sensitivity of y
+///   to θ along the trajectory; the LMIs of theorems 1–2 certify the state-error
+///   part (see `design/takagi_sugeno_lmi.hpp`).
+/// - \f$K_\theta\f$ enters as printed in (21): \f$\hat\theta_{k+1} = (I - K_\theta)\hat\theta_k + \dots\f$,
+///   a leakage that biases θ̂ toward 0 by a term of order \f$K_\theta/K_{y}\f$ (Remark 3).
+
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/takagi_sugeno_model.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace adaptobs {
+
+/// Gains of `TakagiSugenoObserver`: one \f$L_i\f$ and one \f$K_{y,i}\f$ per vertex, in the
+/// vertex order of the model, and the optional leakage \f$K_\theta\f$ of eq. (21).
+template <StateSpace D>
+struct TakagiSugenoGains {
+  using ParameterGain = Eigen::Matrix<typename D::Scalar, D::np, D::ny>;
+  std::vector<typename D::GainMatrix> L;  ///< \f$L_i \in \mathbb{R}^{n_x\times n_y}\f$
+  std::vector<ParameterGain> K;           ///< \f$K_{y,i} \in \mathbb{R}^{n_\theta\times n_y}\f$
+  /// \f$K_\theta \in \mathbb{R}^{n_\theta\times n_\theta}\f$: empty for constant parameters (eq. (65)),
+  /// set for the time-varying-parameter observer (eq. (21)).
+  std::optional<typename D::ParameterMatrix> K_theta;
+};
+
+template <class Model>
+class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
+ public:
+  using Dims = typename Model::Dims;
+  using Scalar = typename Dims::Scalar;
+  using State = typename Dims::State;
+  using Parameters = typename Dims::Parameters;
+  using Sample = InputOutputSample<Dims>;
+  using Gains = TakagiSugenoGains<Dims>;
+  using PremiseVector = typename Model::PremiseVector;
+  using Weights = typename Model::Weights;
+  static constexpr int vertices_at_compile_time = Model::vertices_at_compile_time;
+
+  /// \param gains \f$L_i, K_{y,i}\f$ per vertex (and \f$K_\theta\f$ for eq. (21));
+  /// \param x0, theta0 initial estimates \f$\hat x_0, \hat\theta_0\f$.
+  TakagiSugenoObserver(Model model, const Gains& gains, State x0, Parameters theta0)
+      : model_(std::move(model)), x_(std::move(x0)), theta_(std::move(theta0)) {
+    constexpr std::string_view who = "TakagiSugenoObserver";
+    const Sizes s = model_.sizes();
+    detail::require_shape(x_, s.nx, 1, who, "x0");
+    detail::require_finite(x_, who, "x0");
+    detail::require_shape(theta_, s.np, 1, who, "theta0");
+    detail::require_finite(theta_, who, "theta0");
+    set_gains(gains);
+    weights_.setZero(model_.vertex_count());
+    premises_.setZero(model_.premise_count());
+    if constexpr (!Dims::is_fixed || vertices_at_compile_time == Eigen::Dynamic) work_.resize(s, model_);
+  }
+
+  /// One step of eq. (65) (or (21) when \f$K_\theta\f$ is set) with the sample \f$(u_k, y_k)\f$.
+  ///
+  /// Returns `nonfinite_input` for a NaN/Inf in the sample or in the premise
+  /// variables \f$\hat z_k\f$, `nonfinite_result` when the step would produce one; in
+  /// both cases the observer is left exactly as it was.
+  [[nodiscard]] UpdateStatus update(const Sample& sample) {
+    if constexpr (Dims::is_fixed && vertices_at_compile_time != Eigen::Dynamic) {
+      Workspace w;
+      return advance(sample, w);
+    } else {
+      check_sample_sizes(sample);
+      return advance(sample, work_);
+    }
+  }
+
+  /// State estimate \f$\hat x_k\f$ and parameter estimate \f$\hat\theta_k\f$.
+  [[nodiscard]] const State& state() const noexcept { return x_; }
+  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  /// Weights \f$\hat h_i\f$ used by the last accepted update (zero before the first).
+  [[nodiscard]] const Weights& weights() const noexcept { return weights_; }
+  /// Premise variables \f$\hat z_k\f$ of the last accepted update, before clipping.
+  [[nodiscard]] const PremiseVector& premises() const noexcept { return premises_; }
+  /// False when the last accepted update had to clip \f$\hat z_k\f$ or \f$\hat\theta_k\f$ to its sector
+  /// (the estimates left the region where the model is exact; Remark 8).
+  [[nodiscard]] bool premises_in_sectors() const noexcept { return in_sectors_; }
+  /// Number k of accepted samples since construction or the last reset.
+  [[nodiscard]] Index step() const noexcept { return step_; }
+  [[nodiscard]] const Model& model() const noexcept { return model_; }
+  [[nodiscard]] const Gains& gains() const noexcept { return gains_; }
+  /// True for the time-varying-parameter observer (eq. (21), \f$K_\theta\f$ set).
+  [[nodiscard]] bool has_leakage() const noexcept { return gains_.K_theta.has_value(); }
+
+  /// Restarts from \f$\hat x_0, \hat\theta_0\f$ at step `start_step`.
+  void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
+    constexpr std::string_view who = "TakagiSugenoObserver::reset";
+    detail::require_shape(x0, x_.rows(), 1, who, "x0");
+    detail::require_finite(x0, who, "x0");
+    detail::require_shape(theta0, theta_.rows(), 1, who, "theta0");
+    detail::require_finite(theta0, who, "theta0");
+    detail::require(start_step >= 0, who, "start_step", "must be non-negative");
+    x_ = x0;
+    theta_ = theta0;
+    weights_.setZero();
+    premises_.setZero();
+    in_sectors_ = true;
+    step_ = start_step;
+  }
+
+  /// Replaces the gains (checked as at construction) from the next update on.
+  void set_gains(const Gains& gains) {
+    constexpr std::string_view who = "TakagiSugenoObserver";
+    const Sizes s = model_.sizes();
+    const Index r = model_.vertex_count();
+    const auto require_count = [&](std::size_t count, std::string_view argument) {
+      if (static_cast<Index>(count) != r) {
+        std::ostringstream os;
+        os << "must hold one matrix per vertex (" << r << ", got " << count << ")";
+        detail::fail_argument(who, argument, os.str());
+      }
+    };
+    require_count(gains.L.size(), "gains.L");
+    require_count(gains.K.size(), "gains.K");
+    for (const auto& l : gains.L) {
+      detail::require_shape(l, s.nx, s.ny, who, "gains.L");
+      detail::require_finite(l, who, "gains.L");
+    }
+    for (const auto& k : gains.K) {
+      detail::require_shape(k, s.np, s.ny, who, "gains.K");
+      detail::require_finite(k, who, "gains.K");
+    }
+    if (gains.K_theta) {
+      detail::require_shape(*gains.K_theta, s.np, s.np, who, "gains.K_theta");
+      detail::require_finite(*gains.K_theta, who, "gains.K_theta");
+    }
+    gains_ = gains;
+    // [V_1 … V_r], V_i = [[A_i, B_i, L_i], [0, 0, K_{y,i}]], so that
+    // [x̂⁺; Δθ̂] = (Σ ĥ_i V_i) [x̂; u; y − Cx̂].
+    const Index nv = s.nx + s.nu + s.ny;
+    vertex_maps_.setZero(s.nx + s.np, nv * r);
+    for (Index i = 0; i < r; ++i) {
+      auto block = vertex_maps_.middleCols(i * nv, nv);
+      block.topLeftCorner(s.nx, s.nx) = model_.A(i);
+      block.block(0, s.nx, s.nx, s.nu) = model_.B(i);
+      block.block(0, s.nx + s.nu, s.nx, s.ny) = gains_.L[static_cast<std::size_t>(i)];
+      block.bottomRightCorner(s.np, s.ny) = gains_.K[static_cast<std::size_t>(i)];
+    }
+  }
+
+ private:
+  static constexpr int nv_at_compile_time = sum_of_sizes(sum_of_sizes(Dims::nx, Dims::nu), Dims::ny);
+  static constexpr int na_at_compile_time = sum_of_sizes(Dims::nx, Dims::np);
+  using VertexMaps =
+      Eigen::Matrix<Scalar, na_at_compile_time, product_of_sizes(nv_at_compile_time, vertices_at_compile_time)>;
+
+  // Intermediate results of one step, committed only when all are finite.
+  struct Workspace {
+    PremiseVector z;
+    Weights h;
+    Eigen::Matrix<Scalar, nv_at_compile_time, 1> v;  // [x̂; u; y − Cx̂]
+    using Blend = Eigen::Matrix<Scalar, na_at_compile_time, nv_at_compile_time>;
+    Blend blend;  // Σ ĥ_i V_i
+    Eigen::Matrix<Scalar, na_at_compile_time, 1> next;  // [x̂⁺; Δθ̂]
+    State x;
+    Parameters theta;
+    void resize(const Sizes& s, const Model& m) {
+      const Index nv = s.nx + s.nu + s.ny;
+      z.setZero(m.premise_count());
+      h.setZero(m.vertex_count());
+      v.setZero(nv);
+      blend.setZero(s.nx + s.np, nv);
+      next.setZero(s.nx + s.np);
+      x.setZero(s.nx);
+      theta.setZero(s.np);
+    }
+  };
+
+  UpdateStatus advance(const Sample& sample, Workspace& w) {
+    if (!detail::all_finite(sample.u, sample.y)) return UpdateStatus::nonfinite_input;
+    const Index nx = x_.rows(), nu = sample.u.rows(), ny = sample.y.rows(), np = theta_.rows();
+
+    // Premise variables at the estimates, ẑ_k = z(x̂_k, u_k, θ̂_k) (they may use unmeasured states).
+    w.z = model_.premises(x_, sample.u, theta_);
+    if (!detail::all_finite(w.z)) return UpdateStatus::nonfinite_input;
+    /// Weights \f$\hat h_i = h_i(\hat z_k, \hat\theta_k)\f$ with \f$\hat z_k, \hat\theta_k\f$ clipped to their sectors (10), Remark 1.
+    model_.weights(w.z, theta_, w.h);
+
+    // v = [x̂_k; u_k; y_k − C x̂_k].
+    w.v.head(nx) = x_;
+    w.v.segment(nx, nu) = sample.u;
+    w.v.tail(ny) = sample.y;
+    w.v.tail(ny).noalias() -= model_.C() * x_;
+
+    /// (65) \f$\hat x_{k+1} = \sum_i\hat h_i[A_i\hat x_k + B_iu_k + L_i(y_k - C\hat x_k)]\f$ and
+    /// \f$\hat\theta_{k+1} = \hat\theta_k + \sum_i\hat h_iK_{y,i}(y_k - C\hat x_k)\f$ in one product:
+    /// \f$[\hat x_{k+1}; \hat\theta_{k+1} - \hat\theta_k] = (\sum_i\hat h_iV_i)\,v\f$ with
+    /// \f$V_i = \begin{bmatrix} A_i & B_i & L_i \\ 0 & 0 & K_{y,i}\end{bmatrix}\f$.
+    blend_vertex_maps(w.h, w.blend);
+    w.next.noalias() = detail::product(w.blend, w.v);
+    w.x = w.next.head(nx);
+    w.theta = theta_ + w.next.tail(np);
+    /// (21) adds the leakage \f$-\sum_i\hat h_iK_\theta\hat\theta_k = -K_\theta\hat\theta_k\f$ (\f$\sum_i\hat h_i = 1\f$).
+    if (gains_.K_theta) w.theta.noalias() -= *gains_.K_theta * theta_;
+
+    if (!detail::all_finite(w.x, w.theta)) return UpdateStatus::nonfinite_result;
+
+    in_sectors_ = model_.premise_bounds().contains(w.z) && model_.parameter_bounds().contains(theta_);
+    detail::commit(x_, w.x);
+    detail::commit(theta_, w.theta);
+    detail::commit(weights_, w.h);
+    detail::commit(premises_, w.z);
+    ++step_;
+    return UpdateStatus::accepted;
+  }
+
+  // Σ_i ĥ_i V_i, summed in two interleaved halves to shorten the chain of dependent
+  // additions (r ≥ 2 is even); fixed sizes take each V_i as a fixed-size block.
+  template <class DH, class DB>
+  void blend_vertex_maps(const Eigen::MatrixBase<DH>& h, Eigen::MatrixBase<DB>& blend) const {
+    const Index nv = blend.cols();
+    const auto V = [&](Index i) {
+      if constexpr (nv_at_compile_time != Eigen::Dynamic) {
+        return vertex_maps_.template middleCols<nv_at_compile_time>(i * nv);
+      } else {
+        return vertex_maps_.middleCols(i * nv, nv);
+      }
+    };
+    if (h.size() == 1) {
+      blend = V(0);
+      return;
+    }
+    typename Workspace::Blend odd = h(1) * V(1);
+    blend.noalias() = h(0) * V(0);
+    for (Index i = 2; i < h.size(); i += 2) {
+      blend.noalias() += h(i) * V(i);
+      odd.noalias() += h(i + 1) * V(i + 1);
+    }
+    blend += odd;
+  }
+
+  void check_sample_sizes(const Sample& sample) const {
+    constexpr std::string_view who = "TakagiSugenoObserver::update";
+    const Sizes s = model_.sizes();
+    detail::require_shape(sample.u, s.nu, 1, who, "sample.u");
+    detail::require_shape(sample.y, s.ny, 1, who, "sample.y");
+  }
+
+  Model model_;
+  Gains gains_;
+  VertexMaps vertex_maps_;
+  State x_;
+  Parameters theta_;
+  Weights weights_;
+  PremiseVector premises_;
+  bool in_sectors_ = true;
+  Index step_ = 0;
+  // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
+  [[no_unique_address]] std::conditional_t<Dims::is_fixed && vertices_at_compile_time != Eigen::Dynamic,
+                                           std::monostate, Workspace>
+      work_;
+};
+
+}  // namespace adaptobs

@@ -1,0 +1,43 @@
+// No heap allocation inside fixed-size updates of the Takagi–Sugeno observer,
+// for constant (65) and time-varying (21) parameters.
+
+#include <adaptobs/observers/takagi_sugeno.hpp>
+
+#include "models/wwtp.hpp"
+#include "support/allocation_counter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace {
+
+using adaptobs::Index;
+using adaptobs::testing::allocations_during;
+namespace wwtp = adaptobs::examples::wwtp;
+
+TEST(NoAllocation, TakagiSugenoFixedSizeUpdates) {
+  auto plant = wwtp::make_plant<double>(0.1);
+  std::vector<adaptobs::InputOutputSample<wwtp::Dims<double>>> samples;
+  for (Index k = 0; k < 5000; ++k) {
+    samples.push_back(plant.sample());
+    plant.advance();
+  }
+  auto gains = wwtp::paper_gains<double>();
+  for (bool leakage : {false, true}) {
+    if (leakage) gains.K_theta = wwtp::Vector1<double>(1e-3);
+    adaptobs::TakagiSugenoObserver observer(wwtp::model<double>(), gains, wwtp::initial_state_estimate<double>(),
+                                            wwtp::initial_parameter_estimate<double>());
+    int rejected = 0;
+    EXPECT_EQ(allocations_during([&] {
+                for (const auto& s : samples) rejected += observer.update(s) != adaptobs::UpdateStatus::accepted;
+                (void)observer.weights();
+                (void)observer.premises_in_sectors();
+              }),
+              0)
+        << "leakage " << leakage;
+    EXPECT_EQ(rejected, 0);
+  }
+}
+
+}  // namespace

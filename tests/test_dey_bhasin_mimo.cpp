@@ -1,0 +1,582 @@
+// Dey–Bhasin observer (paper 003) on the MIMO example of §5 and on random
+// dimensions: the reading of the example, eq. (7) and (12), the structured
+// filters against the literal (8)–(11), convergence with a sufficiently rich
+// input (theorem 6), boundedness without it (theorem 5, both bounds), batch
+// least squares (18), bad input and configuration.
+
+#include <adaptobs/adaptation/recursive_least_squares.hpp>
+#include <adaptobs/core/observer.hpp>
+#include <adaptobs/core/spectral_norm.hpp>
+#include <adaptobs/design/stability.hpp>
+#include <adaptobs/observers/dey_bhasin.hpp>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include "models/dey_bhasin.hpp"
+#include "support/eigen_testing.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace {
+
+using adaptobs::Index;
+using adaptobs::UpdateStatus;
+using adaptobs::testing::RandomMatrices;
+namespace db = adaptobs::examples::dey_bhasin;
+namespace mimo = db::mimo;
+
+using Observer = mimo::Observer<double>;
+using DynamicObserver = adaptobs::DeyBhasinObserver<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>;
+static_assert(adaptobs::Observer<Observer>);
+static_assert(adaptobs::Observer<DynamicObserver>);
+static_assert(adaptobs::Observer<adaptobs::SuzukiObserver<double, 3, 2, 2>>);
+static_assert(Observer::np == 15 && Observer::nx == 6 && Observer::nu == 2 && Observer::ny == 2);
+
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+using Vector15 = Eigen::Matrix<double, 15, 1>;
+
+Vector15 true_p(const Observer& o) { return o.parameters_of(mimo::a(), mimo::B()); }
+
+// --- The reading of §5 --------------------------------------------------------
+
+TEST(DeyBhasinExample, FirstBlockOfAIsReadAsZeroPointFour) {
+  const Matrix6 a = adaptobs::block_companion_matrix<2>(mimo::a());
+  const Matrix6 printed = adaptobs::block_companion_matrix<2>(mimo::printed_a());
+  const Matrix6 f = adaptobs::block_companion_matrix<2>(mimo::f());
+  EXPECT_NEAR(adaptobs::spectral_radius(a), 0.8962, 1e-4);
+  EXPECT_NEAR(adaptobs::spectral_radius(printed), 4.0455, 1e-4);
+  EXPECT_NEAR(adaptobs::spectral_radius(f), 0.8892, 1e-4);
+  // Under the bounded input of figure 3 the printed plant overflows; the read one stays bounded.
+  auto overflowing = mimo::make_plant(mimo::RichInput{}, mimo::printed_a());
+  Index overflow_step = -1;
+  for (Index t = 0; t < 1000 && overflow_step < 0; ++t) {
+    if (!overflowing.state().allFinite()) overflow_step = t;
+    overflowing.advance();
+  }
+  EXPECT_GT(overflow_step, 100);
+  EXPECT_LT(overflow_step, 600);
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  double largest = 0;
+  for (Index t = 0; t < 3000; ++t) {
+    largest = std::max(largest, plant.state().norm());
+    plant.advance();
+  }
+  EXPECT_LT(largest, 100.0);
+  // (A, C) observable and (A, B) controllable: the transfer matrix (1) is coprime, p identifiable.
+  Eigen::Matrix<double, 12, 6> observability;
+  Eigen::Matrix<double, 6, 12> controllability;
+  Matrix6 power = Matrix6::Identity();
+  const auto c = db::canonical_output_matrix<double>(3, 2);
+  for (int k = 0; k < 6; ++k) {
+    observability.middleRows<2>(2 * k) = c * power;
+    controllability.middleCols<2>(2 * k) = power * mimo::B();
+    power = a * power;
+  }
+  EXPECT_EQ(Eigen::FullPivLU<Eigen::MatrixXd>(observability).rank(), 6);
+  EXPECT_EQ(Eigen::FullPivLU<Eigen::MatrixXd>(controllability).rank(), 6);
+  // p's first entry a₁ − f₁ is exactly 0: normalizing p̂ by p is undefined, â by a is not.
+  const auto observer = mimo::make_observer();
+  EXPECT_EQ(true_p(observer)(0), 0.0);
+  EXPECT_NEAR((true_p(observer) - observer.parameters()).norm(), 7.563729, 1e-6);
+}
+
+// (7): x_{t+1} = F x_t + (I_r ⊗ y_t)(a − f) + B u_t.
+TEST(DeyBhasin, Equation7RewritesThePlant) {
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  const Matrix6 f = adaptobs::block_companion_matrix<2>(mimo::f());
+  const Eigen::Vector3d a_minus_f = mimo::a() - mimo::f();
+  for (Index t = 0; t < 200; ++t) {
+    const Eigen::Matrix<double, 6, 1> x = plant.state();
+    const auto sample = plant.sample();
+    Eigen::Matrix<double, 6, 3> y_kron = Eigen::Matrix<double, 6, 3>::Zero();
+    for (int k = 0; k < 3; ++k) y_kron.block<2, 1>(2 * k, k) = sample.y;
+    const Eigen::Matrix<double, 6, 1> expected = f * x + y_kron * a_minus_f + mimo::B() * sample.u;
+    plant.advance();
+    EXPECT_MATRIX_NEAR(plant.state(), expected, 1e-12 * (1 + x.norm()), 0.0) << "step " << t;
+  }
+}
+
+// (12): x_t = S_t p + F^t x_0 and y_t = φ_tᵀ p + C F^t x_0 on the simulated plant.
+TEST(DeyBhasin, Equation12HoldsOnTheSimulatedPlant) {
+  auto observer = Observer(mimo::f(), mimo::x0(), mimo::a_hat0(), mimo::B_hat0(), mimo::law_options());
+  const Vector15 p = true_p(observer);
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t < 400; ++t) {
+    const Eigen::Matrix<double, 6, 1> x = plant.state();
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    const double scale = std::max(1.0, x.cwiseAbs().maxCoeff());
+    EXPECT_MATRIX_NEAR(observer.state_with(p), x, 1e-10 * scale, 0.0) << "step " << t;
+    // With x̂_0 = x_0, z_t = y_t − C F^t x_0 = φ_tᵀ p.
+    EXPECT_MATRIX_NEAR(observer.measurement(), Eigen::Vector2d(observer.regressor().transpose() * p), 1e-10 * scale,
+                       0.0);
+    plant.advance();
+  }
+  // Started at the truth, the observer stays on it: x̂_t = x_t and the prediction is x_{t+1}.
+  auto exact = Observer(mimo::f(), mimo::x0(), mimo::a(), mimo::B(), mimo::law_options());
+  auto replay = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t < 400; ++t) {
+    ASSERT_EQ(exact.update(replay.sample()), UpdateStatus::accepted);
+    EXPECT_MATRIX_NEAR(exact.current_state(), replay.state(), 1e-10, 1e-10);
+    replay.advance();
+    EXPECT_MATRIX_NEAR(exact.state(), replay.state(), 1e-10, 1e-10);
+  }
+  EXPECT_MATRIX_NEAR(exact.A_hat(), adaptobs::block_companion_matrix<2>(mimo::a()), 1e-12, 0.0);
+  EXPECT_MATRIX_NEAR(exact.B_hat(), mimo::B(), 1e-12, 0.0);
+}
+
+// --- The structured filters against the literal (8)–(11) ------------------------
+
+// S_y, S_u^(i) and F^t x̂_0 as printed, with dense matrices.
+struct LiteralFilters {
+  Eigen::MatrixXd F, Sy;
+  std::vector<Eigen::MatrixXd> Su;
+  Eigen::VectorXd free;
+  Index r, q, m, n;
+  LiteralFilters(const Eigen::VectorXd& f, Index q_, Index m_, const Eigen::VectorXd& x0)
+      : r(f.size()), q(q_), m(m_), n(f.size() * q_) {
+    F = adaptobs::block_companion_matrix(f, q);
+    Sy = Eigen::MatrixXd::Zero(n, r);
+    Su.assign(std::size_t(m), Eigen::MatrixXd::Zero(n, n));
+    free = x0;
+  }
+  Eigen::MatrixXd S() const {
+    Eigen::MatrixXd s(n, r + m * n);
+    s.leftCols(r) = Sy;
+    for (Index i = 0; i < m; ++i) s.middleCols(r + i * n, n) = Su[std::size_t(i)];
+    return s;
+  }
+  void advance(const Eigen::VectorXd& y, const Eigen::VectorXd& u) {
+    Eigen::MatrixXd y_kron = Eigen::MatrixXd::Zero(n, r);  // Y_t = I_r ⊗ y_t
+    for (Index k = 0; k < r; ++k) y_kron.block(k * q, k, q, 1) = y;
+    Sy = F * Sy + y_kron;                                                     // (8)
+    for (Index i = 0; i < m; ++i)
+      Su[std::size_t(i)] = F * Su[std::size_t(i)] + u(i) * Eigen::MatrixXd::Identity(n, n);  // (9)
+    free = F * free;
+  }
+};
+
+TEST(DeyBhasin, StructuredFiltersEqualTheLiteralOnesOnRandomDimensions) {
+  RandomMatrices rng(811);
+  const std::vector<std::array<Index, 3>> dimensions = {{1, 1, 1}, {1, 3, 2}, {2, 1, 1}, {3, 2, 2},
+                                                        {4, 3, 1}, {2, 2, 3}, {5, 1, 2}};
+  double worst = 0;
+  for (const auto& [r, q, m] : dimensions) {
+    Eigen::VectorXd f;
+    do {
+      f = rng.uniform<Eigen::VectorXd>(r, 1, -0.6, 0.6);
+    } while (adaptobs::spectral_radius(adaptobs::companion_matrix(f)) > 0.95);
+    const Index n = r * q, np = r + m * n;
+    const Eigen::VectorXd x0 = rng.uniform<Eigen::VectorXd>(n, 1);
+    DynamicObserver observer(f, x0, rng.uniform<Eigen::VectorXd>(r, 1), rng.uniform<Eigen::MatrixXd>(n, m),
+                             {.k0 = 10, .kmin = 1e-3, .R = Eigen::MatrixXd::Identity(q, q)});
+    ASSERT_EQ(observer.sizes(), (adaptobs::Sizes{n, m, q, np}));
+    LiteralFilters literal(f, q, m, x0);
+    const Eigen::MatrixXd c = db::canonical_output_matrix<double>(r, q);
+    Eigen::VectorXd y_previous, u_previous;
+    for (Index t = 0; t < 60; ++t) {
+      if (t > 0) literal.advance(y_previous, u_previous);
+      const Eigen::VectorXd y = rng.uniform<Eigen::VectorXd>(q, 1), u = rng.uniform<Eigen::VectorXd>(m, 1);
+      ASSERT_EQ(observer.update(DynamicObserver::Sample{u, y}), UpdateStatus::accepted);
+      const Eigen::MatrixXd s = literal.S();
+      const Eigen::MatrixXd phi = s.transpose() * c.transpose();  // φ_t = S_tᵀCᵀ
+      const Eigen::VectorXd p = rng.uniform<Eigen::VectorXd>(np, 1);
+      const Eigen::VectorXd x = s * p + literal.free;  // (13) with any p
+      const double phi_scale = std::max(1.0, phi.cwiseAbs().maxCoeff());
+      const double x_scale = std::max(1.0, x.cwiseAbs().maxCoeff());
+      ASSERT_MATRIX_NEAR(observer.regressor(), phi, 1e-12 * phi_scale, 0.0) << "(r,q,m) = " << r << q << m;
+      ASSERT_MATRIX_NEAR(observer.state_with(p), x, 1e-12 * x_scale, 0.0) << "(r,q,m) = " << r << q << m;
+      // The estimate (13) itself, and the prediction S_{t+1}p̂_t + F^{t+1}x̂_0.
+      ASSERT_MATRIX_NEAR(observer.current_state(), Eigen::VectorXd(s * observer.parameters() + literal.free),
+                         1e-12 * x_scale, 1e-12);
+      worst = std::max({worst, (observer.regressor() - phi).cwiseAbs().maxCoeff() / phi_scale,
+                        (observer.state_with(p) - x).cwiseAbs().maxCoeff() / x_scale});
+      y_previous = y;
+      u_previous = u;
+    }
+    LiteralFilters next = literal;
+    next.advance(y_previous, u_previous);
+    EXPECT_MATRIX_NEAR(observer.state(), Eigen::VectorXd(next.S() * observer.parameters() + next.free), 1e-11, 1e-11);
+  }
+  RecordProperty("worst_relative_difference", std::to_string(worst));
+}
+
+// --- Theorem 6: convergence with a sufficiently rich input ------------------------
+
+struct RunSummary {
+  Index within_one_percent_from = -1;  // first step after which every normalized estimate stays within 1 % of 1
+  Index state_error_small_from = -1;   // first step after which ‖x̃_t‖ < 1e-6 ‖x̃_0‖ stays true
+  double initial_state_error = 0;
+  double final_state_error = 0;
+  double final_deviation = 0;          // max |θ̂/θ − 1| at the end
+  double max_parameter_error = 0;      // max_t ‖p̃_t‖
+  Index resets = 0;
+};
+
+template <class Input>
+RunSummary run_example(Observer& observer, Input input, Index steps) {
+  auto plant = mimo::make_plant(input);
+  const Vector15 p = true_p(observer);
+  RunSummary s;
+  s.initial_state_error = (plant.state() - observer.current_state()).norm();
+  s.max_parameter_error = (p - observer.parameters()).norm();
+  for (Index t = 0; t < steps; ++t) {
+    EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted) << "step " << t;
+    const double deviation =
+        (db::normalized_estimates(observer, mimo::a(), mimo::B()).array() - 1.0).abs().maxCoeff();
+    const double state_error = (plant.state() - observer.current_state()).norm();
+    s.max_parameter_error = std::max(s.max_parameter_error, (p - observer.parameters()).norm());
+    if (deviation >= 0.01) s.within_one_percent_from = -1;
+    else if (s.within_one_percent_from < 0) s.within_one_percent_from = t;
+    if (state_error >= 1e-6 * s.initial_state_error) s.state_error_small_from = -1;
+    else if (s.state_error_small_from < 0) s.state_error_small_from = t;
+    s.final_deviation = deviation;
+    s.final_state_error = state_error;
+    plant.advance();
+  }
+  s.resets = observer.law().reset_count();
+  return s;
+}
+
+TEST(DeyBhasin, Theorem6RichInputIdentifiesEveryEntryOfAAndB) {
+  auto observer = mimo::make_observer();
+  const RunSummary s = run_example(observer, mimo::RichInput{}, 1000);
+  EXPECT_NEAR(s.initial_state_error, 4.682948, 1e-6);
+  EXPECT_LT(s.final_deviation, 0.01);  // the issue's criterion ...
+  EXPECT_LT(s.final_deviation, 1e-9);  // ... met with a wide margin
+  EXPECT_GE(s.within_one_percent_from, 0);
+  EXPECT_LT(s.within_one_percent_from, 100);  // settles at step 68
+  EXPECT_LT(s.final_state_error, 1e-6 * s.initial_state_error);
+  EXPECT_GE(s.state_error_small_from, 0);
+  EXPECT_LT(s.state_error_small_from, 200);  // settles at step 127
+  EXPECT_MATRIX_NEAR(observer.A_hat(), adaptobs::block_companion_matrix<2>(mimo::a()), 1e-9, 0.0);
+  EXPECT_MATRIX_NEAR(observer.B_hat(), mimo::B(), 1e-9, 0.0);
+  EXPECT_GT(s.resets, 20);
+  // The eigenvalue bound settles most reset decisions without a factorization.
+  EXPECT_LT(observer.law().reset_tests_run(), 1000 / 2);
+}
+
+// Without a rich input the estimates settle at wrong values, but stay bounded.
+TEST(DeyBhasin, Theorem6NotRichInputDoesNotIdentify) {
+  auto observer = mimo::make_observer();
+  const RunSummary s = run_example(observer, mimo::NotRichInput{}, 1000);
+  EXPECT_GT(s.final_deviation, 1.0);
+  EXPECT_LT(s.within_one_percent_from, 0);
+  EXPECT_TRUE(observer.parameters().allFinite());
+}
+
+// "Sufficiently rich" here: every input channel needs two sinusoids at frequencies
+// the other channel does not use. Rank of Σ φ_tφ_tᵀ over the stationary part of a run.
+template <class Input>
+Index regressor_rank(Input input) {
+  auto observer = mimo::make_observer();
+  auto plant = mimo::make_plant(input);
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(15, 15), phi(15, 2);
+  for (Index t = 0; t < 3000; ++t) {
+    EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    if (t >= 500) {
+      phi = observer.regressor();
+      gram.noalias() += phi * phi.transpose();
+    }
+    plant.advance();
+  }
+  const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram).eigenvalues();
+  return (lambda.array() > 1e-9 * lambda.maxCoeff()).count();
+}
+
+TEST(DeyBhasin, SufficientRichnessNeedsTwoSinusoidsPerChannel) {
+  using Input = mimo::Input;
+  EXPECT_EQ(regressor_rank(mimo::RichInput{}), 15);
+  EXPECT_EQ(regressor_rank(mimo::NotRichInput{}), 8);
+  EXPECT_EQ(regressor_rank([](Index k) {  // two sinusoids on one channel, one on the other
+              const double t = double(k);
+              return Input(std::sin(0.3 * t) + std::sin(1.3 * t), std::sin(0.7 * t));
+            }),
+            12);
+  EXPECT_LT(regressor_rank([](Index k) {  // three sinusoids, the same on both channels
+              const double t = double(k);
+              const double s = std::sin(0.3 * t) + std::sin(1.1 * t) + std::sin(2.3 * t);
+              return Input(s, s);
+            }),
+            15);
+}
+
+// --- Theorem 5: bounded estimates without excitation ------------------------------
+
+// Over 10⁵ steps with the input that is not rich, ‖p̃_t‖ stays below the bound of
+// theorem 5 as printed — ‖p̃_0‖ + k0 β_φ β_W Σ_{i≥0}‖C F^{i+1} x̃_0‖, β_φ and β_W
+// measured on the run — and below the corrected ‖p̃_0‖ + √k0 Σ_{i≥1}‖R^{-1/2} C F^i x̃_0‖.
+TEST(DeyBhasin, Theorem5BoundHoldsWithoutExcitationFor1e5Steps) {
+  auto observer = mimo::make_observer();
+  auto plant = mimo::make_plant(mimo::NotRichInput{});
+  const Vector15 p = true_p(observer);
+  const double initial_parameter_error = (p - observer.parameters()).norm();
+  const Eigen::VectorXd x_tilde0 = mimo::x0() - mimo::x_hat0();
+  const Eigen::MatrixXd f = observer.filters().transition_matrix();
+  const Eigen::MatrixXd c = db::canonical_output_matrix<double>(3, 2);
+  const Eigen::MatrixXd r_inverse_sqrt = Eigen::MatrixXd::Identity(2, 2);  // R = I
+  const double perturbation = db::output_free_response_sum(f, c, x_tilde0, Eigen::MatrixXd::Identity(2, 2));
+  double beta_phi = 0, beta_w = 0, max_error = initial_parameter_error;
+  Eigen::Matrix<double, 15, 15> previous_gamma = observer.law().covariance();
+  for (Index t = 0; t < 100000; ++t) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted) << "step " << t;
+    const auto& phi = observer.regressor();
+    beta_phi = std::max(beta_phi, adaptobs::spectral_norm(phi));
+    if (t > 0) {
+      const Eigen::Matrix2d w = (Eigen::Matrix2d::Identity() + phi.transpose() * previous_gamma * phi).inverse();
+      beta_w = std::max(beta_w, adaptobs::spectral_norm(w));
+    }
+    previous_gamma = observer.law().covariance();
+    max_error = std::max(max_error, (p - observer.parameters()).norm());
+    plant.advance();
+  }
+  const double paper_bound = initial_parameter_error + mimo::k0 * beta_phi * beta_w * perturbation;
+  const double corrected_bound =
+      initial_parameter_error + std::sqrt(mimo::k0) * db::output_free_response_sum(f, c, x_tilde0, r_inverse_sqrt);
+  EXPECT_NEAR(perturbation, 24.3552, 1e-4);
+  EXPECT_NEAR(corrected_bound, 777.74, 0.01);
+  EXPECT_LE(max_error, corrected_bound);
+  EXPECT_LE(corrected_bound, paper_bound);
+  EXPECT_NEAR(max_error, 18.7636, 1e-3);
+  EXPECT_GT(beta_phi, 50.0);
+  EXPECT_LE(beta_w, 1.0 + 1e-12);  // ‖W‖ ≤ ‖R⁻¹‖ = 1
+  RecordProperty("paper_bound", std::to_string(paper_bound));
+  RecordProperty("corrected_bound", std::to_string(corrected_bound));
+  RecordProperty("max_parameter_error", std::to_string(max_error));
+}
+
+// Step (26) of the proof of theorem 5 uses ‖(I + ΓφR⁻¹φᵀ)⁻¹‖₂ ≤ 1, false for a
+// non-symmetric product; the weighted norm N_t = ‖p̃_t‖_{Γ_t⁻¹} obeys the corrected
+// step N_t ≤ N_{t−1} + ‖R^{-1/2} C F^t x̃_0‖ at every step, resets included.
+TEST(DeyBhasin, Theorem5Step26FailsButTheWeightedNormStepHolds) {
+  const Eigen::Matrix2d gamma = Eigen::Vector2d(1, 100).asDiagonal();
+  const Eigen::Vector2d phi(1, 1);
+  const Eigen::Matrix2d m = (Eigen::Matrix2d::Identity() + gamma * phi * phi.transpose()).inverse();
+  EXPECT_NEAR(adaptobs::spectral_norm(m), 1.394, 1e-3);
+
+  auto observer = mimo::make_observer();
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  const Vector15 p = true_p(observer);
+  const Matrix6 f = observer.filters().transition_matrix();
+  Eigen::Matrix<double, 6, 1> free_error = mimo::x0() - mimo::x_hat0();  // F^t x̃_0
+  const auto weighted = [&](const Vector15& e, const Eigen::MatrixXd& g) {
+    return std::sqrt(e.dot(g.llt().solve(Eigen::VectorXd(e))));
+  };
+  Index violations_26 = 0;
+  ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);  // t = 0: no adaptation
+  plant.advance();
+  for (Index t = 1; t < 3000; ++t) {
+    free_error = f * free_error;
+    const Vector15 before = p - observer.parameters();
+    const Eigen::Matrix<double, 15, 15> gamma_before = observer.law().covariance();
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    const Vector15 after = p - observer.parameters();
+    const auto& phi_t = observer.regressor();
+    const Eigen::Vector2d perturbation = free_error.head<2>();  // C F^t x̃_0
+    const Eigen::Matrix2d w = (Eigen::Matrix2d::Identity() + phi_t.transpose() * gamma_before * phi_t).inverse();
+    if (after.norm() > before.norm() + (gamma_before * phi_t * w * perturbation).norm() + 1e-12) ++violations_26;
+    const double n_before = weighted(before, gamma_before);
+    EXPECT_LE(weighted(after, observer.law().covariance()), n_before + perturbation.norm() + 1e-8 * (1 + n_before))
+        << "step " << t;
+    plant.advance();
+  }
+  EXPECT_GT(violations_26, 0) << "(26) held at every step of this run";
+  RecordProperty("violations_of_26", std::to_string(violations_26));
+}
+
+// --- Batch least squares (18) ------------------------------------------------------
+
+TEST(DeyBhasin, WithoutResettingEqualsBatchLeastSquares18) {
+  using RlsObserver = adaptobs::DeyBhasinObserver<double, 3, 2, 2, adaptobs::RecursiveLeastSquares>;
+  static_assert(adaptobs::Observer<RlsObserver>);
+  using Matrix15 = Eigen::Matrix<double, 15, 15>;
+  const Matrix15 gamma0 = mimo::k0 * Matrix15::Identity();
+  // The batch solution on dynamic matrices (one factorization compiled for the whole file).
+  RlsObserver observer(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(),
+                       {.gamma0 = gamma0, .R = Eigen::Matrix2d::Identity()});
+  const Vector15 p0 = observer.parameters();
+  Eigen::MatrixXd information = Eigen::MatrixXd::Identity(15, 15) / mimo::k0;
+  Eigen::VectorXd rhs = information * Eigen::VectorXd(p0);
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t < 400; ++t) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    if (t >= 1) {  // (18) sums from i = 1 (φ_0 = 0 anyway)
+      const Eigen::MatrixXd phi = observer.regressor();
+      information += phi * phi.transpose();
+      rhs += phi * Eigen::VectorXd(observer.measurement());
+    }
+    plant.advance();
+  }
+  const Eigen::LLT<Eigen::MatrixXd> factor(information);
+  const Vector15 batch = factor.solve(rhs);
+  EXPECT_MATRIX_NEAR(observer.parameters(), batch, 1e-9 * batch.norm(), 0.0);
+  EXPECT_MATRIX_NEAR(observer.law().covariance(), Matrix15(factor.solve(Eigen::MatrixXd::Identity(15, 15))),
+                     1e-9 * observer.law().covariance().norm(), 0.0);
+}
+
+// --- Implementation properties ------------------------------------------------------
+
+TEST(DeyBhasin, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
+  auto fixed = mimo::make_observer();
+  DynamicObserver dynamic(Eigen::VectorXd(mimo::f()), Eigen::VectorXd(mimo::x_hat0()), Eigen::VectorXd(mimo::a_hat0()),
+                          Eigen::MatrixXd(mimo::B_hat0()),
+                          {.k0 = mimo::k0, .kmin = mimo::kmin, .R = Eigen::MatrixXd::Identity(2, 2)});
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t < 500; ++t) {
+    const auto& s = plant.sample();
+    ASSERT_EQ(fixed.update(s), UpdateStatus::accepted);
+    ASSERT_EQ(dynamic.update(DynamicObserver::Sample{s.u, s.y}), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_EQ(fixed.law().reset_count(), dynamic.law().reset_count());
+  EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.current_state(), fixed.current_state(), 1e-12, 1e-12);
+}
+
+TEST(DeyBhasin, ResetRestartsExactly) {
+  auto observer = mimo::make_observer();
+  auto fresh = mimo::make_observer();
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t < 300; ++t) {
+    (void)observer.update(plant.sample());
+    plant.advance();
+  }
+  observer.reset(mimo::x_hat0(), fresh.parameters());
+  EXPECT_EQ(observer.step(), 0);
+  EXPECT_EQ(observer.law().reset_count(), 0);
+  auto replay = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t < 300; ++t) {
+    (void)observer.update(replay.sample());
+    (void)fresh.update(replay.sample());
+    replay.advance();
+  }
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.state(), fresh.state()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.parameters(), fresh.parameters()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.law().covariance(), fresh.law().covariance()));
+}
+
+// Everything a user can read from the observer.
+struct Snapshot {
+  explicit Snapshot(const Observer& o)
+      : state(o.state()), current(o.current_state()), parameters(o.parameters()), phi(o.regressor()),
+        z(o.measurement()), bank(o.filter_bank()), gamma(o.law().covariance()), resets(o.law().reset_count()),
+        step(o.step()) {}
+  bool operator==(const Snapshot& other) const {
+    using adaptobs::testing::bitwise_equal;
+    return bitwise_equal(state, other.state) && bitwise_equal(current, other.current) &&
+           bitwise_equal(parameters, other.parameters) && bitwise_equal(phi, other.phi) && bitwise_equal(z, other.z) &&
+           bitwise_equal(bank, other.bank) && bitwise_equal(gamma, other.gamma) && resets == other.resets &&
+           step == other.step;
+  }
+  Observer::State state, current;
+  Observer::Parameters parameters;
+  Observer::Regressor phi;
+  Observer::Output z;
+  Observer::Bank bank;
+  Eigen::Matrix<double, 15, 15> gamma;
+  Index resets, step;
+};
+
+TEST(DeyBhasin, NonFiniteSamplesAreRejectedAndChangeNothing) {
+  auto observer = mimo::make_observer();
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t < 100; ++t) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  const Snapshot before(observer);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (double bad : {nan, inf, -inf}) {
+    Observer::Sample s{plant.sample().u, plant.sample().y};
+    s.y(1) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+    s = {plant.sample().u, plant.sample().y};
+    s.u(0) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+  }
+  // Finite but enormous: the step would overflow.
+  const Observer::Sample huge{Eigen::Vector2d::Constant(std::numeric_limits<double>::max()),
+                              Eigen::Vector2d::Constant(std::numeric_limits<double>::max())};
+  EXPECT_EQ(observer.update(huge), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(Snapshot(observer) == before);
+  EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+  EXPECT_EQ(observer.step(), before.step + 1);
+}
+
+template <class F>
+std::string configuration_error_of(F&& f) {
+  try {
+    f();
+  } catch (const adaptobs::ConfigurationError& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+#define EXPECT_REFUSED(expression, argument)                                        \
+  do {                                                                               \
+    const std::string message = configuration_error_of([&] { (void)(expression); }); \
+    EXPECT_NE(message.find("'" argument "'"), std::string::npos) << message;       \
+  } while (0)
+
+TEST(DeyBhasin, BadConfigurationNamesTheArgument) {
+  const auto options = mimo::law_options();
+  EXPECT_REFUSED(Observer(mimo::printed_a(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(), options), "f");
+  Eigen::Vector3d nan_a0 = mimo::a_hat0();
+  nan_a0(1) = std::nan("");
+  EXPECT_REFUSED(Observer(mimo::f(), mimo::x_hat0(), nan_a0, mimo::B_hat0(), options), "a0");
+  Eigen::Matrix<double, 6, 1> nan_x0 = mimo::x_hat0();
+  nan_x0(4) = std::nan("");
+  EXPECT_REFUSED(Observer(mimo::f(), nan_x0, mimo::a_hat0(), mimo::B_hat0(), options), "x0");
+  // Covariance and weight: indefinite or non-symmetric R, Γ0.
+  auto bad_r = options;
+  bad_r.R(1, 1) = -1;
+  EXPECT_REFUSED(Observer(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(), bad_r), "R");
+  bad_r = options;
+  bad_r.R(0, 1) = 0.5;
+  EXPECT_REFUSED(Observer(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(), bad_r), "R");
+  auto bad_kmin = options;
+  bad_kmin.kmin = 2 * bad_kmin.k0;
+  EXPECT_REFUSED(Observer(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(), bad_kmin), "kmin");
+  using RlsObserver = adaptobs::DeyBhasinObserver<double, 3, 2, 2, adaptobs::RecursiveLeastSquares>;
+  Eigen::Matrix<double, 15, 15> gamma0 = Eigen::Matrix<double, 15, 15>::Identity();
+  gamma0(3, 3) = -1;
+  EXPECT_REFUSED(RlsObserver(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(),
+                             {.gamma0 = gamma0, .R = Eigen::Matrix2d::Identity()}),
+                 "gamma0");
+  gamma0 = Eigen::Matrix<double, 15, 15>::Identity();
+  gamma0(2, 7) = 0.1;
+  EXPECT_REFUSED(RlsObserver(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(),
+                             {.gamma0 = gamma0, .R = Eigen::Matrix2d::Identity()}),
+                 "gamma0");
+  // Dynamic sizes: shapes that do not fit together.
+  const auto dyn_options = DynamicObserver::LawOptions{.k0 = 10, .kmin = 1e-3, .R = Eigen::MatrixXd::Identity(2, 2)};
+  EXPECT_REFUSED(DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(7), Eigen::VectorXd(mimo::a_hat0()),
+                                 Eigen::MatrixXd::Zero(7, 2), dyn_options),
+                 "x0");
+  EXPECT_REFUSED(DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6), Eigen::VectorXd::Zero(2),
+                                 Eigen::MatrixXd::Zero(6, 2), dyn_options),
+                 "a0");
+  EXPECT_REFUSED(DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6), Eigen::VectorXd(mimo::a_hat0()),
+                                 Eigen::MatrixXd::Zero(5, 2), dyn_options),
+                 "B0");
+  EXPECT_REFUSED(DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6), Eigen::VectorXd(mimo::a_hat0()),
+                                 Eigen::MatrixXd::Zero(6, 2),
+                                 {.k0 = 10, .kmin = 1e-3, .R = Eigen::MatrixXd::Identity(3, 3)}),
+                 "R");
+  DynamicObserver observer(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6), Eigen::VectorXd(mimo::a_hat0()),
+                           Eigen::MatrixXd::Zero(6, 2), dyn_options);
+  EXPECT_REFUSED(observer.update(DynamicObserver::Sample{Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(2)}),
+                 "sample.u");
+  EXPECT_REFUSED(observer.reset(Eigen::VectorXd::Zero(6), Eigen::VectorXd::Zero(14)), "p0");
+}
+
+}  // namespace

@@ -1,0 +1,403 @@
+// Continuous-discrete adaptive observer of Guiro, Iggidr, Ngom, Touré (paper
+// 002): the regressor integrals H_k (closed forms, adaptive bisection, exact
+// polynomial form) and the observer itself (convergence, error recursion (4),
+// float/double, fixed/dynamic, bad input). The gain design and proposition 2.2
+// are tested in test_guiro_design.cpp.
+
+#include <adaptobs/core/discretization.hpp>
+#include <adaptobs/core/observer.hpp>
+#include <adaptobs/core/regressor_integral.hpp>
+#include <adaptobs/core/sampled_model.hpp>
+#include <adaptobs/design/guiro_convergence.hpp>
+#include <adaptobs/design/guiro_gains.hpp>
+#include <adaptobs/observers/guiro.hpp>
+#include <adaptobs/simulation/discrete_plant.hpp>
+
+#include "models/guiro.hpp"
+#include "support/eigen_testing.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace {
+
+using adaptobs::ConditionVerdict;
+using adaptobs::Index;
+using adaptobs::UpdateStatus;
+using adaptobs::testing::RandomMatrices;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+namespace g = adaptobs::examples::guiro;
+
+template <class F>
+std::string configuration_error_of(F&& f) {
+  try {
+    f();
+  } catch (const adaptobs::ConfigurationError& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+// The paper's system: E = e^{AT}, C, H_0 (closed form).
+struct Paper {
+  Eigen::Matrix2d E = g::model<double>().system().A;
+  Eigen::RowVector2d C = g::output_matrix<double>();
+  Eigen::Vector2d H0 = g::closed_form_H<double>(0);
+};
+
+auto paper_gains(const Eigen::Vector3d& poles = g::requested_poles()) {
+  const Paper paper;
+  return adaptobs::design_guiro_gains(paper.E, paper.C, paper.H0, poles);
+}
+
+// ---- H_k ------------------------------------------------------------------------
+
+TEST(GuiroRegressor, H0MatchesThePrintedClosedForm) {
+  adaptobs::RegressorIntegral<double, 2, 1> integral(g::continuous_dynamics<double>(), 1.0);
+  const auto h0 = integral.integrate(g::Regressor{}, 0.0);
+  const Eigen::Vector2d printed(1 - std::log(1.5), 0.5 - std::log(2.25));
+  EXPECT_MATRIX_NEAR(h0.H, printed, 1e-12, 0);
+  EXPECT_MATRIX_NEAR(h0.H, Eigen::Vector2d(0.5945348918918356, -0.31093021621632877), 1e-12, 0);
+  EXPECT_MATRIX_NEAR(h0.Psi, Eigen::Vector2d(0.5945348918918356, 0.28360467567550685), 1e-12, 0);
+  EXPECT_TRUE(h0.converged);
+}
+
+// The closed form behind the paper's W(k): H_k = (T − r, T − T²/2 − c r), c = kT + 2, r = ln(1 + T/c).
+TEST(GuiroRegressor, HkMatchesTheClosedFormForSeveralKAndPeriods) {
+  for (double T : {0.5, 1.0, 2.0}) {
+    adaptobs::RegressorIntegral<double, 2, 1> integral(g::continuous_dynamics<double>(), T);
+    for (Index k : {0, 1, 2, 5, 10, 50, 1000}) {
+      const auto h = integral.integrate(g::Regressor{}, double(k) * T);
+      EXPECT_MATRIX_NEAR(h.H, g::closed_form_H<double>(k, T), 1e-12, 0) << "T=" << T << " k=" << k;
+      EXPECT_MATRIX_NEAR(h.Psi, g::closed_form_Psi<double>(k, T), 1e-12, 0) << "T=" << T << " k=" << k;
+      EXPECT_TRUE(h.converged);
+      EXPECT_LE(h.error_estimate, 2e-12 * std::max(1.0, h.H.cwiseAbs().maxCoeff()));
+    }
+  }
+  // The printed values the W(k) of §4 is built from.
+  EXPECT_MATRIX_NEAR(g::closed_form_H<double>(1), Eigen::Vector2d(0.7123179275482191, -0.3630462173553427), 1e-15, 0);
+  EXPECT_MATRIX_NEAR(g::closed_form_H<double>(10), Eigen::Vector2d(0.9199572923264636, -0.46051249208243705), 1e-15, 0);
+}
+
+// A kink inside the period: one 15-point panel cannot meet the tolerance,
+// bisection does. With A nilpotent, H = (∫f, −∫τf) for φ = (f, 0).
+TEST(GuiroRegressor, BisectionResolvesAKink) {
+  const auto kink = [](double t) { return Eigen::Vector2d(std::abs(t - 4.3), 0.0); };
+  const Eigen::Vector2d exact(0.29, -(0.0045 + (1.0 / 3 - 0.15) - (0.009 - 0.0135)));
+  adaptobs::RegressorIntegral<double, 2, 1> adaptive(g::continuous_dynamics<double>(), 1.0);
+  const auto h = adaptive.integrate(kink, 4.0);
+  EXPECT_TRUE(h.converged);
+  EXPECT_MATRIX_NEAR(h.H, exact, 1e-11, 0);
+  EXPECT_LE((h.H - exact).cwiseAbs().maxCoeff(), std::max(h.error_estimate, 1e-15));
+  adaptobs::RegressorIntegral<double, 2, 1> single_panel(g::continuous_dynamics<double>(), 1.0, {.max_depth = 0});
+  const auto coarse = single_panel.integrate(kink, 4.0);
+  EXPECT_FALSE(coarse.converged);
+  EXPECT_GT((coarse.H - exact).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+// Exact polynomial form against the quadrature and against zero-order hold.
+TEST(GuiroRegressor, PolynomialFormAgreesWithQuadratureAndZeroOrderHold) {
+  Eigen::Matrix3d a;
+  a << -0.5, 2.0, 0.0, -1.0, -0.3, 0.4, 0.2, 0.0, 0.1;
+  const double T = 0.7;
+  RandomMatrices rng(501);
+  using Regressor = Eigen::Matrix<double, 3, 2>;
+  const std::vector<Regressor> p{rng.uniform<Regressor>(), rng.uniform<Regressor>(), rng.uniform<Regressor>()};
+  const double t0 = 3.5;
+  const auto phi = [&](double t) -> Regressor {
+    const double tau = t - t0;
+    return p[0] + p[1] * tau + p[2] * tau * tau;
+  };
+  const adaptobs::PolynomialRegressorIntegral<double, 3, 2> exact(a, T, 2);
+  adaptobs::RegressorIntegral<double, 3, 2> quadrature(a, T, {.relative_tolerance = 1e-14});
+  const auto e = exact.integrate(p);
+  const auto q = quadrature.integrate(phi, t0);
+  EXPECT_MATRIX_NEAR(e.H, q.H, 1e-13, 1e-13);
+  EXPECT_MATRIX_NEAR(e.Psi, q.Psi, 1e-13, 1e-13);
+  EXPECT_MATRIX_NEAR(exact.transition(), quadrature.transition(), 1e-14, 1e-14);
+  // Zero-order hold: Ψ = ∫₀ᵀ e^{As} ds P₀, as discretize_zoh computes it.
+  const auto zoh = exact.integrate(std::span(p.data(), 1));
+  EXPECT_MATRIX_NEAR(zoh.Psi, adaptobs::discretize_zoh(a, p[0], T).Bd, 1e-14, 1e-14);
+  EXPECT_MATRIX_NEAR(zoh.H, quadrature.transition().partialPivLu().solve(zoh.Psi), 1e-13, 1e-13);
+  EXPECT_NE(configuration_error_of([&] { (void)exact.integrate(std::vector<Regressor>(4, Regressor::Zero())); })
+                .find("'coefficients'"),
+            std::string::npos);
+}
+
+// ---- Observer ----------------------------------------------------------------------------
+
+template <typename S>
+using PaperObserver = adaptobs::GuiroObserver<adaptobs::DiscreteLtiModel<g::Dims<S>>>;
+
+template <typename S>
+PaperObserver<S> make_observer(adaptobs::GuiroOptions options = {}, double gamma = 0) {
+  const auto gains = paper_gains();
+  const Eigen::Matrix<S, 1, 1> g1(S(gamma == 0 ? gains.Gamma(0, 0) : gamma));
+  return PaperObserver<S>(g::model<S>(), gains.K.cast<S>(), g1, g::initial_state_estimate<S>(),
+                          g::initial_parameter_estimate<S>(), options);
+}
+
+static_assert(adaptobs::Observer<PaperObserver<double>>);
+static_assert(adaptobs::Observer<PaperObserver<float>>);
+
+// The example of §4, noise free: the observer uses the quadrature's Ψ_k, the
+// plant the closed form.
+TEST(Guiro, PaperExampleConvergesWithinSixtySamples) {
+  auto observer = make_observer<double>();
+  auto plant = g::make_plant<double>();
+  adaptobs::RegressorIntegral<double, 2, 1> integral(g::continuous_dynamics<double>(), g::period);
+  for (Index k = 0; k < 60; ++k) {
+    auto sample = plant.sample();
+    sample.Psi = integral.integrate(g::Regressor{}, double(k) * g::period).Psi;
+    ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_LT(std::abs(observer.parameters()(0) - g::theta), 1e-6);
+  EXPECT_LT((observer.state() - plant.state()).norm(), 1e-6);
+}
+
+// With the paper's uncorrected z₀ the run is eq. (2) from k = 0, and the
+// errors at k = 60 are the reference values of that recursion.
+TEST(Guiro, PaperInitializationReplaysEquation2) {
+  auto observer = make_observer<double>({.correct_initial_estimate = false});
+  auto plant = g::make_plant<double>();
+  Eigen::Vector2d x60 = Eigen::Vector2d::Zero();
+  for (Index k = 0; k <= 60; ++k) {
+    if (k == 60) {
+      EXPECT_NEAR(std::abs(observer.parameters()(0) - g::theta) / 3.977e-8, 1.0, 1e-3);
+      x60 = plant.state();
+    }
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_NEAR((observer.corrected_state() - x60).norm() / 4.625e-8, 1.0, 1e-3);
+}
+
+TEST(Guiro, PrintedGainsDiverge) {
+  auto observer = make_observer<double>({.correct_initial_estimate = false}, g::printed_Gamma);
+  Eigen::Matrix<double, 1, 1> gamma(g::printed_Gamma);
+  observer.set_gains(g::printed_K(), gamma);
+  auto plant = g::make_plant<double>();
+  for (Index k = 0; k < 60; ++k) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_GT(std::abs(observer.parameters()(0) - g::theta), 1e6);
+}
+
+// Eq. (4): v_{k+1} = U_k v_k with U_k = U(H_k), v_k = (z_k − x_k, θ̂_k − θ).
+// Before the update of sample k the observer holds θ̂_k; after it, z_k.
+TEST(Guiro, ErrorsFollowEquation4) {
+  const Paper paper;
+  const auto gains = paper_gains();
+  auto observer = make_observer<double>({.correct_initial_estimate = false});
+  auto plant = g::make_plant<double>();
+  Eigen::Vector3d previous = Eigen::Vector3d::Zero(), first = Eigen::Vector3d::Zero(), v;
+  for (Index k = 0; k <= 30; ++k) {
+    const double theta_k = observer.parameters()(0);
+    const Eigen::Vector2d x_k = plant.state();
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    v << observer.corrected_state() - x_k, theta_k - g::theta;
+    if (k == 0) {
+      first = v;
+    } else {
+      const Eigen::Vector3d predicted =
+          adaptobs::guiro_error_matrix(paper.E, paper.C, g::closed_form_H<double>(k - 1), gains.K, gains.Gamma) *
+          previous;
+      EXPECT_MATRIX_NEAR(v, predicted, 1e-12 * (1 + first.norm()), 0) << "k=" << k;
+    }
+    previous = v;
+    plant.advance();
+  }
+  EXPECT_LT(v.norm(), 1e-3 * first.norm());
+}
+
+template <typename S>
+class GuiroTyped : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(GuiroTyped, Scalars);
+
+TYPED_TEST(GuiroTyped, PaperExampleConverges) {
+  using S = TypeParam;
+  auto observer = make_observer<S>();
+  auto plant = g::make_plant<S>();
+  for (Index k = 0; k < 60; ++k) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  // x₂ grows like 5t²/2 ≈ 9000: relative to it, float keeps about 1e-6.
+  const double tol = std::is_same_v<S, float> ? 1e-3 : 1e-6;
+  EXPECT_LT(std::abs(double(observer.parameters()(0)) - g::theta), tol);
+  EXPECT_LT(double((observer.state() - plant.state()).norm()) / double(plant.state().norm()), tol * 1e-2);
+}
+
+TYPED_TEST(GuiroTyped, NonFiniteSamplesAreRejectedAndChangeNothing) {
+  using S = TypeParam;
+  auto observer = make_observer<S>();
+  auto plant = g::make_plant<S>();
+  for (Index k = 0; k < 10; ++k) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  const auto z = observer.state();
+  const auto zc = observer.corrected_state();
+  const auto theta = observer.parameters();
+  const Index step = observer.step();
+  const auto unchanged = [&] {
+    using adaptobs::testing::bitwise_equal;
+    return bitwise_equal(observer.state(), z) && bitwise_equal(observer.corrected_state(), zc) &&
+           bitwise_equal(observer.parameters(), theta) && observer.step() == step;
+  };
+  for (S bad : {std::numeric_limits<S>::quiet_NaN(), std::numeric_limits<S>::infinity()}) {
+    auto s = plant.sample();
+    s.y(0) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+    s = plant.sample();
+    s.Psi(1, 0) = -bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+    EXPECT_TRUE(unchanged());
+  }
+  auto huge = plant.sample();
+  huge.Psi.setConstant(std::numeric_limits<S>::max());
+  huge.y.setConstant(-std::numeric_limits<S>::max());
+  EXPECT_EQ(observer.update(huge), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(unchanged());
+  EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+}
+
+// Three states, two outputs, two parameters, a known input: φ(t) = Φ₀ + e^{−t}Φ₁
+// settles, so the design uses H̄ = H∞ (exact from the polynomial form) and
+// proposition 2.2 holds through condition (ii).
+TEST(Guiro, MimoWithKnownInputConverges) {
+  using Dims = adaptobs::Dimensions<double, 3, 1, 2, 2>;
+  Eigen::Matrix3d a;
+  a << 0, 1, 0,  //
+      0, 0, 1,   //
+      -0.2, -0.5, -0.4;
+  const Eigen::Vector3d b(0, 0, 1);
+  Eigen::Matrix<double, 2, 3> c;
+  c << 1, 0, 0,  //
+      0, 0, 1;
+  Eigen::Matrix<double, 3, 2> phi0, phi1;
+  phi0 << 0, 0, 1, 0, 0, 1;
+  phi1 << 1, 0, 0, 0, 0, -1;
+  const double T = 0.5;
+  const auto phi = [&](double t) -> Eigen::Matrix<double, 3, 2> { return phi0 + std::exp(-t) * phi1; };
+  const auto model = adaptobs::sampled_lti_model<Dims>(a, b, c, T);
+  adaptobs::RegressorIntegral<double, 3, 2> integral(a, T, {.relative_tolerance = 1e-14});
+  const adaptobs::PolynomialRegressorIntegral<double, 3, 2> constant(a, T, 0);
+  const Eigen::Matrix<double, 3, 2> h_limit = constant.integrate(std::span(&phi0, 1)).H;
+  const std::complex<double> z(0.3, 0.2);
+  const Eigen::Matrix<std::complex<double>, 5, 1> poles(0.2, 0.4, 0.5, z, std::conj(z));
+  const auto gains = adaptobs::design_guiro_gains(model.system().A, c, h_limit, poles);
+  EXPECT_LE(gains.eigenvalue_mismatch, 1e-9);
+
+  const Eigen::Vector2d theta(1.5, -0.7);
+  auto input = [](Index k) { return Eigen::Matrix<double, 1, 1>(std::sin(0.3 * double(k))); };
+  auto regressor = [&](Index k, const Eigen::Matrix<double, 1, 1>&) {
+    return integral.integrate(phi, double(k) * T).Psi;
+  };
+  adaptobs::DiscreteLinearPlant plant(model, Eigen::Vector3d(1, -1, 0.5), theta, input, regressor,
+                                      adaptobs::PlantNoise<double>{}, T);
+  adaptobs::GuiroObserver observer(model, gains.K, gains.Gamma, Eigen::Vector3d::Zero().eval(),
+                                   Eigen::Vector2d::Zero().eval());
+  std::vector<Eigen::Matrix<double, 3, 2>> hs;
+  for (Index k = 0; k < 80; ++k) {
+    hs.push_back(integral.integrate(phi, double(k) * T).H);
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_MATRIX_NEAR(observer.parameters(), theta, 1e-9, 0);
+  EXPECT_MATRIX_NEAR(observer.state(), plant.state(), 1e-9, 0);
+  const auto report = adaptobs::check_guiro_convergence(model.system().A, c, gains.K, gains.Gamma, h_limit, hs);
+  EXPECT_EQ(report.condition_ii, ConditionVerdict::holds);
+  EXPECT_TRUE(report.certified());
+}
+
+TEST(Guiro, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
+  using DynDims = adaptobs::DynamicDimensions<double>;
+  const auto fixed_model = g::model<double>();
+  const adaptobs::DiscreteLtiModel<DynDims> dynamic_model(fixed_model.system().A, MatrixXd::Zero(2, 0),
+                                                          fixed_model.system().C, 1);
+  const auto gains = paper_gains();
+  auto fixed = make_observer<double>();
+  adaptobs::GuiroObserver dynamic(dynamic_model, MatrixXd(gains.K), MatrixXd::Constant(1, 1, gains.Gamma(0, 0)), VectorXd::Zero(2),
+                                  VectorXd::Zero(1));
+  auto plant = g::make_plant<double>();
+  for (Index k = 0; k < 40; ++k) {
+    const auto& s = plant.sample();
+    ASSERT_EQ(fixed.update(s), UpdateStatus::accepted);
+    ASSERT_EQ(dynamic.update({VectorXd::Zero(0), VectorXd::Constant(1, s.y(0)), MatrixXd(s.Psi)}),
+              UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.corrected_state(), fixed.corrected_state(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
+}
+
+TEST(Guiro, ResetRestartsExactly) {
+  auto observer = make_observer<double>();
+  auto fresh = make_observer<double>();
+  auto plant = g::make_plant<double>();
+  for (Index k = 0; k < 20; ++k) {
+    (void)observer.update(plant.sample());
+    plant.advance();
+  }
+  observer.reset(g::initial_state_estimate<double>(), g::initial_parameter_estimate<double>());
+  auto replay = g::make_plant<double>();
+  for (Index k = 0; k < 20; ++k) {
+    (void)observer.update(replay.sample());
+    (void)fresh.update(replay.sample());
+    replay.advance();
+  }
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.state(), fresh.state()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.parameters(), fresh.parameters()));
+}
+
+TEST(Guiro, BadConfigurationNamesTheArgument) {
+  const auto model = g::model<double>();
+  const Eigen::Vector2d k = g::printed_K();
+  const Eigen::Matrix<double, 1, 1> gamma(1.0), nan_gamma(std::nan(""));
+  const Eigen::Vector2d z0 = Eigen::Vector2d::Zero();
+  const Eigen::Matrix<double, 1, 1> th0(0.0);
+  EXPECT_NE(configuration_error_of([&] { PaperObserver<double> o(model, k, nan_gamma, z0, th0); }).find("'Gamma'"),
+            std::string::npos);
+  EXPECT_NE(configuration_error_of([&] {
+              PaperObserver<double> o(model, Eigen::Vector2d(std::nan(""), 0), gamma, z0, th0);
+            }).find("'K'"),
+            std::string::npos);
+  using DynDims = adaptobs::DynamicDimensions<double>;
+  const adaptobs::DiscreteLtiModel<DynDims> dynamic_model(model.system().A, MatrixXd::Zero(2, 0), model.system().C, 1);
+  EXPECT_NE(configuration_error_of([&] {
+              adaptobs::GuiroObserver o(dynamic_model, MatrixXd(k), MatrixXd::Ones(2, 1), VectorXd(z0), VectorXd::Zero(1));
+            }).find("'Gamma'"),
+            std::string::npos);
+  EXPECT_NE(configuration_error_of([&] {
+              adaptobs::GuiroObserver o(dynamic_model, MatrixXd(k), MatrixXd::Ones(1, 1), VectorXd::Zero(3), VectorXd::Zero(1));
+            }).find("'z0'"),
+            std::string::npos);
+  adaptobs::GuiroObserver dynamic(dynamic_model, MatrixXd(k), MatrixXd::Ones(1, 1), VectorXd(z0), VectorXd::Zero(1));
+  EXPECT_NE(configuration_error_of([&] {
+              (void)dynamic.update({VectorXd::Zero(0), VectorXd::Zero(1), MatrixXd::Zero(2, 2)});
+            }).find("'sample.Psi'"),
+            std::string::npos);
+  EXPECT_EQ(dynamic.step(), 0);
+  EXPECT_NE(configuration_error_of([] {
+              adaptobs::RegressorIntegral<double, 2, 1> r(g::continuous_dynamics<double>(), -1.0);
+            }).find("'period'"),
+            std::string::npos);
+  EXPECT_NE(configuration_error_of([] {
+              adaptobs::RegressorIntegral<double, 2, 1> r(g::continuous_dynamics<double>(), 1.0, {.max_depth = 50});
+            }).find("'options.max_depth'"),
+            std::string::npos);
+}
+
+}  // namespace

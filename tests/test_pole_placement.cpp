@@ -1,0 +1,282 @@
+// Eigenvalue assignment and the linear-algebra tools behind it: the Sylvester
+// solver, the observability staircase, output-injection and state-feedback
+// placement (random cases, complex and repeated poles, poles on open-loop
+// eigenvalues, unobservable pairs), and exponential power bounds.
+
+#include <adaptobs/core/sylvester.hpp>
+#include <adaptobs/design/observability.hpp>
+#include <adaptobs/design/pole_placement.hpp>
+#include <adaptobs/design/power_bound.hpp>
+#include <adaptobs/design/stability.hpp>
+
+#include "support/eigen_testing.hpp"
+
+#include <Eigen/QR>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace {
+
+using adaptobs::ConfigurationError;
+using adaptobs::testing::RandomMatrices;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+using ComplexVector = Eigen::VectorXcd;
+
+template <class F>
+std::string configuration_error_of(F&& f) {
+  try {
+    f();
+  } catch (const ConfigurationError& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+MatrixXd random_orthogonal(RandomMatrices& rng, int n) {
+  return Eigen::HouseholderQR<MatrixXd>(rng.uniform<MatrixXd>(n, n)).householderQ() * MatrixXd::Identity(n, n);
+}
+
+// Conjugate-closed random poles in the disk of radius 0.9, pairwise at least `gap` apart.
+ComplexVector random_poles(RandomMatrices& rng, int n, double gap = 0.1) {
+  for (;;) {
+    std::vector<std::complex<double>> p;
+    while (int(p.size()) < n) {
+      if (n - int(p.size()) >= 2 && rng.scalar(0, 1) < 0.4) {
+        const std::complex<double> z = std::polar(0.9 * std::sqrt(rng.scalar(0, 1)), rng.scalar(0.2, 2.9));
+        p.push_back(z);
+        p.push_back(std::conj(z));
+      } else {
+        p.emplace_back(rng.scalar(-0.9, 0.9), 0.0);
+      }
+    }
+    bool separated = true;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      for (std::size_t j = i + 1; j < p.size(); ++j) separated = separated && std::abs(p[i] - p[j]) > gap;
+    if (separated) return Eigen::Map<ComplexVector>(p.data(), n);
+  }
+}
+
+// ---- Sylvester ----------------------------------------------------------------
+
+TEST(Sylvester, RandomEquationsHaveSmallResiduals) {
+  RandomMatrices rng(401);
+  for (int n : {1, 2, 5, 9}) {
+    for (int m : {1, 3, 7}) {
+      const MatrixXd a = rng.uniform<MatrixXd>(n, n), b = rng.uniform<MatrixXd>(m, m) + 3 * MatrixXd::Identity(m, m);
+      const MatrixXd c = rng.uniform<MatrixXd>(n, m);
+      const MatrixXd x = adaptobs::solve_sylvester(a, b, c);
+      EXPECT_LE((a * x + x * b - c).norm(), 1e-12 * (1 + x.norm())) << "n=" << n << " m=" << m;
+    }
+  }
+}
+
+TEST(Sylvester, SharedEigenvalueOfAAndMinusBIsRejected) {
+  Eigen::Matrix2d a;
+  a << 1, 2, 0, 3;
+  const Eigen::Matrix2d b = -a.transpose();  // eigenvalues −1, −3: A and −B share both
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_sylvester(a, b, Eigen::Matrix2d::Identity()); })
+                .find("'A, B'"),
+            std::string::npos);
+}
+
+// ---- Observability ---------------------------------------------------------------
+
+TEST(Observability, RandomPairsAreObservable) {
+  RandomMatrices rng(402);
+  for (int n : {1, 3, 6}) {
+    const auto report = adaptobs::observability(rng.uniform<MatrixXd>(n, n), rng.uniform<MatrixXd>(1, n));
+    EXPECT_TRUE(report.observable());
+    EXPECT_EQ(report.observable_dimension, n);
+  }
+}
+
+// A pair built with a hidden mode, disguised by a random orthogonal change of basis.
+TEST(Observability, StaircaseFindsHiddenModesThatEigenvalueTestsMiss) {
+  RandomMatrices rng(403);
+  // Observable part (2 states) and an unobservable 3-state Jordan block at 0.7
+  // (defective: its computed eigenvalues are only accurate to ε^(1/3)).
+  MatrixXd a = MatrixXd::Zero(5, 5);
+  a.topLeftCorner(2, 2) << 0.3, 1.0, -0.4, 0.1;
+  a.bottomRightCorner(3, 3) << 0.7, 1, 0, 0, 0.7, 1, 0, 0, 0.7;
+  a.bottomLeftCorner(3, 2) = rng.uniform<MatrixXd>(3, 2);  // the hidden part is driven, but never seen
+  MatrixXd c = MatrixXd::Zero(2, 5);
+  c.leftCols(2) = rng.uniform<MatrixXd>(2, 2);
+  const MatrixXd q = random_orthogonal(rng, 5);
+  const auto report = adaptobs::observability(MatrixXd(q.transpose() * a * q), MatrixXd(c * q));
+  EXPECT_FALSE(report.observable());
+  EXPECT_EQ(report.observable_dimension, 2);
+  ASSERT_EQ(report.unobservable_modes.size(), 3);
+  for (Eigen::Index i = 0; i < 3; ++i) EXPECT_NEAR(std::abs(report.unobservable_modes(i) - 0.7), 0.0, 1e-4);
+  // The exact PBH test at the known mode sees it too; at another point it does not.
+  EXPECT_LT(adaptobs::pbh_margin(MatrixXd(q.transpose() * a * q), MatrixXd(c * q), 0.7), 1e-14);
+  EXPECT_GT(adaptobs::pbh_margin(MatrixXd(q.transpose() * a * q), MatrixXd(c * q), 0.2), 1e-3);
+}
+
+// ---- Output injection ----------------------------------------------------------------
+
+TEST(PolePlacement, CharacteristicPolynomialAndSpreadPoles) {
+  const VectorXd q = adaptobs::characteristic_polynomial(Eigen::Vector3d(0.5, 0.6, 0.2));
+  EXPECT_MATRIX_NEAR(q, Eigen::Vector4d(1, -1.3, 0.52, -0.06), 1e-15, 0);
+  const ComplexVector pair = (Eigen::Vector2cd() << std::complex<double>(0.5, 0.2), std::complex<double>(0.5, -0.2))
+                                 .finished();
+  EXPECT_MATRIX_NEAR(adaptobs::characteristic_polynomial(pair), Eigen::Vector3d(1, -1.0, 0.29), 1e-15, 0);
+  EXPECT_MATRIX_NEAR(adaptobs::spread_poles<double>(4, 0.8), Eigen::Vector4d(0.8, 0.6, 0.4, 0.2), 1e-15, 0);
+}
+
+// Every random observable pair gets its spectrum, certified, for m = 1..3 outputs.
+TEST(PolePlacement, RandomObservablePairsGetTheRequestedSpectrum) {
+  RandomMatrices rng(404);
+  int cases = 0, well_conditioned = 0;
+  for (int n = 1; n <= 8; ++n) {
+    for (int m = 1; m <= 3; ++m) {
+      for (int rep = 0; rep < 3; ++rep) {
+        const MatrixXd a = rng.uniform<MatrixXd>(n, n) * 1.5;
+        const MatrixXd c = rng.uniform<MatrixXd>(m, n);
+        const ComplexVector poles = random_poles(rng, n);
+        const auto placed = adaptobs::place_output_injection(a, c, poles);
+        const MatrixXd closed = a - placed.L * c;
+        EXPECT_LE(adaptobs::cayley_hamilton_residual(closed, poles), 1e-11) << "n=" << n << " m=" << m;
+        EXPECT_LE(placed.cayley_hamilton_residual, 1e-11);
+        // The eigenvalues themselves are as accurate as their conditioning allows.
+        if (placed.transformation_condition < 1e5) {
+          ++well_conditioned;
+          EXPECT_LE(adaptobs::eigenvalue_mismatch(closed, poles), 1e-9) << "n=" << n << " m=" << m;
+        }
+        ++cases;
+      }
+    }
+  }
+  EXPECT_EQ(cases, 72);
+  EXPECT_GE(well_conditioned, 60) << "too few well-conditioned cases: the eigenvalue check has no power";
+}
+
+// More outputs give freedom; the best-conditioned draw is kept, so more draws never hurt.
+TEST(PolePlacement, MoreDrawsGiveBetterConditionedGains) {
+  RandomMatrices rng(405);
+  const MatrixXd a = rng.uniform<MatrixXd>(6, 6) * 1.5, c = rng.uniform<MatrixXd>(3, 6);
+  const ComplexVector poles = random_poles(rng, 6);
+  adaptobs::PolePlacementOptions one{.tries = 1}, many{.tries = 40};
+  const auto p1 = adaptobs::place_output_injection(a, c, poles, one);
+  const auto p40 = adaptobs::place_output_injection(a, c, poles, many);
+  EXPECT_LE(p40.transformation_condition, p1.transformation_condition);
+  EXPECT_LE(p40.eigenvalue_mismatch, 1e-10);
+}
+
+TEST(PolePlacement, RepeatedPolesAndDeadbeat) {
+  RandomMatrices rng(406);
+  const MatrixXd a = rng.uniform<MatrixXd>(4, 4), c = rng.uniform<MatrixXd>(1, 4);
+  // Deadbeat with one output: a single Jordan block at 0, so (A − LC)⁴ = 0.
+  const auto deadbeat = adaptobs::place_output_injection(a, c, Eigen::Vector4d::Zero());
+  const MatrixXd closed = a - deadbeat.L * c;
+  EXPECT_LE((closed * closed * closed * closed).norm(), 1e-10 * std::pow(closed.norm(), 4));
+  // A repeated complex pair.
+  const std::complex<double> z(0.3, 0.4);
+  const ComplexVector twice = (Eigen::Vector4cd() << z, std::conj(z), z, std::conj(z)).finished();
+  const auto placed = adaptobs::place_output_injection(a, c, twice);
+  EXPECT_LE(adaptobs::cayley_hamilton_residual(MatrixXd(a - placed.L * c), twice), 1e-11);
+}
+
+// A requested pole equal to an eigenvalue of A makes the Sylvester equation
+// singular; the placer first moves A by a random injection.
+TEST(PolePlacement, PoleOnAnOpenLoopEigenvalue) {
+  Eigen::Matrix3d a;
+  a << 0.5, 1, 0, 0, 0.2, 1, 0.1, 0, -0.3;
+  const Eigen::RowVector3d c(1, 0, 0);
+  const adaptobs::ComplexVector<double> ev = adaptobs::eigenvalues(a);
+  const Eigen::Vector3d poles(ev(0).real(), 0.1, -0.1);  // the real eigenvalue of A
+  ASSERT_NEAR(ev(0).imag(), 0.0, 1e-15);
+  const auto placed = adaptobs::place_output_injection(a, c, poles);
+  EXPECT_LE(adaptobs::eigenvalue_mismatch(Eigen::Matrix3d(a - placed.L * c), poles.cast<std::complex<double>>()), 1e-12);
+}
+
+TEST(PolePlacement, FixedAndDynamicSizesAgree) {
+  RandomMatrices rng(407);
+  const Eigen::Matrix<double, 4, 4> a = rng.uniform<Eigen::Matrix<double, 4, 4>>();
+  const Eigen::Matrix<double, 2, 4> c = rng.uniform<Eigen::Matrix<double, 2, 4>>();
+  const Eigen::Vector4d poles(0.1, -0.2, 0.3, 0.5);
+  const auto fixed = adaptobs::place_output_injection(a, c, poles);
+  const auto dynamic = adaptobs::place_output_injection(MatrixXd(a), MatrixXd(c), VectorXd(poles));
+  static_assert(decltype(fixed.L)::RowsAtCompileTime == 4 && decltype(fixed.L)::ColsAtCompileTime == 2);
+  EXPECT_MATRIX_NEAR(fixed.L, dynamic.L, 1e-13, 1e-13);
+}
+
+TEST(PolePlacement, StateFeedbackByDuality) {
+  RandomMatrices rng(408);
+  const MatrixXd a = rng.uniform<MatrixXd>(5, 5) * 1.5, b = rng.uniform<MatrixXd>(5, 2);
+  const ComplexVector poles = random_poles(rng, 5);
+  const auto k = adaptobs::place_state_feedback(a, b, poles);
+  EXPECT_EQ(k.K.rows(), 2);
+  EXPECT_LE(adaptobs::eigenvalue_mismatch(MatrixXd(a - b * k.K), poles), 1e-9);
+  // An uncontrollable pair: the third state is not reached by the input.
+  MatrixXd a3 = MatrixXd::Zero(3, 3), b3 = MatrixXd::Zero(3, 1);
+  a3 << 0.5, 1, 0, 0, 0.4, 0, 0, 0, 0.9;
+  b3 << 0, 1, 0;
+  const std::string message =
+      configuration_error_of([&] { (void)adaptobs::place_state_feedback(a3, b3, Eigen::Vector3d(0.1, 0.2, 0.3)); });
+  EXPECT_NE(message.find("'A, B' is not controllable"), std::string::npos) << message;
+  EXPECT_NE(message.find("0.9"), std::string::npos) << message;
+}
+
+TEST(PolePlacement, BadArgumentsAreNamed) {
+  Eigen::Matrix2d a;
+  a << 0, 0, 1, 0;
+  // C = (1 0) does not see the second state of this lower-shift A.
+  const std::string unobservable = configuration_error_of(
+      [&] { (void)adaptobs::place_output_injection(a, Eigen::RowVector2d(1, 0), Eigen::Vector2d(0.1, 0.2)); });
+  EXPECT_NE(unobservable.find("'A, C' is not observable"), std::string::npos) << unobservable;
+  const Eigen::RowVector2d c(0, 1);
+  const ComplexVector lonely = (Eigen::Vector2cd() << std::complex<double>(0.1, 0.2), 0.3).finished();
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::place_output_injection(a, c, lonely); }).find("conjugation"),
+            std::string::npos);
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::place_output_injection(a, c, Eigen::Vector3d(0, 0, 0)); })
+                .find("'poles'"),
+            std::string::npos);
+  EXPECT_NE(configuration_error_of(
+                [&] { (void)adaptobs::place_output_injection(a, c, Eigen::Vector2d(0.1, std::nan(""))); })
+                .find("'poles'"),
+            std::string::npos);
+}
+
+// ---- Power bounds ------------------------------------------------------------------
+
+// sup_k ‖U^k‖/λ^k = sup_k ‖(U/λ)^k‖ by brute force over many powers.
+double brute_force_constant(const MatrixXd& u, double lambda, int powers) {
+  MatrixXd p = MatrixXd::Identity(u.rows(), u.cols());
+  double m = 1;
+  for (int k = 1; k <= powers; ++k) {
+    p = (p * u / lambda).eval();
+    m = std::max(m, Eigen::JacobiSVD<MatrixXd>(p).singularValues()(0));
+  }
+  return m;
+}
+
+TEST(PowerBound, MatchesBruteForceSupremum) {
+  // A symmetric matrix has ‖U^k‖ = ρ^k: M = 1 for every λ ≥ ρ.
+  Eigen::Matrix2d sym;
+  sym << 0.5, 0.2, 0.2, 0.3;
+  EXPECT_DOUBLE_EQ(adaptobs::power_bound_constant(sym, 0.7), 1.0);
+  // A Jordan-like block has transient growth.
+  Eigen::Matrix2d jordan;
+  jordan << 0.6, 2.0, 0.0, 0.5;
+  for (double lambda : {0.65, 0.8, 0.95}) {
+    const double m = adaptobs::power_bound_constant(jordan, lambda);
+    EXPECT_NEAR(m, brute_force_constant(jordan, lambda, 3000), 1e-12 * m) << "lambda=" << lambda;
+  }
+  EXPECT_TRUE(std::isinf(adaptobs::power_bound_constant(jordan, 0.55)));  // λ < ρ: no bound
+  // The best margin beats every point of a fine scan.
+  const auto best = adaptobs::best_power_bound(jordan);
+  ASSERT_TRUE(best.has_value());
+  for (double lambda = 0.601; lambda < 1.0; lambda += 0.001)
+    EXPECT_GE(best->perturbation_margin() * (1 + 1e-6),
+              (1 - lambda) / adaptobs::power_bound_constant(jordan, lambda))
+        << "lambda=" << lambda;
+  EXPECT_FALSE(adaptobs::best_power_bound(Eigen::Matrix2d(jordan * 2)).has_value());  // not Schur
+}
+
+}  // namespace

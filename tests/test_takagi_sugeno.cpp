@@ -1,0 +1,492 @@
+// Takagi–Sugeno polytopic model and adaptive observer (paper 004): sector
+// weights (10)–(11) and Remark 1, the vertices of the waste water plant of §6
+// against the printed ones, exactness of the polytopic model, observer (65) and
+// its time-varying variant (21), the paper's gains on the plant, bad input and
+// bad configuration, fixed and dynamic sizes.
+
+#include <adaptobs/core/observer.hpp>
+#include <adaptobs/core/takagi_sugeno_model.hpp>
+#include <adaptobs/observers/takagi_sugeno.hpp>
+#include <adaptobs/simulation/discrete_nonlinear_plant.hpp>
+#include <adaptobs/simulation/runner.hpp>
+
+#include "models/wwtp.hpp"
+#include "support/eigen_testing.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace {
+
+using adaptobs::Index;
+using adaptobs::UpdateStatus;
+namespace wwtp = adaptobs::examples::wwtp;
+
+template <typename S>
+auto make_observer(adaptobs::TakagiSugenoGains<wwtp::Dims<S>> gains = wwtp::paper_gains<S>(),
+                   Eigen::Matrix<S, 2, 1> x0 = wwtp::initial_state_estimate<S>(),
+                   wwtp::Vector1<S> theta0 = wwtp::initial_parameter_estimate<S>()) {
+  return adaptobs::TakagiSugenoObserver(wwtp::model<S>(), gains, x0, theta0);
+}
+
+static_assert(adaptobs::Observer<decltype(make_observer<double>())>);
+static_assert(adaptobs::Observer<decltype(make_observer<float>())>);
+
+template <typename S>
+class TakagiSugenoTyped : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(TakagiSugenoTyped, Scalars);
+
+// --- Sector weights, eq. (9)–(11) and Remark 1 ---------------------------------
+
+// Three premise variables and two parameters: 32 vertices, checked at random
+// points inside and far outside the sectors.
+TYPED_TEST(TakagiSugenoTyped, SectorWeightsAreAConvexSumThatReproducesTheClippedPoint) {
+  using S = TypeParam;
+  using V3 = Eigen::Matrix<S, 3, 1>;
+  using V2 = Eigen::Matrix<S, 2, 1>;
+  const adaptobs::SectorBounds<S, 3> zb{V3(-1, 0, 2), V3(1, 0.5, 7)};
+  const adaptobs::SectorBounds<S, 2> tb{V2(-0.3, 10), V2(0.3, 20)};
+  adaptobs::testing::RandomMatrices random(6);
+  const S tol = 64 * std::numeric_limits<S>::epsilon();
+  for (int draw = 0; draw < 500; ++draw) {
+    const double spread = draw % 2 == 0 ? 1.0 : 4.0;  // odd draws land mostly outside the sectors
+    V3 z;
+    V2 th;
+    for (int j = 0; j < 3; ++j) {
+      const double mid = 0.5 * double(zb.lower(j) + zb.upper(j)), half = 0.5 * double(zb.upper(j) - zb.lower(j));
+      z(j) = S(random.scalar(mid - spread * half, mid + spread * half));
+    }
+    for (int j = 0; j < 2; ++j) {
+      const double mid = 0.5 * double(tb.lower(j) + tb.upper(j)), half = 0.5 * double(tb.upper(j) - tb.lower(j));
+      th(j) = S(random.scalar(mid - spread * half, mid + spread * half));
+    }
+    Eigen::Matrix<S, 32, 1> h;
+    adaptobs::sector_weights(z, zb, th, tb, h);
+    ASSERT_GE(h.minCoeff(), S(0)) << "draw " << draw;
+    ASSERT_NEAR(h.sum(), S(1), tol) << "draw " << draw;
+    // Σ h_i v^(i) = clip(v), coordinate by coordinate (eq. (9) for each variable).
+    V3 z_blend = V3::Zero();
+    V2 th_blend = V2::Zero();
+    for (Index i = 0; i < 32; ++i) {
+      V3 zi;
+      V2 ti;
+      adaptobs::vertex_point(i, zb, tb, zi, ti);
+      z_blend += h(i) * zi;
+      th_blend += h(i) * ti;
+    }
+    EXPECT_MATRIX_NEAR(z_blend, zb.clip(z), 16 * tol, 16 * tol);
+    EXPECT_MATRIX_NEAR(th_blend, tb.clip(th), 16 * tol, 16 * tol);
+  }
+}
+
+// Each vertex point has weight 1 on its own vertex: the weights and the vertex
+// construction share one order (z_1 most significant, last parameter least).
+TEST(TakagiSugeno, VertexPointsCarryTheirOwnWeightAndFollowTheDocumentedOrder) {
+  const auto zb = wwtp::premise_bounds<double>();
+  const auto tb = wwtp::parameter_bounds<double>();
+  for (Index i = 0; i < 8; ++i) {
+    Eigen::Vector2d z;
+    wwtp::Vector1<double> th;
+    adaptobs::vertex_point(i, zb, tb, z, th);
+    Eigen::Matrix<double, 8, 1> h;
+    adaptobs::sector_weights(z, zb, th, tb, h);
+    EXPECT_EQ(h, (Eigen::Matrix<double, 8, 1>::Unit(i))) << "vertex " << i;
+    const Index j1 = i / 4, j2 = (i / 2) % 2, j3 = i % 2;  // i = 4 j(z1) + 2 j(z2) + j(θ)
+    EXPECT_EQ(z(0), j1 ? zb.upper(0) : zb.lower(0));
+    EXPECT_EQ(z(1), j2 ? zb.upper(1) : zb.lower(1));
+    EXPECT_EQ(th(0), j3 ? tb.upper(0) : tb.lower(0));
+  }
+}
+
+// --- The waste water plant of §6 ---------------------------------------------
+
+// True when `printed` is `value` rounded or truncated to `decimals` decimals.
+bool matches_printed(double value, double printed, int decimals) {
+  const double scale = std::pow(10.0, decimals);
+  const double scaled = value * scale;
+  const double target = printed * scale;
+  return std::abs(std::round(scaled) - target) < 1e-6 || std::abs(std::trunc(scaled) - target) < 1e-6;
+}
+
+TEST(TakagiSugeno, WwtpVerticesMatchThePrintedMatricesToThePrintedDigits) {
+  const auto model = wwtp::model<double>();
+  ASSERT_EQ(model.vertex_count(), 8);
+  const auto printed = wwtp::printed_vertex_matrices();
+  for (Index i = 0; i < 8; ++i) {
+    const Eigen::Matrix2d a = model.A(i);
+    for (int e = 0; e < 4; ++e) {
+      const auto& p = printed[std::size_t(i)][std::size_t(e)];
+      const double v = a(e / 2, e % 2);
+      EXPECT_TRUE(matches_printed(v, p.value, p.decimals))
+          << "A_" << i + 1 << "(" << e / 2 + 1 << "," << e % 2 + 1 << ") = " << v << ", printed " << p.value;
+      EXPECT_LT(std::abs(v - p.value), std::pow(10.0, -p.decimals)) << "A_" << i + 1;
+    }
+    EXPECT_EQ(Eigen::Vector2d(model.B(i)), Eigen::Vector2d(0, 2)) << "B_" << i + 1;
+  }
+  // The printed 2.92 (A_3) and 2.93 (A_7) are one number, a z2max with a = 0.2: 0.2 · 600/41.
+  EXPECT_NEAR(model.A(2)(0, 1), 0.2 * 600.0 / 41.0, 1e-14);
+  EXPECT_EQ(model.A(2)(0, 1), model.A(6)(0, 1));
+  // Sectors (76): z2 ∈ [0.01/3.4, 6/0.41], printed [0.003, 14.63].
+  EXPECT_NEAR(model.premise_bounds().lower(1), 1.0 / 340.0, 1e-16);
+  EXPECT_NEAR(model.premise_bounds().upper(1), 600.0 / 41.0, 1e-13);
+}
+
+TEST(TakagiSugeno, WwtpPolytopicModelIsExactInsideTheSectors) {
+  const auto model = wwtp::model<double>();
+  adaptobs::testing::RandomMatrices random(72);
+  for (int draw = 0; draw < 200; ++draw) {
+    const Eigen::Vector2d x(random.scalar(wwtp::x1_min, wwtp::x1_max), random.scalar(wwtp::x2_min, wwtp::x2_max));
+    const wwtp::Vector1<double> u(random.scalar(wwtp::u_min, wwtp::u_max));
+    const wwtp::Vector1<double> th(random.scalar(wwtp::theta_min, wwtp::theta_max));
+    // Σ h_i A_i = A(z, θ), and the polytopic step is the nonlinear plant (72).
+    const Eigen::Vector2d z = model.premises(x, u, th);
+    const auto h = model.weights(z, th);
+    EXPECT_MATRIX_NEAR(model.blended_A(h), wwtp::quasi_lpv<double>(z, th).A, 1e-13, 1e-13);
+    EXPECT_MATRIX_NEAR(model.step(x, u, th), wwtp::transition<double>(x, u, th), 1e-12, 1e-12);
+  }
+}
+
+// --- Observer (65) -----------------------------------------------------------
+
+// With exact vertices, an observer started at the truth stays on it.
+TYPED_TEST(TakagiSugenoTyped, ObserverStartedAtTheTruthStaysOnIt) {
+  using S = TypeParam;
+  const S theta = S(0.1);
+  auto plant = wwtp::make_plant<S>(theta);
+  auto observer = make_observer<S>(wwtp::paper_gains<S>(), wwtp::initial_state<S>(), wwtp::Vector1<S>(theta));
+  double worst = 0;
+  for (Index k = 0; k < 1000; ++k) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+    worst = std::max({worst, double((observer.state() - plant.state()).cwiseAbs().maxCoeff()),
+                      double(std::abs(observer.parameters()(0) - theta))});
+  }
+  EXPECT_LT(worst, (std::is_same_v<S, float> ? 1e-4 : 1e-12));
+}
+
+// One step against eq. (65) written out with the model's vertices and weights.
+TEST(TakagiSugeno, UpdateIsEquation65) {
+  const auto model = wwtp::model<double>();
+  auto gains = wwtp::paper_gains<double>();
+  for (std::size_t i = 0; i < 8; ++i) gains.K[i](0) = 0.01 * double(i + 1);  // distinct K_i
+  const Eigen::Vector2d x0(3, 0.6);
+  const wwtp::Vector1<double> th0(0.05);
+  adaptobs::TakagiSugenoObserver observer(model, gains, x0, th0);
+  const adaptobs::InputOutputSample<wwtp::Dims<double>> sample{wwtp::Vector1<double>(0.2), wwtp::Vector1<double>(4.1)};
+  ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
+
+  const wwtp::Vector1<double> u = sample.u;
+  const Eigen::Vector2d z(u(0), x0(0) / (x0(1) + wwtp::b));  // ẑ at the estimates
+  const auto h = model.weights(z, th0);
+  const double e = sample.y(0) - x0(0);
+  Eigen::Vector2d x1 = Eigen::Vector2d::Zero();
+  double dtheta = 0;
+  for (Index i = 0; i < 8; ++i) {
+    x1 += h(i) * (model.A(i) * x0 + model.B(i) * u + gains.L[std::size_t(i)] * e);
+    dtheta += h(i) * gains.K[std::size_t(i)](0) * e;
+  }
+  EXPECT_MATRIX_NEAR(observer.state(), x1, 1e-14, 1e-14);
+  EXPECT_NEAR(observer.parameters()(0), th0(0) + dtheta, 1e-15);
+  EXPECT_MATRIX_NEAR(observer.weights(), h, 0, 0);
+  EXPECT_MATRIX_NEAR(observer.premises(), z, 0, 0);
+  EXPECT_TRUE(observer.premises_in_sectors());
+}
+
+// The weights use ẑ and θ̂ clipped to their sectors; the unclipped ẑ stays visible.
+TEST(TakagiSugeno, WeightsAtEstimatedPremisesAreClippedToTheSectors) {
+  const Eigen::Vector2d far_x(100, 0.01);  // ẑ2 = 100/0.41 ≫ 14.63
+  const wwtp::Vector1<double> far_theta(0.5);
+  auto observer = make_observer<double>(wwtp::paper_gains<double>(), far_x, far_theta);
+  const adaptobs::InputOutputSample<wwtp::Dims<double>> sample{wwtp::Vector1<double>(0.7), wwtp::Vector1<double>(4)};
+  ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
+  EXPECT_FALSE(observer.premises_in_sectors());
+  EXPECT_NEAR(observer.premises()(1), 100 / 0.41, 1e-12);
+  EXPECT_EQ(observer.premises()(0), 0.7);
+  // Every premise at its upper bound: all the weight on the last vertex.
+  EXPECT_EQ(observer.weights(), (Eigen::Matrix<double, 8, 1>::Unit(7)));
+}
+
+struct Criterion {
+  double worst_parameter_error = 0;  // max |θ̂_k − θ| over k ∈ [from, to]
+  double worst_state_error = 0;      // max ‖x_k − x̂_k‖∞ over k ∈ [from, to]
+  bool plant_in_sector = true;       // the plant stayed in the box of (76)
+};
+
+// Runs the plant and the observer for `to` samples and records the errors from `from` on.
+template <class Observer, class Plant>
+Criterion run(Observer& observer, Plant& plant, Index from, Index to) {
+  Criterion c;
+  for (Index k = 0; k <= to; ++k) {
+    c.plant_in_sector = c.plant_in_sector && wwtp::in_state_sector(plant.state());
+    if (k >= from) {
+      c.worst_parameter_error = std::max(c.worst_parameter_error, std::abs(observer.parameters()(0) - plant.parameters()(0)));
+      c.worst_state_error = std::max(c.worst_state_error, (observer.state() - plant.state()).cwiseAbs().maxCoeff());
+    }
+    if (k == to) break;
+    if (observer.update(plant.sample()) != UpdateStatus::accepted) return {1e300, 1e300, c.plant_in_sector};
+    plant.advance();
+  }
+  return c;
+}
+
+// The criterion with the printed gains L_i, K_i = 0.03: at the nominal
+// dilution rate 0.225 ± 0.05, θ ∈ {−0.1, 0, 0.1} give |θ̂ − θ| < 0.01 and state
+// errors below 1e-3 from sample 300 on (checked up to 400).
+TEST(TakagiSugeno, PaperGainsMeetTheCriterionAroundTheNominalDilutionRate) {
+  for (double theta : {-0.1, 0.0, 0.1}) {
+    auto plant = wwtp::make_plant<double>(theta);
+    auto observer = make_observer<double>();
+    const Criterion c = run(observer, plant, 300, 400);
+    EXPECT_TRUE(c.plant_in_sector) << "theta " << theta;
+    EXPECT_LT(c.worst_parameter_error, 0.01) << "theta " << theta;
+    EXPECT_LT(c.worst_state_error, 1e-3) << "theta " << theta;
+  }
+}
+
+// The window of θ in which the printed gains converge moves with the dilution
+// rate: near the ends of [−0.3, 0.3] they meet the criterion where the plant's
+// operating point suits that θ (a low rate for a slow culture, a high one for a
+// fast culture).
+TEST(TakagiSugeno, PaperGainsConvergeAcrossTheRangeAtMatchedDilutionRates) {
+  const struct {
+    double theta;
+    wwtp::DilutionRate input;
+  } cases[] = {{-0.25, {0.15, 0.03, 100}}, {0.25, {0.275, 0.05, 100}}};
+  for (const auto& c : cases) {
+    auto plant = wwtp::make_plant<double>(c.theta, wwtp::initial_state<double>(), c.input);
+    auto observer = make_observer<double>();
+    const Criterion r = run(observer, plant, 300, 400);
+    EXPECT_TRUE(r.plant_in_sector) << "theta " << c.theta;
+    EXPECT_LT(r.worst_parameter_error, 0.01) << "theta " << c.theta;
+    EXPECT_LT(r.worst_state_error, 1e-3) << "theta " << c.theta;
+  }
+}
+
+// And where they do not: at the nominal rate, θ = +0.2 converges too slowly for
+// the state criterion at 300 samples, and θ = −0.2 does not converge (the
+// estimates leave the sectors), although the plant stays in its sector.
+TEST(TakagiSugeno, PaperGainsMissTheCriterionAtTheEndsOfTheRangeAtTheNominalDilutionRate) {
+  {
+    auto plant = wwtp::make_plant<double>(0.2);
+    auto observer = make_observer<double>();
+    const Criterion at300 = run(observer, plant, 300, 300);
+    EXPECT_TRUE(at300.plant_in_sector);
+    EXPECT_GT(at300.worst_state_error, 1e-3);
+    const Criterion later = run(observer, plant, 700, 1000);  // 1000 more samples
+    EXPECT_LT(later.worst_parameter_error, 1e-3);
+    EXPECT_LT(later.worst_state_error, 1e-3);
+  }
+  {
+    auto plant = wwtp::make_plant<double>(-0.2);
+    auto observer = make_observer<double>();
+    bool left_sectors = false;
+    for (Index k = 0; k < 300; ++k) {
+      ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+      left_sectors = left_sectors || !observer.premises_in_sectors();
+      plant.advance();
+      ASSERT_TRUE(wwtp::in_state_sector(plant.state()));
+    }
+    EXPECT_TRUE(left_sectors);
+    EXPECT_GT(std::abs(observer.parameters()(0) + 0.2), 0.01);
+  }
+}
+
+// --- Observer (21): time-varying parameters ----------------------------------
+
+TEST(TakagiSugeno, LeakageGainAddsMinusKthetaThetaAndZeroLeakageIsEquation65) {
+  auto plain = make_observer<double>();
+  auto gains = wwtp::paper_gains<double>();
+  gains.K_theta = wwtp::Vector1<double>(0.0);
+  auto zero_leak = make_observer<double>(gains);
+  gains.K_theta = wwtp::Vector1<double>(0.02);
+  EXPECT_FALSE(plain.has_leakage());
+  EXPECT_TRUE(zero_leak.has_leakage());
+  auto plant = wwtp::make_plant<double>(0.1);
+  for (Index k = 0; k < 300; ++k) {
+    const auto& s = plant.sample();
+    const double theta_before = plain.parameters()(0);
+    auto leaky = plain;  // one step of (21) from the same estimates
+    leaky.set_gains(gains);
+    ASSERT_EQ(plain.update(s), UpdateStatus::accepted);
+    ASSERT_EQ(zero_leak.update(s), UpdateStatus::accepted);
+    ASSERT_EQ(leaky.update(s), UpdateStatus::accepted);
+    // (21): θ̂⁺ = θ̂ + Σ ĥ_i K_i e − K_θ θ̂; the state update does not see K_θ.
+    EXPECT_NEAR(leaky.parameters()(0), plain.parameters()(0) - 0.02 * theta_before, 1e-15);
+    EXPECT_TRUE(adaptobs::testing::bitwise_equal(leaky.state(), plain.state()));
+    plant.advance();
+  }
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(zero_leak.state(), plain.state()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(zero_leak.parameters(), plain.parameters()));
+}
+
+// --- Simulation runner --------------------------------------------------------
+
+TEST(TakagiSugeno, RunsInTheSimulationRunnerWithTheNonlinearPlant) {
+  auto plant = wwtp::make_plant<double>(0.1);
+  auto paper = make_observer<double>();
+  auto truth = make_observer<double>(wwtp::paper_gains<double>(), wwtp::initial_state<double>(), wwtp::Vector1<double>(0.1));
+  adaptobs::SeriesTable table;
+  const auto report = adaptobs::simulate(plant, 50, table, adaptobs::track(paper), adaptobs::track(truth, "truth"));
+  EXPECT_EQ(report.rejected[0] + report.rejected[1], 0);
+  EXPECT_EQ(table.names(), (std::vector<std::string>{"t", "u_1", "y_1", "x_1", "x_2", "xhat_1", "xhat_2", "theta_1",
+                                                     "thetahat_1", "xhat_truth_1", "xhat_truth_2", "thetahat_truth_1"}));
+  EXPECT_NEAR(table.at(49, "xhat_truth_2"), table.at(49, "x_2"), 1e-12);
+  EXPECT_EQ(table.at(10, "y_1"), table.at(10, "x_1"));
+}
+
+// --- Bad input and bad configuration ------------------------------------------
+
+template <class O>
+struct Snapshot {
+  explicit Snapshot(const O& o)
+      : x(o.state()), theta(o.parameters()), h(o.weights()), z(o.premises()), in(o.premises_in_sectors()),
+        step(o.step()) {}
+  bool operator==(const Snapshot& other) const {
+    using adaptobs::testing::bitwise_equal;
+    return bitwise_equal(x, other.x) && bitwise_equal(theta, other.theta) && bitwise_equal(h, other.h) &&
+           bitwise_equal(z, other.z) && in == other.in && step == other.step;
+  }
+  typename O::State x;
+  typename O::Parameters theta;
+  typename O::Weights h;
+  typename O::PremiseVector z;
+  bool in;
+  Index step;
+};
+
+TYPED_TEST(TakagiSugenoTyped, NonFiniteSamplesAndPremisesAreRejectedAndChangeNothing) {
+  using S = TypeParam;
+  auto observer = make_observer<S>();
+  auto plant = wwtp::make_plant<S>(S(0.1));
+  for (Index k = 0; k < 50; ++k) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  const Snapshot before(observer);
+  for (S bad : {std::numeric_limits<S>::quiet_NaN(), std::numeric_limits<S>::infinity(), -std::numeric_limits<S>::infinity()}) {
+    auto s = plant.sample();
+    s.y(0) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+    s = plant.sample();
+    s.u(0) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+  }
+  // Finite but enormous input and output: the step overflows (B_i u = 2u).
+  auto huge = plant.sample();
+  huge.u.setConstant(std::numeric_limits<S>::max());
+  huge.y.setConstant(std::numeric_limits<S>::max());
+  EXPECT_EQ(observer.update(huge), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(Snapshot(observer) == before);
+  EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+
+  // A NaN premise variable: ẑ2 = x̂1/(x̂2 + b) = 0/0 at x̂ = (0, −b).
+  observer.reset(Eigen::Matrix<S, 2, 1>(S(0), -S(wwtp::b)), wwtp::Vector1<S>(S(0)));
+  const Snapshot at_reset(observer);
+  EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::nonfinite_input);
+  EXPECT_TRUE(Snapshot(observer) == at_reset);
+}
+
+template <class F>
+std::string configuration_error_of(F&& f) {
+  try {
+    f();
+  } catch (const adaptobs::ConfigurationError& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+#define EXPECT_NAMES(statement, argument) \
+  EXPECT_NE(configuration_error_of([&] { statement; }).find(argument), std::string::npos) \
+      << configuration_error_of([&] { statement; })
+
+TEST(TakagiSugeno, BadConfigurationNamesTheArgument) {
+  using D = wwtp::Dims<double>;
+  const auto zb = wwtp::premise_bounds<double>();
+  const auto tb = wwtp::parameter_bounds<double>();
+  auto vertices = adaptobs::sector_vertices<D, 2>(wwtp::quasi_lpv<double>, zb, tb);
+  const Eigen::RowVector2d C = wwtp::output_matrix<double>();
+  using Model = adaptobs::TakagiSugenoModel<D, 2, wwtp::Premises>;
+
+  auto seven = vertices;
+  seven.pop_back();
+  EXPECT_NAMES(Model(seven, C, {}, zb, tb), "'vertices'");
+  auto nan_vertex = vertices;
+  nan_vertex[3].A(1, 1) = std::nan("");
+  EXPECT_NAMES(Model(nan_vertex, C, {}, zb, tb), "'vertices[i].A'");
+  auto flat = zb;
+  flat.upper(1) = flat.lower(1);
+  EXPECT_NAMES(Model(vertices, C, {}, flat, tb), "'premise_bounds'");
+  EXPECT_NAMES((void)(adaptobs::sector_vertices<D, 2>(wwtp::quasi_lpv<double>, flat, tb)), "'premise_bounds'");
+  auto reversed = tb;
+  std::swap(reversed.lower, reversed.upper);
+  EXPECT_NAMES(Model(vertices, C, {}, zb, reversed), "'parameter_bounds'");
+
+  const Model model(vertices, C, {}, zb, tb);
+  const Eigen::Vector2d x0(3, 0.6);
+  const wwtp::Vector1<double> th0(0);
+  auto gains = wwtp::paper_gains<double>();
+  gains.L.pop_back();
+  EXPECT_NAMES(adaptobs::TakagiSugenoObserver(model, gains, x0, th0), "'gains.L'");
+  gains = wwtp::paper_gains<double>();
+  gains.K[2](0) = std::numeric_limits<double>::infinity();
+  EXPECT_NAMES(adaptobs::TakagiSugenoObserver(model, gains, x0, th0), "'gains.K'");
+  gains = wwtp::paper_gains<double>();
+  gains.K_theta = wwtp::Vector1<double>(std::nan(""));
+  EXPECT_NAMES(adaptobs::TakagiSugenoObserver(model, gains, x0, th0), "'gains.K_theta'");
+  EXPECT_NAMES(adaptobs::TakagiSugenoObserver(model, wwtp::paper_gains<double>(), Eigen::Vector2d(std::nan(""), 0), th0),
+               "'x0'");
+  auto observer = adaptobs::TakagiSugenoObserver(model, wwtp::paper_gains<double>(), x0, th0);
+  EXPECT_NAMES(observer.reset(x0, wwtp::Vector1<double>(std::nan(""))), "'theta0'");
+}
+
+// --- Dynamic sizes --------------------------------------------------------------
+
+struct DynamicPremises {
+  Eigen::VectorXd operator()(const Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& /*theta*/) const {
+    return Eigen::Vector2d(u(0), x(0) / (x(1) + wwtp::b));
+  }
+};
+
+TEST(TakagiSugeno, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
+  using DD = adaptobs::DynamicDimensions<double>;
+  const auto fixed_model = wwtp::model<double>();
+  std::vector<adaptobs::TakagiSugenoVertex<DD>> vertices;
+  for (Index i = 0; i < 8; ++i) vertices.push_back({fixed_model.A(i), fixed_model.B(i)});
+  const auto zb = wwtp::premise_bounds<double>();
+  const auto tb = wwtp::parameter_bounds<double>();
+  const adaptobs::TakagiSugenoModel<DD, Eigen::Dynamic, DynamicPremises> model(
+      vertices, Eigen::MatrixXd(fixed_model.C()), {}, {zb.lower, zb.upper}, {tb.lower, tb.upper});
+  const auto fixed_gains = wwtp::paper_gains<double>();
+  adaptobs::TakagiSugenoGains<DD> gains;
+  for (std::size_t i = 0; i < 8; ++i) {
+    gains.L.emplace_back(fixed_gains.L[i]);
+    gains.K.emplace_back(fixed_gains.K[i]);
+  }
+  gains.K_theta = Eigen::MatrixXd::Constant(1, 1, 1e-3);
+  auto fixed_with_leak = fixed_gains;
+  fixed_with_leak.K_theta = wwtp::Vector1<double>(1e-3);
+  adaptobs::TakagiSugenoObserver dynamic(model, gains, Eigen::VectorXd(wwtp::initial_state_estimate<double>()),
+                                         Eigen::VectorXd(wwtp::initial_parameter_estimate<double>()));
+  auto fixed = make_observer<double>(fixed_with_leak);
+  auto plant = wwtp::make_plant<double>(0.05);
+  for (Index k = 0; k < 500; ++k) {
+    const auto& s = plant.sample();
+    ASSERT_EQ(fixed.update(s), UpdateStatus::accepted);
+    ASSERT_EQ(dynamic.update({s.u, s.y}), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.weights(), fixed.weights(), 1e-12, 1e-12);
+  EXPECT_NAMES((void)dynamic.update({Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1)}), "'sample.u'");
+}
+
+}  // namespace
