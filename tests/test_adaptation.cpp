@@ -375,15 +375,7 @@ TEST(AdaptationLaws, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
   EXPECT_MATRIX_NEAR(dynamic.covariance(), fixed.covariance(), 1e-10, 1e-12);
 }
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const adaptobs::ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
 #define EXPECT_REFUSED(expression, argument)                                        \
   do {                                                                               \

@@ -96,15 +96,7 @@ TEST(Dare, FixedSizeAgreesWithDynamic) {
   EXPECT_MATRIX_NEAR(fixed.K, dynamic.K, 1e-12, 1e-12);
 }
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
 TEST(Dare, RefusesUnstabilizablePairAndBadWeights) {
   // The unstable mode 2 is not reachable from B.

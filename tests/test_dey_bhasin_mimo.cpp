@@ -511,15 +511,7 @@ TEST(DeyBhasin, NonFiniteSamplesAreRejectedAndChangeNothing) {
   EXPECT_EQ(observer.step(), before.step + 1);
 }
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const adaptobs::ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
 #define EXPECT_REFUSED(expression, argument)                                        \
   do {                                                                               \

@@ -147,15 +147,7 @@ TEST(ZeroOrderHold, FloatAgreesWithDouble) {
   EXPECT_MATRIX_NEAR(f.Bd.cast<double>(), d.Bd, 1e-7, 0.0);
 }
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
 TEST(ZeroOrderHold, BadConfigurationNamesTheArgument) {
   const Eigen::MatrixXd non_square = Eigen::MatrixXd::Ones(2, 3);

@@ -8,6 +8,7 @@
 #include <adaptobs/design/guiro_gains.hpp>
 #include <adaptobs/design/stability.hpp>
 
+#include "guiro_paper_fixture.hpp"
 #include "models/guiro.hpp"
 #include "support/eigen_testing.hpp"
 
@@ -29,27 +30,10 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 namespace g = adaptobs::examples::guiro;
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const adaptobs::ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
-// The paper's system: E = e^{AT}, C, H_0 (closed form).
-struct Paper {
-  Eigen::Matrix2d E = g::model<double>().system().A;
-  Eigen::RowVector2d C = g::output_matrix<double>();
-  Eigen::Vector2d H0 = g::closed_form_H<double>(0);
-};
-
-auto paper_gains(const Eigen::Vector3d& poles = g::requested_poles()) {
-  const Paper paper;
-  return adaptobs::design_guiro_gains(paper.E, paper.C, paper.H0, poles);
-}
+using adaptobs::testing::guiro::Paper;
+using adaptobs::testing::guiro::paper_gains;
 
 Eigen::Matrix3d error_matrix(const Eigen::Vector2d& K, double gamma, const Eigen::Vector2d& Hbar) {
   const Paper paper;

@@ -371,15 +371,7 @@ TYPED_TEST(GuyaderZhangTyped, NonFiniteSamplesAreRejectedAndChangeNothing) {
   EXPECT_EQ(observer.step(), before.step + 1);
 }
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const adaptobs::ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
 TEST(GuyaderZhang, BadConfigurationNamesTheArgument) {
   const auto model = satellite::model<double>();

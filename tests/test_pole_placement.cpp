@@ -28,15 +28,7 @@ using Eigen::MatrixXd;
 using Eigen::VectorXd;
 using ComplexVector = Eigen::VectorXcd;
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
 MatrixXd random_orthogonal(RandomMatrices& rng, int n) {
   return Eigen::HouseholderQR<MatrixXd>(rng.uniform<MatrixXd>(n, n)).householderQ() * MatrixXd::Identity(n, n);

@@ -393,15 +393,7 @@ TYPED_TEST(TakagiSugenoTyped, NonFiniteSamplesAndPremisesAreRejectedAndChangeNot
   EXPECT_TRUE(Snapshot(observer) == at_reset);
 }
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const adaptobs::ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
 #define EXPECT_NAMES(statement, argument) \
   EXPECT_NE(configuration_error_of([&] { statement; }).find(argument), std::string::npos) \

@@ -235,15 +235,7 @@ TEST(TakagiSugenoLmi, Theorem1GainsTrackATimeVaryingParameter) {
 
 // --- Bad options -----------------------------------------------------------------
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const adaptobs::ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
 TEST(TakagiSugenoLmi, BadOptionsNameTheArgument) {
   const auto model = wwtp::model<double>(0.05);

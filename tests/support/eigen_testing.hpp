@@ -2,6 +2,8 @@
 // Test helpers shared by every test: matrix comparisons with per-scalar
 // tolerances, seeded random draws, and a geometric-rate fit.
 
+#include <adaptobs/core/validation.hpp>
+
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
@@ -11,6 +13,7 @@
 #include <limits>
 #include <random>
 #include <sstream>
+#include <string>
 #include <vector>
 
 namespace adaptobs::testing {
@@ -104,6 +107,18 @@ inline double fit_geometric_rate(const std::vector<double>& errors) {
   }
   const double slope = (n * skl - sk * sl) / (n * skk - sk * sk);
   return std::exp(slope);
+}
+
+/// The message of the `ConfigurationError` that `f()` throws, or "<no exception>":
+/// tests assert that a bad argument is refused and that the message names it.
+template <class F>
+std::string configuration_error_of(F&& f) {
+  try {
+    f();
+  } catch (const ConfigurationError& e) {
+    return e.what();
+  }
+  return "<no exception>";
 }
 
 }  // namespace adaptobs::testing
