@@ -4,7 +4,7 @@
 // plant (Alg. 3, 4).
 
 #include "bench_support.hpp"
-#include "models/unified_designs.hpp"
+#include "models/unified_design_definitions.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -27,20 +27,18 @@ int main(int argc, char** argv) {
   print_value("K", algorithm.static_transform.K());
   print_value("A_o", so.Ao);
   print_value("c_o", so.Co);
-  print_value("eig_A22", adaptobs::eigenvalues(Eigen::MatrixXd(so.Ao.bottomRightCorner(2, 2))).real());
+  print_value("eig_A22", designs::eigenvalue_real_parts(so.Ao.bottomRightCorner(2, 2)));
   print_value("k", algorithm.k);
   print_value("Gamma", observer.law().gamma());
-  const Eigen::Matrix3d closed = so.Ao - algorithm.k * so.Co;
-  const Eigen::Vector3d e1(1, 0, 0);
-  const auto g = adaptobs::transfer_function(closed, e1, so.Co);
-  print_value("G_numerator", g.numerator.transpose());
-  print_value("G_denominator", g.denominator.transpose());
-  print_value("spr_exact", double(adaptobs::strictly_positive_real(closed, e1, so.Co).strictly_positive_real));
-  print_value("spr_sweep_min_weighted_re", adaptobs::spr_frequency_sweep(closed, e1, so.Co).min_weighted_real_part);
-  if (const auto kyp = adaptobs::kyp_certificate(closed, e1, so.Co)) {
-    print_value("kyp_P", kyp->P);
-    print_value("kyp_residual_Pb_minus_c", kyp->equality_residual);
-    print_value("kyp_max_eig_AtP_PA", kyp->max_eigenvalue_lyapunov);
+  const auto spr = designs::spr_report(so.Ao - algorithm.k * so.Co, Eigen::Vector3d(1, 0, 0), so.Co);
+  print_value("G_numerator", spr.transfer_function.numerator.transpose());
+  print_value("G_denominator", spr.transfer_function.denominator.transpose());
+  print_value("spr_exact", double(spr.exact.strictly_positive_real));
+  print_value("spr_sweep_min_weighted_re", spr.sweep.min_weighted_real_part);
+  if (spr.kyp) {
+    print_value("kyp_P", spr.kyp->P);
+    print_value("kyp_residual_Pb_minus_c", spr.kyp->equality_residual);
+    print_value("kyp_max_eig_AtP_PA", spr.kyp->max_eigenvalue_lyapunov);
   }
 
   auto plant = siso::make_plant<double>(

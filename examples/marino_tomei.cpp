@@ -32,15 +32,14 @@ int main(int argc, char** argv) {
   print_value("G", algorithm.dynamic_transform.G());
   print_value("k", algorithm.k);
   print_value("Gamma", observer.law().gamma());
-  const Eigen::Matrix3d closed = so.Ao - algorithm.k * so.Co;
-  const auto g = adaptobs::transfer_function(closed, algorithm.gamma, so.Co);
-  print_value("G_numerator", g.numerator.transpose());
-  print_value("G_denominator", g.denominator.transpose());
-  print_value("spr_exact", double(adaptobs::strictly_positive_real(closed, algorithm.gamma, so.Co).strictly_positive_real));
-  if (const auto kyp = adaptobs::kyp_certificate(closed, algorithm.gamma, so.Co)) {
-    print_value("kyp_P", kyp->P);
-    print_value("kyp_residual_Pb_minus_c", kyp->equality_residual);
-    print_value("kyp_max_eig_AtP_PA", kyp->max_eigenvalue_lyapunov);
+  const auto spr = designs::spr_report(so.Ao - algorithm.k * so.Co, algorithm.gamma, so.Co);
+  print_value("G_numerator", spr.transfer_function.numerator.transpose());
+  print_value("G_denominator", spr.transfer_function.denominator.transpose());
+  print_value("spr_exact", double(spr.exact.strictly_positive_real));
+  if (spr.kyp) {
+    print_value("kyp_P", spr.kyp->P);
+    print_value("kyp_residual_Pb_minus_c", spr.kyp->equality_residual);
+    print_value("kyp_max_eig_AtP_PA", spr.kyp->max_eigenvalue_lyapunov);
   }
 
   auto plant = siso::make_plant<double>(

@@ -28,33 +28,21 @@ using adaptobs::examples::print_value;
 int main(int argc, char** argv) {
   const adaptobs::examples::Arguments args(argc, argv, "unified_comparison",
                                            {{"seconds", "100"}, {"noise", "0"}, {"seed", "1"}});
-  using D = siso::Dims<double>;
-  const Eigen::Vector3d eta0 = Eigen::Vector3d::Zero();
-  const Eigen::Vector2d theta0 = Eigen::Vector2d::Zero();
-  const adaptobs::UnifiedObserverOptions options{.sampling = designs::quadratic()};
-
   auto bg = designs::bastin_gevers_observer<double>();
   auto mt = designs::marino_tomei_observer<double>();
-  const auto besancon_transform = adaptobs::besancon_form<D>(siso::dynamics<double>(), siso::output_matrix<double>(), 1.0);
-  auto bes = adaptobs::make_besancon_observer(siso::model<double>(), besancon_transform, Eigen::Matrix<double, 1, 1>(2.0),
-                                              Eigen::Matrix2d(5.0 * Eigen::Matrix2d::Identity()), eta0, theta0, options);
-  const auto kalman = adaptobs::kalman_bucy_gain(siso::dynamics<double>(), siso::output_matrix<double>(),
-                                                 Eigen::Matrix3d::Identity(), Eigen::Matrix<double, 1, 1>(0.1));
-  auto zhang = adaptobs::make_zhang_continuous_observer(siso::model<double>(), Eigen::Vector3d(kalman.K),
-                                                        Eigen::Matrix2d(20.0 * Eigen::Matrix2d::Identity()), eta0,
-                                                        theta0, options);
+  auto bes = designs::siso_besancon_observer<double>();
+  auto zhang = designs::siso_zhang_observer<double>();
   auto kb = designs::kalman_bucy_filter<double>(1.0);
 
   print_value("T_bastin_gevers", bg.algorithm().static_transform.T());
   print_value("k_bastin_gevers", bg.algorithm().k);
   print_value("T_marino_tomei", mt.algorithm().static_transform.T());
   print_value("k_marino_tomei", mt.algorithm().k);
-  print_value("T_besancon", besancon_transform.T());
+  print_value("T_besancon", bes.algorithm().static_transform.T());
   print_value("A22_besancon", bes.transformed_system(0.0).Ao.bottomRightCorner(2, 2));
-  print_value("K_zhang", kalman.K);
-  print_value("eig_A_minus_KC", adaptobs::eigenvalues(Eigen::MatrixXd(siso::dynamics<double>() -
-                                                                      kalman.K * siso::output_matrix<double>()))
-                                    .real());
+  const auto zhang_system = zhang.transformed_system(0.0);
+  print_value("K_zhang", zhang.algorithm().static_transform.K());
+  print_value("eig_A_minus_KC", designs::eigenvalue_real_parts(zhang_system.Ao));
 
   auto plant = siso::make_plant<double>(
       {.output_noise = args.number("noise"), .seed = static_cast<std::uint64_t>(args.number("seed"))});

@@ -5,7 +5,7 @@
 // trajectories, Lyapunov functions, joint plant–observer integration, the
 // discrete Guyader–Zhang observer as the Euler limit of Algorithm 4, fixed
 // against dynamic sizes and float, and bad input. The designs come from
-// unified_fixtures.cpp.
+// the library adaptobs_example_designs (examples/models/unified_designs.hpp).
 
 #include <adaptobs/baselines/kalman_bucy.hpp>
 #include <adaptobs/core/observer.hpp>
@@ -312,7 +312,7 @@ TEST(UnifiedFormulation, BadConfigurationNamesTheArgument) {
   const auto model = siso::model<double>();
   const Eigen::Vector3d zero3 = Eigen::Vector3d::Zero();
   const Eigen::Vector2d zero2 = Eigen::Vector2d::Zero();
-  const auto st1 = bastin_gevers_transform();
+  const auto st1 = bastin_gevers_transform<double>();
   const Eigen::Matrix2d gamma = Eigen::Matrix2d::Identity();
   // Γ not positive definite, k not SPR, a transform not in form (5), a wrong-size x0.
   EXPECT_NAMES(adaptobs::make_bastin_gevers_observer(model, st1, Eigen::Vector3d(2, 0, 0), Eigen::Matrix2d(-gamma), zero3, zero2),
@@ -321,7 +321,7 @@ TEST(UnifiedFormulation, BadConfigurationNamesTheArgument) {
   EXPECT_NAMES(adaptobs::make_bastin_gevers_observer(model, adaptobs::StaticTransform<SD>::identity(), Eigen::Vector3d(2, 0, 0),
                                                      gamma, zero3, zero2),
                "'static_transform'");
-  const auto st2 = marino_tomei_transform();
+  const auto st2 = marino_tomei_transform<double>();
   EXPECT_NAMES(adaptobs::make_marino_tomei_observer(model, st2, Eigen::Vector3d(1, -3, 2), Eigen::Vector3d(8, 17, 10), gamma,
                                                     zero3, zero2),
                "'gamma'");
@@ -330,7 +330,7 @@ TEST(UnifiedFormulation, BadConfigurationNamesTheArgument) {
                "'static_transform'");
   // Algorithm 4: K not stabilizing; Algorithm 3: K1 too small.
   EXPECT_NAMES(adaptobs::make_zhang_continuous_observer(model, Eigen::Vector3d(-10, 0, 0), gamma, zero3, zero2), "'K'");
-  EXPECT_NAMES(adaptobs::make_besancon_observer(model, besancon_transform(),
+  EXPECT_NAMES(adaptobs::make_besancon_observer(model, besancon_transform<double>(),
                                                 Eigen::Matrix<double, 1, 1>(-1.0), gamma, zero3, zero2),
                "'K1'");
   // Options and samples.
@@ -507,20 +507,19 @@ TEST(UnifiedFormulation, LyapunovFunctionsDecrease) {
   {
     auto observer = bastin_gevers_observer<double>();
     const auto so = observer.transformed_system(0.0);
-    const auto kyp = kyp_matrix(Eigen::Matrix3d(so.Ao - observer.algorithm().k * so.Co),
-                                               Eigen::Vector3d(1, 0, 0), so.Co);
+    const auto kyp = spr_report(Eigen::Matrix3d(so.Ao - observer.algorithm().k * so.Co), Eigen::Vector3d(1, 0, 0), so.Co).kyp;
     ASSERT_TRUE(kyp.has_value());
     auto plant = siso::make_plant<double>();
-    EXPECT_LT(largest_relative_increase(observer, plant, *kyp, 5.0, 60.0), 1e-9);
+    EXPECT_LT(largest_relative_increase(observer, plant, kyp->P, 5.0, 60.0), 1e-9);
   }
   {
     auto observer = marino_tomei_observer<double>();
     const auto so = observer.transformed_system(0.0);
-    const auto kyp = kyp_matrix(Eigen::Matrix3d(so.Ao - observer.algorithm().k * so.Co),
-                                               observer.algorithm().gamma, so.Co);
+    const auto kyp =
+        spr_report(Eigen::Matrix3d(so.Ao - observer.algorithm().k * so.Co), observer.algorithm().gamma, so.Co).kyp;
     ASSERT_TRUE(kyp.has_value());
     auto plant = siso::make_plant<double>();
-    EXPECT_LT(largest_relative_increase(observer, plant, *kyp, 20.0, 60.0), 1e-9);
+    EXPECT_LT(largest_relative_increase(observer, plant, kyp->P, 20.0, 60.0), 1e-9);
   }
   {
     auto observer = besancon_observer<double>();

@@ -19,39 +19,18 @@ namespace siso = adaptobs::examples::siso;
 namespace periodic = adaptobs::examples::periodic;
 using adaptobs::examples::designs::quadratic;
 
-// The examples' designs. Declared here and instantiated once, in
-// unified_fixtures.cpp (double, and float for Algorithm 4), so that the
-// dynamic-size decompositions behind the design routines are compiled in one
-// translation unit instead of in every test source.
-template <typename S>
-using SisoModel = decltype(siso::model<S>());
-template <typename S>
-using PeriodicModel = decltype(periodic::model<S>());
-
-template <typename S>
-adaptobs::BastinGeversObserver<SisoModel<S>> bastin_gevers_observer(
-    adaptobs::UnifiedObserverOptions options = {.sampling = quadratic()});
-template <typename S>
-adaptobs::MarinoTomeiObserver<SisoModel<S>> marino_tomei_observer(
-    adaptobs::UnifiedObserverOptions options = {.sampling = quadratic()});
-template <typename S>
-adaptobs::BesanconObserver<PeriodicModel<S>> besancon_observer(
-    adaptobs::UnifiedObserverOptions options = {.sampling = quadratic()});
-template <typename S>
-adaptobs::ZhangContinuousObserver<PeriodicModel<S>> zhang_observer(
-    S gamma, adaptobs::UnifiedObserverOptions options = {.sampling = quadratic()});
-template <typename S>
-adaptobs::AugmentedKalmanBucyFilter<SisoModel<S>> kalman_bucy_filter(S q_theta,
-                                                                     adaptobs::SamplingOptions options = quadratic());
-
-/// Static transforms of the third-order plant to the forms of Algorithms 1–3.
-adaptobs::StaticTransform<siso::Dims<double>> bastin_gevers_transform();
-adaptobs::StaticTransform<siso::Dims<double>> marino_tomei_transform();
-adaptobs::StaticTransform<siso::Dims<double>> besancon_transform();
-
-/// KYP certificate P of the SPR triple (A, b, c) (third order), or nothing.
-std::optional<Eigen::Matrix3d> kyp_matrix(const Eigen::Matrix3d& A, const Eigen::Vector3d& b,
-                                          const Eigen::RowVector3d& c);
+// The examples' designs, compiled once in the library adaptobs_example_designs.
+using adaptobs::examples::designs::PeriodicModel;
+using adaptobs::examples::designs::SisoModel;
+using adaptobs::examples::designs::bastin_gevers_observer;
+using adaptobs::examples::designs::bastin_gevers_transform;
+using adaptobs::examples::designs::besancon_observer;
+using adaptobs::examples::designs::besancon_transform;
+using adaptobs::examples::designs::kalman_bucy_filter;
+using adaptobs::examples::designs::marino_tomei_observer;
+using adaptobs::examples::designs::marino_tomei_transform;
+using adaptobs::examples::designs::spr_report;
+using adaptobs::examples::designs::zhang_observer;
 
 /// Errors at every sample of a run.
 struct Trace {
