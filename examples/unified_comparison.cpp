@@ -84,7 +84,7 @@ plot csv using 't':'thetahat_bg_2' with lines lw 1.5 title 'Alg. 1 Bastin-Gevers
      csv using 't':'thetahat_2' with lines lw 1.5 title 'Alg. 4 Zhang', \
      csv using 't':'thetahat_kb_2' with lines lw 1.5 dt 2 title 'Kalman-Bucy [x; theta]', \
      csv using 't':'theta_2' with lines lc 'black' dt 3 title 'true'
-set title 'parameter estimation error |theta_hat - theta|'
+set title 'parameter estimation error |estimate - theta|'
 set logscale y
 set format y '10^{%T}'
 e(a, b) = sqrt((column(a.'_1') - column('theta_1'))**2 + (column(a.'_2') - column('theta_2'))**2)
