@@ -113,11 +113,11 @@ TEST(Observability, StaircaseFindsHiddenModesThatEigenvalueTestsMiss) {
 // ---- Output injection ----------------------------------------------------------------
 
 TEST(PolePlacement, CharacteristicPolynomialAndSpreadPoles) {
-  const VectorXd q = adaptobs::characteristic_polynomial(Eigen::Vector3d(0.5, 0.6, 0.2));
+  const VectorXd q = adaptobs::polynomial_from_roots(Eigen::Vector3d(0.5, 0.6, 0.2));
   EXPECT_MATRIX_NEAR(q, Eigen::Vector4d(1, -1.3, 0.52, -0.06), 1e-15, 0);
   const ComplexVector pair = (Eigen::Vector2cd() << std::complex<double>(0.5, 0.2), std::complex<double>(0.5, -0.2))
                                  .finished();
-  EXPECT_MATRIX_NEAR(adaptobs::characteristic_polynomial(pair), Eigen::Vector3d(1, -1.0, 0.29), 1e-15, 0);
+  EXPECT_MATRIX_NEAR(adaptobs::polynomial_from_roots(pair), Eigen::Vector3d(1, -1.0, 0.29), 1e-15, 0);
   EXPECT_MATRIX_NEAR(adaptobs::spread_poles<double>(4, 0.8), Eigen::Vector4d(0.8, 0.6, 0.4, 0.2), 1e-15, 0);
 }
 

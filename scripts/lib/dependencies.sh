@@ -41,3 +41,5 @@ ensure_packages() {
 ADAPTOBS_BUILD_PACKAGES=(cmake:cmake g++:g++ make:make libeigen3-dev)
 # Packages of the test suite, examples and benchmarks.
 ADAPTOBS_TEST_PACKAGES=(libgtest-dev libbenchmark-dev gnuplot-nox:gnuplot libdsdp-dev)
+# Boost.Odeint: the independent integrator of the continuous-time observers' RK4 test.
+ADAPTOBS_TEST_PACKAGES+=(libboost-dev)

@@ -14,6 +14,7 @@ enum class UpdateStatus {
   accepted,          ///< the sample was used and the estimates advanced
   nonfinite_input,   ///< a NaN or Inf in the sample (u, y, a regressor or premise variable)
   nonfinite_result,  ///< the step would have produced NaN or Inf (overflow, NaN system matrix)
+  nonincreasing_time,  ///< a continuous-time sample whose time is not after the previous sample's
 };
 
 [[nodiscard]] constexpr bool accepted(UpdateStatus s) noexcept { return s == UpdateStatus::accepted; }
@@ -26,6 +27,8 @@ enum class UpdateStatus {
       return "rejected: non-finite input sample";
     case UpdateStatus::nonfinite_result:
       return "rejected: the step would produce non-finite estimates";
+    case UpdateStatus::nonincreasing_time:
+      return "rejected: the sample's time does not advance";
   }
   return "unknown";
 }

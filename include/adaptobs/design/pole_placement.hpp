@@ -164,9 +164,9 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> real_matrix_with_spectrum(
 /// Coefficients \f$(1, q_1, \dots, q_N)\f$ of the monic real polynomial
 /// \f$q(z) = \prod_i (z - \lambda_i) = z^N + q_1 z^{N-1} + \dots + q_N\f$.
 template <class DP>
-[[nodiscard]] auto characteristic_polynomial(const Eigen::MatrixBase<DP>& poles) {
+[[nodiscard]] auto polynomial_from_roots(const Eigen::MatrixBase<DP>& poles) {
   using Scalar = typename Eigen::NumTraits<typename DP::Scalar>::Real;
-  const ComplexVector<Scalar> p = detail::complex_poles<Scalar>(poles, "characteristic_polynomial");
+  const ComplexVector<Scalar> p = detail::complex_poles<Scalar>(poles, "polynomial_from_roots");
   ComplexVector<Scalar> q = ComplexVector<Scalar>::Zero(p.size() + 1);
   q(0) = Scalar(1);
   for (Index i = 0; i < p.size(); ++i)
@@ -184,7 +184,7 @@ template <class DM, class DP>
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   detail::require_square(M, "cayley_hamilton_residual", "M");
   detail::require(poles.size() == M.rows(), "cayley_hamilton_residual", "poles", "must have one pole per row of M");
-  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> q = characteristic_polynomial(poles);
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> q = polynomial_from_roots(poles);
   const Index n = M.rows();
   const Matrix m = detail::dynamic_copy(M);
   const Scalar norm = m.norm();

@@ -44,9 +44,14 @@ class SeriesTable {
   template <class Derived>
   SeriesTable& add(std::string_view name, const Eigen::DenseBase<Derived>& values) {
     const auto& v = values.derived();
-    std::string column;
+    // Built by resize and append: GCC 12 reports a false -Wrestrict on
+    // std::string::assign(string_view) once this loop is inlined.
+    std::string column(name);
+    column += '_';
+    const std::size_t stem = column.size();
     for (Eigen::Index i = 0; i < v.size(); ++i) {
-      column.assign(name).append("_").append(std::to_string(i + 1));
+      column.resize(stem);
+      column += std::to_string(i + 1);
       push(column, static_cast<double>(v.reshaped()(i)));
     }
     return *this;

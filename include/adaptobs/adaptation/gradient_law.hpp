@@ -1,0 +1,57 @@
+#pragma once
+/// \file
+/// Continuous-time gradient adaptation \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$.
+///
+/// The parameter update of the four observers of paper 001: with
+/// \f$\varepsilon = y - C_o\hat x\f$ the output error and R the regressor of the
+/// algorithm (m × p), \f$R = \xi^T\f$ for Alg. 1–2, \f$R = A_{12}\Xi + \Psi_1\f$ for
+/// Alg. 3, \f$R = C\Omega\f$ for Alg. 4 (eq. (12b)). Γ is symmetric positive definite.
+///
+/// An update law is any type with `derivative(R, epsilon, theta, dtheta)`;
+/// this one is the default of `UnifiedAdaptiveObserver`.
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+
+#include <concepts>
+#include <utility>
+
+namespace adaptobs {
+
+/// A parameter update law: `law.derivative(R, epsilon, theta, dtheta)` writes \f$\dot{\hat\theta}\f$.
+template <class L, class D>
+concept ParameterUpdateLaw = requires(const L& law, const typename D::OutputRegressor& R,
+                                      const typename D::Output& epsilon, const typename D::Parameters& theta,
+                                      typename D::Parameters& dtheta) {
+  law.derivative(R, epsilon, theta, dtheta);
+};
+
+/// \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$.
+template <StateSpace D>
+class GradientLaw {
+ public:
+  using Scalar = typename D::Scalar;
+  using ParameterMatrix = typename D::ParameterMatrix;
+
+  explicit GradientLaw(ParameterMatrix gamma) : gamma_(std::move(gamma)) {
+    detail::require_positive_definite(gamma_, "GradientLaw", "gamma");
+    scratch_.setZero(gamma_.rows());
+  }
+
+  template <class DR, class DE, class DT, class DOut>
+  void derivative(const Eigen::MatrixBase<DR>& R, const Eigen::MatrixBase<DE>& epsilon,
+                  const Eigen::MatrixBase<DT>& /*theta*/, Eigen::MatrixBase<DOut>& dtheta) const {
+    scratch_.noalias() = R.transpose() * epsilon;
+    dtheta.noalias() = gamma_ * scratch_;
+  }
+
+  [[nodiscard]] const ParameterMatrix& gamma() const noexcept { return gamma_; }
+
+ private:
+  ParameterMatrix gamma_;
+  mutable typename D::Parameters scratch_;
+};
+
+}  // namespace adaptobs

@@ -1,0 +1,200 @@
+#pragma once
+/// \file
+/// Kalman–Bucy filter on the state augmented with the unknown parameters — the
+/// continuous-time baseline of the unified observers (paper 001, appendix, system (16)).
+///
+/// For \f$\dot\eta = A\eta + Bu + \Phi\theta\f$, \f$\dot\theta = 0\f$, \f$y = C\eta\f$, the extended system
+/// \f$\dot\chi = A_e\chi + [Bu; 0]\f$, \f$y = C_e\chi\f$ with
+/// \f$A_e = \begin{bmatrix} A & \Phi(t)\\ 0 & 0\end{bmatrix}\f$, \f$C_e = [C\ 0]\f$ is time varying
+/// through Φ even for a constant (A, C). The filter
+/// \f[ \dot{\hat\chi} = A_e\hat\chi + \begin{bmatrix} Bu\\ 0\end{bmatrix} + L(y - C_e\hat\chi),\quad L = PC_e^TR^{-1},\qquad
+///     \dot P = A_eP + PA_e^T + Q - PC_e^TR^{-1}C_eP \f]
+/// converges when the extended pair is uniformly observable (the Gramian W(t, s)
+/// of the appendix is uniformly positive definite) — and exponentially only with
+/// a parameter noise density \f$Q_\theta > 0\f$: with \f$Q_\theta = 0\f$ the gain dies
+/// out as P → 0 and \f$\tilde\theta\f$ decays like 1/t. It costs an (n + p)² Riccati
+/// equation against the n × n one (or none) of the adaptive observers.
+/// The filter works in the original coordinates and is stepped like them
+/// (`core/sampled_integration.hpp`); P is re-symmetrized after every sample.
+
+#include <adaptobs/baselines/augmented_kalman.hpp>
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/continuous_model.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/sampled_integration.hpp>
+#include <adaptobs/core/segments.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <string_view>
+#include <utility>
+
+namespace adaptobs {
+
+template <ContinuousModel Model>
+class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
+ public:
+  using Dims = typename Model::Dims;
+  using Scalar = typename Dims::Scalar;
+  using State = typename Dims::State;
+  using Parameters = typename Dims::Parameters;
+  using Input = typename Dims::Input;
+  using Output = typename Dims::Output;
+  using Sample = ContinuousSample<Dims>;
+  /// P0, Q (spectral density of the noise on [x; θ]) and R (on y).
+  using Covariances = AugmentedKalmanCovariances<Dims>;
+  static constexpr int na = Covariances::na;
+  using AugmentedMatrix = typename Covariances::AugmentedMatrix;
+  static constexpr int internal_size = sum_of_sizes(na, product_of_sizes(na, na));
+  /// \f$(\hat x, \hat\theta, \mathrm{vec}\,P)\f$ stacked.
+  using InternalState = Eigen::Matrix<Scalar, internal_size, 1>;
+  static constexpr std::string_view name = "AugmentedKalmanBucyFilter";
+
+  AugmentedKalmanBucyFilter(Model model, State eta0, Parameters theta0, Covariances covariances,
+                            SamplingOptions options = {})
+      : model_(std::move(model)),
+        sizes_(model_.sizes()),
+        cov_(std::move(covariances)),
+        internal_(InternalState::Zero((sizes_.nx + sizes_.np) * (1 + sizes_.nx + sizes_.np))),
+        integrator_(internal_, sizes_, options, name) {
+    const Sizes& s = sizes_;
+    const Index n = s.nx + s.np;
+    detail::require_shape(eta0, s.nx, 1, name, "eta0");
+    detail::require_finite(eta0, name, "eta0");
+    detail::require_shape(theta0, s.np, 1, name, "theta0");
+    detail::require_finite(theta0, name, "theta0");
+    detail::require_shape(cov_.P0, n, n, name, "covariances.P0");
+    detail::require_positive_definite(cov_.P0, name, "covariances.P0");
+    detail::require_shape(cov_.Q, n, n, name, "covariances.Q");
+    detail::require_positive_semidefinite(cov_.Q, name, "covariances.Q");
+    detail::require_shape(cov_.R, s.ny, s.ny, name, "covariances.R");
+    detail::require_positive_definite(cov_.R, name, "covariances.R");
+    llt_.compute(cov_.R);
+    w_.ae.setZero(n, n);
+    w_.pct.setZero(n, s.ny);
+    w_.gain.setZero(n, s.ny);
+    w_.epsilon.setZero(s.ny);
+    eta_ = eta0;
+    theta_ = theta0;
+    set_initial(eta0, theta0);
+  }
+
+  [[nodiscard]] UpdateStatus update(const Sample& sample) {
+    const UpdateStatus status = integrator_.advance(
+        sample, internal_,
+        [this](const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) {
+          derivative(s, ds, t, u, y);
+        },
+        name);
+    if (status != UpdateStatus::accepted) return status;
+    auto p = covariance_map();
+    p = (Scalar(0.5) * (p + p.transpose())).eval();
+    refresh_estimates();
+    return status;
+  }
+
+  /// Right-hand side of \f$(\hat x, \hat\theta, P)\f$ (see the file comment).
+  void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) const {
+    const Index nx = sizes_.nx, np = sizes_.np, n = nx + np;
+    const auto x = detail::segment<Dims::nx>(s, 0, nx);
+    const auto theta = detail::segment<Dims::np>(s, nx, np);
+    const Eigen::Map<const AugmentedMatrix> P(s.data() + n, n, n);
+    auto dx = detail::segment<Dims::nx>(ds, 0, nx);
+    auto dtheta = detail::segment<Dims::np>(ds, nx, np);
+    Eigen::Map<AugmentedMatrix> dP(ds.data() + n, n, n);
+    Workspace& w = w_;
+    decltype(auto) sys = model_.at(t);
+    w.ae.topLeftCorner(nx, nx) = sys.A;
+    w.ae.topRightCorner(nx, np) = model_.regressor(t, u, y);
+    // L = P C_eᵀ R⁻¹ with C_e = [C 0].
+    w.pct.noalias() = P.leftCols(nx) * sys.C.transpose();
+    w.gain.transpose() = llt_.solve(w.pct.transpose());
+    w.epsilon = y;
+    w.epsilon.noalias() -= sys.C * x;
+    dx.noalias() = sys.A * x;
+    dx.noalias() += sys.B * u;
+    dx.noalias() += w.ae.topRightCorner(nx, np) * theta;
+    dx.noalias() += w.gain.topRows(nx) * w.epsilon;
+    dtheta.noalias() = w.gain.bottomRows(np) * w.epsilon;
+    dP = cov_.Q;
+    dP.noalias() += w.ae * P;
+    dP.noalias() += P * w.ae.transpose();
+    dP.noalias() -= w.gain * w.pct.transpose();
+  }
+
+  /// The right-hand side as a Boost.Odeint system `f(s, ds, t)`.
+  template <class Signals>
+  [[nodiscard]] auto system(Signals signals) const {
+    return [this, signals = std::move(signals), u = Input(Input::Zero(sizes_.nu)),
+            y = Output(Output::Zero(sizes_.ny))](const InternalState& s, InternalState& ds, Scalar t) mutable {
+      signals(t, u, y);
+      derivative(s, ds, t, u, y);
+    };
+  }
+
+  [[nodiscard]] const State& state() const noexcept { return eta_; }
+  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  [[nodiscard]] Scalar time() const noexcept { return integrator_.time(); }
+  /// Covariance P of \f$[\hat x; \hat\theta]\f$.
+  [[nodiscard]] AugmentedMatrix covariance() const {
+    const Index n = sizes_.nx + sizes_.np;
+    return Eigen::Map<const AugmentedMatrix>(internal_.data() + n, n, n);
+  }
+  [[nodiscard]] const InternalState& internal_state() const noexcept { return internal_; }
+  bool set_internal_state(const InternalState& s) {
+    detail::require_shape(s, internal_.rows(), 1, name, "s");
+    if (!detail::all_finite(s)) return false;
+    internal_ = s;
+    refresh_estimates();
+    return true;
+  }
+
+  void reset(const State& eta0, const Parameters& theta0) {
+    constexpr std::string_view who = "AugmentedKalmanBucyFilter::reset";
+    detail::require_shape(eta0, sizes_.nx, 1, who, "eta0");
+    detail::require_finite(eta0, who, "eta0");
+    detail::require_shape(theta0, sizes_.np, 1, who, "theta0");
+    detail::require_finite(theta0, who, "theta0");
+    set_initial(eta0, theta0);
+    integrator_.restart();
+  }
+
+ private:
+  struct Workspace {
+    AugmentedMatrix ae;
+    Eigen::Matrix<Scalar, na, Dims::ny> pct, gain;
+    Output epsilon;
+  };
+
+  auto covariance_map() {
+    const Index n = sizes_.nx + sizes_.np;
+    return Eigen::Map<AugmentedMatrix>(internal_.data() + n, n, n);
+  }
+
+  void set_initial(const State& eta0, const Parameters& theta0) {
+    detail::segment<Dims::nx>(internal_, 0, sizes_.nx) = eta0;
+    detail::segment<Dims::np>(internal_, sizes_.nx, sizes_.np) = theta0;
+    covariance_map() = cov_.P0;
+    refresh_estimates();
+  }
+
+  void refresh_estimates() {
+    eta_ = detail::segment<Dims::nx>(internal_, 0, sizes_.nx);
+    theta_ = detail::segment<Dims::np>(internal_, sizes_.nx, sizes_.np);
+  }
+
+  Model model_;
+  Sizes sizes_;
+  Covariances cov_;
+  InternalState internal_;
+  SampledIntegrator<Dims, InternalState> integrator_;
+  Eigen::LLT<typename Dims::OutputMatrixSquare> llt_;
+  State eta_;
+  Parameters theta_;
+  mutable Workspace w_;
+};
+
+}  // namespace adaptobs

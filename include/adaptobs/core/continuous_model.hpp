@@ -1,0 +1,178 @@
+#pragma once
+/// \file
+/// Continuous-time linear models with unknown parameters (paper 001, eq. (1)):
+/// \f[ \dot\eta(t) = A(t)\eta(t) + B(t)u(t) + \Phi(t)\theta,\qquad y(t) = C(t)\eta(t). \f]
+///
+/// A model supplies the known matrices \f$(A(t), B(t), C(t))\f$ — constant
+/// (`ContinuousLtiModel`) or from a callable (`ContinuousLtvModel`) — and the
+/// known regressor \f$\Phi\f$, a callable of `t`, or of `(t, u, y)` for
+/// state-affine systems whose regressor is built from the measured signals.
+/// Measurements arrive as `ContinuousSample`s: the input and the output at a
+/// sampling instant, optionally also at the midpoint of the interval since the
+/// previous sample (see `core/sampled_integration.hpp` for how observers use them).
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <concepts>
+#include <optional>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+
+namespace adaptobs {
+
+/// The known matrices of a continuous-time linear system at one instant.
+template <StateSpace D>
+struct ContinuousSystem {
+  typename D::StateMatrix A;
+  typename D::InputMatrix B;
+  typename D::OutputMatrix C;
+
+  [[nodiscard]] Sizes sizes() const noexcept { return {A.rows(), B.cols(), C.rows(), D::np}; }
+};
+
+/// Input and output measured at one instant \f$t_k\f$.
+///
+/// `midpoint`, when set, holds \f$u\f$ and \f$y\f$ at \f$(t_{k-1} + t_k)/2\f$:
+/// with it, one Runge–Kutta step per sample sees the signals exactly at its
+/// stage times (see `SignalReconstruction::quadratic`).
+template <StateSpace D>
+struct ContinuousSample {
+  struct Midpoint {
+    typename D::Input u;
+    typename D::Output y;
+  };
+  typename D::Scalar t{};
+  typename D::Input u;
+  typename D::Output y;
+  std::optional<Midpoint> midpoint{};
+};
+
+/// A regressor callable: `Phi(t)` or `Phi(t, u, y)`, returning an nx × np matrix.
+template <class F, class D>
+concept RegressorFunction =
+    std::invocable<const F&, typename D::Scalar> ||
+    std::invocable<const F&, typename D::Scalar, const typename D::Input&, const typename D::Output&>;
+
+namespace detail {
+template <StateSpace D, class F>
+[[nodiscard]] decltype(auto) evaluate_regressor(const F& phi, typename D::Scalar t, const typename D::Input& u,
+                                                const typename D::Output& y) {
+  if constexpr (std::invocable<const F&, typename D::Scalar, const typename D::Input&, const typename D::Output&>) {
+    return phi(t, u, y);
+  } else {
+    return phi(t);
+  }
+}
+
+template <StateSpace D>
+void validate_continuous_system(const ContinuousSystem<D>& s, std::string_view who) {
+  require_square(s.A, who, "A");
+  require_finite(s.A, who, "A");
+  require_shape(s.B, s.A.rows(), s.B.cols(), who, "B");
+  require_finite(s.B, who, "B");
+  require_shape(s.C, s.C.rows(), s.A.rows(), who, "C");
+  require_finite(s.C, who, "C");
+}
+
+template <StateSpace D, class F>
+void validate_regressor(const F& phi, const Sizes& s, std::string_view who) {
+  const typename D::Input u = D::Input::Zero(s.nu);
+  const typename D::Output y = D::Output::Zero(s.ny);
+  const typename D::RegressorMatrix first = evaluate_regressor<D>(phi, typename D::Scalar(0), u, y);
+  require_shape(first, s.nx, s.np, who, "Phi");
+}
+}  // namespace detail
+
+/// A continuous-time model: `at(t)` gives \f$(A(t), B(t), C(t))\f$ and
+/// `regressor(t, u, y)` gives \f$\Phi\f$. `time_invariant` says that A, B, C are
+/// constant (Φ may still vary).
+template <class M>
+concept ContinuousModel =
+    StateSpace<typename M::Dims> &&
+    requires(const M& m, typename M::Scalar t, const typename M::Dims::Input& u, const typename M::Dims::Output& y) {
+      { m.at(t) } -> std::convertible_to<const ContinuousSystem<typename M::Dims>&>;
+      { m.regressor(t, u, y) } -> std::convertible_to<typename M::Dims::RegressorMatrix>;
+      { M::time_invariant } -> std::convertible_to<bool>;
+      { m.sizes() } -> std::same_as<Sizes>;
+    };
+
+/// Constant \f$(A, B, C)\f$ and a regressor callable \f$\Phi\f$.
+template <StateSpace D, RegressorFunction<D> RegressorFn>
+class ContinuousLtiModel : public SizedBy<D> {
+ public:
+  static constexpr bool time_invariant = true;
+
+  /// \param np number of unknown parameters (only read when `D::np` is dynamic).
+  ContinuousLtiModel(typename D::StateMatrix A, typename D::InputMatrix B, typename D::OutputMatrix C,
+                     RegressorFn Phi, Index np = D::np)
+      : system_{std::move(A), std::move(B), std::move(C)}, phi_(std::move(Phi)) {
+    constexpr std::string_view who = "ContinuousLtiModel";
+    detail::validate_continuous_system(system_, who);
+    detail::require(np >= 0, who, "np", "must be non-negative");
+    sizes_ = {system_.A.rows(), system_.B.cols(), system_.C.rows(), np};
+    detail::validate_regressor<D>(phi_, sizes_, who);
+  }
+
+  [[nodiscard]] const ContinuousSystem<D>& at(typename D::Scalar /*t*/) const noexcept { return system_; }
+  [[nodiscard]] const ContinuousSystem<D>& system() const noexcept { return system_; }
+  [[nodiscard]] decltype(auto) regressor(typename D::Scalar t, const typename D::Input& u,
+                                         const typename D::Output& y) const {
+    return detail::evaluate_regressor<D>(phi_, t, u, y);
+  }
+  [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
+
+ private:
+  ContinuousSystem<D> system_;
+  RegressorFn phi_;
+  Sizes sizes_;
+};
+
+/// Time-varying model: a callable `t -> ContinuousSystem<D>` and a regressor callable.
+template <StateSpace D, class MatricesFn, RegressorFunction<D> RegressorFn>
+  requires std::convertible_to<std::invoke_result_t<const MatricesFn&, typename D::Scalar>, ContinuousSystem<D>>
+class ContinuousLtvModel : public SizedBy<D> {
+ public:
+  static constexpr bool time_invariant = false;
+
+  ContinuousLtvModel(MatricesFn matrices_at, RegressorFn Phi, Sizes sizes = {D::nx, D::nu, D::ny, D::np})
+      : matrices_at_(std::move(matrices_at)), phi_(std::move(Phi)), sizes_(sizes) {
+    constexpr std::string_view who = "ContinuousLtvModel";
+    detail::require(sizes_.nx >= 0 && sizes_.nu >= 0 && sizes_.ny >= 0 && sizes_.np >= 0, who, "sizes",
+                    "must be non-negative (dynamic dimensions need explicit sizes)");
+    const ContinuousSystem<D> first = matrices_at_(typename D::Scalar(0));
+    detail::validate_continuous_system(first, who);
+    detail::require(first.sizes().nx == sizes_.nx && first.sizes().nu == sizes_.nu && first.sizes().ny == sizes_.ny,
+                    who, "matrices_at", "returns matrices whose sizes differ from 'sizes'");
+    detail::validate_regressor<D>(phi_, sizes_, who);
+  }
+
+  [[nodiscard]] ContinuousSystem<D> at(typename D::Scalar t) const { return matrices_at_(t); }
+  [[nodiscard]] decltype(auto) regressor(typename D::Scalar t, const typename D::Input& u,
+                                         const typename D::Output& y) const {
+    return detail::evaluate_regressor<D>(phi_, t, u, y);
+  }
+  [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
+
+ private:
+  MatricesFn matrices_at_;
+  RegressorFn phi_;
+  Sizes sizes_;
+};
+
+/// `make_continuous_lti_model<D>(A, B, C, Phi)`: deduces the regressor type.
+template <StateSpace D, class RegressorFn>
+[[nodiscard]] auto make_continuous_lti_model(typename D::StateMatrix A, typename D::InputMatrix B,
+                                             typename D::OutputMatrix C, RegressorFn Phi, Index np = D::np) {
+  return ContinuousLtiModel<D, RegressorFn>(std::move(A), std::move(B), std::move(C), std::move(Phi), np);
+}
+
+/// `make_continuous_ltv_model<D>(matrices_at, Phi)`: deduces the callable types.
+template <StateSpace D, class MatricesFn, class RegressorFn>
+[[nodiscard]] auto make_continuous_ltv_model(MatricesFn matrices_at, RegressorFn Phi,
+                                             Sizes sizes = {D::nx, D::nu, D::ny, D::np}) {
+  return ContinuousLtvModel<D, MatricesFn, RegressorFn>(std::move(matrices_at), std::move(Phi), sizes);
+}
+
+}  // namespace adaptobs

@@ -1,0 +1,146 @@
+#pragma once
+/// \file
+/// Static transformation of paper 001 (§II-A, eq. (2)): a coordinate change
+/// \f$x = T\eta\f$ and an output injection K.
+///
+/// Applied to system (1) it gives
+/// \f[ \dot x = A_o x + \varphi + \Psi\theta,\qquad y = C_o x, \f]
+/// \f[ C_o = C T^{-1},\quad A_o = T A T^{-1} - K C_o,\quad \Psi = T\Phi,\quad \varphi = T B u + K y. \f]
+/// T is constant; K may be changed between samples (a time-varying K(t), e.g.
+/// from a Riccati differential equation, is then piecewise constant).
+
+#include <adaptobs/core/continuous_model.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <string_view>
+#include <utility>
+
+namespace adaptobs {
+
+/// The matrices of system (2) at one instant.
+template <StateSpace D>
+struct TransformedSystem {
+  typename D::StateMatrix Ao;   ///< \f$A_o = TAT^{-1} - KC_o\f$
+  typename D::OutputMatrix Co;  ///< \f$C_o = CT^{-1}\f$
+  typename D::InputMatrix TB;   ///< \f$TB\f$, so that \f$\varphi = TBu + Ky\f$
+  typename D::GainMatrix K;     ///< output injection K
+
+  void resize(const Sizes& s) {
+    Ao.setZero(s.nx, s.nx);
+    Co.setZero(s.ny, s.nx);
+    TB.setZero(s.nx, s.nu);
+    K.setZero(s.nx, s.ny);
+  }
+};
+
+/// Coordinate change T and output injection K (eq. (2)).
+template <StateSpace D>
+class StaticTransform : public SizedBy<D> {
+ public:
+  using Scalar = typename D::Scalar;
+  using StateMatrix = typename D::StateMatrix;
+  using GainMatrix = typename D::GainMatrix;
+
+  /// \param T invertible coordinate change \f$x = T\eta\f$; \param K output injection (n × m).
+  StaticTransform(StateMatrix T, GainMatrix K) : t_(std::move(T)), k_(std::move(K)) {
+    constexpr std::string_view who = "StaticTransform";
+    detail::require_square(t_, who, "T");
+    detail::require_finite(t_, who, "T");
+    detail::require_shape(k_, t_.rows(), k_.cols(), who, "K");
+    detail::require_finite(k_, who, "K");
+    const Eigen::FullPivLU<StateMatrix> lu(t_);
+    detail::require(lu.isInvertible(), who, "T", "must be invertible");
+    t_inverse_ = lu.inverse();
+    identity_ = (t_.array() == StateMatrix::Identity(t_.rows(), t_.cols()).array()).all();
+  }
+
+  /// No coordinate change (T = I), output injection K — the choice of Algorithm 4.
+  [[nodiscard]] static StaticTransform output_injection(GainMatrix K) {
+    const Index n = K.rows();
+    return StaticTransform(StateMatrix::Identity(n, n), std::move(K));
+  }
+
+  /// T = I, K = 0: the system is used as it is.
+  [[nodiscard]] static StaticTransform identity(Index nx = D::nx, Index ny = D::ny) {
+    return StaticTransform(StateMatrix::Identity(nx, nx), GainMatrix::Zero(nx, ny));
+  }
+
+  [[nodiscard]] const StateMatrix& T() const noexcept { return t_; }
+  [[nodiscard]] const StateMatrix& T_inverse() const noexcept { return t_inverse_; }
+  [[nodiscard]] const GainMatrix& K() const noexcept { return k_; }
+  /// True when T is exactly the identity (the products by T are then skipped).
+  [[nodiscard]] bool is_identity() const noexcept { return identity_; }
+
+  /// Replaces K (e.g. the gain of a Riccati differential equation at the current sample).
+  void set_output_injection(const GainMatrix& K) {
+    detail::require_shape(K, k_.rows(), k_.cols(), "StaticTransform::set_output_injection", "K");
+    detail::require_finite(K, "StaticTransform::set_output_injection", "K");
+    k_ = K;
+  }
+
+  /// Matrices of (2) for the system (A, B, C) at one instant.
+  void apply(const ContinuousSystem<D>& s, TransformedSystem<D>& out) const {
+    if (identity_) {
+      out.Ao = s.A;
+      out.Co = s.C;
+      out.TB = s.B;
+    } else {
+      out.Co.noalias() = s.C * t_inverse_;
+      out.TB.noalias() = t_ * s.B;
+      out.Ao.noalias() = t_ * (s.A * t_inverse_);
+    }
+    out.Ao.noalias() -= k_ * out.Co;
+    out.K = k_;
+  }
+
+  [[nodiscard]] TransformedSystem<D> apply(const ContinuousSystem<D>& s) const {
+    TransformedSystem<D> out;
+    out.resize({s.A.rows(), s.B.cols(), s.C.rows(), 0});
+    apply(s, out);
+    return out;
+  }
+
+  /// \f$\Psi = T\Phi\f$.
+  template <class DPhi, class DPsi>
+  void regressor(const Eigen::MatrixBase<DPhi>& Phi, Eigen::MatrixBase<DPsi>& Psi) const {
+    if (identity_) {
+      Psi = Phi;
+    } else {
+      Psi.noalias() = t_ * Phi;
+    }
+  }
+
+  /// \f$\varphi = TBu + Ky\f$.
+  template <class DPhi>
+  void drive(const TransformedSystem<D>& s, const typename D::Input& u, const typename D::Output& y,
+             Eigen::MatrixBase<DPhi>& phi) const {
+    phi.noalias() = s.TB * u;
+    phi.noalias() += s.K * y;
+  }
+
+  /// \f$x = T\eta\f$.
+  [[nodiscard]] typename D::State to_transformed(const typename D::State& eta) const {
+    return identity_ ? eta : typename D::State(t_ * eta);
+  }
+  /// \f$\eta = T^{-1}x\f$.
+  template <class DX, class DEta>
+  void to_original(const Eigen::MatrixBase<DX>& x, Eigen::MatrixBase<DEta>& eta) const {
+    if (identity_) {
+      eta = x;
+    } else {
+      eta.noalias() = t_inverse_ * x;
+    }
+  }
+
+ private:
+  StateMatrix t_;
+  StateMatrix t_inverse_;
+  GainMatrix k_;
+  bool identity_ = false;
+};
+
+}  // namespace adaptobs

@@ -1,0 +1,60 @@
+#pragma once
+/// \file
+/// Continuous Lyapunov equation \f$A^TX + XA + Q = 0\f$ (Bartels–Stewart on the complex Schur form).
+///
+/// With \f$A = UTU^H\f$ (T upper triangular), \f$Y = U^HXU\f$ solves the
+/// triangular equation \f$T^HY + YT = -U^HQU\f$, entry by entry:
+/// \f[ (\bar t_{ii} + t_{jj})\,y_{ij} = -c_{ij} - \sum_{k<i}\bar t_{ki}y_{kj} - \sum_{l<j} y_{il}t_{lj}. \f]
+/// A unique solution exists when no two eigenvalues of A sum to zero; for a
+/// Hurwitz A and Q ≥ 0 it is the positive semidefinite \f$\int_0^\infty e^{A^Ts}Qe^{As}ds\f$.
+
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <complex>
+#include <limits>
+
+namespace adaptobs {
+
+/// Solution X of \f$A^TX + XA + Q = 0\f$ (Q symmetric). Throws when A and −A share an eigenvalue.
+template <class DA, class DQ>
+[[nodiscard]] Eigen::Matrix<typename DA::Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime>
+solve_continuous_lyapunov(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DQ>& Q) {
+  using Scalar = typename DA::Scalar;
+  using Complex = std::complex<Scalar>;
+  using ComplexMatrix = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
+  constexpr std::string_view who = "solve_continuous_lyapunov";
+  detail::require_square(A, who, "A");
+  detail::require_finite(A, who, "A");
+  const Index n = A.rows();
+  detail::require_shape(Q, n, n, who, "Q");
+  detail::require_finite(Q, who, "Q");
+  Eigen::Matrix<Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime> X(n, n);
+  if (n == 0) return X;
+
+  const Eigen::ComplexSchur<ComplexMatrix> schur(ComplexMatrix(A.template cast<Complex>()));
+  const ComplexMatrix& T = schur.matrixT();
+  const ComplexMatrix& U = schur.matrixU();
+  const ComplexMatrix C = U.adjoint() * Q.template cast<Complex>() * U;
+  ComplexMatrix Y = ComplexMatrix::Zero(n, n);
+  const Scalar scale = std::max(Scalar(1), T.cwiseAbs().maxCoeff());
+  for (Index j = 0; j < n; ++j) {
+    for (Index i = 0; i < n; ++i) {
+      Complex rhs = -C(i, j);
+      for (Index k = 0; k < i; ++k) rhs -= std::conj(T(k, i)) * Y(k, j);
+      for (Index l = 0; l < j; ++l) rhs -= Y(i, l) * T(l, j);
+      const Complex pivot = std::conj(T(i, i)) + T(j, j);
+      if (std::abs(pivot) <= Scalar(100) * std::numeric_limits<Scalar>::epsilon() * scale)
+        detail::fail_argument(who, "A", "must not share an eigenvalue with -A (the equation is singular)");
+      Y(i, j) = rhs / pivot;
+    }
+  }
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> x = (U * Y * U.adjoint()).real();
+  X = Scalar(0.5) * (x + x.transpose());
+  return X;
+}
+
+}  // namespace adaptobs

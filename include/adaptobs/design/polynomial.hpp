@@ -1,0 +1,244 @@
+#pragma once
+/// \file
+/// Polynomials and SISO transfer functions of small state-space systems.
+///
+/// Coefficients are stored highest power first: \f$p(s) = p_0 s^d + p_1 s^{d-1} + \dots + p_d\f$
+/// is the vector \f$(p_0, \dots, p_d)\f$. Characteristic polynomials and
+/// adjugates come from the Faddeev–LeVerrier recursion
+/// \f$B_0 = I,\ a_k = -\mathrm{tr}(AB_{k-1})/k,\ B_k = AB_{k-1} + a_kI\f$, giving
+/// \f$\det(sI - A) = s^n + a_1s^{n-1} + \dots + a_n\f$ and
+/// \f$\mathrm{adj}(sI - A) = \sum_{k=0}^{n-1} B_k s^{n-1-k}\f$ — exact in rational
+/// arithmetic, and accurate in floating point for the small orders (n ≲ 10)
+/// of the design problems it serves.
+
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace adaptobs {
+
+template <typename Scalar>
+using Polynomial = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+/// Coefficients of \f$\det(sI - A)\f$ (monic, degree n).
+template <class Derived>
+[[nodiscard]] Polynomial<typename Derived::Scalar> characteristic_polynomial(const Eigen::MatrixBase<Derived>& A) {
+  using Scalar = typename Derived::Scalar;
+  detail::require_square(A, "characteristic_polynomial", "A");
+  const Index n = A.rows();
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a = A;
+  Polynomial<Scalar> p(n + 1);
+  p(0) = Scalar(1);
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> b = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Identity(n, n);
+  for (Index k = 1; k <= n; ++k) {
+    const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> ab = a * b;
+    p(k) = -ab.trace() / Scalar(k);
+    b = ab;
+    b.diagonal().array() += p(k);
+  }
+  return p;
+}
+
+/// Every root in the open left half-plane (and a non-zero leading coefficient).
+///
+/// Routh–Hurwitz test, no root finding: the first column of the Routh array
+/// must keep one sign. Each row is \f$r_{k+1,j} = r_{k-1,j+1} - (r_{k-1,0}/r_{k,0})\,r_{k,j+1}\f$;
+/// a zero (relative to the coefficients) in the first column means a root on
+/// or to the right of the imaginary axis, so the polynomial is not Hurwitz.
+template <typename Scalar>
+[[nodiscard]] bool is_hurwitz_polynomial(const Polynomial<Scalar>& p) {
+  if (p.size() == 0 || p(0) == Scalar(0) || !p.allFinite()) return false;
+  const Index degree = p.size() - 1;
+  if (degree == 0) return true;
+  const Scalar sign = p(0) > 0 ? Scalar(1) : Scalar(-1);
+  const Scalar tol = Scalar(64) * std::numeric_limits<Scalar>::epsilon() * p.cwiseAbs().maxCoeff();
+  const Index width = degree / 2 + 1;
+  Polynomial<Scalar> upper = Polynomial<Scalar>::Zero(width), lower = Polynomial<Scalar>::Zero(width);
+  for (Index i = 0; i <= degree; ++i) (i % 2 == 0 ? upper : lower)(i / 2) = sign * p(i);
+  for (Index row = 1; row <= degree; ++row) {
+    if (!(lower(0) > tol)) return false;
+    const Scalar ratio = upper(0) / lower(0);
+    Polynomial<Scalar> next = Polynomial<Scalar>::Zero(width);
+    for (Index j = 0; j + 1 < width; ++j) next(j) = upper(j + 1) - ratio * lower(j + 1);
+    upper = lower;
+    lower = next;
+  }
+  return true;
+}
+
+/// Hurwitz test of a small square matrix without an eigen-decomposition:
+/// Routh–Hurwitz on its Faddeev–LeVerrier characteristic polynomial (orders n ≲ 10,
+/// the design-time checks of small observer blocks).
+template <class Derived>
+[[nodiscard]] bool has_hurwitz_characteristic_polynomial(const Eigen::MatrixBase<Derived>& m) {
+  if (m.size() == 0) return true;
+  return is_hurwitz_polynomial(characteristic_polynomial(m));
+}
+
+/// Number of distinct real roots of p in the half-open interval (a, ∞), by a
+/// Sturm sequence (signs of \f$p_0 = p,\ p_1 = p',\ p_{k+1} = -\mathrm{rem}(p_{k-1}, p_k)\f$
+/// at a and at +∞); `relative_tolerance` treats remainder coefficients that small
+/// against the largest as zero. No root finding.
+template <typename Scalar>
+[[nodiscard]] Index count_real_roots_above(const Polynomial<Scalar>& p, Scalar a,
+                                           Scalar relative_tolerance = Scalar(1e-10)) {
+  const auto trimmed = [&](Polynomial<Scalar> q) {
+    const Scalar scale = q.size() == 0 ? Scalar(0) : q.cwiseAbs().maxCoeff();
+    Index first = 0;
+    while (first < q.size() && std::abs(q(first)) <= relative_tolerance * scale) ++first;
+    return Polynomial<Scalar>(q.tail(q.size() - first));
+  };
+  std::vector<Polynomial<Scalar>> chain;
+  chain.push_back(trimmed(p));
+  if (chain[0].size() <= 1) return 0;
+  Polynomial<Scalar> derivative(chain[0].size() - 1);
+  const Index d = chain[0].size() - 1;
+  for (Index i = 0; i < d; ++i) derivative(i) = Scalar(d - i) * chain[0](i);
+  chain.push_back(trimmed(derivative));
+  while (chain.back().size() > 1) {
+    Polynomial<Scalar> r = chain[chain.size() - 2];
+    const Polynomial<Scalar>& q = chain.back();
+    const Scalar keep = r.cwiseAbs().maxCoeff();
+    for (Index shift = 0; shift + q.size() <= r.size(); ++shift) {
+      const Scalar factor = r(shift) / q(0);
+      r.segment(shift, q.size()) -= factor * q;
+      r(shift) = Scalar(0);
+    }
+    r = r.tail(q.size() - 1).eval();
+    // Scale-aware trim: compare with the dividend, not with the (small) remainder itself.
+    Index first = 0;
+    while (first < r.size() && std::abs(r(first)) <= relative_tolerance * keep) ++first;
+    if (first == r.size()) break;  // p has repeated roots: the chain ends at their gcd
+    chain.push_back(Polynomial<Scalar>(-r.tail(r.size() - first)));
+  }
+  const auto sign_changes = [&](auto value_of) {
+    Index changes = 0;
+    int previous = 0;
+    for (const auto& q : chain) {
+      const Scalar v = value_of(q);
+      const int s = v > 0 ? 1 : (v < 0 ? -1 : 0);
+      if (s != 0) {
+        if (previous != 0 && s != previous) ++changes;
+        previous = s;
+      }
+    }
+    return changes;
+  };
+  const auto at_a = [&](const Polynomial<Scalar>& q) {
+    Scalar v = 0;
+    for (Index i = 0; i < q.size(); ++i) v = v * a + q(i);
+    return v;
+  };
+  const auto at_infinity = [](const Polynomial<Scalar>& q) { return q(0); };
+  return sign_changes(at_a) - sign_changes(at_infinity);
+}
+
+/// Product of two polynomials (convolution of the coefficients).
+template <typename Scalar>
+[[nodiscard]] Polynomial<Scalar> multiply_polynomials(const Polynomial<Scalar>& a, const Polynomial<Scalar>& b) {
+  if (a.size() == 0 || b.size() == 0) return Polynomial<Scalar>(0);
+  Polynomial<Scalar> c = Polynomial<Scalar>::Zero(a.size() + b.size() - 1);
+  for (Index i = 0; i < a.size(); ++i)
+    for (Index j = 0; j < b.size(); ++j) c(i + j) += a(i) * b(j);
+  return c;
+}
+
+/// Monic polynomial with the given real roots: \f$\prod_i (s - r_i)\f$.
+template <typename Scalar>
+[[nodiscard]] Polynomial<Scalar> polynomial_from_roots(const std::vector<Scalar>& roots) {
+  Polynomial<Scalar> p = Polynomial<Scalar>::Ones(1);
+  Polynomial<Scalar> factor(2);
+  for (Scalar r : roots) {
+    factor << Scalar(1), -r;
+    p = multiply_polynomials<Scalar>(p, factor);
+  }
+  return p;
+}
+
+/// \f$p(M) = p_0M^d + \dots + p_dI\f$ by Horner's rule.
+template <class Derived>
+[[nodiscard]] Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic> evaluate_polynomial(
+    const Polynomial<typename Derived::Scalar>& p, const Eigen::MatrixBase<Derived>& m) {
+  using Matrix = Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  const Index n = m.rows();
+  Matrix result = Matrix::Zero(n, n);
+  for (Index i = 0; i < p.size(); ++i) {
+    result = (result * m).eval();
+    result.diagonal().array() += p(i);
+  }
+  return result;
+}
+
+/// Observability matrix \f$[C; CA; \dots; CA^{n-1}]\f$.
+template <class DA, class DC>
+[[nodiscard]] Eigen::Matrix<typename DA::Scalar, Eigen::Dynamic, Eigen::Dynamic> observability_matrix(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C) {
+  using Matrix = Eigen::Matrix<typename DA::Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  const Index n = A.rows(), m = C.rows();
+  Matrix o(n * m, n);
+  Matrix row = C;
+  for (Index k = 0; k < n; ++k) {
+    o.middleRows(k * m, m) = row;
+    row = (row * A).eval();
+  }
+  return o;
+}
+
+/// \f$G(s) = c(sI - A)^{-1}b = N(s)/D(s)\f$ with D monic of degree n and N of degree ≤ n − 1.
+template <typename Scalar>
+struct SisoTransferFunction {
+  Polynomial<Scalar> numerator;    ///< \f$N(s) = c\,\mathrm{adj}(sI - A)\,b\f$, n coefficients
+  Polynomial<Scalar> denominator;  ///< \f$D(s) = \det(sI - A)\f$, n + 1 coefficients
+};
+
+template <class DA, class DB, class DC>
+[[nodiscard]] SisoTransferFunction<typename DA::Scalar> transfer_function(const Eigen::MatrixBase<DA>& A,
+                                                                          const Eigen::MatrixBase<DB>& b,
+                                                                          const Eigen::MatrixBase<DC>& c) {
+  using Scalar = typename DA::Scalar;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  constexpr std::string_view who = "transfer_function";
+  detail::require_square(A, who, "A");
+  const Index n = A.rows();
+  detail::require_shape(b, n, 1, who, "b");
+  detail::require_shape(c, 1, n, who, "c");
+  SisoTransferFunction<Scalar> g;
+  g.denominator = characteristic_polynomial(A);
+  g.numerator.resize(n);
+  Matrix bk = Matrix::Identity(n, n);
+  const Matrix a = A;
+  for (Index k = 0; k < n; ++k) {
+    g.numerator(k) = (c * bk * b)(0, 0);
+    bk = (a * bk).eval();
+    if (k + 1 <= n) bk.diagonal().array() += g.denominator(k + 1);
+  }
+  return g;
+}
+
+/// Output-injection gain k with \f$\det(sI - A + kc) = p(s)\f$ (observer form of
+/// Ackermann's formula, \f$k = p(A)\,\mathcal O^{-1}e_n\f$). Throws when (A, c)
+/// is not observable or p is not monic of degree n.
+template <class DA, class DC>
+[[nodiscard]] Eigen::Matrix<typename DA::Scalar, DA::RowsAtCompileTime, 1> ackermann_observer_gain(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Polynomial<typename DA::Scalar>& p) {
+  using Scalar = typename DA::Scalar;
+  constexpr std::string_view who = "ackermann_observer_gain";
+  detail::require_square(A, who, "A");
+  const Index n = A.rows();
+  detail::require_shape(c, 1, n, who, "c");
+  detail::require(p.size() == n + 1 && p(0) == Scalar(1), who, "p", "must be monic of degree n");
+  const auto o = observability_matrix(A, c);
+  const Eigen::FullPivLU<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> lu(o);
+  detail::require(lu.rank() == n, who, "A, c", "must be an observable pair");
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> en = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Zero(n);
+  en(n - 1) = Scalar(1);
+  return evaluate_polynomial(p, A) * lu.solve(en);
+}
+
+}  // namespace adaptobs

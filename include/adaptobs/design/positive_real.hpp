@@ -1,0 +1,306 @@
+#pragma once
+/// \file
+/// Strict positive realness of \f$G(s) = c(sI - A)^{-1}b\f$: an exact test, a
+/// frequency sweep, a Kalman–Yakubovich–Popov certificate, and the design of a
+/// gain k making \f$c(sI - A + kc)^{-1}\gamma\f$ SPR.
+///
+/// Algorithms 1 and 2 of paper 001 (§III-A, §III-B) converge when
+/// \f$c_o(sI - A_o + kc_o)^{-1}\gamma\f$ is SPR: then (KYP lemma) some
+/// \f$P = P^T > 0\f$ satisfies \f$\bar A^TP + P\bar A < 0\f$ and \f$P\gamma = c_o^T\f$ with
+/// \f$\bar A = A_o - kc_o\f$, and \f$V = e^TPe + \tilde\theta^T\Gamma^{-1}\tilde\theta\f$
+/// is a Lyapunov function of the observer errors.
+///
+/// **Exact test.** With \f$G = N/D\f$, D monic of degree n: G is SPR iff D is
+/// Hurwitz, the relative degree is 1 with a positive leading coefficient of N,
+/// and the even polynomial \f$R(s) = \tfrac12[N(s)D(-s) + N(-s)D(s)]\f$, written
+/// \f$q(w)\f$ with \f$w = \omega^2\f$ (\f$R(j\omega) = q(\omega^2) = \mathrm{Re}\,G(j\omega)|D(j\omega)|^2\f$),
+/// has \f$q(0) > 0\f$, no real root in \f$[0, \infty)\f$, degree n − 1 and a positive
+/// leading coefficient — the last two say \f$\lim\omega^2\mathrm{Re}\,G(j\omega) > 0\f$,
+/// the strictness condition at infinity that \f$\mathrm{Re}\,G(j\omega) > 0\f$ alone misses.
+/// D is tested by Routh–Hurwitz and the real roots of q are counted by a Sturm
+/// sequence: exact in rational arithmetic, no root finding.
+///
+/// **Choosing k.** Output injection moves poles, never zeros:
+/// \f$c(sI - A + kc)^{-1}\gamma = N_\gamma(s)/\det(sI - A + kc)\f$ with
+/// \f$N_\gamma = c\,\mathrm{adj}(sI - A)\gamma\f$. So an SPR choice exists iff
+/// \f$c\gamma > 0\f$ and \f$N_\gamma\f$ is Hurwitz; placing the poles at
+/// \f$(s + \lambda)N_\gamma(s)/(c\gamma)\f$ gives \f$G = c\gamma/(s + \lambda)\f$, SPR for every λ > 0.
+
+#include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/care.hpp>
+#include <adaptobs/design/polynomial.hpp>
+#include <adaptobs/design/stability.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <optional>
+
+namespace adaptobs {
+
+/// Outcome of the exact SPR test, with the intermediate figures.
+template <typename Scalar>
+struct SprTest {
+  bool strictly_positive_real = false;
+  bool denominator_hurwitz = false;
+  Index relative_degree = 0;
+  Scalar high_frequency_gain = 0;  ///< leading coefficient of N (= cb when the relative degree is 1)
+  Polynomial<Scalar> q;            ///< \f$q(w) = \mathrm{Re}\,G(j\sqrt w)\,|D(j\sqrt w)|^2\f$, highest power first
+  bool q_positive_on_nonnegative_axis = false;
+  bool strict_at_infinity = false;  ///< deg q = n − 1 with a positive leading coefficient
+  explicit operator bool() const noexcept { return strictly_positive_real; }
+};
+
+/// Exact SPR test of \f$G = N/D\f$ (D monic of degree n, deg N < n).
+template <typename Scalar>
+[[nodiscard]] SprTest<Scalar> strictly_positive_real(const Polynomial<Scalar>& numerator,
+                                                     const Polynomial<Scalar>& denominator) {
+  constexpr std::string_view who = "strictly_positive_real";
+  detail::require(denominator.size() >= 2 && denominator(0) == Scalar(1), who, "denominator",
+                  "must be monic of degree at least 1");
+  const Index n = denominator.size() - 1;
+  detail::require(numerator.size() <= n, who, "numerator", "must have degree below the denominator's");
+  // N padded to n coefficients (degree ≤ n − 1).
+  Polynomial<Scalar> num = Polynomial<Scalar>::Zero(n);
+  num.tail(numerator.size()) = numerator;
+  const Scalar scale = std::max(num.cwiseAbs().maxCoeff(), std::numeric_limits<Scalar>::min());
+  const Scalar zero_tol = Scalar(1e-10) * scale;
+
+  SprTest<Scalar> r;
+  r.denominator_hurwitz = is_hurwitz_polynomial(denominator);
+  Index lead = 0;
+  while (lead < n && std::abs(num(lead)) <= zero_tol) ++lead;
+  if (lead == n) return r;  // G = 0
+  r.relative_degree = n - (n - 1 - lead);
+  r.high_frequency_gain = num(lead);
+
+  // R(s) = ½[N(s)D(−s) + N(−s)D(s)], ascending powers.
+  const auto reflect = [](const Polynomial<Scalar>& p) {  // coefficients of p(−s)
+    Polynomial<Scalar> out = p;
+    const Index d = p.size() - 1;
+    for (Index i = 0; i <= d; ++i)
+      if ((d - i) % 2 == 1) out(i) = -out(i);
+    return out;
+  };
+  const Polynomial<Scalar> r_desc =
+      Scalar(0.5) * (multiply_polynomials<Scalar>(num, reflect(denominator)) +
+                     multiply_polynomials<Scalar>(reflect(num), denominator));
+  const Polynomial<Scalar> r_asc = r_desc.reverse();
+  const Index q_terms = (r_asc.size() + 1) / 2;
+  Polynomial<Scalar> q_asc(q_terms);
+  for (Index k = 0; k < q_terms; ++k) q_asc(k) = (k % 2 == 0 ? Scalar(1) : Scalar(-1)) * r_asc(2 * k);
+  const Scalar q_scale = std::max(q_asc.cwiseAbs().maxCoeff(), std::numeric_limits<Scalar>::min());
+  Index degree = q_terms - 1;
+  while (degree > 0 && std::abs(q_asc(degree)) <= Scalar(1e-10) * q_scale) --degree;
+  r.q = q_asc.head(degree + 1).reverse();
+
+  // q(0) > 0 is checked below, so a root on [0, ∞) is a root in (0, ∞) (Sturm count).
+  const bool nonnegative_root = count_real_roots_above<Scalar>(r.q, Scalar(0)) > 0;
+  r.q_positive_on_nonnegative_axis = q_asc(0) > 0 && !nonnegative_root;
+  r.strict_at_infinity = degree == n - 1 && r.q(0) > 0;
+  r.strictly_positive_real = r.denominator_hurwitz && r.relative_degree == 1 && r.high_frequency_gain > 0 &&
+                             r.q_positive_on_nonnegative_axis && r.strict_at_infinity;
+  return r;
+}
+
+/// Exact SPR test of \f$c(sI - A)^{-1}b\f$.
+template <class DA, class DB, class DC>
+[[nodiscard]] SprTest<typename DA::Scalar> strictly_positive_real(const Eigen::MatrixBase<DA>& A,
+                                                                  const Eigen::MatrixBase<DB>& b,
+                                                                  const Eigen::MatrixBase<DC>& c) {
+  const auto g = transfer_function(A, b, c);
+  return strictly_positive_real<typename DA::Scalar>(g.numerator, g.denominator);
+}
+
+/// Frequency-sweep cross-check of strict positive realness.
+template <typename Scalar>
+struct SprSweep {
+  bool strictly_positive_real = false;
+  bool hurwitz = false;
+  Scalar min_weighted_real_part = 0;  ///< \f$\min_\omega (1 + \omega^2)\,\mathrm{Re}\,G(j\omega)\f$ over the grid
+  Scalar at_frequency = 0;            ///< ω of that minimum
+  Scalar high_frequency_limit = 0;    ///< \f$\lim \omega^2\mathrm{Re}\,G(j\omega) = -cAb\f$
+  explicit operator bool() const noexcept { return strictly_positive_real; }
+};
+
+/// Samples \f$(1 + \omega^2)\,\mathrm{Re}\,G(j\omega)\f$ at ω = 0 and on a
+/// logarithmic grid of [omega_min, omega_max]; requires it positive, A Hurwitz
+/// and \f$-cAb > 0\f$. (Weighting by \f$1 + \omega^2\f$ keeps the test from
+/// reading round-off as a sign where \f$\mathrm{Re}\,G\f$ decays like \f$\omega^{-2}\f$.)
+template <class DA, class DB, class DC>
+[[nodiscard]] SprSweep<typename DA::Scalar> spr_frequency_sweep(const Eigen::MatrixBase<DA>& A,
+                                                                const Eigen::MatrixBase<DB>& b,
+                                                                const Eigen::MatrixBase<DC>& c,
+                                                                typename DA::Scalar omega_min = 1e-4,
+                                                                typename DA::Scalar omega_max = 1e4, int points = 2001) {
+  using Scalar = typename DA::Scalar;
+  using Complex = std::complex<Scalar>;
+  using ComplexMatrix = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
+  constexpr std::string_view who = "spr_frequency_sweep";
+  detail::require_square(A, who, "A");
+  const Index n = A.rows();
+  detail::require_shape(b, n, 1, who, "b");
+  detail::require_shape(c, 1, n, who, "c");
+  detail::require(omega_min > 0 && omega_max > omega_min && points >= 2, who, "omega_min, omega_max, points",
+                  "must satisfy 0 < omega_min < omega_max and points ≥ 2");
+  SprSweep<Scalar> r;
+  r.hurwitz = is_hurwitz_stable(Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>(A));
+  r.high_frequency_limit = -(c * A * b)(0, 0);
+  const ComplexMatrix a = A.template cast<Complex>();
+  const ComplexMatrix bb = b.template cast<Complex>();
+  const ComplexMatrix cc = c.template cast<Complex>();
+  r.min_weighted_real_part = std::numeric_limits<Scalar>::infinity();
+  for (int i = -1; i < points; ++i) {
+    const Scalar w = i < 0 ? Scalar(0)
+                           : omega_min * std::pow(omega_max / omega_min, Scalar(i) / Scalar(points - 1));
+    const ComplexMatrix m = Complex(0, w) * ComplexMatrix::Identity(n, n) - a;
+    const Complex g = (cc * m.partialPivLu().solve(bb))(0, 0);
+    const Scalar weighted = (Scalar(1) + w * w) * g.real();
+    if (weighted < r.min_weighted_real_part) {
+      r.min_weighted_real_part = weighted;
+      r.at_frequency = w;
+    }
+  }
+  const Scalar tol = Scalar(1e-9) * std::max(Scalar(1), A.cwiseAbs().maxCoeff()) *
+                     std::max(Scalar(1), b.cwiseAbs().maxCoeff()) * std::max(Scalar(1), c.cwiseAbs().maxCoeff());
+  r.strictly_positive_real = r.hurwitz && r.min_weighted_real_part > 0 && r.high_frequency_limit > tol;
+  return r;
+}
+
+/// A Kalman–Yakubovich–Popov certificate of \f$c(sI - A)^{-1}b\f$ being SPR:
+/// \f$P = P^T > 0\f$ with \f$A^TP + PA < 0\f$ and \f$Pb = c^T\f$, and its residuals.
+template <typename Scalar, int N>
+struct KypCertificate {
+  Eigen::Matrix<Scalar, N, N> P;
+  Scalar equality_residual = 0;  ///< \f$\|Pb - c^T\|_\infty\f$
+  Scalar min_eigenvalue_P = 0;   ///< \f$\lambda_{\min}(P)\f$ (> 0)
+  Scalar max_eigenvalue_lyapunov = 0;  ///< \f$\lambda_{\max}(A^TP + PA)\f$ (< 0)
+};
+
+/// Residuals of a candidate certificate P.
+template <class DP, class DA, class DB, class DC>
+[[nodiscard]] KypCertificate<typename DP::Scalar, DP::RowsAtCompileTime> kyp_residuals(
+    const Eigen::MatrixBase<DP>& P, const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b,
+    const Eigen::MatrixBase<DC>& c) {
+  using Scalar = typename DP::Scalar;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  KypCertificate<Scalar, DP::RowsAtCompileTime> k;
+  k.P = P;
+  k.equality_residual = (P * b - c.transpose()).cwiseAbs().maxCoeff();
+  const Matrix p = P, lyap = A.transpose() * P + P * A;
+  k.min_eigenvalue_P = Eigen::SelfAdjointEigenSolver<Matrix>(Matrix(0.5 * (p + p.transpose())), Eigen::EigenvaluesOnly).eigenvalues()(0);
+  k.max_eigenvalue_lyapunov =
+      Eigen::SelfAdjointEigenSolver<Matrix>(Matrix(0.5 * (lyap + lyap.transpose())), Eigen::EigenvaluesOnly)
+          .eigenvalues()(p.rows() - 1);
+  return k;
+}
+
+/// KYP certificate of an SPR \f$c(sI - A)^{-1}b\f$, found without an SDP solver,
+/// or nothing when G is not SPR.
+///
+/// In coordinates \f$x' = T_nx\f$, \f$T_n = [c; N_\perp]\f$ with \f$N_\perp b = 0\f$:
+/// \f$A' = \begin{bmatrix} a & q^T\\ r & A_0\end{bmatrix}\f$, \f$b' = (cb, 0)\f$, \f$c' = e_1^T\f$;
+/// \f$Pb = c^T\f$ forces \f$P' = \mathrm{diag}(1/cb, X)\f$, and (Schur complement on
+/// the (1,1) entry, which needs cb > 0 and a < 0) \f$A'^TP' + P'A' = -\mathrm{diag}(\cdot, \varepsilon I)\f$ becomes
+/// \f[ \tilde A^TX + X\tilde A + X\frac{rr^T}{\delta}X + \frac{qq^T}{(cb)^2\delta} + \varepsilon I = 0,\quad
+///     \delta = \frac{-2a}{cb},\ \tilde A = A_0 + \frac{rq^T}{2|a|}, \f]
+/// solved from its Hamiltonian (ε = 1, halved on failure). The returned P is
+/// verified: \f$\|Pb - c^T\| \le 10^{-10}\|c\|\f$, \f$P > 0\f$ and
+/// \f$\lambda_{\max}(A^TP + PA) < -10^{-9}\|P\|\|A\|\f$ (a margin, so that a
+/// borderline function is not certified by round-off).
+template <class DA, class DB, class DC>
+[[nodiscard]] std::optional<KypCertificate<typename DA::Scalar, DA::RowsAtCompileTime>> kyp_certificate(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b, const Eigen::MatrixBase<DC>& c) {
+  using Scalar = typename DA::Scalar;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  constexpr std::string_view who = "kyp_certificate";
+  detail::require_square(A, who, "A");
+  detail::require_finite(A, who, "A");
+  const Index n = A.rows();
+  detail::require_shape(b, n, 1, who, "b");
+  detail::require_shape(c, 1, n, who, "c");
+  const Scalar cb = (c * b)(0, 0);
+  if (!(cb > 0)) return std::nullopt;
+
+  // T_n = [c; N⊥]: the rows of N⊥ span the orthogonal complement of b.
+  const Vector bv = b;
+  const Eigen::HouseholderQR<Matrix> qr{Matrix(bv)};
+  const Matrix basis = qr.householderQ() * Matrix::Identity(n, n);
+  Matrix tn(n, n);
+  tn.row(0) = c;
+  tn.bottomRows(n - 1) = basis.rightCols(n - 1).transpose();
+  const Eigen::FullPivLU<Matrix> tn_lu(tn);
+  if (!tn_lu.isInvertible()) return std::nullopt;
+  const Matrix tn_inv = tn_lu.inverse();
+  const Matrix ap = tn * A * tn_inv;
+  const Scalar a = ap(0, 0);
+  const Scalar a_scale = std::max(Scalar(1), ap.cwiseAbs().maxCoeff());
+  if (!(a < -Scalar(1e-9) * a_scale)) return std::nullopt;
+
+  const Scalar p11 = Scalar(1) / cb;
+  Matrix p_prime = Matrix::Zero(n, n);
+  p_prime(0, 0) = p11;
+  const Scalar p_norm_tol = Scalar(1e-9);
+  const auto verified = [&](const Matrix& pp) -> std::optional<KypCertificate<Scalar, DA::RowsAtCompileTime>> {
+    const Matrix p_dynamic = tn.transpose() * pp * tn;
+    const Eigen::Matrix<Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime> p =
+        Scalar(0.5) * (p_dynamic + p_dynamic.transpose());
+    auto k = kyp_residuals(p, A, b, c);
+    const Scalar margin = p_norm_tol * p.norm() * std::max(Scalar(1), A.norm());
+    if (k.equality_residual <= Scalar(1e-10) * std::max(Scalar(1), c.cwiseAbs().maxCoeff()) &&
+        k.min_eigenvalue_P > 0 && k.max_eigenvalue_lyapunov < -margin)
+      return k;
+    return std::nullopt;
+  };
+  if (n == 1) return verified(p_prime);
+
+  const Vector q = ap.row(0).tail(n - 1).transpose();
+  const Vector r = ap.col(0).tail(n - 1);
+  const Matrix a0 = ap.bottomRightCorner(n - 1, n - 1);
+  const Scalar delta = -Scalar(2) * a * p11;
+  const Matrix a_tilde = a0 + r * q.transpose() / (Scalar(2) * std::abs(a));
+  const Matrix r_quad = r * r.transpose() / delta;
+  Scalar eps = 1;
+  for (int attempt = 0; attempt < 40; ++attempt, eps /= 2) {
+    const Matrix q_quad = (p11 * p11 / delta) * q * q.transpose() + eps * Matrix::Identity(n - 1, n - 1);
+    // Ãᵀ X + X Ã − X(−R)X + Q = 0.
+    const auto x = solve_riccati_hamiltonian(a_tilde, Matrix(-r_quad), q_quad);
+    if (!x) continue;
+    p_prime.bottomRightCorner(n - 1, n - 1) = x->X;
+    if (auto k = verified(p_prime)) return k;
+  }
+  return std::nullopt;
+}
+
+/// Output-injection gain k making \f$c(sI - A + kc)^{-1}\gamma = c\gamma/(s + \lambda)\f$
+/// (SPR): the poles are placed at \f$(s + \lambda)N_\gamma(s)/(c\gamma)\f$, cancelling the zeros.
+/// Throws when \f$c\gamma \le 0\f$ or \f$N_\gamma\f$ is not Hurwitz (then no k makes
+/// the function SPR), when λ ≤ 0, or when (A, c) is not observable.
+template <class DA, class DC, class DG>
+[[nodiscard]] Eigen::Matrix<typename DA::Scalar, DA::RowsAtCompileTime, 1> spr_injection_gain(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Eigen::MatrixBase<DG>& gamma,
+    typename DA::Scalar lambda) {
+  using Scalar = typename DA::Scalar;
+  constexpr std::string_view who = "spr_injection_gain";
+  detail::require_positive(lambda, who, "lambda");
+  const auto g = transfer_function(A, gamma, c);
+  const Index n = A.rows();
+  const Scalar cg = (c * gamma)(0, 0);
+  detail::require(cg > 0, who, "gamma", "must satisfy c gamma > 0 (relative degree one, positive gain)");
+  const Polynomial<Scalar> zeros = g.numerator / cg;  // monic, degree n − 1 since cγ = N's leading coefficient
+  detail::require(n == 1 || is_hurwitz_polynomial(zeros), who, "gamma",
+                  "gives a numerator c adj(sI - A) gamma that is not Hurwitz: no gain makes the function SPR");
+  Polynomial<Scalar> pole(2);
+  pole << Scalar(1), lambda;
+  const Polynomial<Scalar> target = multiply_polynomials<Scalar>(pole, zeros);
+  return ackermann_observer_gain(A, c, target);
+}
+
+}  // namespace adaptobs

@@ -1,0 +1,140 @@
+#pragma once
+/// \file
+/// Algorithm 1 of paper 001 (`001_ef18c05334b910fe.txt`, §III-A): the adaptive
+/// observer of Bastin & Gevers (IEEE TAC 33(7), 1988), SISO, constant A and c.
+///
+/// Static transform: form (5), \f$c_o = e_1^T\f$,
+/// \f$A_o = \begin{bmatrix} 0 & a_{12}\\ 0 & A_{22}\end{bmatrix}\f$, \f$A_{22}\f$ Hurwitz
+/// (`bastin_gevers_form` computes T and K). Dynamic transform:
+/// \f$F = A_{22}\f$, \f$G = [0\ I_{n-1}]\f$, \f$H = [0; I_{n-1}]\f$, so that (4a) becomes (6a)
+/// \f$\dot z = A_oz + \varphi + \gamma\xi^T\theta\f$, \f$\gamma = e_1\f$, \f$\xi^T = a_{12}\Xi + \Psi_1\f$. Observer:
+/// \f[ \dot{\hat z} = A_o\hat z + \varphi + \gamma\xi^T\hat\theta + k(y - c_o\hat z),\qquad
+///     \dot{\hat\theta} = \Gamma\xi(y - c_o\hat z). \f]
+/// Errors \f$e = \hat z - z\f$, \f$\tilde\theta = \hat\theta - \theta\f$:
+/// \f$\dot e = (A_o - kc_o)e + \gamma\xi^T\tilde\theta\f$, \f$\dot{\tilde\theta} = -\Gamma\xi c_oe\f$;
+/// with the KYP matrix P of the SPR triple \f$(A_o - kc_o, \gamma, c_o)\f$,
+/// \f$V = e^TPe + \tilde\theta^T\Gamma^{-1}\tilde\theta\f$ has \f$\dot V = -e^TQe \le 0\f$.
+/// Conditions checked at construction: one output, constant (A, c),
+/// \f$c_o = e_1^T\f$, \f$A_{22}\f$ Hurwitz, and \f$c_o(sI - A_o + kc_o)^{-1}\gamma\f$ SPR
+/// (exact test of `positive_real.hpp`); Γ > 0 by `GradientLaw`; ξ must be
+/// persistently exciting (see `excitation_level()`).
+///
+/// Reading: the zero first column of \f$A_o\f$ is a normalization. The bracket
+/// identity needs only \f$c_o = e_1^T\f$ and \f$F = A_{22}\f$ (the first column never
+/// enters \f$A_oH\f$), so any first column is accepted; `spr_injection_gain`
+/// absorbs it in k.
+
+#include <adaptobs/adaptation/gradient_law.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/dynamic_transform.hpp>
+#include <adaptobs/core/segments.hpp>
+#include <adaptobs/core/static_transform.hpp>
+#include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/positive_real.hpp>
+#include <adaptobs/design/polynomial.hpp>
+#include <adaptobs/observers/unified_adaptive_observer.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <limits>
+#include <optional>
+#include <string_view>
+#include <utility>
+
+namespace adaptobs {
+
+namespace detail {
+// c_o = e1ᵀ (or C_o = [I 0]) to a relative tolerance.
+template <class DC>
+bool is_leading_identity(const Eigen::MatrixBase<DC>& co) {
+  using Scalar = typename DC::Scalar;
+  const Index m = co.rows();
+  const Scalar tol = Scalar(1e3) * std::numeric_limits<Scalar>::epsilon() * std::max(Scalar(1), co.cwiseAbs().maxCoeff());
+  return (co.leftCols(m) - DC::PlainObject::Identity(m, co.cols()).leftCols(m)).cwiseAbs().maxCoeff() <= tol &&
+         (co.cols() == m || co.rightCols(co.cols() - m).cwiseAbs().maxCoeff() <= tol);
+}
+
+// G = [−g I_r] and H = [0; I_r] for a state of size n = m + r.
+template <typename Scalar, int N, int R, class DG>
+DynamicTransform<Scalar, N, R> block_transform(Index n, Index r, const Eigen::MatrixBase<DG>& g,
+                                               std::optional<Eigen::Matrix<Scalar, R, R>> f = std::nullopt) {
+  Eigen::Matrix<Scalar, R, N> gm = Eigen::Matrix<Scalar, R, N>::Zero(r, n);
+  // Element by element: GCC 12 built for AVX reports a false -Warray-bounds on
+  // Eigen's packet copy of a small fixed g into this runtime-width block.
+  for (Index j = 0; j < n - r; ++j)
+    for (Index i = 0; i < r; ++i) gm(i, j) = -g(i, j);
+  gm.rightCols(r).setIdentity();
+  Eigen::Matrix<Scalar, N, R> hm = Eigen::Matrix<Scalar, N, R>::Zero(n, r);
+  hm.bottomRows(r).setIdentity();
+  if (f) return DynamicTransform<Scalar, N, R>(std::move(*f), std::move(gm), std::move(hm));
+  return DynamicTransform<Scalar, N, R>::projected(std::move(gm), std::move(hm));
+}
+}  // namespace detail
+
+/// Algorithm 1 (§III-A) as an algorithm of the unified formulation.
+template <StateSpace D>
+struct BastinGevers {
+  using Scalar = typename D::Scalar;
+  static constexpr std::string_view name = "BastinGeversObserver";
+  static constexpr int filter_rows = difference_of_sizes(D::nx, 1);
+
+  StaticTransform<D> static_transform;  ///< (T, K) giving the form (5)
+  /// \f$F = A_{22}\f$ (\f$= GA_oH\f$), \f$G = [0\ I]\f$, \f$H = [0; I]\f$.
+  DynamicTransform<Scalar, D::nx, filter_rows> dynamic_transform;
+  typename D::GainMatrix k;  ///< observer gain k (n × 1)
+
+  BastinGevers(StaticTransform<D> transform, typename D::GainMatrix gain)
+      : static_transform(std::move(transform)),
+        dynamic_transform(detail::block_transform<Scalar, D::nx, filter_rows>(
+            static_transform.T().rows(), static_transform.T().rows() - 1,
+            Eigen::Matrix<Scalar, filter_rows, 1>::Zero(static_transform.T().rows() - 1))),
+        k(std::move(gain)) {
+    detail::require_shape(k, static_transform.T().rows(), 1, name, "k");
+    detail::require_finite(k, name, "k");
+  }
+
+  void injection_gain(const TransformedSystem<D>& /*so*/, Scalar /*t*/, typename D::GainMatrix& L) const { L = k; }
+
+  /// \f$\xi^T = a_{12}\Xi + \Psi_1\f$ (§III-A, below (6b)).
+  template <class DXi, class DOmega, class DPsi, class DR>
+  void regressor(const TransformedSystem<D>& so, const Eigen::MatrixBase<DXi>& Xi,
+                 const Eigen::MatrixBase<DOmega>& /*Omega*/, const Eigen::MatrixBase<DPsi>& Psi,
+                 Eigen::MatrixBase<DR>& R) const {
+    const Index r = Xi.rows();
+    R.noalias() = detail::segment<filter_rows>(so.Ao.row(0), 1, r) * Xi;
+    R += Psi.row(0);
+  }
+
+  void check(const TransformedSystem<D>& so, const Sizes& sizes, bool time_invariant) const {
+    detail::require(time_invariant, name, "model",
+                    "must be time invariant (the SPR condition is on a transfer function)");
+    detail::require(sizes.ny == 1, name, "model", "must have a single output");
+    detail::require(detail::is_leading_identity(so.Co), name, "static_transform", "must give c_o = C T^-1 = e1^T");
+    const Index n = sizes.nx;
+    detail::require(n == 1 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(n - 1, n - 1)), name, "static_transform",
+                    "must give a Hurwitz A22 (form (5))");
+    Eigen::Matrix<Scalar, D::nx, 1> gamma = Eigen::Matrix<Scalar, D::nx, 1>::Zero(n);
+    gamma(0) = Scalar(1);
+    const typename D::StateMatrix closed = so.Ao - k * so.Co;
+    detail::require(strictly_positive_real(closed, gamma, so.Co).strictly_positive_real, name, "k",
+                    "must make c_o (sI - A_o + k c_o)^-1 e1 strictly positive real");
+  }
+};
+
+/// Bastin–Gevers observer over a model (see `BastinGevers`).
+template <ContinuousModel Model>
+using BastinGeversObserver = UnifiedAdaptiveObserver<Model, BastinGevers<typename Model::Dims>>;
+
+/// Builds the Bastin–Gevers observer: transform to form (5), gain k, adaptation gain Γ.
+template <ContinuousModel Model>
+[[nodiscard]] BastinGeversObserver<Model> make_bastin_gevers_observer(
+    Model model, StaticTransform<typename Model::Dims> transform, typename Model::Dims::GainMatrix k,
+    typename Model::Dims::ParameterMatrix gamma, typename Model::Dims::State eta0,
+    typename Model::Dims::Parameters theta0, UnifiedObserverOptions options = {}) {
+  using D = typename Model::Dims;
+  return BastinGeversObserver<Model>(std::move(model), BastinGevers<D>(std::move(transform), std::move(k)),
+                                     GradientLaw<D>(std::move(gamma)), std::move(eta0), std::move(theta0), options);
+}
+
+}  // namespace adaptobs

@@ -1,0 +1,347 @@
+#pragma once
+/// \file
+/// The unified continuous-time adaptive observer of paper 001
+/// (`001_ef18c05334b910fe.txt`, Zhang, "Revisiting different adaptive
+/// observers through a unified formulation").
+///
+/// An algorithm is a choice of
+/// 1. a static transformation (T, K) bringing system (1) to the form (2)
+///    \f$\dot x = A_ox + \varphi + \Psi\theta,\ y = C_ox\f$ (`StaticTransform`);
+/// 2. a dynamic transformation (F, G, H), eq. (3): \f$\dot\Xi = F\Xi + G\Psi\f$,
+///    \f$\Omega = H\Xi\f$, \f$z = x - \Omega\theta\f$ (`DynamicTransform`);
+/// 3. an output-error gain L and a regressor R (m × p) for the update law
+///    \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$, \f$\varepsilon = y - C_o\hat x\f$.
+///
+/// | algorithm | L | R |
+/// |---|---|---|
+/// | 1, Bastin–Gevers (§III-A) | k | \f$\xi^T = a_{12}\Xi + \Psi_1\f$ |
+/// | 2, Marino–Tomei (§III-B) | k | \f$\xi^T = \Xi_1 + \Psi_1\f$ |
+/// | 3, Besançon (§III-C) | \f$[K_1; A_{21}(t)]\f$ | \f$A_{12}\Xi + \Psi_1\f$ |
+/// | 4, Zhang 2002 (§III-D) | 0 (K is inside \f$A_o = A - KC\f$) | \f$C\Omega\f$ |
+///
+/// The paper writes each observer for \f$\hat z\f$, e.g. (Alg. 1–2)
+/// \f$\dot{\hat z} = A_o\hat z + \varphi + \gamma\xi^T\hat\theta + k(y - c_o\hat z)\f$, with
+/// \f$\hat x = \hat z + \Omega\hat\theta\f$. This class integrates the same observer in
+/// the coordinates \f$\hat x\f$ directly: differentiating \f$\hat x = \hat z + H\Xi\hat\theta\f$
+/// and using the bracket of (4a),
+/// \f[ \dot{\hat x} = A_o\hat x + \varphi + \Psi\hat\theta + L\varepsilon + \Omega\dot{\hat\theta},\qquad
+///     \dot{\hat\theta} = \Gamma R^T\varepsilon,\qquad \dot\Xi = F\Xi + G\Psi, \f]
+/// valid for every (F, G, H) (the bracket never has to be formed), and
+/// \f$\varepsilon = y - C_o\hat x = y - C_o\hat z - C_o\Omega\hat\theta\f$ is the
+/// paper's output error in all four cases (\f$C_oH = 0\f$ for Alg. 1–3).
+/// The estimate in the original coordinates is \f$\hat\eta = T^{-1}\hat x\f$.
+///
+/// The whole internal state \f$s = (\hat x, \mathrm{vec}\,\Xi, \hat\theta)\f$ is one
+/// vector; `derivative(s, ds, t, u, y)` is its right-hand side and `system(signals)`
+/// wraps it in the Boost.Odeint system signature. `update(sample)` advances it to
+/// the sample's time with RK4 (`core/sampled_integration.hpp`).
+
+#include <adaptobs/adaptation/gradient_law.hpp>
+#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/continuous_model.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/dynamic_transform.hpp>
+#include <adaptobs/core/sampled_integration.hpp>
+#include <adaptobs/core/segments.hpp>
+#include <adaptobs/core/static_transform.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/excitation_monitor.hpp>
+
+#include <Eigen/Core>
+
+#include <concepts>
+#include <optional>
+#include <string_view>
+#include <utility>
+
+namespace adaptobs {
+
+/// What an algorithm of the unified formulation provides (see the file comment):
+/// its transforms as data members, the gain L and the regressor R as functions
+/// of the transformed system (2) at the current instant, and a check of its
+/// own convergence conditions, run at construction.
+template <class A, class D>
+concept UnifiedAlgorithm =
+    StateSpace<D> &&
+    requires(const A& a, const TransformedSystem<D>& so, typename D::Scalar t, typename D::GainMatrix& L,
+             const Eigen::Matrix<typename D::Scalar, A::filter_rows, D::np>& Xi, const typename D::RegressorMatrix& Omega,
+             const typename D::RegressorMatrix& Psi, typename D::OutputRegressor& R, const Sizes& sizes) {
+      { A::filter_rows } -> std::convertible_to<int>;
+      { A::name } -> std::convertible_to<std::string_view>;
+      { a.static_transform } -> std::convertible_to<const StaticTransform<D>&>;
+      { a.dynamic_transform } -> std::convertible_to<const DynamicTransform<typename D::Scalar, D::nx, A::filter_rows>&>;
+      a.injection_gain(so, t, L);
+      a.regressor(so, Xi, Omega, Psi, R);
+      a.check(so, sizes, true);
+    };
+
+/// Options of `UnifiedAdaptiveObserver`.
+struct UnifiedObserverOptions {
+  SamplingOptions sampling{};  ///< RK4 substeps and signal reconstruction between samples
+  /// Window (in accepted samples) of the excitation monitor of \f$R^TR\f$
+  /// (\f$\Omega^TC^TC\Omega\f$ of eq. (15) for Alg. 4); 0 turns it off.
+  Index excitation_window = 0;
+};
+
+/// Continuous-time adaptive observer of the unified formulation, for any
+/// `Algorithm` (Bastin–Gevers, Marino–Tomei, Besançon, Zhang, or a new variant)
+/// and any parameter update law (`GradientLaw` by default).
+template <ContinuousModel Model, UnifiedAlgorithm<typename Model::Dims> Algorithm,
+          ParameterUpdateLaw<typename Model::Dims> Law = GradientLaw<typename Model::Dims>>
+class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
+ public:
+  using Dims = typename Model::Dims;
+  using Scalar = typename Dims::Scalar;
+  using State = typename Dims::State;
+  using Parameters = typename Dims::Parameters;
+  using Input = typename Dims::Input;
+  using Output = typename Dims::Output;
+  using RegressorMatrix = typename Dims::RegressorMatrix;
+  using GainMatrix = typename Dims::GainMatrix;
+  using Sample = ContinuousSample<Dims>;
+  static constexpr int nr = Algorithm::filter_rows;
+  using FilterState = Eigen::Matrix<Scalar, nr, Dims::np>;  ///< Ξ
+  using FilterMatrix = Eigen::Matrix<Scalar, nr, nr>;       ///< F
+  static constexpr int internal_size =
+      sum_of_sizes(sum_of_sizes(Dims::nx, product_of_sizes(nr, Dims::np)), Dims::np);
+  /// \f$(\hat x, \mathrm{vec}\,\Xi, \hat\theta)\f$ stacked.
+  using InternalState = Eigen::Matrix<Scalar, internal_size, 1>;
+
+  /// \param eta0 initial estimate \f$\hat\eta(t_0)\f$ in the original coordinates;
+  /// \param theta0 initial \f$\hat\theta(t_0)\f$. Ξ starts at 0. The time origin
+  /// t₀ is the time of the first sample.
+  UnifiedAdaptiveObserver(Model model, Algorithm algorithm, Law law, State eta0, Parameters theta0,
+                          UnifiedObserverOptions options = {})
+      : model_(std::move(model)),
+        algorithm_(std::move(algorithm)),
+        law_(std::move(law)),
+        sizes_(model_.sizes()),
+        r_(algorithm_.dynamic_transform.rows()),
+        internal_(make_internal(sizes_, r_)),
+        integrator_(internal_, sizes_, options.sampling, Algorithm::name) {
+    constexpr std::string_view who = Algorithm::name;
+    const Sizes& s = sizes_;
+    detail::require(s.np >= 1, who, "model", "must have at least one unknown parameter");
+    detail::require_shape(algorithm_.static_transform.T(), s.nx, s.nx, who, "static_transform.T");
+    detail::require_shape(algorithm_.static_transform.K(), s.nx, s.ny, who, "static_transform.K");
+    detail::require(algorithm_.dynamic_transform.state_size() == s.nx, who, "dynamic_transform",
+                    "must act on a state of the model's size");
+    detail::require_shape(eta0, s.nx, 1, who, "eta0");
+    detail::require_finite(eta0, who, "eta0");
+    detail::require_shape(theta0, s.np, 1, who, "theta0");
+    detail::require_finite(theta0, who, "theta0");
+    detail::require(options.excitation_window >= 0, who, "options.excitation_window", "must be non-negative");
+    if (options.excitation_window > 0) excitation_.emplace(options.excitation_window, s.np);
+    work_.resize(s, r_);
+    refresh_time_invariant_system();
+    // The algorithm's own convergence conditions (form of C_o, stability, SPR, ...).
+    const TransformedSystem<Dims>& so0 = system_at(Scalar(0));
+    algorithm_.check(so0, s, Model::time_invariant);
+    eta_ = eta0;
+    theta_ = theta0;
+    set_initial(eta0, theta0);
+  }
+
+  /// Advances the estimates to `sample.t` (see `SampledIntegrator`). A rejected
+  /// sample (non-finite, time not advancing, or a non-finite step) leaves the
+  /// observer exactly as it was.
+  [[nodiscard]] UpdateStatus update(const Sample& sample) {
+    const bool stepping = integrator_.started();
+    const UpdateStatus status = integrator_.advance(
+        sample, internal_,
+        [this](const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) {
+          derivative(s, ds, t, u, y);
+        },
+        Algorithm::name);
+    if (status != UpdateStatus::accepted) return status;
+    refresh_estimates();
+    if (stepping && excitation_) excitation_->add(work_.R);
+    return status;
+  }
+
+  /// Right-hand side of the internal state at time t for the signals u(t), y(t).
+  void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) const {
+    const Index n = sizes_.nx, p = sizes_.np;
+    const auto x = detail::segment<Dims::nx>(s, 0, n);
+    const Eigen::Map<const FilterState> Xi(s.data() + n, r_, p);
+    const auto theta = detail::segment<Dims::np>(s, n + r_ * p, p);
+    auto dx = detail::segment<Dims::nx>(ds, 0, n);
+    Eigen::Map<FilterState> dXi(ds.data() + n, r_, p);
+    auto dtheta = detail::segment<Dims::np>(ds, n + r_ * p, p);
+    Workspace& w = work_;
+    const auto& st = algorithm_.static_transform;
+    const auto& dt = algorithm_.dynamic_transform;
+
+    /// (2): \f$A_o, C_o\f$ at t, \f$\Psi = T\Phi\f$, \f$\varphi = TBu + Ky\f$.
+    const TransformedSystem<Dims>& so = system_at(t);
+    st.regressor(model_.regressor(t, u, y), w.Psi);
+    st.drive(so, u, y, w.phi);
+    /// (3b): \f$\Omega = H\Xi\f$; output error \f$\varepsilon = y - C_o\hat x\f$.
+    dt.output(Xi, w.Omega);
+    w.epsilon = y;
+    w.epsilon.noalias() -= so.Co * x;
+    /// Update law: \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$ with the algorithm's R.
+    algorithm_.regressor(so, Xi, w.Omega, w.Psi, w.R);
+    law_.derivative(w.R, w.epsilon, theta, dtheta);
+    /// (3a): \f$\dot\Xi = F\Xi + G\Psi\f$.
+    dt.derivative(Model::time_invariant ? f_ : w.F, Xi, w.Psi, dXi);
+    /// \f$\dot{\hat x} = A_o\hat x + \varphi + \Psi\hat\theta + L\varepsilon + \Omega\dot{\hat\theta}\f$.
+    algorithm_.injection_gain(so, t, w.L);
+    dx.noalias() = so.Ao * x;
+    dx += w.phi;
+    dx.noalias() += w.Psi * theta;
+    dx.noalias() += w.L * w.epsilon;
+    dx.noalias() += w.Omega * dtheta;
+  }
+
+  /// The right-hand side as a Boost.Odeint system `f(s, ds, t)`, with
+  /// `signals(t, u, y)` writing the input and output at time t.
+  template <class Signals>
+  [[nodiscard]] auto system(Signals signals) const {
+    return [this, signals = std::move(signals), u = Input(Input::Zero(sizes_.nu)),
+            y = Output(Output::Zero(sizes_.ny))](const InternalState& s, InternalState& ds, Scalar t) mutable {
+      signals(t, u, y);
+      derivative(s, ds, t, u, y);
+    };
+  }
+
+  /// \f$\hat\eta = T^{-1}\hat x\f$, the state estimate in the original coordinates.
+  [[nodiscard]] const State& state() const noexcept { return eta_; }
+  /// \f$\hat\theta\f$.
+  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  /// Time of the last accepted sample.
+  [[nodiscard]] Scalar time() const noexcept { return integrator_.time(); }
+  /// \f$\hat x\f$ in the coordinates of system (2).
+  [[nodiscard]] auto transformed_state() const { return detail::segment<Dims::nx>(internal_, 0, sizes_.nx); }
+  /// Ξ of eq. (3a).
+  [[nodiscard]] Eigen::Map<const FilterState> filter() const {
+    return Eigen::Map<const FilterState>(internal_.data() + sizes_.nx, r_, sizes_.np);
+  }
+  /// \f$\Omega = H\Xi\f$ (eq. (3b)).
+  [[nodiscard]] RegressorMatrix omega() const {
+    RegressorMatrix omega(sizes_.nx, sizes_.np);
+    algorithm_.dynamic_transform.output(filter(), omega);
+    return omega;
+  }
+  /// \f$\hat z = \hat x - \Omega\hat\theta\f$ (the paper's observer state).
+  [[nodiscard]] State transformed_estimate_z() const {
+    return State(transformed_state() - omega() * theta_);
+  }
+  [[nodiscard]] const InternalState& internal_state() const noexcept { return internal_; }
+  /// Replaces the internal state (for an external integrator driving `derivative`).
+  /// Returns false, changing nothing, when `s` holds NaN or Inf.
+  bool set_internal_state(const InternalState& s) {
+    detail::require_shape(s, internal_.rows(), 1, Algorithm::name, "s");
+    if (!detail::all_finite(s)) return false;
+    internal_ = s;
+    refresh_estimates();
+    return true;
+  }
+
+  /// Matrices of (2) at time t.
+  [[nodiscard]] TransformedSystem<Dims> transformed_system(Scalar t) const { return system_at(t); }
+  [[nodiscard]] const Algorithm& algorithm() const noexcept { return algorithm_; }
+  [[nodiscard]] const Law& law() const noexcept { return law_; }
+  [[nodiscard]] const Model& model() const noexcept { return model_; }
+
+  /// Output injection K of the static transform from now on (e.g. the gain of a
+  /// `RiccatiDifferentialEquation` at the current sample).
+  void set_output_injection(const GainMatrix& K) {
+    algorithm_.static_transform.set_output_injection(K);
+    refresh_time_invariant_system();
+  }
+
+  /// Excitation level over the last window: the smallest eigenvalue of the
+  /// average of \f$R^TR\f$ (for Alg. 4 \f$\Omega^TC^TC\Omega\f$, whose integral is
+  /// the Gramian of eq. (15)); empty while the monitor is off or not full.
+  [[nodiscard]] std::optional<Scalar> excitation_level() const {
+    if (!excitation_ || !excitation_->full()) return std::nullopt;
+    return excitation_->level();
+  }
+
+  /// Restarts from \f$\hat\eta_0, \hat\theta_0\f$ with Ξ = 0; the next sample sets the time origin.
+  void reset(const State& eta0, const Parameters& theta0) {
+    constexpr std::string_view who = "UnifiedAdaptiveObserver::reset";
+    detail::require_shape(eta0, sizes_.nx, 1, who, "eta0");
+    detail::require_finite(eta0, who, "eta0");
+    detail::require_shape(theta0, sizes_.np, 1, who, "theta0");
+    detail::require_finite(theta0, who, "theta0");
+    set_initial(eta0, theta0);
+    integrator_.restart();
+    if (excitation_) excitation_->reset();
+  }
+
+ private:
+  struct Workspace {
+    TransformedSystem<Dims> so;
+    FilterMatrix F;
+    RegressorMatrix Psi, Omega;
+    State phi;
+    Output epsilon;
+    typename Dims::OutputRegressor R;
+    GainMatrix L;
+    void resize(const Sizes& s, Index r) {
+      so.resize(s);
+      F.setZero(r, r);
+      Psi.setZero(s.nx, s.np);
+      Omega.setZero(s.nx, s.np);
+      phi.setZero(s.nx);
+      epsilon.setZero(s.ny);
+      R.setZero(s.ny, s.np);
+      L.setZero(s.nx, s.ny);
+    }
+  };
+
+  static InternalState make_internal(const Sizes& s, Index r) {
+    return InternalState::Zero(s.nx + r * s.np + s.np);
+  }
+
+  const TransformedSystem<Dims>& system_at(Scalar t) const {
+    if constexpr (Model::time_invariant) {
+      (void)t;
+      return so_;
+    } else {
+      algorithm_.static_transform.apply(model_.at(t), work_.so);
+      algorithm_.dynamic_transform.filter_matrix(work_.so.Ao, work_.F);
+      return work_.so;
+    }
+  }
+
+  void refresh_time_invariant_system() {
+    if constexpr (Model::time_invariant) {
+      so_.resize(sizes_);
+      algorithm_.static_transform.apply(model_.at(Scalar(0)), so_);
+      f_.setZero(r_, r_);
+      algorithm_.dynamic_transform.filter_matrix(so_.Ao, f_);
+    }
+  }
+
+  void set_initial(const State& eta0, const Parameters& theta0) {
+    internal_.setZero();
+    detail::segment<Dims::nx>(internal_, 0, sizes_.nx) = algorithm_.static_transform.to_transformed(eta0);
+    detail::segment<Dims::np>(internal_, sizes_.nx + r_ * sizes_.np, sizes_.np) = theta0;
+    refresh_estimates();
+  }
+
+  void refresh_estimates() {
+    algorithm_.static_transform.to_original(detail::segment<Dims::nx>(internal_, 0, sizes_.nx), eta_);
+    theta_ = detail::segment<Dims::np>(internal_, sizes_.nx + r_ * sizes_.np, sizes_.np);
+  }
+
+  Model model_;
+  Algorithm algorithm_;
+  Law law_;
+  Sizes sizes_;
+  Index r_;
+  InternalState internal_;
+  SampledIntegrator<Dims, InternalState> integrator_;
+  State eta_;
+  Parameters theta_;
+  TransformedSystem<Dims> so_;  // cached for a time-invariant model
+  FilterMatrix f_;
+  std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;
+  mutable Workspace work_;
+};
+
+}  // namespace adaptobs

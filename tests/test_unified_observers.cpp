@@ -1,0 +1,582 @@
+// The four continuous-time observers of the unified formulation (paper 001)
+// and the augmented Kalman–Bucy baseline: convergence on the examples' plants
+// with fitted decay rates, a flipped update law, the identity (4a) for each
+// algorithm's (F, G, H) and the paper's z-form observer equations along
+// trajectories, Lyapunov functions, joint plant–observer integration, the
+// discrete Guyader–Zhang observer as the Euler limit of Algorithm 4, fixed
+// against dynamic sizes and float, and bad input. The designs come from
+// the library adaptobs_example_designs (examples/models/unified_designs.hpp).
+
+#include <adaptobs/baselines/kalman_bucy.hpp>
+#include <adaptobs/core/observer.hpp>
+#include <adaptobs/design/positive_real.hpp>
+#include <adaptobs/design/riccati_differential.hpp>
+#include <adaptobs/observers/bastin_gevers.hpp>
+#include <adaptobs/observers/besancon.hpp>
+#include <adaptobs/observers/guyader_zhang.hpp>
+#include <adaptobs/observers/marino_tomei.hpp>
+#include <adaptobs/observers/zhang_continuous.hpp>
+#include <adaptobs/simulation/continuous_plant.hpp>
+#include <adaptobs/simulation/joint_integration.hpp>
+
+#include "models/periodic_mimo.hpp"
+#include "models/siso_third_order.hpp"
+#include "support/eigen_testing.hpp"
+#include "unified_fixtures.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using adaptobs::Index;
+using adaptobs::UpdateStatus;
+using namespace adaptobs::testing::unified;
+
+// ---------------------------------------------------------------------------
+// Convergence on the examples' plants, through update() with midpoint samples.
+
+TEST(BastinGevers, ConvergesOnTheThirdOrderPlant) {
+  auto observer = bastin_gevers_observer<double>();
+  EXPECT_MATRIX_NEAR(observer.algorithm().k, Eigen::Vector3d(2, 0, 0), 1e-12, 0);
+  auto plant = siso::make_plant<double>();
+  const Trace trace = run(observer, plant, 100.0);
+  EXPECT_LT(trace.theta_rel.back(), 1e-6);
+  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
+  EXPECT_GT(trace.theta_decay_rate(10.0, 10.0), 0.09);
+}
+
+TEST(MarinoTomei, ConvergesOnTheThirdOrderPlant) {
+  auto observer = marino_tomei_observer<double>();
+  EXPECT_MATRIX_NEAR(observer.algorithm().k, Eigen::Vector3d(8, 17, 10), 1e-12, 0);
+  auto plant = siso::make_plant<double>();
+  const Trace trace = run(observer, plant, 100.0);
+  EXPECT_LT(trace.theta_rel.back(), 1e-6);
+  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
+  EXPECT_GT(trace.theta_decay_rate(10.0, 10.0), 0.087);
+}
+
+TEST(Besancon, ConvergesOnThePeriodicMimoPlant) {
+  auto observer = besancon_observer<double>({.sampling = quadratic(), .excitation_window = 629});
+  auto plant = periodic::make_plant<double>();
+  const Trace trace = run(observer, plant, 40.0);
+  EXPECT_LT(trace.theta_rel.back(), 1e-6);
+  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
+  EXPECT_GT(trace.theta_decay_rate(4.0, 2.0), 0.6);
+  EXPECT_GT(observer.excitation_level().value(), 0.1);  // Λ is persistently exciting (≈ 1.96 / 2π)
+}
+
+TEST(ZhangContinuous, ConvergesOnThePeriodicMimoPlant) {
+  auto observer = zhang_observer<double>(50.0, {.sampling = quadratic(), .excitation_window = 629});
+  auto plant = periodic::make_plant<double>();
+  const Trace trace = run(observer, plant, 40.0);
+  EXPECT_LT(trace.theta_rel.back(), 1e-6);
+  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
+  EXPECT_GT(trace.theta_decay_rate(4.0, 2.0), 0.84);
+  // Gramian (15) over one period: λmin ≈ 0.090, i.e. an average level ≈ 0.0143.
+  EXPECT_GT(observer.excitation_level().value(), 0.005);
+}
+
+TEST(ZhangContinuous, RiccatiGainAlongTheTrajectory) {
+  auto observer = zhang_observer<double>(50.0);
+  using D = periodic::Dims<double>;
+  adaptobs::RiccatiDifferentialEquation<D> riccati(Eigen::Matrix4d::Identity(), Eigen::Matrix4d::Identity(),
+                                                   0.1 * Eigen::Matrix2d::Identity());
+  const auto model = periodic::model<double>();
+  observer.set_output_injection(riccati.gain(model.at(0.0).C));
+  auto plant = periodic::make_plant<double>();
+  const Trace trace = run(observer, plant, 40.0, [&](double t0, double t1) {
+    riccati.advance(model, t0, t1);
+    observer.set_output_injection(riccati.gain(model.at(t1).C));
+  });
+  EXPECT_LT(trace.theta_rel.back(), 1e-6);
+  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
+  EXPECT_GT(trace.theta_decay_rate(4.0, 2.0), 1.1);
+}
+
+TEST(KalmanBucy, ConvergesExponentiallyWithParameterNoise) {
+  auto filter = kalman_bucy_filter<double>(1.0);
+  auto plant = siso::make_plant<double>();
+  const Trace trace = run(filter, plant, 60.0);
+  EXPECT_LT(trace.theta_rel.back(), 1e-6);
+  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
+  EXPECT_GT(trace.theta_decay_rate(6.0, 10.0), 0.24);
+}
+
+// With Q = 0 the gain dies out and θ̃ decays like 1/t only: t‖θ̃‖ stays put.
+TEST(KalmanBucy, WithoutParameterNoiseConvergesOnlyLikeOneOverT) {
+  auto filter = kalman_bucy_filter<double>(0.0);
+  auto plant = siso::make_plant<double>();
+  const Trace trace = run(filter, plant, 200.0);
+  const double at100 = 100.0 * trace.theta_rel[10000], at200 = 200.0 * trace.theta_rel[20000];
+  EXPECT_NEAR(at100 / at200, 1.0, 0.1) << at100 << " " << at200;
+  EXPECT_GT(trace.theta_rel.back(), 1e-4);
+}
+
+// ---------------------------------------------------------------------------
+// A flipped update law θ̂' = −ΓRᵀε makes every observer diverge.
+
+// One law type for every algorithm (all examples have p = 2); the sign is a runtime value.
+struct SignedGradientLaw {
+  Eigen::Matrix2d gamma;
+  double sign;
+  template <class DR, class DE, class DT, class DOut>
+  void derivative(const Eigen::MatrixBase<DR>& R, const Eigen::MatrixBase<DE>& epsilon, const Eigen::MatrixBase<DT>&,
+                  Eigen::MatrixBase<DOut>& dtheta) const {
+    dtheta = sign * (gamma * (R.transpose() * epsilon));
+  }
+};
+
+template <class Observer, class Plant>
+double divergence_time(Observer& observer, Plant& plant) {
+  const double threshold = 1e3 * plant.parameters().norm();
+  EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+  for (Index k = 1; k <= 1000; ++k) {
+    plant.advance();
+    if (observer.update(plant.sample()) != UpdateStatus::accepted) return plant.time();
+    if ((observer.parameters() - plant.parameters()).norm() > threshold) return plant.time();
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+TEST(UpdateLaw, FlippedSignDivergesForEveryAlgorithm) {
+  const Eigen::Matrix2d gamma = Eigen::Matrix2d::Identity();
+  {
+    const auto good = bastin_gevers_observer<double>();
+    adaptobs::UnifiedAdaptiveObserver flipped(siso::model<double>(), good.algorithm(), SignedGradientLaw{5.0 * gamma, -1.0},
+                                              Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval(),
+                                              {.sampling = quadratic()});
+    auto plant = siso::make_plant<double>();
+    EXPECT_LT(divergence_time(flipped, plant), 5.0) << "Bastin-Gevers";
+  }
+  {
+    const auto good = marino_tomei_observer<double>();
+    adaptobs::UnifiedAdaptiveObserver flipped(siso::model<double>(), good.algorithm(), SignedGradientLaw{20.0 * gamma, -1.0},
+                                              Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval(),
+                                              {.sampling = quadratic()});
+    auto plant = siso::make_plant<double>();
+    EXPECT_LT(divergence_time(flipped, plant), 5.0) << "Marino-Tomei";
+  }
+  {
+    const auto good = besancon_observer<double>();
+    adaptobs::UnifiedAdaptiveObserver flipped(periodic::model<double>(), good.algorithm(),
+                                              SignedGradientLaw{10.0 * gamma, -1.0}, Eigen::Vector4d::Zero().eval(),
+                                              Eigen::Vector2d::Zero().eval(), {.sampling = quadratic()});
+    auto plant = periodic::make_plant<double>();
+    EXPECT_LT(divergence_time(flipped, plant), 5.0) << "Besancon";
+  }
+  {
+    const auto good = zhang_observer<double>(50.0);
+    adaptobs::UnifiedAdaptiveObserver flipped(periodic::model<double>(), good.algorithm(),
+                                              SignedGradientLaw{50.0 * gamma, -1.0}, Eigen::Vector4d::Zero().eval(),
+                                              Eigen::Vector2d::Zero().eval(), {.sampling = quadratic()});
+    auto plant = periodic::make_plant<double>();
+    EXPECT_LT(divergence_time(flipped, plant), 5.0) << "Zhang";
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Sizes and scalars.
+
+TEST(ZhangContinuous, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
+  using DD = adaptobs::DynamicDimensions<double>;
+  auto fixed = zhang_observer<double>(50.0);
+  const auto dynamic_model = adaptobs::make_continuous_ltv_model<DD>(
+      [](double t) {
+        const auto s = periodic::system<double>(t);
+        return adaptobs::ContinuousSystem<DD>{s.A, s.B, s.C};
+      },
+      [](double t) { return Eigen::MatrixXd(periodic::Regressor{}.operator()<double>(t)); }, {4, 1, 2, 2});
+  auto dynamic = adaptobs::make_zhang_continuous_observer(
+      dynamic_model, Eigen::MatrixXd(periodic::zhang_gain<double>()), Eigen::MatrixXd(50.0 * Eigen::Matrix2d::Identity()),
+      Eigen::VectorXd::Zero(4), Eigen::VectorXd::Zero(2), {.sampling = quadratic()});
+  auto plant = periodic::make_plant<double>();
+  for (Index k = 0; k <= 1000; ++k) {
+    const auto& s = plant.sample();
+    adaptobs::ContinuousSample<DD> ds{s.t, s.u, s.y, std::nullopt};
+    if (s.midpoint) ds.midpoint = typename adaptobs::ContinuousSample<DD>::Midpoint{s.midpoint->u, s.midpoint->y};
+    ASSERT_EQ(fixed.update(s), UpdateStatus::accepted);
+    ASSERT_EQ(dynamic.update(ds), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.omega(), fixed.omega(), 1e-12, 1e-12);
+}
+
+TEST(ZhangContinuous, SinglePrecisionConverges) {
+  auto observer = zhang_observer<float>(50.0f);
+  auto plant = periodic::make_plant<float>();
+  (void)observer.update(plant.sample());
+  for (Index k = 0; k < 2000; ++k) {
+    plant.advance();
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+  }
+  EXPECT_LT((observer.parameters() - plant.parameters()).norm() / plant.parameters().norm(), 1e-3f);
+  EXPECT_LT((observer.state() - plant.state()).norm() / plant.state().norm(), 1e-3f);
+}
+
+// ---------------------------------------------------------------------------
+// Bad input and bad configuration.
+
+template <class O>
+struct Snapshot {
+  explicit Snapshot(const O& o) : internal(o.internal_state()), eta(o.state()), theta(o.parameters()), t(o.time()) {}
+  bool operator==(const Snapshot& other) const {
+    using adaptobs::testing::bitwise_equal;
+    return bitwise_equal(internal, other.internal) && bitwise_equal(eta, other.eta) &&
+           bitwise_equal(theta, other.theta) && std::memcmp(&t, &other.t, sizeof(t)) == 0;
+  }
+  typename O::InternalState internal;
+  typename O::State eta;
+  typename O::Parameters theta;
+  typename O::Scalar t;
+};
+
+template <class Observer, class Plant>
+void check_rejections(Observer& observer, Plant& plant) {
+  ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+  for (int k = 0; k < 50; ++k) {
+    plant.advance();
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+  }
+  plant.advance();
+  const Snapshot before(observer);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (double bad : {nan, inf, -inf}) {
+    auto s = plant.sample();
+    s.y(0) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+    s = plant.sample();
+    s.u(0) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+    s = plant.sample();
+    s.midpoint->y(0) = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+    s = plant.sample();
+    s.t = bad;
+    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
+  }
+  auto stale = plant.sample();
+  stale.t = observer.time();
+  EXPECT_EQ(observer.update(stale), UpdateStatus::nonincreasing_time);
+  auto huge = plant.sample();
+  huge.y.setConstant(std::numeric_limits<double>::max());
+  huge.midpoint->y.setConstant(-std::numeric_limits<double>::max());
+  EXPECT_EQ(observer.update(huge), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(Snapshot(observer) == before);
+  EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+}
+
+TEST(UnifiedFormulation, NonFiniteSamplesAreRejectedAndChangeNothing) {
+  {
+    auto observer = bastin_gevers_observer<double>();
+    auto plant = siso::make_plant<double>();
+    check_rejections(observer, plant);
+  }
+  {
+    auto observer = zhang_observer<double>(50.0);
+    auto plant = periodic::make_plant<double>();
+    check_rejections(observer, plant);
+  }
+  {
+    auto filter = kalman_bucy_filter<double>(1.0);
+    auto plant = siso::make_plant<double>();
+    check_rejections(filter, plant);
+  }
+}
+
+template <class F>
+std::string configuration_error_of(F&& f) {
+  try {
+    f();
+  } catch (const adaptobs::ConfigurationError& e) {
+    return e.what();
+  }
+  return "<no exception>";
+}
+
+#define EXPECT_NAMES(expression, argument) \
+  EXPECT_NE(configuration_error_of([&] { (void)(expression); }).find(argument), std::string::npos) \
+      << configuration_error_of([&] { (void)(expression); })
+
+TEST(UnifiedFormulation, BadConfigurationNamesTheArgument) {
+  using SD = siso::Dims<double>;
+  const auto model = siso::model<double>();
+  const Eigen::Vector3d zero3 = Eigen::Vector3d::Zero();
+  const Eigen::Vector2d zero2 = Eigen::Vector2d::Zero();
+  const auto st1 = bastin_gevers_transform<double>();
+  const Eigen::Matrix2d gamma = Eigen::Matrix2d::Identity();
+  // Γ not positive definite, k not SPR, a transform not in form (5), a wrong-size x0.
+  EXPECT_NAMES(adaptobs::make_bastin_gevers_observer(model, st1, Eigen::Vector3d(2, 0, 0), Eigen::Matrix2d(-gamma), zero3, zero2),
+               "'gamma'");
+  EXPECT_NAMES(adaptobs::make_bastin_gevers_observer(model, st1, Eigen::Vector3d(-0.5, 0, 0), gamma, zero3, zero2), "'k'");
+  EXPECT_NAMES(adaptobs::make_bastin_gevers_observer(model, adaptobs::StaticTransform<SD>::identity(), Eigen::Vector3d(2, 0, 0),
+                                                     gamma, zero3, zero2),
+               "'static_transform'");
+  const auto st2 = marino_tomei_transform<double>();
+  EXPECT_NAMES(adaptobs::make_marino_tomei_observer(model, st2, Eigen::Vector3d(1, -3, 2), Eigen::Vector3d(8, 17, 10), gamma,
+                                                    zero3, zero2),
+               "'gamma'");
+  EXPECT_NAMES(adaptobs::make_marino_tomei_observer(model, st1, Eigen::Vector3d(1, 3, 2), Eigen::Vector3d(8, 17, 10), gamma,
+                                                    zero3, zero2),
+               "'static_transform'");
+  // Algorithm 4: K not stabilizing; Algorithm 3: K1 too small.
+  EXPECT_NAMES(adaptobs::make_zhang_continuous_observer(model, Eigen::Vector3d(-10, 0, 0), gamma, zero3, zero2), "'K'");
+  EXPECT_NAMES(adaptobs::make_besancon_observer(model, besancon_transform<double>(),
+                                                Eigen::Matrix<double, 1, 1>(-1.0), gamma, zero3, zero2),
+               "'K1'");
+  // Options and samples.
+  EXPECT_NAMES(zhang_observer<double>(50.0, {.sampling = {.substeps = 0}}), "'options.substeps'");
+  {
+    auto observer = zhang_observer<double>(50.0);
+    auto plant = periodic::make_plant<double>();
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+    auto s = plant.sample();
+    s.midpoint.reset();
+    EXPECT_NAMES((void)observer.update(s), "'sample.midpoint'");
+  }
+  EXPECT_NAMES(adaptobs::StaticTransform<SD>(Eigen::Matrix3d::Zero(), zero3), "'T'");
+  EXPECT_NAMES(kalman_bucy_filter<double>(-1.0), "'covariances.Q'");
+}
+
+static_assert(adaptobs::Observer<decltype(bastin_gevers_observer<double>())>);
+static_assert(adaptobs::Observer<decltype(marino_tomei_observer<double>())>);
+static_assert(adaptobs::Observer<decltype(besancon_observer<double>())>);
+static_assert(adaptobs::Observer<decltype(zhang_observer<double>(1.0))>);
+static_assert(adaptobs::Observer<decltype(zhang_observer<float>(1.0f))>);
+static_assert(adaptobs::Observer<decltype(kalman_bucy_filter<double>(1.0))>);
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// The structure of the unified formulation.
+
+namespace {
+
+using adaptobs::Index;
+using adaptobs::UpdateStatus;
+using namespace adaptobs::testing::unified;
+
+// ---------------------------------------------------------------------------
+// (4a) along a trajectory, and the paper's z-form observer equations, for each
+// algorithm's (F, G, H): plant and observer integrated jointly (h = 1e-3),
+// derivatives by central differences (error O(h²)).
+
+template <class Observer, class Plant, class Bracket>
+void check_transformed_equations(Observer& observer, Plant& plant, double duration, Bracket&& expected_bracket) {
+  constexpr double h = 1e-3;
+  adaptobs::JointIntegration joint(plant, observer);
+  const auto& st = observer.algorithm().static_transform;
+  const auto& dt = observer.algorithm().dynamic_transform;
+  const auto theta = plant.parameters();
+  struct Point {
+    typename Observer::State z, zhat;
+  };
+  const auto point = [&] {
+    return Point{typename Observer::State(st.T() * plant.state() - observer.omega() * theta),
+                 observer.transformed_estimate_z()};
+  };
+  Point previous = point();
+  joint.step(h);
+  Point current = point();
+  double worst_4a = 0, worst_observer = 0, worst_bracket = 0, scale = 0;
+  const Index steps = Index(duration / h);
+  for (Index k = 1; k < steps; ++k) {
+    const double t = joint.time();
+    const auto Xi = observer.filter();
+    const auto Omega = observer.omega();
+    const auto so = observer.transformed_system(t);
+    const auto& model = observer.model();
+    typename Observer::Input u;
+    typename Observer::Output y;
+    plant.signals(t, plant.state(), u, y);
+    typename Observer::RegressorMatrix Psi;
+    st.regressor(model.regressor(t, u, y), Psi);
+    typename Observer::State phi;
+    st.drive(so, u, y, phi);
+    const typename Observer::FilterMatrix F = dt.filter_matrix(so.Ao);
+    const auto M = dt.bracket(so.Ao, F, Xi, Psi);
+    // The bracket of each algorithm has the closed form printed in §III.
+    worst_bracket = std::max(worst_bracket, (M - expected_bracket(so, Xi, Psi)).cwiseAbs().maxCoeff());
+    // Observer equation in the paper's coordinates: ẑ' = A_o ẑ + φ + M θ̂ + L (y − C_o ẑ − C_o Ω θ̂).
+    typename Observer::GainMatrix L;
+    observer.algorithm().injection_gain(so, t, L);
+    const auto thetahat = observer.parameters();
+    const Point next_guard = current;
+    joint.step(h);
+    const Point next = point();
+    const typename Observer::State dz = (next.z - previous.z) / (2 * h);
+    const typename Observer::State dzhat = (next.zhat - previous.zhat) / (2 * h);
+    // Evaluate at the middle point (time t): rebuild from `current`.
+    const typename Observer::State rhs_4a = so.Ao * current.z + phi + M * theta;
+    const typename Observer::Output eps = y - so.Co * current.zhat - so.Co * Omega * thetahat;
+    const typename Observer::State rhs_obs = so.Ao * current.zhat + phi + M * thetahat + L * eps;
+    worst_4a = std::max(worst_4a, (dz - rhs_4a).cwiseAbs().maxCoeff());
+    worst_observer = std::max(worst_observer, (dzhat - rhs_obs).cwiseAbs().maxCoeff());
+    scale = std::max(scale, rhs_4a.cwiseAbs().maxCoeff());
+    previous = next_guard;
+    current = next;
+  }
+  EXPECT_LT(worst_bracket, 1e-12 * std::max(1.0, scale));
+  EXPECT_LT(worst_4a, 1e-4 * std::max(1.0, scale));
+  EXPECT_LT(worst_observer, 1e-4 * std::max(1.0, scale));
+  EXPECT_GT(scale, 0.1);
+}
+
+TEST(UnifiedFormulation, Equation4aAndTheObserverEquationsAlongTrajectories) {
+  {
+    auto observer = bastin_gevers_observer<double>();
+    auto plant = siso::make_plant<double>();
+    // γ ξᵀ with γ = e1, ξᵀ = a12 Ξ + Ψ1.
+    check_transformed_equations(observer, plant, 5.0, [](const auto& so, const auto& Xi, const auto& Psi) {
+      Eigen::Matrix<double, 3, 2> m = Eigen::Matrix<double, 3, 2>::Zero();
+      m.row(0) = so.Ao.row(0).tail(2) * Xi + Psi.row(0);
+      return m;
+    });
+  }
+  {
+    auto observer = marino_tomei_observer<double>();
+    auto plant = siso::make_plant<double>();
+    // γ ξᵀ with γ = (1, 3, 2), ξᵀ = Ξ1 + Ψ1.
+    check_transformed_equations(observer, plant, 5.0, [](const auto&, const auto& Xi, const auto& Psi) {
+      return Eigen::Matrix<double, 3, 2>(Eigen::Vector3d(1, 3, 2) * (Xi.row(0) + Psi.row(0)));
+    });
+  }
+  {
+    auto observer = besancon_observer<double>();
+    auto plant = periodic::make_plant<double>();
+    // [I; 0](A12 Ξ + Ψ1).
+    check_transformed_equations(observer, plant, 5.0, [](const auto& so, const auto& Xi, const auto& Psi) {
+      Eigen::Matrix<double, 4, 2> m = Eigen::Matrix<double, 4, 2>::Zero();
+      m.topRows(2) = so.Ao.topRightCorner(2, 2) * Xi + Psi.topRows(2);
+      return m;
+    });
+  }
+  {
+    auto observer = zhang_observer<double>(50.0);
+    auto plant = periodic::make_plant<double>();
+    check_transformed_equations(observer, plant, 5.0,
+                                [](const auto&, const auto&, const auto&) { return Eigen::Matrix<double, 4, 2>::Zero().eval(); });
+  }
+}
+
+// Joint integration has no sampling floor: Algorithm 4 reaches machine precision.
+TEST(ZhangContinuous, JointIntegrationConvergesToMachinePrecision) {
+  auto observer = zhang_observer<double>(50.0);
+  auto plant = periodic::make_plant<double>();
+  adaptobs::JointIntegration joint(plant, observer);
+  for (int k = 0; k < 4000; ++k) joint.step(0.01);
+  EXPECT_LT((observer.parameters() - plant.parameters()).norm() / plant.parameters().norm(), 1e-12);
+  EXPECT_LT((observer.state() - plant.state()).norm() / plant.state().norm(), 1e-12);
+}
+
+// V = eᵀPe + θ̃ᵀΓ⁻¹θ̃ (P from the KYP certificate) never increases (Alg. 1–2);
+// V = |e|² + θ̃ᵀΓ⁻¹θ̃ never increases for Alg. 3 on the periodic plant.
+template <class Observer, class Plant, class Weight>
+double largest_relative_increase(Observer& observer, Plant& plant, const Weight& P, double gamma, double duration) {
+  adaptobs::JointIntegration joint(plant, observer);
+  const auto lyapunov = [&] {
+    const auto& st = observer.algorithm().static_transform;
+    const typename Observer::State z = st.T() * plant.state() - observer.omega() * plant.parameters();
+    const typename Observer::State e = observer.transformed_estimate_z() - z;
+    const auto th = observer.parameters() - plant.parameters();
+    return double(e.dot(P * e)) + th.squaredNorm() / gamma;
+  };
+  const double v0 = lyapunov();
+  double previous = v0, worst = 0;
+  for (Index k = 0; k < Index(duration / 0.005); ++k) {
+    joint.step(0.005);
+    const double v = lyapunov();
+    worst = std::max(worst, (v - previous) / v0);
+    previous = v;
+  }
+  EXPECT_LT(previous, 1e-3 * v0);
+  return worst;
+}
+
+TEST(UnifiedFormulation, LyapunovFunctionsDecrease) {
+  {
+    auto observer = bastin_gevers_observer<double>();
+    const auto so = observer.transformed_system(0.0);
+    const auto kyp = spr_report(Eigen::Matrix3d(so.Ao - observer.algorithm().k * so.Co), Eigen::Vector3d(1, 0, 0), so.Co).kyp;
+    ASSERT_TRUE(kyp.has_value());
+    auto plant = siso::make_plant<double>();
+    EXPECT_LT(largest_relative_increase(observer, plant, kyp->P, 5.0, 60.0), 1e-9);
+  }
+  {
+    auto observer = marino_tomei_observer<double>();
+    const auto so = observer.transformed_system(0.0);
+    const auto kyp =
+        spr_report(Eigen::Matrix3d(so.Ao - observer.algorithm().k * so.Co), observer.algorithm().gamma, so.Co).kyp;
+    ASSERT_TRUE(kyp.has_value());
+    auto plant = siso::make_plant<double>();
+    EXPECT_LT(largest_relative_increase(observer, plant, kyp->P, 20.0, 60.0), 1e-9);
+  }
+  {
+    auto observer = besancon_observer<double>();
+    auto plant = periodic::make_plant<double>();
+    EXPECT_LT(largest_relative_increase(observer, plant, Eigen::Matrix4d::Identity().eval(), 10.0, 20.0), 1e-9);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// The two families agree: Guyader–Zhang on the Euler-sampled system
+// (A_k = I + Ts A(t_k), B_k = Ts B, Ψ_k = Ts Φ(t_k), K_k = Ts K, μ = Ts γ)
+// approaches the continuous Zhang observer as O(Ts).
+
+struct Differences {
+  double x = 0, theta = 0, upsilon = 0;
+};
+
+Differences discrete_against_continuous(double ts) {
+  using D = periodic::Dims<double>;
+  const double gamma = 10.0, duration = 20.0;
+  auto continuous = zhang_observer<double>(gamma);
+  auto plant = periodic::make_plant<double>({.period = ts});
+  const auto euler = adaptobs::make_discrete_ltv_model<D>([ts](Index k) {
+    const auto s = periodic::system<double>(double(k) * ts);
+    return adaptobs::DiscreteSystem<D>{Eigen::Matrix4d::Identity() + ts * s.A, ts * s.B, s.C};
+  });
+  adaptobs::GuyaderZhangObserver discrete(euler, Eigen::Matrix<double, 4, 2>(ts * periodic::zhang_gain<double>()),
+                                          ts * gamma, Eigen::Vector4d::Zero().eval(), Eigen::Vector2d::Zero().eval());
+  Differences d;
+  EXPECT_EQ(continuous.update(plant.sample()), UpdateStatus::accepted);
+  for (Index k = 0; k < Index(std::llround(duration / ts)); ++k) {
+    // x̂_k, θ̂_k, Υ_k of the discrete observer against x̂(t_k), θ̂(t_k), Ω(t_k).
+    d.x = std::max(d.x, (discrete.state() - continuous.state()).cwiseAbs().maxCoeff());
+    d.theta = std::max(d.theta, (discrete.parameters() - continuous.parameters()).cwiseAbs().maxCoeff());
+    d.upsilon = std::max(d.upsilon, (discrete.upsilon() - continuous.omega()).cwiseAbs().maxCoeff());
+    const auto& s = plant.sample();
+    const adaptobs::DiscreteSample<D> sample{s.u, s.y, ts * periodic::Regressor{}.operator()<double>(s.t)};
+    EXPECT_EQ(discrete.update(sample), UpdateStatus::accepted);
+    EXPECT_LE(discrete.assumption2_norm(), 1.0);
+    plant.advance();
+    EXPECT_EQ(continuous.update(plant.sample()), UpdateStatus::accepted);
+  }
+  return d;
+}
+
+TEST(UnifiedFormulation, GuyaderZhangIsTheEulerLimitOfZhang) {
+  const Differences d1 = discrete_against_continuous(0.01);
+  const Differences d2 = discrete_against_continuous(0.005);
+  const Differences d3 = discrete_against_continuous(0.0025);
+  for (const auto& [a, b] : {std::pair{d1.x, d2.x}, std::pair{d2.x, d3.x}, std::pair{d1.theta, d2.theta},
+                             std::pair{d2.theta, d3.theta}, std::pair{d1.upsilon, d2.upsilon},
+                             std::pair{d2.upsilon, d3.upsilon}}) {
+    EXPECT_GT(a / b, 1.8) << a << " " << b;
+    EXPECT_LT(a / b, 2.2) << a << " " << b;
+  }
+  EXPECT_LT(d1.upsilon, 0.3 * 0.01);
+  EXPECT_LT(d3.theta, 2e-3);
+}
+
+}  // namespace
