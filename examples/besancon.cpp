@@ -32,26 +32,12 @@ int main(int argc, char** argv) {
       {.output_noise = args.number("noise"), .seed = static_cast<std::uint64_t>(args.number("seed"))});
   adaptobs::SeriesTable table;
   adaptobs::examples::run_continuous(plant, args.number("seconds"), 0.01, 5, table, adaptobs::track(observer));
-  print_value("theta", plant.parameters());
-  print_value("thetahat", observer.parameters());
-  print_value("theta_relative_error", (observer.parameters() - plant.parameters()).norm() / plant.parameters().norm());
-  print_value("state_relative_error", (observer.state() - plant.state()).norm() / plant.state().norm());
+  adaptobs::examples::print_final_errors(plant, observer);
   print_value("excitation_level_Lambda", observer.excitation_level().value_or(0.0));
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "besancon", R"(
-set multiplot layout 2,1 title 'Besancon adaptive observer (paper 001, Algorithm 3) on a periodic MIMO plant'
-set grid
-set xlabel 't (s)'
-set title 'parameter estimates (true 1 and -2)'
-plot csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1', \
-     csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2', \
-     csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true', \
-     csv using 't':'theta_2' with lines lc 'black' dt 3 notitle
-set title 'estimation errors'
-set logscale y
-set format y '10^{%T}'
-plot csv using 't':(sqrt((column('thetahat_1')-column('theta_1'))**2 + (column('thetahat_2')-column('theta_2'))**2)) with lines lw 1.5 title '|theta error|', \
-     csv using 't':(sqrt((column('xhat_1')-column('x_1'))**2 + (column('xhat_2')-column('x_2'))**2 + (column('xhat_3')-column('x_3'))**2 + (column('xhat_4')-column('x_4'))**2)) with lines lw 1.5 title '|state error|'
-unset multiplot)");
+  adaptobs::examples::write_outputs(
+      table, args.out_dir(), "besancon",
+      adaptobs::examples::estimates_and_errors_figure(
+          "Besancon adaptive observer (paper 001, Algorithm 3) on a periodic MIMO plant", "1 and -2", 2, 4));
   return 0;
 }

@@ -33,38 +33,17 @@ int main(int argc, char** argv) {
   print_value("k", algorithm.k);
   print_value("Gamma", observer.law().gamma());
   const auto spr = designs::spr_report(so.Ao - algorithm.k * so.Co, algorithm.gamma, so.Co);
-  print_value("G_numerator", spr.transfer_function.numerator.transpose());
-  print_value("G_denominator", spr.transfer_function.denominator.transpose());
-  print_value("spr_exact", double(spr.exact.strictly_positive_real));
-  if (spr.kyp) {
-    print_value("kyp_P", spr.kyp->P);
-    print_value("kyp_residual_Pb_minus_c", spr.kyp->equality_residual);
-    print_value("kyp_max_eig_AtP_PA", spr.kyp->max_eigenvalue_lyapunov);
-  }
+  adaptobs::examples::print_spr_report(spr);
 
   auto plant = siso::make_plant<double>(
       {.output_noise = args.number("noise"), .seed = static_cast<std::uint64_t>(args.number("seed"))});
   adaptobs::SeriesTable table;
   adaptobs::examples::run_continuous(plant, args.number("seconds"), 0.01, 10, table, adaptobs::track(observer));
-  print_value("theta", plant.parameters());
-  print_value("thetahat", observer.parameters());
-  print_value("theta_relative_error", (observer.parameters() - plant.parameters()).norm() / plant.parameters().norm());
-  print_value("state_relative_error", (observer.state() - plant.state()).norm() / plant.state().norm());
+  adaptobs::examples::print_final_errors(plant, observer);
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "marino_tomei", R"(
-set multiplot layout 2,1 title 'Marino-Tomei adaptive observer (paper 001, Algorithm 2) on a third-order SISO plant'
-set grid
-set xlabel 't (s)'
-set title 'parameter estimates (true 2 and -1)'
-plot csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1', \
-     csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2', \
-     csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true', \
-     csv using 't':'theta_2' with lines lc 'black' dt 3 notitle
-set title 'estimation errors'
-set logscale y
-set format y '10^{%T}'
-plot csv using 't':(sqrt((column('thetahat_1')-column('theta_1'))**2 + (column('thetahat_2')-column('theta_2'))**2)) with lines lw 1.5 title '|theta error|', \
-     csv using 't':(sqrt((column('xhat_1')-column('x_1'))**2 + (column('xhat_2')-column('x_2'))**2 + (column('xhat_3')-column('x_3'))**2)) with lines lw 1.5 title '|state error|'
-unset multiplot)");
+  adaptobs::examples::write_outputs(
+      table, args.out_dir(), "marino_tomei",
+      adaptobs::examples::estimates_and_errors_figure(
+          "Marino-Tomei adaptive observer (paper 001, Algorithm 2) on a third-order SISO plant", "2 and -1", 2, 3));
   return 0;
 }

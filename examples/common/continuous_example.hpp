@@ -1,17 +1,22 @@
 #pragma once
-// Run loop shared by the continuous-time examples: feeds a simulated plant's
-// samples to several observers and records one CSV row every `every` samples,
-// after the update (the estimates at the sample's time), in the DESIGN.md
-// column order: t, u_*, y_*, x_*, xhat_*, theta_*, thetahat_*, then the other
-// observers' xhat_<suffix>_*, thetahat_<suffix>_*.
+// What the continuous-time examples share: the run loop, which feeds a
+// simulated plant's samples to several observers and records one CSV row every
+// `every` samples, after the update (the estimates at the sample's time), in the
+// DESIGN.md column order: t, u_*, y_*, x_*, xhat_*, theta_*, thetahat_*, then
+// the other observers' xhat_<suffix>_*, thetahat_<suffix>_*; the printout of
+// the final errors and of an SPR condition; and the common two-panel figure.
 
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/simulation/runner.hpp>
 #include <adaptobs/simulation/series_table.hpp>
 
+#include "common/example_support.hpp"
+#include "models/unified_designs.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace adaptobs::examples {
 
@@ -48,6 +53,58 @@ template <class Plant, class First, class... Rest>
 void run_continuous(Plant& plant, double seconds, double period, int every, SeriesTable& table, Tracked<First> first,
                     Tracked<Rest>... rest) {
   run_continuous_with(plant, seconds, period, every, table, [](double, double) {}, first, rest...);
+}
+
+/// Prints θ, θ̂ and the final relative errors of θ̂ and of the state estimate.
+template <class Plant, class Observer>
+void print_final_errors(const Plant& plant, const Observer& observer) {
+  print_value("theta", plant.parameters());
+  print_value("thetahat", observer.parameters());
+  print_value("theta_relative_error", (observer.parameters() - plant.parameters()).norm() / plant.parameters().norm());
+  print_value("state_relative_error", (observer.state() - plant.state()).norm() / plant.state().norm());
+}
+
+/// Prints the SPR condition of Algorithms 1 and 2: G(s), the exact test and its KYP certificate.
+inline void print_spr_report(const designs::SprReport& spr) {
+  print_value("G_numerator", spr.transfer_function.numerator.transpose());
+  print_value("G_denominator", spr.transfer_function.denominator.transpose());
+  print_value("spr_exact", double(spr.exact.strictly_positive_real));
+  print_value("spr_sweep_min_weighted_re", spr.sweep.min_weighted_real_part);
+  if (!spr.kyp) return;
+  print_value("kyp_P", spr.kyp->P);
+  print_value("kyp_residual_Pb_minus_c", spr.kyp->equality_residual);
+  print_value("kyp_max_eig_AtP_PA", spr.kyp->max_eigenvalue_lyapunov);
+}
+
+/// gnuplot expression of \f$|a - b|\f$ over the CSV columns a_1..a_size and b_1..b_size.
+inline std::string error_norm_expression(std::string_view a, std::string_view b, int size) {
+  std::string sum;
+  for (int i = 1; i <= size; ++i) {
+    const std::string index = std::to_string(i);
+    if (i > 1) sum += " + ";
+    sum += "(column('" + std::string(a) + "_" + index + "')-column('" + std::string(b) + "_" + index + "'))**2";
+  }
+  return "sqrt(" + sum + ")";
+}
+
+/// The figure of a one-observer example: θ̂ against the true θ, then the norms
+/// of the parameter and state errors on a log scale.
+inline std::string estimates_and_errors_figure(std::string_view title, std::string_view truth, int parameters,
+                                               int states) {
+  std::string script = "set multiplot layout 2,1 title '" + std::string(title) +
+                       "'\nset grid\nset xlabel 't (s)'\nset title 'parameter estimates (true " + std::string(truth) +
+                       ")'\nplot ";
+  for (int i = 1; i <= parameters; ++i)
+    script += "csv using 't':'thetahat_" + std::to_string(i) + "' with lines lw 1.5 title 'theta^" + std::to_string(i) +
+              "', \\\n     ";
+  for (int i = 1; i <= parameters; ++i)
+    script += "csv using 't':'theta_" + std::to_string(i) + "' with lines lc 'black' dt 3 " +
+              (i == 1 ? "title 'true'" : "notitle") + (i < parameters ? ", \\\n     " : "\n");
+  script += "set title 'estimation errors'\nset logscale y\nset format y '10^{%T}'\nplot csv using 't':(" +
+            error_norm_expression("thetahat", "theta", parameters) + ") with lines lw 1.5 title '|theta error|', \\\n" +
+            "     csv using 't':(" + error_norm_expression("xhat", "x", states) +
+            ") with lines lw 1.5 title '|state error|'\nunset multiplot\n";
+  return script;
 }
 
 }  // namespace adaptobs::examples
