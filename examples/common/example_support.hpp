@@ -90,35 +90,6 @@ inline void print_text(std::string_view name, std::string_view value) { std::cou
 
 [[nodiscard]] inline bool gnuplot_available() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
 
-/// Writes DIR/<name>.csv, then renders DIR/<name>.png from a gnuplot script
-/// (the script reads the CSV as `csv` and writes `png`) when gnuplot is present.
-inline void write_outputs(const SeriesTable& table, const std::filesystem::path& dir, const std::string& name,
-                          const std::string& gnuplot_body) {
-  const std::filesystem::path csv = dir / (name + ".csv");
-  const std::filesystem::path png = dir / (name + ".png");
-  table.write_csv(csv.string());
-  print_text("csv", csv.string());
-  if (!gnuplot_available()) {
-    print_text("png", "skipped (gnuplot not found)");
-    return;
-  }
-  const std::filesystem::path script = dir / (name + ".gp");
-  {
-    std::ofstream gp(script);
-    gp << "csv = '" << csv.string() << "'\n"
-       << "png = '" << png.string() << "'\n"
-       << "set datafile separator ','\n"
-       << "set key autotitle columnhead\n"
-       << "set terminal pngcairo size 1200,900 font ',10'\n"
-       << "set output png\n"
-       << gnuplot_body << '\n'
-       << "unset output\n";
-  }
-  const std::string command = "gnuplot '" + script.string() + "'";
-  if (std::system(command.c_str()) != 0) throw std::runtime_error("gnuplot failed on " + script.string());
-  print_text("png", png.string());
-}
-
 /// One CSV of a figure drawn from several runs: the table, the file name
 /// (without `.csv`) and the gnuplot variable that holds its path.
 struct FigureData {
@@ -157,6 +128,13 @@ inline void write_outputs(const std::vector<FigureData>& runs, const std::filesy
   const std::string command = "gnuplot '" + script.string() + "'";
   if (std::system(command.c_str()) != 0) throw std::runtime_error("gnuplot failed on " + script.string());
   print_text("png", png.string());
+}
+
+/// Writes DIR/<name>.csv, then renders DIR/<name>.png from a gnuplot script
+/// (the script reads the CSV as `csv` and writes `png`) when gnuplot is present.
+inline void write_outputs(const SeriesTable& table, const std::filesystem::path& dir, const std::string& name,
+                          const std::string& gnuplot_body) {
+  write_outputs({{table, name, "csv"}}, dir, name, gnuplot_body);
 }
 
 }  // namespace adaptobs::examples
