@@ -8,6 +8,7 @@
 // Writes bastin_gevers.csv (t,u_1,y_1,x_*,xhat_*,theta_*,thetahat_*) and bastin_gevers.png.
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/simulation.hpp>
 
 #include "common/continuous_example.hpp"
 #include "common/example_support.hpp"

@@ -8,6 +8,8 @@
 // Writes besancon.csv (t,u_1,y_*,x_*,xhat_*,theta_*,thetahat_*) and besancon.png.
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/design/ltv_stability.hpp>
+#include <adaptobs/simulation.hpp>
 
 #include "common/continuous_example.hpp"
 #include "common/example_support.hpp"

@@ -20,6 +20,8 @@
 // theta = p = [a − f; vec(B)]. Then dey_bhasin_mimo.png (figures 1–3).
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/design/stability.hpp>
+#include <adaptobs/simulation.hpp>
 
 #include "common/example_support.hpp"
 #include "models/dey_bhasin.hpp"

@@ -15,6 +15,8 @@
 // the run starts from the paper's uncorrected z₀ = 0 with θ̂₀ = 0, x₀ = (1, −1).
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/design.hpp>
+#include <adaptobs/simulation.hpp>
 
 #include "common/example_support.hpp"
 #include "models/guiro.hpp"

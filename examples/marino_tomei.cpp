@@ -8,6 +8,7 @@
 // Writes marino_tomei.csv (t,u_1,y_1,x_*,xhat_*,theta_*,thetahat_*) and marino_tomei.png.
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/simulation.hpp>
 
 #include "common/continuous_example.hpp"
 #include "common/example_support.hpp"

@@ -7,6 +7,8 @@
 // xhat_akf_*,thetahat_akf_*,assumption2) and satellite.png (figures 1–3).
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/design/stability.hpp>
+#include <adaptobs/simulation.hpp>
 
 #include "common/example_support.hpp"
 #include "models/satellite.hpp"

@@ -24,6 +24,7 @@
 // holds p̂_t and x̂_t = S_t p̂_t + F^t x̂_0 (eq. (13)). Then suzuki_siso.png.
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/simulation.hpp>
 
 #include "common/example_support.hpp"
 #include "models/dey_bhasin.hpp"

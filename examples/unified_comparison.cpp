@@ -14,6 +14,7 @@
 // xhat_<s>_*,thetahat_<s>_* for s = bg, mt, bes, kb) and unified_comparison.png.
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/simulation.hpp>
 
 #include "common/continuous_example.hpp"
 #include "common/example_support.hpp"

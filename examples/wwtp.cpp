@@ -24,6 +24,8 @@
 // shown by the largest-margin formulation with Γ = 1e8 (printed below).
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/design/stability.hpp>
+#include <adaptobs/simulation.hpp>
 #include <adaptobs/design/lmi/takagi_sugeno_synthesis.hpp>
 
 #include "common/example_support.hpp"

@@ -9,6 +9,9 @@
 // xhat_riccati_*,thetahat_riccati_*) and zhang_continuous.png.
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/design/ltv_stability.hpp>
+#include <adaptobs/design/riccati_differential.hpp>
+#include <adaptobs/simulation.hpp>
 
 #include "common/continuous_example.hpp"
 #include "common/example_support.hpp"

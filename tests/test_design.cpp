@@ -5,12 +5,16 @@
 #include <adaptobs/design/excitation_monitor.hpp>
 #include <adaptobs/design/riccati_recursion.hpp>
 #include <adaptobs/design/stability.hpp>
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
 
 #include "support/eigen_testing.hpp"
 
+#include <Eigen/QR>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace {
@@ -174,6 +178,77 @@ TEST(Stability, SchurAndHurwitzChecks) {
   EXPECT_NEAR(adaptobs::spectral_abscissa(damped), -0.1, 1e-15);
   EXPECT_TRUE(adaptobs::is_hurwitz_stable(damped));
   EXPECT_FALSE(adaptobs::is_hurwitz_stable(damped, 0.2));
+}
+
+// ρ(M) ≤ the squaring bound, and the bound reaches ρ(M): checked against the
+// eigenvalues on random, defective and graded matrices.
+TEST(Stability, SquaringBoundMeetsSpectralRadius) {
+  RandomMatrices rng(31);
+  for (int n : {1, 2, 3, 5, 8, 20}) {
+    for (double radius : {0.3, 0.97, 1.0, 1.4}) {
+      const Eigen::MatrixXd a = random_dynamics(rng, n, radius);
+      const double bound = adaptobs::spectral_radius_bound(a);
+      EXPECT_NEAR(bound, radius, 1e-9 * radius) << "n=" << n;
+      EXPECT_EQ(adaptobs::is_schur_stable(a), radius < 1.0) << "n=" << n << " radius=" << radius;
+    }
+  }
+  // A Jordan block with a huge coupling: ‖M^k‖ grows 1e6-fold before it decays.
+  Eigen::Matrix3d jordan;
+  jordan << 0.999, 1e3, 0, 0, 0.999, 1e3, 0, 0, 0.999;
+  EXPECT_TRUE(adaptobs::is_schur_stable(jordan));
+  EXPECT_FALSE(adaptobs::is_schur_stable(jordan, 0.002));
+  EXPECT_NEAR(adaptobs::spectral_radius_bound(jordan), 0.999, 1e-6);
+  EXPECT_FALSE(adaptobs::is_schur_stable(Eigen::Matrix3d(jordan / 0.998)));
+  // Nilpotent: exactly 0. Scaled by 1e150 the squares would overflow without rescaling.
+  Eigen::Matrix3d nilpotent = Eigen::Matrix3d::Zero();
+  nilpotent(0, 1) = nilpotent(1, 2) = 1e150;
+  EXPECT_EQ(adaptobs::spectral_radius_bound(nilpotent), 0.0);
+  EXPECT_TRUE(adaptobs::is_schur_stable(nilpotent));
+  Eigen::Matrix2d huge;
+  huge << 0.5e200, 1e200, -1e200, 0.5e200;  // ρ = 1.118e200
+  EXPECT_NEAR(adaptobs::spectral_radius_bound(huge) / 1.118033988749895e200, 1.0, 1e-12);
+  Eigen::Matrix2d nonfinite = Eigen::Matrix2d::Identity();
+  nonfinite(0, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(adaptobs::is_schur_stable(Eigen::Matrix2d(0.5 * nonfinite)));
+}
+
+// Jacobi eigenvalues of symmetric matrices: against a prescribed spectrum, and to
+// full relative accuracy on a graded matrix where only the relative criterion works.
+TEST(SymmetricEigenvalues, PrescribedSpectrumAndGradedMatrix) {
+  RandomMatrices rng(32);
+  for (int n : {1, 2, 4, 7, 15}) {
+    const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(rng.uniform<Eigen::MatrixXd>(n, n)).householderQ();
+    Eigen::VectorXd spectrum = rng.uniform<Eigen::VectorXd>(n, 1, -5.0, 5.0);
+    const Eigen::MatrixXd m = q * spectrum.asDiagonal() * q.transpose();
+    std::sort(spectrum.data(), spectrum.data() + n);
+    EXPECT_MATRIX_NEAR(adaptobs::symmetric_eigenvalues(m), spectrum, 1e-13, 0.0) << "n=" << n;
+  }
+  // Fixed size, only the lower triangle read.
+  Eigen::Matrix2d lower;
+  lower << 2, 99, 1, 2;  // eigenvalues of [[2, 1], [1, 2]]: 1 and 3
+  EXPECT_MATRIX_NEAR(adaptobs::symmetric_eigenvalues(lower), Eigen::Vector2d(1, 3), 1e-15, 0.0);
+  // Graded diag(1e-20, 1, 1e20) with couplings that a solver with an absolute error
+  // of ε‖M‖ could not resolve: the smallest eigenvalue, 1e-20 − 1e-42, keeps full
+  // relative accuracy.
+  Eigen::Matrix3d graded;
+  graded << 1e-20, 1e-21, 0, 1e-21, 1, 1e-5, 0, 1e-5, 1e20;
+  const Eigen::Vector3d lambda = adaptobs::symmetric_eigenvalues(graded);
+  EXPECT_NEAR(lambda(0) / 1e-20, 1.0, 1e-14);
+  EXPECT_NEAR(lambda(1), 1.0, 1e-15);
+  EXPECT_NEAR(lambda(2) / 1e20, 1.0, 1e-15);
+}
+
+TEST(Validation, PositiveSemidefiniteToleratesRoundingOnly) {
+  RandomMatrices rng(33);
+  const Eigen::MatrixXd g = rng.uniform<Eigen::MatrixXd>(2, 5);
+  const Eigen::MatrixXd rank_two = g.transpose() * g;  // eigenvalues ~ 0 up to rounding
+  EXPECT_NO_THROW(adaptobs::detail::require_positive_semidefinite(rank_two, "test", "Q"));
+  Eigen::MatrixXd indefinite = rank_two;
+  indefinite(4, 4) -= 1e-6 * rank_two.norm();
+  const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(rng.uniform<Eigen::MatrixXd>(5, 5)).householderQ();
+  const Eigen::MatrixXd rotated = q * Eigen::Vector<double, 5>(1, 2, 3, 4, -1e-6).asDiagonal() * q.transpose();
+  EXPECT_THROW(adaptobs::detail::require_positive_semidefinite(rotated, "test", "Q"), ConfigurationError);
+  EXPECT_THROW(adaptobs::detail::require_positive_semidefinite(indefinite, "test", "Q"), ConfigurationError);
 }
 
 TEST(ExcitationMonitor, WindowedMinimumEigenvalue) {

@@ -47,7 +47,6 @@
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <array>
@@ -128,10 +127,9 @@ class CovarianceResettingRls {
     detail::require_positive_definite(options_.R, who, "R");
     const Index np = p0.rows();
     if (nz_ > 0) {
-      // Configuration time, on a dynamic copy: one eigensolver compiled per scalar type.
+      // Configuration time, on a dynamic copy: one instantiation per scalar type.
       using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-      const Eigen::SelfAdjointEigenSolver<Dense> eig(Dense(options_.R), Eigen::EigenvaluesOnly);
-      inverse_weight_bound_ = Scalar(1) / eig.eigenvalues()(0);
+      inverse_weight_bound_ = Scalar(1) / symmetric_eigenvalues(Dense(options_.R))(0);
     }
     rounding_margin_ = Scalar(8) * Scalar(np + nz_) * std::numeric_limits<Scalar>::epsilon() * options_.k0;
     shifted_.setZero(np, np);

@@ -2,8 +2,9 @@
 /// \file
 /// Spectral norm (largest singular value) of a small matrix.
 
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
+
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +12,8 @@
 namespace adaptobs {
 
 /// \f$\|M\|_2 = \sqrt{\lambda_{\max}(M^TM)}\f$, through the Gram matrix of the
-/// smaller side (cheap for the m × p matrices observers monitor).
+/// smaller side (cheap for the m × p matrices observers monitor), whose
+/// eigenvalues come from `symmetric_eigenvalues` (Jacobi).
 template <class Derived>
 [[nodiscard]] typename Derived::Scalar spectral_norm(const Eigen::MatrixBase<Derived>& m) {
   using Scalar = typename Derived::Scalar;
@@ -21,10 +23,10 @@ template <class Derived>
   Scalar largest;
   if (m.cols() <= m.rows()) {
     const Eigen::Matrix<Scalar, C, C> gram = m.transpose() * m;
-    largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<Scalar, C, C>>(gram, Eigen::EigenvaluesOnly).eigenvalues()(m.cols() - 1);
+    largest = symmetric_eigenvalues(gram)(m.cols() - 1);
   } else {
     const Eigen::Matrix<Scalar, R, R> gram = m * m.transpose();
-    largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<Scalar, R, R>>(gram, Eigen::EigenvaluesOnly).eigenvalues()(m.rows() - 1);
+    largest = symmetric_eigenvalues(gram)(m.rows() - 1);
   }
   return std::sqrt(std::max(largest, Scalar(0)));
 }

@@ -14,8 +14,10 @@
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <string_view>
 #include <utility>
 
@@ -37,6 +39,45 @@ struct TransformedSystem {
   }
 };
 
+namespace detail {
+
+/// \f$T^{-1}\f$ by Gauss–Jordan elimination with partial pivoting, or nothing when T
+/// is singular to working precision: \f$\kappa_1(T) = \|T\|_1\|T^{-1}\|_1 > 1/(n\varepsilon)\f$,
+/// the rank threshold of a pivoted LU. Plain loops: the constructor that checks T
+/// compiles at the cost of the products it guards, not of an LU decomposition.
+template <class Matrix>
+[[nodiscard]] std::optional<Matrix> well_conditioned_inverse(const Matrix& t) {
+  using Scalar = typename Matrix::Scalar;
+  const Index n = t.rows();
+  Matrix a = t;
+  Matrix inverse = Matrix::Identity(n, n);
+  for (Index j = 0; j < n; ++j) {
+    Index pivot = j;
+    for (Index i = j + 1; i < n; ++i)
+      if (std::abs(a(i, j)) > std::abs(a(pivot, j))) pivot = i;
+    if (!(a(pivot, j) != Scalar(0))) return std::nullopt;
+    if (pivot != j) {
+      a.row(j).swap(a.row(pivot));
+      inverse.row(j).swap(inverse.row(pivot));
+    }
+    const Scalar scale = Scalar(1) / a(j, j);
+    a.row(j) *= scale;
+    inverse.row(j) *= scale;
+    for (Index i = 0; i < n; ++i) {
+      if (i == j || a(i, j) == Scalar(0)) continue;
+      const Scalar factor = a(i, j);
+      a.row(i) -= factor * a.row(j);
+      inverse.row(i) -= factor * inverse.row(j);
+    }
+  }
+  const auto one_norm = [](const Matrix& m) { return m.cwiseAbs().colwise().sum().maxCoeff(); };
+  const Scalar condition = n == 0 ? Scalar(1) : one_norm(t) * one_norm(inverse);
+  if (!(condition * Scalar(n) * std::numeric_limits<Scalar>::epsilon() < Scalar(1))) return std::nullopt;
+  return inverse;
+}
+
+}  // namespace detail
+
 /// Coordinate change T and output injection K (eq. (2)).
 template <StateSpace D>
 class StaticTransform : public SizedBy<D> {
@@ -52,9 +93,9 @@ class StaticTransform : public SizedBy<D> {
     detail::require_finite(t_, who, "T");
     detail::require_shape(k_, t_.rows(), k_.cols(), who, "K");
     detail::require_finite(k_, who, "K");
-    const Eigen::FullPivLU<StateMatrix> lu(t_);
-    detail::require(lu.isInvertible(), who, "T", "must be invertible");
-    t_inverse_ = lu.inverse();
+    auto inverse = detail::well_conditioned_inverse(t_);
+    detail::require(inverse.has_value(), who, "T", "must be invertible (condition number below 1/(n eps))");
+    t_inverse_ = std::move(*inverse);
     identity_ = (t_.array() == StateMatrix::Identity(t_.rows(), t_.cols()).array()).all();
   }
 

@@ -8,10 +8,9 @@
 /// positive (got -1)`.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -87,15 +86,35 @@ void require_symmetric(const Eigen::MatrixBase<Derived>& m, std::string_view who
   if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= tol)) fail_argument(who, argument, "must be symmetric");
 }
 
+/// True when the Cholesky factorization \f$M = LL^T\f$ of the symmetric matrix
+/// `m` (lower triangle read) runs to the end with positive pivots. Plain loops,
+/// so that a constructor's check costs nothing to compile beside the update it guards.
+template <class Derived>
+[[nodiscard]] bool cholesky_succeeds(const Eigen::MatrixBase<Derived>& m) {
+  using Scalar = typename Derived::Scalar;
+  Eigen::Matrix<Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> l = m;
+  const Index n = l.rows();
+  for (Index j = 0; j < n; ++j) {
+    Scalar pivot = l(j, j);
+    for (Index k = 0; k < j; ++k) pivot -= l(j, k) * l(j, k);
+    if (!(pivot > Scalar(0)) || !std::isfinite(pivot)) return false;
+    l(j, j) = std::sqrt(pivot);
+    for (Index i = j + 1; i < n; ++i) {
+      Scalar v = l(i, j);
+      for (Index k = 0; k < j; ++k) v -= l(i, k) * l(j, k);
+      l(i, j) = v / l(j, j);
+    }
+  }
+  return true;
+}
+
 /// Symmetric positive definite (a Cholesky factorization exists).
 template <class Derived>
 void require_positive_definite(const Eigen::MatrixBase<Derived>& m, std::string_view who,
                                std::string_view argument) {
   require_finite(m, who, argument);
   require_symmetric(m, who, argument);
-  // Configuration-time check on a dynamic copy: one factorization compiled per scalar type.
-  const Eigen::LLT<Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic>> llt(m.derived());
-  if (llt.info() != Eigen::Success) fail_argument(who, argument, "must be positive definite");
+  if (!cholesky_succeeds(m)) fail_argument(who, argument, "must be positive definite");
 }
 
 /// Symmetric positive semidefinite: no eigenvalue below −100 n ε max|λ| (round-off
@@ -107,10 +126,9 @@ void require_positive_semidefinite(const Eigen::MatrixBase<Derived>& m, std::str
   require_finite(m, who, argument);
   require_symmetric(m, who, argument);
   if (m.size() == 0) return;
-  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> dynamic = m;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> eig(
-      dynamic, Eigen::EigenvaluesOnly);
-  const auto& lambda = eig.eigenvalues();
+  // Configuration-time check on a dynamic copy: one instantiation per scalar type.
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> lambda =
+      symmetric_eigenvalues(Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>(m));
   const Scalar tol = Scalar(100) * Scalar(m.rows()) * std::numeric_limits<Scalar>::epsilon() *
                      std::max(std::abs(lambda(0)), std::abs(lambda(lambda.size() - 1)));
   if (!(lambda(0) >= -tol)) fail_argument(who, argument, "must be positive semidefinite");

@@ -16,7 +16,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
-#include <adaptobs/design/stability.hpp>
+#include <adaptobs/design/schur_stability.hpp>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -53,7 +53,7 @@ Scalar dare_relative_residual(const DynamicMatrix<Scalar>& X, const DynamicMatri
                               const DynamicMatrix<Scalar>& R) {
   const DynamicMatrix<Scalar> btxa = B.transpose() * X * A;
   const DynamicMatrix<Scalar> s = R + B.transpose() * X * B;
-  const DynamicMatrix<Scalar> ric = A.transpose() * X * A - btxa.transpose() * s.ldlt().solve(btxa) + Q;
+  const DynamicMatrix<Scalar> ric = A.transpose() * X * A - btxa.transpose() * s.llt().solve(btxa) + Q;
   return (X - ric).norm() / std::max(Scalar(1), X.norm());
 }
 
@@ -102,7 +102,7 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   result.relative_residual = detail::dare_relative_residual<Scalar>(result.X, A, B, Q, R);
   // The stabilizing solution makes A − B (R + BᵀXB)⁻¹ BᵀXA Schur.
   const Square s = R + B.transpose() * result.X * B;
-  const Square closed_loop = A - B * s.ldlt().solve(B.transpose() * result.X * A);
+  const Square closed_loop = A - B * s.llt().solve(B.transpose() * result.X * A);
   if (!is_schur_stable(closed_loop)) fail_argument(who, "A, B", no_solution);
   return result;
 }
@@ -114,8 +114,9 @@ template <class DX, class DA, class DB, class DQ, class DR>
 [[nodiscard]] typename DX::Scalar dare_relative_residual(const Eigen::MatrixBase<DX>& X, const Eigen::MatrixBase<DA>& A,
                                                          const Eigen::MatrixBase<DB>& B, const Eigen::MatrixBase<DQ>& Q,
                                                          const Eigen::MatrixBase<DR>& R) {
-  using Matrix = detail::DynamicMatrix<typename DA::Scalar>;
-  return detail::dare_relative_residual<typename DA::Scalar>(Matrix(X), Matrix(A), Matrix(B), Matrix(Q), Matrix(R));
+  using detail::dynamic_copy;
+  return detail::dare_relative_residual<typename DA::Scalar>(dynamic_copy(X), dynamic_copy(A), dynamic_copy(B),
+                                                             dynamic_copy(Q), dynamic_copy(R));
 }
 
 /// Stabilizing solution of the control-form DARE (see file comment).
@@ -126,8 +127,8 @@ template <class DA, class DB, class DQ, class DR>
                               const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R,
                               DareOptions options = {}) {
   using Scalar = typename DA::Scalar;
-  using Matrix = detail::DynamicMatrix<Scalar>;
-  const auto dynamic = detail::solve_dare<Scalar>(Matrix(A), Matrix(B), Matrix(Q), Matrix(R), options);
+  using detail::dynamic_copy;
+  const auto dynamic = detail::solve_dare<Scalar>(dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R), options);
   return DareSolution<Scalar, DA::RowsAtCompileTime>{dynamic.X, dynamic.iterations, dynamic.relative_residual};
 }
 
@@ -170,8 +171,9 @@ template <class DA, class DC, class DQ, class DR>
                                             const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R,
                                             DareOptions options = {}) {
   using Scalar = typename DA::Scalar;
-  using Matrix = detail::DynamicMatrix<Scalar>;
-  const auto dynamic = detail::steady_state_kalman_gain<Scalar>(Matrix(A), Matrix(C), Matrix(Q), Matrix(R), options);
+  using detail::dynamic_copy;
+  const auto dynamic =
+      detail::steady_state_kalman_gain<Scalar>(dynamic_copy(A), dynamic_copy(C), dynamic_copy(Q), dynamic_copy(R), options);
   return KalmanGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime>{dynamic.K, dynamic.P,
                                                                            dynamic.relative_residual};
 }

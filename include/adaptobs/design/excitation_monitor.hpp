@@ -11,10 +11,10 @@
 /// direction of θ is not excited.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include <vector>
 
@@ -62,8 +62,7 @@ class ExcitationMonitor {
   /// Smallest eigenvalue of `average()`: the excitation level α.
   [[nodiscard]] Scalar level() const {
     if (sum_.size() == 0) return Scalar(0);
-    Eigen::SelfAdjointEigenSolver<Gramian> solver(average(), Eigen::EigenvaluesOnly);
-    return solver.eigenvalues()(0);
+    return symmetric_eigenvalues(average())(0);
   }
 
   void reset() {

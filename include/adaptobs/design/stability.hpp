@@ -1,8 +1,10 @@
 #pragma once
 /// \file
-/// Eigenvalue-based stability checks of closed-loop matrices such as A − KC.
+/// Eigenvalues and eigenvalue-based stability figures of closed-loop matrices such as A − KC.
+/// (`is_schur_stable`, which needs no eigenvalues, is in schur_stability.hpp.)
 
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/schur_stability.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
@@ -40,12 +42,6 @@ template <class Derived>
 [[nodiscard]] typename Derived::Scalar spectral_abscissa(const Eigen::MatrixBase<Derived>& m) {
   if (m.size() == 0) return -std::numeric_limits<typename Derived::Scalar>::infinity();
   return eigenvalues(m).real().maxCoeff();
-}
-
-/// Schur stability: every eigenvalue strictly inside the circle of radius 1 − margin.
-template <class Derived>
-[[nodiscard]] bool is_schur_stable(const Eigen::MatrixBase<Derived>& m, typename Derived::Scalar margin = 0) {
-  return spectral_radius(m) < typename Derived::Scalar(1) - margin;
 }
 
 /// Hurwitz stability: every eigenvalue has real part below −margin.

@@ -61,11 +61,11 @@
 /// \f$T_{22}^{11}\f$ and \f$T_{22}^{22}\f$; "\f$\Phi_i^IP\f$" in (71) is \f$\Phi_i^TP\f$; \f$\mathcal{B}\f$ is
 /// \f$n_x \times n_ur\f$; vertices run over \f$i = 1, \dots, 2^{n_z+n_\theta}\f$.
 
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <array>
@@ -182,7 +182,7 @@ inline void validate_lmi_data(const TakagiSugenoLmiData& data, std::string_view 
   if (m.size() == 0) return -std::numeric_limits<double>::infinity();
   if (!m.allFinite()) return std::numeric_limits<double>::infinity();
   const Eigen::MatrixXd s = 0.5 * (m + m.transpose());
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(s, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+  return symmetric_eigenvalues(s).maxCoeff();
 }
 /// Smallest eigenvalue of the symmetric part of m; −∞ when m holds a NaN or Inf.
 [[nodiscard]] inline double smallest_symmetric_eigenvalue(const Eigen::MatrixXd& m) {

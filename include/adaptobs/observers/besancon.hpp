@@ -32,7 +32,6 @@
 #include <adaptobs/observers/unified_adaptive_observer.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include <string_view>
 #include <utility>
@@ -85,12 +84,12 @@ struct Besancon {
     detail::require(detail::is_leading_identity(so.Co), name, "static_transform", "must give C_o = C T^-1 = [I 0]");
     if (!time_invariant) return;
     const Index m = sizes.ny, r = sizes.nx - sizes.ny;
-    using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  // one eigen-solver instantiation per scalar
+    using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  // one instantiation per scalar
     detail::require(r == 0 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(r, r)), name, "static_transform",
                     "must give a Hurwitz A22 (form (8))");
     const Dense a11 = so.Ao.topLeftCorner(m, m) - K1;
     const Dense sym = Scalar(0.5) * (a11 + a11.transpose());
-    detail::require(Eigen::SelfAdjointEigenSolver<Dense>(sym, Eigen::EigenvaluesOnly).eigenvalues()(m - 1) < 0,
+    detail::require(symmetric_eigenvalues(sym)(m - 1) < 0,
                     name, "K1", "must make A11 - K1 + (A11 - K1)^T negative definite");
   }
 };

@@ -34,7 +34,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/products.hpp>
 #include <adaptobs/core/validation.hpp>
-#include <adaptobs/design/stability.hpp>
+#include <adaptobs/design/schur_stability.hpp>
 
 #include <Eigen/Core>
 
@@ -102,7 +102,7 @@ class CanonicalFormFilters {
     detail::require_finite(f_, who, "f");
     detail::require(q_ >= 1, who, "q", "must be at least 1");
     detail::require(m_ >= 0, who, "m", "must be non-negative");
-    detail::require(spectral_radius(companion_matrix(f_)) < Scalar(1), who, "f",
+    detail::require(is_schur_stable(companion_matrix(f_)), who, "f",
                     "must make F Schur stable (eq. (6)): the roots of z^r - f_1 z^(r-1) - ... - f_r must lie in |z| < 1");
     const Index r = order();
     first_rows_.setZero(r, r);

@@ -1,5 +1,7 @@
 // A project that uses an installed adaptobs through find_package.
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/design.hpp>
+#include <adaptobs/simulation.hpp>
 
 #include <cstdio>
 
