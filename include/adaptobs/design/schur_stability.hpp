@@ -29,12 +29,14 @@ template <class Derived>
   detail::require_square(m, "spectral_radius_bound", "M");
   if (m.size() == 0) return Scalar(0);
   if (!m.derived().allFinite()) return std::numeric_limits<Scalar>::infinity();
-  Eigen::Matrix<Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> power = m;
-  Scalar norm = power.norm();
-  if (norm == Scalar(0)) return Scalar(0);
+  const Scalar largest = m.cwiseAbs().maxCoeff();
+  if (largest == Scalar(0)) return Scalar(0);
   // M^(2^k) = exp(log_scale) · power with ‖power‖ = norm, so the bound is
-  // exp((log_scale + log norm) / 2^k).
-  Scalar log_scale = 0, exponent = 1, bound = norm;
+  // exp((log_scale + log norm) / 2^k). Starting from M / max|m_ij| keeps the
+  // Frobenius norm itself from overflowing.
+  Eigen::Matrix<Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> power = m / largest;
+  Scalar norm = power.norm();
+  Scalar log_scale = std::log(largest), exponent = 1, bound = std::exp(log_scale + std::log(norm));
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   for (int k = 1; k <= 64 && !(bound < target); ++k) {
     power /= norm;
