@@ -40,6 +40,8 @@ ensure_packages() {
 # Packages every build needs.
 ADAPTOBS_BUILD_PACKAGES=(cmake:cmake g++:g++ make:make libeigen3-dev)
 # Packages of the test suite, examples and benchmarks.
-ADAPTOBS_TEST_PACKAGES=(libgtest-dev libbenchmark-dev gnuplot-nox:gnuplot libdsdp-dev)
+ADAPTOBS_TEST_PACKAGES=(ninja-build:ninja libgtest-dev libbenchmark-dev gnuplot-nox:gnuplot libdsdp-dev)
 # Boost.Odeint: the independent integrator of the continuous-time observers' RK4 test.
 ADAPTOBS_TEST_PACKAGES+=(libboost-dev)
+# The sanitizer build of scripts/test.sh: clang and its sanitizer runtimes.
+ADAPTOBS_SANITIZER_PACKAGES=(clang:clang++ libclang-rt-dev)

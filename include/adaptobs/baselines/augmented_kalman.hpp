@@ -15,6 +15,7 @@
 #include <adaptobs/core/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/products.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -110,8 +111,8 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     w.f.topLeftCorner(nx, nx) = system.A;
     w.f.topRightCorner(nx, theta_.rows()) = sample.Psi;
     w.x.noalias() = system.A * w.xi.head(nx);
-    w.x.noalias() += sample.Psi * w.xi.tail(theta_.rows());
-    w.x.noalias() += system.B * sample.u;
+    detail::add_product(w.x, sample.Psi, w.xi.tail(theta_.rows()));
+    detail::add_product(w.x, system.B, sample.u);
     w.theta = w.xi.tail(theta_.rows());
     w.scratch.noalias() = w.f * w.p;
     w.p.noalias() = w.scratch * w.f.transpose();

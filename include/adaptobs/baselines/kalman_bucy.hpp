@@ -21,6 +21,7 @@
 #include <adaptobs/core/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/products.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
 #include <adaptobs/core/segments.hpp>
 #include <adaptobs/core/status.hpp>
@@ -115,8 +116,8 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     w.epsilon = y;
     w.epsilon.noalias() -= sys.C * x;
     dx.noalias() = sys.A * x;
-    dx.noalias() += sys.B * u;
-    dx.noalias() += w.ae.topRightCorner(nx, np) * theta;
+    detail::add_product(dx, sys.B, u);
+    detail::add_product(dx, w.ae.topRightCorner(nx, np), theta);
     dx.noalias() += w.gain.topRows(nx) * w.epsilon;
     dtheta.noalias() = w.gain.bottomRows(np) * w.epsilon;
     dP = cov_.Q;

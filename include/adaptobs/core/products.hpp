@@ -29,4 +29,30 @@ template <class Lhs, class Rhs>
   }
 }
 
+/// True when `lhs * rhs` has an empty inner dimension (a model without inputs or
+/// without parameters). Eigen's coefficient-based product would then still form
+/// row views of `lhs`, which has no storage: an offset applied to a null pointer.
+template <class Lhs>
+[[nodiscard]] bool empty_inner_dimension(const Eigen::MatrixBase<Lhs>& lhs) {
+  return Lhs::ColsAtCompileTime == 0 || lhs.cols() == 0;
+}
+
+/// `dst = lhs * rhs`, zero when the inner dimension is empty.
+template <class Dst, class Lhs, class Rhs>
+void set_product(Eigen::MatrixBase<Dst>& dst, const Eigen::MatrixBase<Lhs>& lhs, const Eigen::MatrixBase<Rhs>& rhs) {
+  if (empty_inner_dimension(lhs)) {
+    dst.setZero();
+  } else if constexpr (Lhs::ColsAtCompileTime != 0) {
+    dst.noalias() = lhs.derived() * rhs.derived();
+  }
+}
+
+/// `dst += lhs * rhs`, nothing when the inner dimension is empty.
+template <class Dst, class Lhs, class Rhs>
+void add_product(Eigen::MatrixBase<Dst>& dst, const Eigen::MatrixBase<Lhs>& lhs, const Eigen::MatrixBase<Rhs>& rhs) {
+  if constexpr (Lhs::ColsAtCompileTime != 0) {
+    if (!empty_inner_dimension(lhs)) dst.noalias() += lhs.derived() * rhs.derived();
+  }
+}
+
 }  // namespace adaptobs::detail

@@ -11,6 +11,7 @@
 
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -159,7 +160,7 @@ class StaticTransform : public SizedBy<D> {
   template <class DPhi>
   void drive(const TransformedSystem<D>& s, const typename D::Input& u, const typename D::Output& y,
              Eigen::MatrixBase<DPhi>& phi) const {
-    phi.noalias() = s.TB * u;
+    detail::set_product(phi, s.TB, u);
     phi.noalias() += s.K * y;
   }
 

@@ -27,6 +27,7 @@
 /// model at the nearest point of the box.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -306,7 +307,7 @@ class TakagiSugenoModel : public SizedBy<D> {
   [[nodiscard]] State step(const State& x, const Input& u, const Parameters& theta) const {
     const Weights h = weights(premises(x, u, theta), theta);
     State next = blended_A(h) * x;
-    next.noalias() += blended_B(h) * u;
+    detail::add_product(next, blended_B(h), u);
     return next;
   }
 

@@ -186,7 +186,7 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     /// \f$z^-_{k+1} = Ez_k + \Psi_k\hat\theta_k + B_du_k\f$, \f$\Psi_k = EH_k\f$.
     w.predicted.noalias() = detail::product(system.A, w.corrected);
     w.predicted.noalias() += detail::product(sample.Psi, theta_);
-    w.predicted.noalias() += system.B * sample.u;
+    detail::add_product(w.predicted, system.B, sample.u);
 
     if (!detail::all_finite(w.predicted, w.corrected, w.theta)) return UpdateStatus::nonfinite_result;
     detail::commit(z_, w.predicted);

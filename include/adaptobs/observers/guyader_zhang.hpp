@@ -197,8 +197,8 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     /// (2c) \f$\hat x_{k+1} = A_k\hat x_k + B_ku_k + \Psi_k\hat\theta_k + K_k(y_k - C_k\hat x_k)
     ///        + \Upsilon_{k+1}(\hat\theta_{k+1} - \hat\theta_k)\f$
     w.x.noalias() = system.A * x_;
-    w.x.noalias() += system.B * sample.u;
-    w.x.noalias() += sample.Psi * theta_;
+    detail::add_product(w.x, system.B, sample.u);
+    detail::add_product(w.x, sample.Psi, theta_);
     w.x.noalias() += gain_ * w.innovation;
     w.x.noalias() += w.upsilon * w.theta_step;
 

@@ -41,6 +41,7 @@
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
+#include <adaptobs/core/products.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
 #include <adaptobs/core/segments.hpp>
 #include <adaptobs/core/static_transform.hpp>
@@ -190,7 +191,7 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     algorithm_.injection_gain(so, t, w.L);
     dx.noalias() = so.Ao * x;
     dx += w.phi;
-    dx.noalias() += w.Psi * theta;
+    detail::add_product(dx, w.Psi, theta);
     dx.noalias() += w.L * w.epsilon;
     dx.noalias() += w.Omega * dtheta;
   }

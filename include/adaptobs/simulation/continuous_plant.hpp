@@ -11,6 +11,7 @@
 
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/products.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -91,8 +92,8 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
     const Input u = input_(t);
     const Output y = s.C * eta;
     deta.noalias() = s.A * eta;
-    deta.noalias() += s.B * u;
-    deta.noalias() += model_.regressor(t, u, y) * theta_;
+    detail::add_product(deta, s.B, u);
+    detail::add_product(deta, model_.regressor(t, u, y), theta_);
   }
 
   /// Noise-free input and output at time t for the state η (for joint integration).

@@ -8,6 +8,7 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <cmath>
@@ -70,8 +71,8 @@ class DiscreteLinearPlant : public SizedBy<typename Model::Dims> {
   void advance() {
     const auto& system = model_.at(k_);
     State next = system.A * x_;
-    next.noalias() += system.B * sample_.u;
-    next.noalias() += sample_.Psi * theta_;
+    detail::add_product(next, system.B, sample_.u);
+    detail::add_product(next, sample_.Psi, theta_);
     add_noise(next, noise_.state);
     x_ = next;
     add_noise(theta_, noise_.parameter);
