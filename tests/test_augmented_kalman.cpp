@@ -50,6 +50,50 @@ TEST(AugmentedKalman, SatelliteConvergesToTrueParameters) {
   EXPECT_GT(Eigen::SelfAdjointEigenSolver<Matrix6>(p).eigenvalues()(0), 0.0);
 }
 
+// With run-time sizes every entry of the sample is checked before it is read: a
+// wrong shape throws naming the entry, and the filter is bit-for-bit unchanged.
+TEST(AugmentedKalman, WrongSampleSizesThrowNamingTheEntryAndChangeNothing) {
+  using DynDims = adaptobs::DynamicDimensions<double>;
+  using DynamicSample = adaptobs::DiscreteSample<DynDims>;
+  const auto fixed_model = satellite::model<double>();
+  const adaptobs::DiscreteLtiModel<DynDims> model(fixed_model.system().A, fixed_model.system().B,
+                                                  fixed_model.system().C, 2);
+  const auto fixed_covariances = satellite_covariances();
+  adaptobs::AugmentedKalmanFilter dynamic(
+      model, Eigen::VectorXd(satellite::initial_state_estimate<double>()),
+      Eigen::VectorXd(satellite::initial_parameter_estimate<double>()),
+      adaptobs::AugmentedKalmanCovariances<DynDims>{fixed_covariances.P0, fixed_covariances.Q, fixed_covariances.R});
+  auto fixed = make_filter();
+  auto plant = satellite::make_plant<double>();
+  for (Index k = 0; k < 50; ++k) {
+    const auto& s = plant.sample();
+    ASSERT_EQ(fixed.update(s), UpdateStatus::accepted);
+    ASSERT_EQ(dynamic.update(DynamicSample{s.u, s.y, s.Psi}), UpdateStatus::accepted);
+    plant.advance();
+  }
+  const Eigen::VectorXd x = dynamic.state(), theta = dynamic.parameters();
+  const Eigen::MatrixXd p = dynamic.covariance();
+  const auto& s = plant.sample();
+  const Eigen::VectorXd u = s.u, y = s.y;
+  const Eigen::MatrixXd psi = s.Psi;
+  const auto expect_rejected = [&](const DynamicSample& bad, const char* entry) {
+    const std::string message = adaptobs::testing::configuration_error_of([&] { (void)dynamic.update(bad); });
+    EXPECT_NE(message.find(std::string("'") + entry + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find("AugmentedKalmanFilter::update"), std::string::npos) << message;
+    EXPECT_EQ(dynamic.step(), 50);
+    EXPECT_TRUE(dynamic.state() == x && dynamic.parameters() == theta && dynamic.covariance() == p) << entry;
+  };
+  expect_rejected({Eigen::VectorXd::Ones(200), y, psi}, "sample.u");
+  expect_rejected({u, Eigen::VectorXd::Ones(1), psi}, "sample.y");
+  expect_rejected({u, y, Eigen::MatrixXd::Ones(4, 1)}, "sample.Psi");
+  expect_rejected({u, y, Eigen::MatrixXd::Ones(3, 2)}, "sample.Psi");
+  // The good sample is still accepted and gives the fixed-size filter's numbers.
+  ASSERT_EQ(fixed.update(s), UpdateStatus::accepted);
+  ASSERT_EQ(dynamic.update(DynamicSample{u, y, psi}), UpdateStatus::accepted);
+  EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
+}
+
 TEST(AugmentedKalman, NoiseFreeAgreesWithExactState) {
   auto filter = make_filter();
   auto plant = satellite::make_plant<double>(0.0);

@@ -81,7 +81,10 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
   }
 
   /// Correction with \f$y_k\f$, then prediction to step k + 1 with \f$(A_k, B_k, \Psi_k, u_k)\f$.
+  /// With run-time sizes, a sample of the wrong shape throws `ConfigurationError`
+  /// naming it, and the filter is left as it was.
   [[nodiscard]] UpdateStatus update(const Sample& sample) {
+    if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "AugmentedKalmanFilter::update");
     if (!detail::all_finite(sample.u, sample.y, sample.Psi)) return UpdateStatus::nonfinite_input;
     const auto& system = model_.at(step_);
     const Index nx = x_.rows();

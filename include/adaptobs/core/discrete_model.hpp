@@ -41,6 +41,26 @@ struct InputOutputSample {
   typename D::Output y;
 };
 
+namespace detail {
+
+/// Throws `ConfigurationError` naming the first entry of a run-time-sized sample
+/// whose shape disagrees with the model's sizes `s`, before anything reads it.
+template <StateSpace D>
+void require_sample_sizes(const InputOutputSample<D>& sample, const Sizes& s, std::string_view who) {
+  require_shape(sample.u, s.nu, 1, who, "sample.u");
+  require_shape(sample.y, s.ny, 1, who, "sample.y");
+}
+
+/// The same for a sample with a regressor, which must be nx × np.
+template <StateSpace D>
+void require_sample_sizes(const DiscreteSample<D>& sample, const Sizes& s, std::string_view who) {
+  require_shape(sample.u, s.nu, 1, who, "sample.u");
+  require_shape(sample.y, s.ny, 1, who, "sample.y");
+  require_shape(sample.Psi, s.nx, s.np, who, "sample.Psi");
+}
+
+}  // namespace detail
+
 /// A discrete-time model: `at(k)` gives the matrices of step k.
 template <class M>
 concept DiscreteModel = StateSpace<typename M::Dims> && requires(const M& m, Index k) {

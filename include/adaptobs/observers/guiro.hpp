@@ -106,7 +106,7 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
       Workspace w;
       return advance(sample, w);
     } else {
-      check_sample_sizes(sample);
+      detail::require_sample_sizes(sample, model_.sizes(), "GuiroObserver::update");
       return advance(sample, work_);
     }
   }
@@ -197,13 +197,6 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     return UpdateStatus::accepted;
   }
 
-  void check_sample_sizes(const Sample& sample) const {
-    constexpr std::string_view who = "GuiroObserver::update";
-    const Sizes s = model_.sizes();
-    detail::require_shape(sample.u, s.nu, 1, who, "sample.u");
-    detail::require_shape(sample.y, s.ny, 1, who, "sample.y");
-    detail::require_shape(sample.Psi, s.nx, s.np, who, "sample.Psi");
-  }
 
   void check_system_sizes(const DiscreteSystem<Dims>& system) const {
     constexpr std::string_view who = "GuiroObserver::update";

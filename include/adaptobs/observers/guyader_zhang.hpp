@@ -89,7 +89,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
       Workspace w;
       return advance(sample, w);
     } else {
-      check_sample_sizes(sample);
+      detail::require_sample_sizes(sample, model_.sizes(), "GuyaderZhangObserver::update");
       return advance(sample, work_);
     }
   }
@@ -220,13 +220,6 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     closed_loop_.noalias() -= gain_ * system.C;
   }
 
-  void check_sample_sizes(const Sample& sample) const {
-    constexpr std::string_view who = "GuyaderZhangObserver::update";
-    const Sizes s = model_.sizes();
-    detail::require_shape(sample.u, s.nu, 1, who, "sample.u");
-    detail::require_shape(sample.y, s.ny, 1, who, "sample.y");
-    detail::require_shape(sample.Psi, s.nx, s.np, who, "sample.Psi");
-  }
 
   void check_system_sizes(const DiscreteSystem<Dims>& system) const {
     constexpr std::string_view who = "GuyaderZhangObserver::update";

@@ -96,7 +96,7 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
       Workspace w;
       return advance(sample, w);
     } else {
-      check_sample_sizes(sample);
+      detail::require_sample_sizes(sample, model_.sizes(), "TakagiSugenoObserver::update");
       return advance(sample, work_);
     }
   }
@@ -265,12 +265,6 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     blend += odd;
   }
 
-  void check_sample_sizes(const Sample& sample) const {
-    constexpr std::string_view who = "TakagiSugenoObserver::update";
-    const Sizes s = model_.sizes();
-    detail::require_shape(sample.u, s.nu, 1, who, "sample.u");
-    detail::require_shape(sample.y, s.ny, 1, who, "sample.y");
-  }
 
   Model model_;
   Gains gains_;
