@@ -6,9 +6,10 @@
 
 #include <Eigen/Dense>
 
+#include "third_order_problem.hpp"
+
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 template <class State, class F>
 State rk4(const F& f, const State& x, double t, double h) {
@@ -18,18 +19,9 @@ State rk4(const F& f, const State& x, double t, double h) {
 }
 
 int main() {
-  Eigen::Matrix3d A, T;
-  A << -1, 2, 0, -1, -1, 1, 0.5, 0, -2;
-  const Eigen::Vector3d B(0, 1, 0.5);
-  const Eigen::RowVector3d C(1, 0, 1);
-  const auto Phi = [](double t) {
-    Eigen::Matrix<double, 3, 2> phi;
-    phi << std::sin(t), 0, std::cos(1.7 * t), 1, 0, std::sin(0.6 * t);
-    return phi;
-  };
-  constexpr double r2 = std::numbers::sqrt2;
-  T << 1, 0, 1, -0.16, 1, -0.16, 0.12 * r2, 0, 1.12 * r2;
-  const Eigen::Vector3d K(0, -1.4, 0.8 * r2), k(2, 0, 0);
+  const ThirdOrderProblem problem = third_order_problem();
+  const auto& [A, T, B, C, K, k] = problem;
+  const auto Phi = third_order_regressor;
   const Eigen::Matrix3d Tinv = T.inverse();
   const Eigen::RowVector3d Co = C * Tinv;
   const Eigen::Matrix3d Ao = T * A * Tinv - K * Co;

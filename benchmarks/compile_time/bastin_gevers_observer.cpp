@@ -7,26 +7,17 @@
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/observers/bastin_gevers.hpp>
 
+#include "third_order_problem.hpp"
+
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 using Dims = adaptobs::Dimensions<double, 3, 1, 1, 2>;
 
 int main() {
-  Eigen::Matrix3d A, T;
-  A << -1, 2, 0, -1, -1, 1, 0.5, 0, -2;
-  const Eigen::Vector3d B(0, 1, 0.5);
-  const Eigen::RowVector3d C(1, 0, 1);
-  const auto Phi = [](double t) {
-    Eigen::Matrix<double, 3, 2> phi;
-    phi << std::sin(t), 0, std::cos(1.7 * t), 1, 0, std::sin(0.6 * t);
-    return phi;
-  };
-  // Form (5) with det(sI − A22) = (s + 1)(s + 3); k makes c_o(sI − A_o + k c_o)⁻¹e1 = 1/(s + 2).
-  constexpr double r2 = std::numbers::sqrt2;
-  T << 1, 0, 1, -0.16, 1, -0.16, 0.12 * r2, 0, 1.12 * r2;
-  const Eigen::Vector3d K(0, -1.4, 0.8 * r2), k(2, 0, 0);
+  const ThirdOrderProblem problem = third_order_problem();
+  const auto& [A, T, B, C, K, k] = problem;
+  const auto Phi = third_order_regressor;
 
   auto observer = adaptobs::make_bastin_gevers_observer(
       adaptobs::make_continuous_lti_model<Dims>(A, B, C, Phi), adaptobs::StaticTransform<Dims>(T, K), k,
