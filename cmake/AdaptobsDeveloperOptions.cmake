@@ -18,3 +18,12 @@ elseif(MSVC)
 endif()
 
 target_link_libraries(adaptobs_developer_options INTERFACE adaptobs::adaptobs)
+
+# adaptobs::precompiled: the double-precision design routines compiled once
+# (include/adaptobs/core/precompiled.hpp). The tests, examples and benchmarks
+# link it; a few targets stay header-only on purpose (the README example, the
+# header checks, the installed-package consumer).
+add_library(adaptobs_precompiled STATIC "${PROJECT_SOURCE_DIR}/src/precompiled.cpp")
+add_library(adaptobs::precompiled ALIAS adaptobs_precompiled)
+target_compile_definitions(adaptobs_precompiled PUBLIC ADAPTOBS_PRECOMPILED)
+target_link_libraries(adaptobs_precompiled PRIVATE adaptobs_developer_options PUBLIC adaptobs::adaptobs)

@@ -415,4 +415,33 @@ TEST(AdaptationLaws, BadConfigurationNamesTheArgument) {
   EXPECT_REFUSED(Gradient(p0, {.mu = 1.0, .offset = 0.0}), "offset");
 }
 
+// With Eigen::Dynamic sizes a sample of the wrong size would be read past its end
+// under NDEBUG: `propose` refuses it, naming phi or z, and the law is unchanged.
+template <class Law>
+void check_wrong_sample_sizes_refused(Law law) {
+  const Eigen::MatrixXd phi = (Eigen::MatrixXd(4, 2) << 0.5, -0.2, 0.1, 0.7, -0.3, 0.4, 0.9, 0.05).finished();
+  const Eigen::VectorXd z = Eigen::Vector2d(1.0, -0.5);
+  ASSERT_TRUE(law.propose(phi, z));
+  law.commit();
+  ASSERT_TRUE(law.propose(phi, z));  // a proposal is pending; it must survive the refusals too
+  const Eigen::VectorXd parameters = law.parameters(), proposal = law.proposal();
+  EXPECT_REFUSED(law.propose(Eigen::MatrixXd::Ones(3, 2), z), "phi");
+  EXPECT_REFUSED(law.propose(Eigen::MatrixXd::Ones(4, 3), z), "phi");
+  EXPECT_REFUSED(law.propose(phi, Eigen::VectorXd::Ones(1)), "z");
+  EXPECT_REFUSED(law.propose(phi, Eigen::VectorXd::Ones(3)), "z");
+  EXPECT_TRUE(law.parameters() == parameters);
+  EXPECT_TRUE(law.proposal() == proposal);
+}
+
+TEST(AdaptationLaws, WrongRunTimeSampleSizesAreRefusedAndChangeNothing) {
+  using Vector = Eigen::VectorXd;
+  using Matrix = Eigen::MatrixXd;
+  constexpr int X = Eigen::Dynamic;
+  const Matrix gamma0 = Matrix::Identity(4, 4), r = Matrix::Identity(2, 2);
+  check_wrong_sample_sizes_refused(adaptobs::RecursiveLeastSquares<double, X, X>(Vector::Zero(4), {gamma0, r}));
+  check_wrong_sample_sizes_refused(adaptobs::ExponentialForgettingRls<double, X, X>(Vector::Zero(4), {gamma0, r, 0.9}));
+  check_wrong_sample_sizes_refused(DynamicResetting(Vector::Zero(4), {.k0 = 10, .kmin = 1e-3, .R = r}));
+  check_wrong_sample_sizes_refused(adaptobs::NormalizedGradient<double, X, X>(Vector::Zero(4), {}, 2));
+}
+
 }  // namespace

@@ -285,4 +285,24 @@ TEST(ExcitationMonitor, RunningSumDoesNotDrift) {
   EXPECT_MATRIX_NEAR(monitor.average(), Eigen::Matrix3d(expected / 7), 1e-9 * expected.norm(), 0.0);
 }
 
+TEST(ExcitationMonitor, RefusesWrongColumnsNonFiniteEntriesAndBadWeightsAddingNothing) {
+  adaptobs::ExcitationMonitor<double, Eigen::Dynamic> monitor(3, 2);
+  monitor.add(Eigen::RowVector2d(1, 0));
+  monitor.add(Eigen::RowVector2d(0, 2), 0.5);
+  const Eigen::MatrixXd average = monitor.average();
+  const auto refused = [&](const Eigen::MatrixXd& phi, double weight, const char* argument) {
+    const std::string message = configuration_error_of([&] { monitor.add(phi, weight); });
+    EXPECT_NE(message.find(std::string("'") + argument + "'"), std::string::npos) << message;
+  };
+  refused(Eigen::MatrixXd::Ones(1, 3), 1, "phi");  // Φ must have p = 2 columns
+  refused(Eigen::MatrixXd::Ones(2, 1), 1, "phi");
+  refused(Eigen::RowVector2d(1, std::numeric_limits<double>::infinity()), 1, "phi");
+  refused(Eigen::RowVector2d(1, 1), -1, "weight");
+  refused(Eigen::RowVector2d(1, 1), std::nan(""), "weight");
+  EXPECT_EQ(monitor.count(), 2);
+  EXPECT_TRUE(monitor.average() == average);
+  // (e1ᵀe1 + 0.5·4·e2ᵀe2)/2 = diag(0.5, 1)
+  EXPECT_DOUBLE_EQ(monitor.level(), 0.5);
+}
+
 }  // namespace

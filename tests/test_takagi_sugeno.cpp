@@ -441,8 +441,11 @@ TEST(TakagiSugeno, BadConfigurationNamesTheArgument) {
 
 // --- Dynamic sizes --------------------------------------------------------------
 
+// The two premise variables of the plant; for a negative input, which the plant
+// never sees, it returns three values: a user error the observer must catch.
 struct DynamicPremises {
   Eigen::VectorXd operator()(const Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& /*theta*/) const {
+    if (u(0) < 0) return Eigen::Vector3d(u(0), 0, 0);
     return Eigen::Vector2d(u(0), x(0) / (x(1) + wwtp::b));
   }
 };
@@ -479,6 +482,15 @@ TEST(TakagiSugeno, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
   EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.weights(), fixed.weights(), 1e-12, 1e-12);
   EXPECT_NAMES((void)dynamic.update({Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1)}), "'sample.u'");
+
+  // A premise function returning 3 values for nz = 2 is refused before the weights read them.
+  const Eigen::VectorXd x = dynamic.state(), theta = dynamic.parameters(), h = dynamic.weights();
+  EXPECT_NAMES((void)dynamic.update({Eigen::VectorXd::Constant(1, -0.1), Eigen::VectorXd::Zero(1)}),
+               "'premises(x, u, theta)'");
+  EXPECT_TRUE(dynamic.state() == x);
+  EXPECT_TRUE(dynamic.parameters() == theta);
+  EXPECT_TRUE(dynamic.weights() == h);
+  EXPECT_EQ(dynamic.step(), 500);
 }
 
 }  // namespace

@@ -307,6 +307,53 @@ std::string configuration_error_of(F&& f) {
   EXPECT_NE(configuration_error_of([&] { (void)(expression); }).find(argument), std::string::npos) \
       << configuration_error_of([&] { (void)(expression); })
 
+// With Eigen::Dynamic sizes, arguments and model callables of the wrong run-time
+// size are refused with the name the caller knows, at any time, and a refused
+// update leaves the observer as it was.
+TEST(ZhangContinuous, WrongRunTimeSizesAreRefusedNamingTheArgumentAndChangeNothing) {
+  using DD = adaptobs::DynamicDimensions<double>;
+  // From t = 0.5 on, the matrices (bad_matrices) or the regressor (bad_regressor) change size.
+  const auto model_of = [](bool bad_matrices, bool bad_regressor) {
+    return adaptobs::make_continuous_ltv_model<DD>(
+        [bad_matrices](double t) {
+          const auto s = periodic::system<double>(t);
+          if (bad_matrices && t > 0.5) return adaptobs::ContinuousSystem<DD>{Eigen::MatrixXd::Zero(5, 5), s.B, s.C};
+          return adaptobs::ContinuousSystem<DD>{s.A, s.B, s.C};
+        },
+        [bad_regressor](double t) {
+          if (bad_regressor && t > 0.5) return Eigen::MatrixXd(Eigen::MatrixXd::Zero(5, 2));
+          return Eigen::MatrixXd(periodic::Regressor{}.operator()<double>(t));
+        },
+        {4, 1, 2, 2});
+  };
+  const Eigen::MatrixXd K = periodic::zhang_gain<double>(), gamma = 50.0 * Eigen::Matrix2d::Identity();
+  const Eigen::VectorXd eta0 = Eigen::VectorXd::Zero(4), theta0 = Eigen::VectorXd::Zero(2);
+  EXPECT_NAMES(adaptobs::make_zhang_continuous_observer(model_of(false, false), Eigen::MatrixXd::Ones(4, 4), gamma, eta0,
+                                                        theta0),
+               "'K'");
+  EXPECT_NAMES(adaptobs::make_zhang_continuous_observer(model_of(false, false), K, Eigen::MatrixXd::Identity(1, 1), eta0,
+                                                        theta0),
+               "'gamma'");
+
+  for (const auto& [bad_matrices, argument] : {std::pair{true, "'matrices_at(t).A'"}, std::pair{false, "'Phi'"}}) {
+    auto observer =
+        adaptobs::make_zhang_continuous_observer(model_of(bad_matrices, !bad_matrices), K, gamma, eta0, theta0);
+    auto plant = periodic::make_plant<double>();
+    while (plant.sample().t <= 0.5) {
+      const auto& s = plant.sample();
+      ASSERT_EQ(observer.update({s.t, s.u, s.y, std::nullopt}), UpdateStatus::accepted);
+      plant.advance();
+    }
+    const Eigen::VectorXd state = observer.state(), parameters = observer.parameters();
+    const Eigen::MatrixXd omega = observer.omega();
+    const auto& s = plant.sample();
+    EXPECT_NAMES(observer.update({s.t, s.u, s.y, std::nullopt}), argument);
+    EXPECT_TRUE(observer.state() == state);
+    EXPECT_TRUE(observer.parameters() == parameters);
+    EXPECT_TRUE(observer.omega() == omega);
+  }
+}
+
 TEST(UnifiedFormulation, BadConfigurationNamesTheArgument) {
   using SD = siso::Dims<double>;
   const auto model = siso::model<double>();

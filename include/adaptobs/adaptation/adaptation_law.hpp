@@ -23,10 +23,12 @@
 /// aggregate, so that an observer templated on the law can build it.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
 
 #include <concepts>
+#include <string_view>
 #include <type_traits>
 
 namespace adaptobs {
@@ -52,6 +54,22 @@ struct RegressionTypes {
   using MeasurementWeight = Eigen::Matrix<S, NZ, NZ>;  ///< R (the cost weighs errors with R⁻¹)
   using Gain = Eigen::Matrix<S, NP, NZ>;               ///< Γφ and its factors
 };
+
+namespace detail {
+
+/// Throws a `ConfigurationError` naming `phi` or `z` when a sample's run-time size
+/// differs from the law's (np × nz and nz), before anything is read: Eigen checks
+/// `Eigen::Dynamic` sizes only by assertions, which `NDEBUG` removes.
+template <class Types>
+void require_regression_sizes(const typename Types::Regressor& phi, const typename Types::Measurement& z, Index np,
+                              Index nz, std::string_view who) {
+  if constexpr (!Types::is_fixed) {
+    require_shape(phi, np, nz, who, "phi");
+    require_shape(z, nz, 1, who, "z");
+  }
+}
+
+}  // namespace detail
 
 /// A recursive estimator of p from samples \f$(\varphi_t, z_t)\f$, split into
 /// a proposal and a commit so that observers can compute a whole step before

@@ -159,6 +159,7 @@ class CovarianceResettingRls {
 
   /// (22), then (23), with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
+    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "CovarianceResettingRls::propose");
     const int next = 1 - current_;
     Tracking& track = track_[next];
     track = track_[current_];

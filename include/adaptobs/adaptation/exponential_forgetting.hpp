@@ -105,6 +105,7 @@ class ExponentialForgettingRls {
 
   /// One weighted step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
+    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "ExponentialForgettingRls::propose");
     const int next = 1 - current_;
     const Covariance& gamma = gamma_[current_];
     gamma_phi_.noalias() = detail::product(gamma, phi);

@@ -59,6 +59,7 @@ class NormalizedGradient {
 
   /// One gradient step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
+    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "NormalizedGradient::propose");
     const int next = 1 - current_;
     innovation_ = z;
     innovation_.noalias() -= phi.transpose() * p_[current_];

@@ -92,6 +92,7 @@ class RecursiveLeastSquares {
 
   /// (22) and (21) with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
+    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "RecursiveLeastSquares::propose");
     const int next = 1 - current_;
     if (!correction_.apply(gamma_[current_], options_.R, phi, z, p_[current_], S(1), p_[next], gamma_[next]))
       return false;

@@ -56,14 +56,21 @@ concept RegressorFunction =
     std::invocable<const F&, typename D::Scalar, const typename D::Input&, const typename D::Output&>;
 
 namespace detail {
+/// \f$\Phi\f$ at time t, from a callable of t or of (t, u, y). A result whose
+/// run-time size is not nx × np throws a `ConfigurationError` naming `Phi`, at
+/// whatever time it happens: with `Eigen::Dynamic` sizes nothing else would stop
+/// the observer from writing past its filters.
 template <StateSpace D, class F>
 [[nodiscard]] decltype(auto) evaluate_regressor(const F& phi, typename D::Scalar t, const typename D::Input& u,
-                                                const typename D::Output& y) {
-  if constexpr (std::invocable<const F&, typename D::Scalar, const typename D::Input&, const typename D::Output&>) {
-    return phi(t, u, y);
-  } else {
-    return phi(t);
-  }
+                                                const typename D::Output& y, const Sizes& s, std::string_view who) {
+  decltype(auto) value = [&]() -> decltype(auto) {
+    if constexpr (std::invocable<const F&, typename D::Scalar, const typename D::Input&, const typename D::Output&>)
+      return phi(t, u, y);
+    else
+      return phi(t);
+  }();
+  if constexpr (requires { value.rows(); value.cols(); }) require_shape(value, s.nx, s.np, who, "Phi");
+  return value;
 }
 
 template <StateSpace D>
@@ -80,8 +87,7 @@ template <StateSpace D, class F>
 void validate_regressor(const F& phi, const Sizes& s, std::string_view who) {
   const typename D::Input u = D::Input::Zero(s.nu);
   const typename D::Output y = D::Output::Zero(s.ny);
-  const typename D::RegressorMatrix first = evaluate_regressor<D>(phi, typename D::Scalar(0), u, y);
-  require_shape(first, s.nx, s.np, who, "Phi");
+  static_cast<void>(evaluate_regressor<D>(phi, typename D::Scalar(0), u, y, s, who));
 }
 }  // namespace detail
 
@@ -119,7 +125,7 @@ class ContinuousLtiModel : public SizedBy<D> {
   [[nodiscard]] const ContinuousSystem<D>& system() const noexcept { return system_; }
   [[nodiscard]] decltype(auto) regressor(typename D::Scalar t, const typename D::Input& u,
                                          const typename D::Output& y) const {
-    return detail::evaluate_regressor<D>(phi_, t, u, y);
+    return detail::evaluate_regressor<D>(phi_, t, u, y, sizes_, "ContinuousLtiModel");
   }
   [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
 
@@ -148,10 +154,21 @@ class ContinuousLtvModel : public SizedBy<D> {
     detail::validate_regressor<D>(phi_, sizes_, who);
   }
 
-  [[nodiscard]] ContinuousSystem<D> at(typename D::Scalar t) const { return matrices_at_(t); }
+  /// \f$(A(t), B(t), C(t))\f$; with dynamic sizes, matrices of other sizes than
+  /// `sizes` throw a `ConfigurationError` naming `matrices_at`, at any t.
+  [[nodiscard]] ContinuousSystem<D> at(typename D::Scalar t) const {
+    ContinuousSystem<D> system = matrices_at_(t);
+    if constexpr (!D::is_fixed) {
+      constexpr std::string_view who = "ContinuousLtvModel";
+      detail::require_shape(system.A, sizes_.nx, sizes_.nx, who, "matrices_at(t).A");
+      detail::require_shape(system.B, sizes_.nx, sizes_.nu, who, "matrices_at(t).B");
+      detail::require_shape(system.C, sizes_.ny, sizes_.nx, who, "matrices_at(t).C");
+    }
+    return system;
+  }
   [[nodiscard]] decltype(auto) regressor(typename D::Scalar t, const typename D::Input& u,
                                          const typename D::Output& y) const {
-    return detail::evaluate_regressor<D>(phi_, t, u, y);
+    return detail::evaluate_regressor<D>(phi_, t, u, y, sizes_, "ContinuousLtvModel");
   }
   [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
 

@@ -13,6 +13,14 @@
 
 #include <Eigen/Core>
 
+#include <complex>
+
+namespace adaptobs {
+/// Eigenvalues and poles: a column of complex numbers.
+template <typename Scalar>
+using ComplexVector = Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1>;
+}  // namespace adaptobs
+
 namespace adaptobs::detail {
 
 template <typename Scalar>

@@ -273,8 +273,14 @@ class TakagiSugenoModel : public SizedBy<D> {
   [[nodiscard]] const PremiseFn& premise_function() const noexcept { return premises_; }
 
   /// Premise variables \f$z = z(x, u, \theta)\f$ (unclipped).
+  /// A result of the wrong run-time size throws a `ConfigurationError` naming the
+  /// premise function, before it is copied: with `Eigen::Dynamic` sizes nothing
+  /// else would stop the weights from reading past its end.
   [[nodiscard]] PremiseVector premises(const State& x, const Input& u, const Parameters& theta) const {
-    return premises_(x, u, theta);
+    decltype(auto) z = premises_(x, u, theta);
+    if constexpr (requires { z.rows(); z.cols(); })
+      detail::require_shape(z, premise_count(), 1, "TakagiSugenoModel", "premises(x, u, theta)");
+    return PremiseVector(z);
   }
 
   /// Weights \f$h_i(z, \theta)\f$ of every vertex (clipped to the sectors; Remark 1).

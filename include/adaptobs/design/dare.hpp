@@ -15,6 +15,7 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/schur_stability.hpp>
 
@@ -106,6 +107,12 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   if (!is_schur_stable(closed_loop)) fail_argument(who, "A, B", no_solution);
   return result;
 }
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE DareSolution<double, Eigen::Dynamic> solve_dare<double>(const DynamicMatrix<double>&,
+                                                                            const DynamicMatrix<double>&,
+                                                                            const DynamicMatrix<double>&,
+                                                                            const DynamicMatrix<double>&, DareOptions);
+#endif
 
 }  // namespace detail
 

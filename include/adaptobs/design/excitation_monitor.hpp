@@ -16,6 +16,8 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+#include <string_view>
 #include <vector>
 
 namespace adaptobs {
@@ -34,8 +36,14 @@ class ExcitationMonitor {
   }
 
   /// Adds the contribution \f$w\,\Phi^T\Phi\f$ of one sample (Φ is m × p).
+  /// A Φ with other than p columns, a non-finite entry, or a weight that is
+  /// negative or not finite throws a `ConfigurationError` and adds nothing.
   template <class Derived>
   void add(const Eigen::MatrixBase<Derived>& phi, Scalar weight = Scalar(1)) {
+    constexpr std::string_view who = "ExcitationMonitor::add";
+    detail::require_shape(phi, phi.rows(), sum_.cols(), who, "phi");
+    detail::require_finite(phi, who, "phi");
+    detail::require(weight >= Scalar(0) && std::isfinite(weight), who, "weight", "must be non-negative and finite");
     Gramian& slot = ring_[next_];
     sum_ -= slot;
     slot.noalias() = weight * phi.transpose() * phi;

@@ -41,6 +41,7 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/observability.hpp>
 #include <adaptobs/design/pole_placement.hpp>
@@ -97,6 +98,11 @@ DynamicMatrix<Scalar> guiro_error_matrix(const DynamicMatrix<Scalar>& E, const D
   u.bottomRightCorner(p, p).setIdentity();
   return u;
 }
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE DynamicMatrix<double> guiro_error_matrix<double>(const DynamicMatrix<double>&, const DynamicMatrix<double>&,
+                                                                     const DynamicMatrix<double>&, const DynamicMatrix<double>&,
+                                                                     const DynamicMatrix<double>&);
+#endif
 
 template <typename Scalar>
 struct DynamicGuiroGains {
@@ -217,6 +223,13 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
   }
   return gains;
 }
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE DynamicGuiroGains<double> design_guiro_gains<double>(const DynamicMatrix<double>&,
+                                                                         const DynamicMatrix<double>&,
+                                                                         const DynamicMatrix<double>&,
+                                                                         const ComplexVector<double>&,
+                                                                         const GuiroDesignOptions&);
+#endif
 }  // namespace detail
 
 /// Error matrix \f$U = \begin{bmatrix}(I-KC)E & (I-KC)E\bar H\\ -\Gamma C & I\end{bmatrix}\f$

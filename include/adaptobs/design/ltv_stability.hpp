@@ -11,11 +11,12 @@
 /// Used for the conditions of Algorithm 3 (\f$\dot e_2 = A_{22}(t)e_2\f$) and
 /// Algorithm 4 (\f$\dot{\tilde z} = (A(t) - K(t)C(t))\tilde z\f$, eq. (13)) of paper 001.
 
+#include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/dense_eigenvalues.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -43,8 +44,8 @@ template <class AFn, typename Scalar = double>
                                                                          int steps = 2000) {
   detail::require_positive(period, "floquet_exponents", "period");
   const auto m = transition_matrix(A, Scalar(0), period, steps);
-  const Eigen::EigenSolver<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> eig(m, false);
-  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> exponents = eig.eigenvalues().cwiseAbs().array().log() / period;
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> exponents =
+      detail::dense_eigenvalues(detail::dynamic_copy(m)).cwiseAbs().array().log() / period;
   std::sort(exponents.begin(), exponents.end(), [](Scalar a, Scalar b) { return a > b; });
   return exponents;
 }

@@ -8,6 +8,8 @@
 /// A unique solution exists when no two eigenvalues of A sum to zero; for a
 /// Hurwitz A and Q ≥ 0 it is the positive semidefinite \f$\int_0^\infty e^{A^Ts}Qe^{As}ds\f$.
 
+#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -19,22 +21,16 @@
 
 namespace adaptobs {
 
-/// Solution X of \f$A^TX + XA + Q = 0\f$ (Q symmetric). Throws when A and −A share an eigenvalue.
-template <class DA, class DQ>
-[[nodiscard]] Eigen::Matrix<typename DA::Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime>
-solve_continuous_lyapunov(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DQ>& Q) {
-  using Scalar = typename DA::Scalar;
+namespace detail {
+/// The Bartels–Stewart solve on dynamic-size matrices (checked arguments, n ≥ 1):
+/// one instantiation per scalar type, compiled once for `double` where
+/// `adaptobs::precompiled` is linked (core/precompiled.hpp).
+template <typename Scalar>
+[[nodiscard]] DynamicMatrix<Scalar> solve_continuous_lyapunov_dense(const DynamicMatrix<Scalar>& A,
+                                                                    const DynamicMatrix<Scalar>& Q) {
   using Complex = std::complex<Scalar>;
   using ComplexMatrix = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
-  constexpr std::string_view who = "solve_continuous_lyapunov";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
   const Index n = A.rows();
-  detail::require_shape(Q, n, n, who, "Q");
-  detail::require_finite(Q, who, "Q");
-  Eigen::Matrix<Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime> X(n, n);
-  if (n == 0) return X;
-
   const Eigen::ComplexSchur<ComplexMatrix> schur(ComplexMatrix(A.template cast<Complex>()));
   const ComplexMatrix& T = schur.matrixT();
   const ComplexMatrix& U = schur.matrixU();
@@ -48,12 +44,35 @@ solve_continuous_lyapunov(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBas
       for (Index l = 0; l < j; ++l) rhs -= Y(i, l) * T(l, j);
       const Complex pivot = std::conj(T(i, i)) + T(j, j);
       if (std::abs(pivot) <= Scalar(100) * std::numeric_limits<Scalar>::epsilon() * scale)
-        detail::fail_argument(who, "A", "must not share an eigenvalue with -A (the equation is singular)");
+        fail_argument("solve_continuous_lyapunov", "A", "must not share an eigenvalue with -A (the equation is singular)");
       Y(i, j) = rhs / pivot;
     }
   }
-  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> x = (U * Y * U.adjoint()).real();
-  X = Scalar(0.5) * (x + x.transpose());
+  const DynamicMatrix<Scalar> x = (U * Y * U.adjoint()).real();
+  return Scalar(0.5) * (x + x.transpose());
+}
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE DynamicMatrix<double> solve_continuous_lyapunov_dense<double>(const DynamicMatrix<double>&,
+                                                                                   const DynamicMatrix<double>&);
+#endif
+}  // namespace detail
+
+/// Solution X of \f$A^TX + XA + Q = 0\f$ (Q symmetric). Throws when A and −A share an eigenvalue.
+template <class DA, class DQ>
+[[nodiscard]] Eigen::Matrix<typename DA::Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime>
+solve_continuous_lyapunov(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DQ>& Q) {
+  using Scalar = typename DA::Scalar;
+  constexpr std::string_view who = "solve_continuous_lyapunov";
+  detail::require_square(A, who, "A");
+  detail::require_finite(A, who, "A");
+  const Index n = A.rows();
+  detail::require_shape(Q, n, n, who, "Q");
+  detail::require_finite(Q, who, "Q");
+  Eigen::Matrix<Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime> X(n, n);
+  if (n == 0) return X;
+  const detail::DynamicMatrix<Scalar> x = detail::solve_continuous_lyapunov_dense(detail::dynamic_copy(A), detail::dynamic_copy(Q));
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < n; ++i) X(i, j) = x(i, j);
   return X;
 }
 

@@ -17,9 +17,9 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/dense_eigenvalues.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
 #include <algorithm>
@@ -76,7 +76,7 @@ template <class DA, class DC>
   report.observable_dimension = offset;
   if (offset < n) {
     const Matrix rest = a.bottomRightCorner(n - offset, n - offset);
-    report.unobservable_modes = Eigen::EigenSolver<Matrix>(rest, false).eigenvalues();
+    report.unobservable_modes = detail::dense_eigenvalues(rest);
   }
   return report;
 }

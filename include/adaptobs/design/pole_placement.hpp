@@ -34,7 +34,9 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/sylvester.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/dense_eigenvalues.hpp>
 #include <adaptobs/design/observability.hpp>
 
 #include <Eigen/Core>
@@ -67,9 +69,6 @@ struct PolePlacementOptions {
   /// Largest accepted Cayley–Hamilton residual; 0 selects \f$10^5\varepsilon\f$.
   double verification_tolerance = 0;
 };
-
-template <typename Scalar>
-using ComplexVector = Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1>;
 
 namespace detail {
 
@@ -216,9 +215,8 @@ template <class DM>
 [[nodiscard]] typename DM::Scalar eigenvalue_mismatch(const Eigen::MatrixBase<DM>& M,
                                                       const ComplexVector<typename DM::Scalar>& poles) {
   using Scalar = typename DM::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   if (M.rows() == 0) return Scalar(0);
-  const ComplexVector<Scalar> eig = Eigen::EigenSolver<Matrix>(detail::dynamic_copy(M), false).eigenvalues();
+  const ComplexVector<Scalar> eig = detail::dense_eigenvalues(detail::dynamic_copy(M));
   std::vector<bool> taken(std::size_t(eig.size()), false);
   Scalar worst = 0;
   for (Index i = 0; i < poles.size(); ++i) {
@@ -282,7 +280,7 @@ class PolePlacer {
     const Scalar scale = std::max(Scalar(1), Scalar(A.norm()));
     const auto separation = [&](const Matrix& m) {
       if (n == 0) return std::numeric_limits<Scalar>::infinity();
-      const ComplexVector<Scalar> e = Eigen::EigenSolver<Matrix>(m, false).eigenvalues();
+      const ComplexVector<Scalar> e = detail::dense_eigenvalues(m);
       Scalar gap = std::numeric_limits<Scalar>::infinity();
       for (Index i = 0; i < e.size(); ++i)
         for (Index j = 0; j < poles.size(); ++j) gap = std::min(gap, std::abs(e(i) - poles(j)));
@@ -391,6 +389,11 @@ OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(cons
   }
   return result;
 }
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE OutputInjectionGain<double, Eigen::Dynamic, Eigen::Dynamic> place_injection<double>(
+    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const ComplexVector<double>&,
+    const PolePlacementOptions&, std::string_view, std::string_view, std::string_view);
+#endif
 }  // namespace detail
 
 /// Gain L (N × m) such that \f$A - LC\f$ has the spectrum `poles` (real or

@@ -4,10 +4,10 @@
 /// (`is_schur_stable`, which needs no eigenvalues, is in schur_stability.hpp.)
 
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/dense_eigenvalues.hpp>
 #include <adaptobs/design/schur_stability.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include <complex>
 #include <limits>
@@ -18,16 +18,12 @@ namespace adaptobs {
 ///
 /// A design-time check, computed on a dynamic-size copy: the real Schur
 /// decomposition behind it is costly to compile, and one instantiation per
-/// scalar type serves every matrix size.
+/// scalar type serves every matrix size (see core/precompiled.hpp).
 template <class Derived>
-[[nodiscard]] Eigen::Matrix<std::complex<typename Derived::Scalar>, Eigen::Dynamic, 1> eigenvalues(
-    const Eigen::MatrixBase<Derived>& m) {
-  using Scalar = typename Derived::Scalar;
+[[nodiscard]] ComplexVector<typename Derived::Scalar> eigenvalues(const Eigen::MatrixBase<Derived>& m) {
   detail::require_square(m, "eigenvalues", "M");
   detail::require_finite(m, "eigenvalues", "M");
-  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> dynamic = m;
-  Eigen::EigenSolver<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> solver(dynamic, /*computeEigenvectors=*/false);
-  return solver.eigenvalues();
+  return detail::dense_eigenvalues(detail::dynamic_copy(m));
 }
 
 /// Spectral radius \f$\rho(M) = \max_i |\lambda_i(M)|\f$.

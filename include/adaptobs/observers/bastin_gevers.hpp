@@ -133,6 +133,7 @@ template <ContinuousModel Model>
     typename Model::Dims::ParameterMatrix gamma, typename Model::Dims::State eta0,
     typename Model::Dims::Parameters theta0, UnifiedObserverOptions options = {}) {
   using D = typename Model::Dims;
+  detail::require_shape(gamma, model.sizes().np, model.sizes().np, BastinGevers<D>::name, "gamma");
   return BastinGeversObserver<Model>(std::move(model), BastinGevers<D>(std::move(transform), std::move(k)),
                                      GradientLaw<D>(std::move(gamma)), std::move(eta0), std::move(theta0), options);
 }

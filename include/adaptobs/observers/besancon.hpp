@@ -104,6 +104,7 @@ template <ContinuousModel Model>
     typename Model::Dims::ParameterMatrix gamma, typename Model::Dims::State eta0,
     typename Model::Dims::Parameters theta0, UnifiedObserverOptions options = {}) {
   using D = typename Model::Dims;
+  detail::require_shape(gamma, model.sizes().np, model.sizes().np, Besancon<D>::name, "gamma");
   return BesanconObserver<Model>(std::move(model), Besancon<D>(std::move(transform), std::move(K1)),
                                  GradientLaw<D>(std::move(gamma)), std::move(eta0), std::move(theta0), options);
 }

@@ -202,7 +202,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     w.x.noalias() += gain_ * w.innovation;
     w.x.noalias() += w.upsilon * w.theta_step;
 
-    if (!detail::all_finite(w.x, w.theta, w.upsilon)) return UpdateStatus::nonfinite_result;
+    if (!detail::all_finite(w.x, w.theta, w.upsilon, w.c_upsilon)) return UpdateStatus::nonfinite_result;
 
     detail::commit(x_, w.x);
     detail::commit(theta_, w.theta);

@@ -115,6 +115,7 @@ template <ContinuousModel Model>
     typename Model::Dims::ParameterMatrix adaptation_gain, typename Model::Dims::State eta0,
     typename Model::Dims::Parameters theta0, UnifiedObserverOptions options = {}) {
   using D = typename Model::Dims;
+  detail::require_shape(adaptation_gain, model.sizes().np, model.sizes().np, MarinoTomei<D>::name, "adaptation_gain");
   return MarinoTomeiObserver<Model>(std::move(model),
                                     MarinoTomei<D>(std::move(transform), std::move(gamma), std::move(k)),
                                     GradientLaw<D>(std::move(adaptation_gain)), std::move(eta0), std::move(theta0),

@@ -126,6 +126,7 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     detail::require(s.np >= 1, who, "model", "must have at least one unknown parameter");
     detail::require_shape(algorithm_.static_transform.T(), s.nx, s.nx, who, "static_transform.T");
     detail::require_shape(algorithm_.static_transform.K(), s.nx, s.ny, who, "static_transform.K");
+    if constexpr (requires { law_.gamma(); }) detail::require_shape(law_.gamma(), s.np, s.np, who, "law.gamma");
     detail::require(algorithm_.dynamic_transform.state_size() == s.nx, who, "dynamic_transform",
                     "must act on a state of the model's size");
     detail::require_shape(eta0, s.nx, 1, who, "eta0");

@@ -82,6 +82,9 @@ template <ContinuousModel Model>
     Model model, typename Model::Dims::GainMatrix K, typename Model::Dims::ParameterMatrix gamma,
     typename Model::Dims::State eta0, typename Model::Dims::Parameters theta0, UnifiedObserverOptions options = {}) {
   using D = typename Model::Dims;
+  const Sizes s = model.sizes();
+  detail::require_shape(K, s.nx, s.ny, ZhangContinuous<D>::name, "K");
+  detail::require_shape(gamma, s.np, s.np, ZhangContinuous<D>::name, "gamma");
   return ZhangContinuousObserver<Model>(std::move(model), ZhangContinuous<D>(std::move(K)),
                                         GradientLaw<D>(std::move(gamma)), std::move(eta0), std::move(theta0),
                                         options);

@@ -1,0 +1,18 @@
+#pragma once
+/// \file
+/// Design routines compiled once, for programs that link `adaptobs::precompiled`.
+///
+/// The dense decompositions behind design routines (eigenvalues, Schur forms)
+/// cost seconds to compile in every translation unit that calls them. Each such
+/// routine therefore runs on dynamic-size matrices through one function
+/// template per scalar type. The optional library `adaptobs::precompiled`
+/// (src/precompiled.cpp) instantiates those templates for `double`, and whatever
+/// links it is compiled with `ADAPTOBS_PRECOMPILED` defined. That turns the
+/// `ADAPTOBS_INSTANTIATE` lines after each routine into explicit instantiation
+/// declarations (`extern template`): the translation unit calls the compiled
+/// code instead of instantiating its own. Without the library nothing changes:
+/// the headers stay header-only and instantiate what they use.
+
+#if defined(ADAPTOBS_PRECOMPILED) && !defined(ADAPTOBS_INSTANTIATE)
+#define ADAPTOBS_INSTANTIATE extern template
+#endif

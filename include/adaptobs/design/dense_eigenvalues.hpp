@@ -1,0 +1,24 @@
+#pragma once
+/// \file
+/// Eigenvalues of a dynamic-size matrix: the one instantiation of Eigen's
+/// `EigenSolver` that the design routines share (compiled once for `double`
+/// where `adaptobs::precompiled` is linked; see core/precompiled.hpp).
+
+#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/precompiled.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+namespace adaptobs::detail {
+
+/// Eigenvalues of a square matrix (real Schur form, no eigenvectors), in the solver's order.
+template <typename Scalar>
+[[nodiscard]] ComplexVector<Scalar> dense_eigenvalues(const DynamicMatrix<Scalar>& m) {
+  return Eigen::EigenSolver<DynamicMatrix<Scalar>>(m, /*computeEigenvectors=*/false).eigenvalues();
+}
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE ComplexVector<double> dense_eigenvalues<double>(const DynamicMatrix<double>&);
+#endif
+
+}  // namespace adaptobs::detail

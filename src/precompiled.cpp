@@ -1,0 +1,16 @@
+// The library adaptobs::precompiled: the double-precision instances of the
+// design routines that end in an ADAPTOBS_INSTANTIATE line, compiled once
+// (see include/adaptobs/core/precompiled.hpp). Here the line is an explicit
+// instantiation definition; in a program that links this library it is a
+// declaration, and the program calls these instead of compiling its own.
+#define ADAPTOBS_INSTANTIATE template
+
+#include <adaptobs/design/dare.hpp>
+#include <adaptobs/design/dense_eigenvalues.hpp>
+#include <adaptobs/design/guiro_gains.hpp>
+#include <adaptobs/design/lyapunov.hpp>
+#include <adaptobs/design/pole_placement.hpp>
+
+#ifndef ADAPTOBS_PRECOMPILED
+#error "src/precompiled.cpp is compiled with ADAPTOBS_PRECOMPILED defined (target adaptobs_precompiled)"
+#endif
