@@ -12,6 +12,10 @@
 /// declarations (`extern template`): the translation unit calls the compiled
 /// code instead of instantiating its own. Without the library nothing changes:
 /// the headers stay header-only and instantiate what they use.
+///
+/// Build the library with the same architecture flags (`-march`, `-mavx`, ...)
+/// as the program: Eigen objects compiled for different vector instructions
+/// have different alignment and must not be passed between the two.
 
 #if defined(ADAPTOBS_PRECOMPILED) && !defined(ADAPTOBS_INSTANTIATE)
 #define ADAPTOBS_INSTANTIATE extern template
