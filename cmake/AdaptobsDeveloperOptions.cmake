@@ -20,9 +20,9 @@ endif()
 target_link_libraries(adaptobs_developer_options INTERFACE adaptobs::adaptobs)
 
 # adaptobs::precompiled: the double-precision design routines compiled once
-# (include/adaptobs/core/precompiled.hpp). The tests, examples and benchmarks
-# link it; a few targets stay header-only on purpose (the README example, the
-# header checks, the installed-package consumer).
+# (include/adaptobs/core/precompiled.hpp). The tests and examples link it; the
+# README example, the header checks, the installed-package consumer and the
+# benchmarks (built for x86-64-v3) stay header-only.
 add_library(adaptobs_precompiled STATIC "${PROJECT_SOURCE_DIR}/src/precompiled.cpp")
 add_library(adaptobs::precompiled ALIAS adaptobs_precompiled)
 target_compile_definitions(adaptobs_precompiled PUBLIC ADAPTOBS_PRECOMPILED)
