@@ -70,9 +70,7 @@ solve_continuous_lyapunov(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBas
   detail::require_finite(Q, who, "Q");
   Eigen::Matrix<Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime> X(n, n);
   if (n == 0) return X;
-  const detail::DynamicMatrix<Scalar> x = detail::solve_continuous_lyapunov_dense(detail::dynamic_copy(A), detail::dynamic_copy(Q));
-  for (Index j = 0; j < n; ++j)
-    for (Index i = 0; i < n; ++i) X(i, j) = x(i, j);
+  X = detail::solve_continuous_lyapunov_dense(detail::dynamic_copy(A), detail::dynamic_copy(Q));
   return X;
 }
 

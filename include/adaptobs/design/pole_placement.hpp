@@ -33,8 +33,8 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_copy.hpp>
-#include <adaptobs/core/sylvester.hpp>
 #include <adaptobs/core/precompiled.hpp>
+#include <adaptobs/core/sylvester.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/dense_eigenvalues.hpp>
 #include <adaptobs/design/observability.hpp>
