@@ -5,6 +5,7 @@
 // declaration, and the program calls these instead of compiling its own.
 #define ADAPTOBS_INSTANTIATE template
 
+#include <adaptobs/core/matrix_exponential.hpp>
 #include <adaptobs/design/dare.hpp>
 #include <adaptobs/design/dense_eigenvalues.hpp>
 #include <adaptobs/design/guiro_gains.hpp>

@@ -50,6 +50,17 @@ TEST(NoAllocation, CounterSeesAllocations) {
             2);
 }
 
+// Eigen allocates with std::malloc, which a replaced operator new never sees.
+volatile double eigen_sink = 0;
+
+TEST(NoAllocation, CounterSeesEigensMalloc) {
+  EXPECT_EQ(allocations_during([] {
+              const Eigen::MatrixXd m = Eigen::MatrixXd::Constant(7, 9, 0.5);
+              eigen_sink = m.sum();
+            }),
+            1);
+}
+
 TEST(NoAllocation, GuyaderZhangFixedSizeUpdates) {
   const auto samples = satellite_samples(10000);
   adaptobs::GuyaderZhangObserver observer(satellite::model<double>(), satellite::paper_gain<double>(), satellite::mu,

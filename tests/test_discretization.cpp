@@ -9,9 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace {
@@ -21,6 +24,7 @@ using adaptobs::discretize_zoh;
 using adaptobs::integral_of_exponential;
 using adaptobs::matrix_exponential;
 using adaptobs::testing::RandomMatrices;
+using adaptobs::testing::configuration_error_of;
 namespace satellite = adaptobs::examples::satellite;
 
 TEST(MatrixExponential, NilpotentMatchesFiniteSeries) {
@@ -68,6 +72,133 @@ TEST(MatrixExponential, DynamicSizeEqualsFixedSize) {
   const Eigen::Matrix4d a = rng.uniform<Eigen::Matrix4d>(4, 4, -5, 5);
   const Eigen::MatrixXd ad = a;
   EXPECT_TRUE(adaptobs::testing::bitwise_equal(Eigen::MatrixXd(matrix_exponential(a)), matrix_exponential(ad)));
+}
+
+// Large-norm cases with closed forms: scaling by ‖A‖ alone squares a rounding
+// error up to 2^s ≈ ‖A‖ times, so these fail by many digits without the
+// ‖Aᵏ‖^{1/k} bounds, the exact triangular bands, balancing and block splitting.
+double worst_relative_error(const Eigen::MatrixXd& got, const Eigen::MatrixXd& exact) {
+  double worst = 0;
+  for (Eigen::Index i = 0; i < exact.size(); ++i) {
+    const double e = exact.data()[i];
+    const double error = std::abs(got.data()[i] - e);
+    worst = std::max(worst, e == 0 ? (error == 0 ? 0.0 : std::numeric_limits<double>::infinity()) : error / std::abs(e));
+  }
+  return worst;
+}
+
+TEST(MatrixExponential, LargeNilpotentIsExact) {
+  for (double b : {1e4, 1e10, 1e16, 1e300}) {
+    Eigen::Matrix2d a;
+    a << 0, b, 0, 0;
+    EXPECT_LE(worst_relative_error(matrix_exponential(a), Eigen::Matrix2d::Identity() + a), 1e-12) << "b = " << b;
+    // Not triangular, already balanced, and A² = 0 exactly in floating point: only
+    // the ‖Aᵏ‖^{1/k} bound sees that no scaling is needed.
+    Eigen::Matrix2d full;
+    full << b, -b, b, -b;
+    EXPECT_LE(worst_relative_error(matrix_exponential(full), Eigen::Matrix2d::Identity() + full), 1e-12)
+        << "[[b, -b], [b, -b]], b = " << b;
+  }
+}
+
+TEST(MatrixExponential, StiffTriangularMatchesDividedDifferences) {
+  for (double b : {1.0, 1e8, 1e16}) {
+    // Distinct eigenvalues λ = −1, −2, −3: entry (i, j) of e^A is the product of the
+    // superdiagonal entries times the divided difference of exp over λ_i … λ_j.
+    Eigen::Matrix3d a;
+    a << -1, b, 0, 0, -2, b, 0, 0, -3;
+    const double e1 = std::exp(-1.0), e2 = std::exp(-2.0), e3 = std::exp(-3.0);
+    const double d12 = e1 - e2, d23 = e2 - e3, d123 = (d12 - d23) / 2;
+    Eigen::Matrix3d expected;
+    expected << e1, b * d12, b * b * d123, 0, e2, b * d23, 0, 0, e3;
+    EXPECT_LE(worst_relative_error(matrix_exponential(a), expected), 1e-12) << "b = " << b;
+    EXPECT_LE(worst_relative_error(matrix_exponential(Eigen::Matrix3d(a.transpose())), expected.transpose()), 1e-12)
+        << "lower triangular, b = " << b;
+  }
+  for (double b : {1e16, 1e100, 1e300}) {
+    // A Jordan block: e^A = e^{−1}(I + N). Its ‖Aᵏ‖^{1/k} ≈ (kb)^{1/k} asks for
+    // hundreds of squarings, each of which would double the error of the diagonal.
+    Eigen::Matrix2d a;
+    a << -1, b, 0, -1;
+    Eigen::Matrix2d expected;
+    expected << 1, b, 0, 1;
+    EXPECT_LE(worst_relative_error(matrix_exponential(a), std::exp(-1.0) * expected), 1e-12) << "Jordan, b = " << b;
+  }
+  for (double k : {1e3, 1e10, 1e16, 1e300}) {
+    const Eigen::Matrix2d a = Eigen::Vector2d(-k, 0).asDiagonal();
+    EXPECT_LE(worst_relative_error(matrix_exponential(a), Eigen::Vector2d(std::exp(-k), 1).asDiagonal()), 1e-12)
+        << "diag(-" << k << ", 0)";
+  }
+}
+
+TEST(MatrixExponential, StiffBlockDiagonalKeepsEveryBlockAccurate) {
+  for (double k : {1e2, 1e8, 1e16}) {
+    // A stiff triangular block beside a rotation block (permuted): the rotation
+    // must not pay for the stiff block's scaling.
+    Eigen::Matrix4d block;
+    block << -k, 0, k, 0, 0, 0, 0, 3, 0, 0, -1, 0, 0, -3, 0, 0;
+    Eigen::Matrix4d expected = Eigen::Matrix4d::Zero();
+    expected(0, 0) = std::exp(-k);
+    expected(0, 2) = k * (std::exp(-k) - std::exp(-1.0)) / (1 - k);
+    expected(2, 2) = std::exp(-1.0);
+    expected(1, 1) = expected(3, 3) = std::cos(3.0);
+    expected(1, 3) = std::sin(3.0);
+    expected(3, 1) = -std::sin(3.0);
+    EXPECT_LE(worst_relative_error(matrix_exponential(block), expected), 1e-12) << "k = " << k;
+  }
+}
+
+TEST(MatrixExponential, BadlyScaledSimilarityIsBalanced) {
+  // M has eigenvalues −2 and −3: e^M = e^{−2}(M + 3I) − e^{−3}(M + 2I), and e^{DMD⁻¹} = D e^M D⁻¹.
+  Eigen::Matrix2d m;
+  m << -1, 2, -1, -4;
+  const Eigen::Matrix2d i2 = Eigen::Matrix2d::Identity();
+  const Eigen::Matrix2d em = std::exp(-2.0) * (m + 3 * i2) - std::exp(-3.0) * (m + 2 * i2);
+  for (double s : {1e2, 1e10, 1e15}) {
+    const Eigen::DiagonalMatrix<double, 2> d(1, s), d_inverse(1, 1 / s);
+    const Eigen::Matrix2d a = d * m * d_inverse;
+    EXPECT_LE(worst_relative_error(matrix_exponential(a), Eigen::Matrix2d(d * em * d_inverse)), 1e-12) << "s = " << s;
+  }
+  // Symmetric M = Q Λ Qᵀ, so e^M = Q e^Λ Qᵀ independently of the exponential; seen through
+  // D = diag(1, s, s²) its entries span up to 1e32 in magnitude.
+  Eigen::Matrix3d sym;
+  sym << -2, 1, 0.5, 1, -3, 1, 0.5, 1, -1;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(sym);
+  const Eigen::Matrix3d e_sym =
+      eig.eigenvectors() * eig.eigenvalues().array().exp().matrix().asDiagonal() * eig.eigenvectors().transpose();
+  for (double s : {1e4, 1e8, 1e16}) {
+    const Eigen::Vector3d d(1, s, s * s);
+    const Eigen::Matrix3d a = d.asDiagonal() * sym * d.cwiseInverse().asDiagonal();
+    const Eigen::Matrix3d expected = d.asDiagonal() * e_sym * d.cwiseInverse().asDiagonal();
+    EXPECT_LE(worst_relative_error(matrix_exponential(a), expected), 1e-12) << "s = " << s;
+  }
+  for (double b : {1e8, 1e16}) {
+    // [[0, b], [−1/b, 0]]² = −I: e^A = cos 1·I + sin 1·A, a rotation seen through diag(1, 1/b).
+    Eigen::Matrix2d a;
+    a << 0, b, -1 / b, 0;
+    EXPECT_LE(worst_relative_error(matrix_exponential(a), std::cos(1.0) * i2 + std::sin(1.0) * a), 1e-12) << b;
+  }
+}
+
+TEST(MatrixExponential, OverflowIsRefusedNamingA) {
+  const Eigen::Matrix2d big = 1000 * Eigen::Matrix2d::Identity();
+  const std::string message = configuration_error_of([&] { (void)matrix_exponential(big); });
+  EXPECT_NE(message.find("'A'"), std::string::npos) << message;
+  EXPECT_NE(message.find("range"), std::string::npos) << message;
+  // e^700 ≈ 1.0e304 is still representable.
+  const Eigen::Matrix2d near_limit = Eigen::Vector2d(700, -700).asDiagonal();
+  EXPECT_LE(worst_relative_error(matrix_exponential(near_limit), Eigen::Vector2d(std::exp(700.0), std::exp(-700.0)).asDiagonal()),
+            1e-12);
+}
+
+TEST(ZeroOrderHold, StiffPoleBesideAnIntegrator) {
+  for (double k : {1e4, 1e8, 1e16}) {
+    // ẋ₁ = −k x₁ + u, ẋ₂ = u over one second: A_d = diag(e^{−k}, 1), B_d = ((1 − e^{−k})/k, 1).
+    const Eigen::Matrix2d a = Eigen::Vector2d(-k, 0).asDiagonal();
+    const auto zoh = discretize_zoh(a, Eigen::Vector2d(1, 1), 1.0);
+    EXPECT_LE(worst_relative_error(zoh.Ad, Eigen::Vector2d(std::exp(-k), 1).asDiagonal()), 1e-12) << k;
+    EXPECT_LE(worst_relative_error(zoh.Bd, Eigen::Vector2d(-std::expm1(-k) / k, 1)), 1e-12) << k;
+  }
 }
 
 TEST(ZeroOrderHold, DoubleIntegratorClosedForm) {
@@ -146,8 +277,6 @@ TEST(ZeroOrderHold, FloatAgreesWithDouble) {
   EXPECT_MATRIX_NEAR(f.Ad.cast<double>(), d.Ad, 1e-6, 0.0);
   EXPECT_MATRIX_NEAR(f.Bd.cast<double>(), d.Bd, 1e-7, 0.0);
 }
-
-using adaptobs::testing::configuration_error_of;
 
 TEST(ZeroOrderHold, BadConfigurationNamesTheArgument) {
   const Eigen::MatrixXd non_square = Eigen::MatrixXd::Ones(2, 3);

@@ -1,11 +1,13 @@
 #pragma once
-// Counts calls of the global allocation functions. Only the test executable
-// `test_no_allocation` links allocation_counter.cpp, which replaces
-// operator new; each observer adds its own no_allocation_<observer>.cpp there.
+// Counts heap allocations: operator new and the C allocation functions that
+// Eigen uses. Only the test executable `test_no_allocation` links
+// allocation_counter.cpp (with the --wrap link options it needs); each observer
+// adds its own no_allocation_<observer>.cpp there.
 
 namespace adaptobs::testing {
 
-/// Number of global operator new calls so far in this process.
+/// Heap allocations so far by the executable's own code: operator new, malloc,
+/// calloc, realloc, aligned_alloc and posix_memalign.
 long allocation_count() noexcept;
 
 /// Allocations made while running `f`.

@@ -1,14 +1,40 @@
 #pragma once
 /// \file
-/// Matrix exponential by scaling and squaring with diagonal Padé approximants.
+/// Matrix exponential by scaling and squaring with diagonal Padé approximants,
+/// with the scaling chosen from ‖Aᵏ‖^{1/k} rather than ‖A‖.
 ///
-/// Algorithm 2.3 of N. J. Higham, "The scaling and squaring method for the
-/// matrix exponential revisited", SIAM J. Matrix Anal. Appl. 26(4), 2005: the
-/// Padé degree m ∈ {3, 5, 7, 9, 13} is the smallest whose backward-error bound
-/// θ_m covers ‖A‖₁; above θ₁₃ the matrix is scaled by 2^{-s}, the degree-13
-/// approximant is evaluated, and the result squared s times. For `float` the
-/// single-precision bounds of the same paper are used.
+/// A. H. Al-Mohy and N. J. Higham, "A new scaling and squaring algorithm for
+/// the matrix exponential", SIAM J. Matrix Anal. Appl. 31(3), 2009 (AMH),
+/// Algorithm 5.1, built on the Padé bounds θ_m of N. J. Higham, SIAM J. Matrix
+/// Anal. Appl. 26(4), 2005, Table 2.3 (single-precision bounds for `float`).
+/// Three of its ideas make the result accurate where bounding by ‖A‖ is not:
+///
+/// - **Scaling from ‖Aᵏ‖^{1/k}.** The backward error of r_m(A) is h(A) with
+///   h(x) = log(e^{−x} r_m(x)) odd, since r_m(x) r_m(−x) = 1; so h(x) = x g(x²)
+///   with g's series starting at y^m, and AMH Theorem 4.2 bounds the relative
+///   backward error by g̃ at max(d_{2p}, d_{2p+2})² for any p with p(p−1) ≤ m,
+///   where d_k = ‖Aᵏ‖₁^{1/k}. For a nonnormal A, d_k can be far below ‖A‖₁
+///   ([[0, 10¹⁰], [0, 0]] has d_k = 0 for k ≥ 2), and scaling by ‖A‖₁ then
+///   squares a rounding error 2^s times. Here the powers are formed rather
+///   than estimated: design-time sizes are small.
+/// - **ℓ(A, m)** (AMH §5, eq. (5.1)): extra squarings when the leading term
+///   |c_{2m+1}| ‖|A|^{2m+1}‖₁ / ‖A‖₁ of the backward error, evaluated in
+///   floating point, would exceed the unit roundoff u; c_{2m+1} =
+///   (m!)² / ((2m)! (2m+1)!) is the error constant of the [m/m] approximant.
+/// - **Triangular A** (AMH Code Fragment 2.1): after every squaring the
+///   diagonal is set to exp(2^{−j} a_ii) and the first superdiagonal to its
+///   closed form, so neither suffers from the squarings. A lower-triangular A
+///   goes through its transpose.
+///
+/// A nilpotent A (A^k = 0 exactly for some k ≤ 10) gets its finite series. An A
+/// that is block-diagonal up to a permutation is exponentiated block by block,
+/// so that a stiff block's squarings leave the others alone. Before all this A
+/// is balanced, B = D⁻¹ A D with D a diagonal of powers of
+/// two (Parlett–Reinsch), when that lowers ‖A‖₁; e^A = D e^B D⁻¹ is then
+/// exact scaling. A result beyond the floating-point range is refused.
 
+#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -17,11 +43,16 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <type_traits>
+#include <vector>
 
 namespace adaptobs {
 namespace detail {
 
+/// Padé degrees m and the bounds θ_m on 2^{−s}‖·‖ below which r_m is accurate to
+/// the unit roundoff (Higham 2005, Table 2.3; AMH Table 3.1).
 template <typename Scalar>
 struct PadeBounds;
 
@@ -65,34 +96,35 @@ constexpr auto pade_coefficients() {
   }
 }
 
-template <class Plain>
-[[nodiscard]] typename Plain::Scalar one_norm(const Plain& a) {
-  return a.cwiseAbs().colwise().sum().maxCoeff();
+template <typename Scalar>
+[[nodiscard]] Scalar one_norm(const DynamicMatrix<Scalar>& a) {
+  return a.cols() == 0 ? Scalar(0) : a.cwiseAbs().colwise().sum().maxCoeff();
 }
 
-/// r_m(A) = (V − U)⁻¹ (V + U), U the odd part and V the even part of p_m(A).
-template <int M, class Plain>
-Plain pade_approximant(const Plain& a) {
-  using Scalar = typename Plain::Scalar;
+/// r_m(A) = (V − U)⁻¹ (V + U), U the odd part and V the even part of p_m(A)
+/// (Higham 2005, eqs. (2.2) and (2.3) for m = 13).
+template <int M, typename Scalar>
+[[nodiscard]] DynamicMatrix<Scalar> pade_approximant(const DynamicMatrix<Scalar>& a) {
+  using Matrix = DynamicMatrix<Scalar>;
   constexpr auto b = pade_coefficients<M>();
   const Index n = a.rows();
-  const Plain identity = Plain::Identity(n, n);
-  const Plain a2 = a * a;
-  Plain u(n, n);
-  Plain v(n, n);
+  const Matrix identity = Matrix::Identity(n, n);
+  const Matrix a2 = a * a;
+  Matrix u(n, n);
+  Matrix v(n, n);
   if constexpr (M == 13) {
-    const Plain a4 = a2 * a2;
-    const Plain a6 = a4 * a2;
-    const Plain uh = Scalar(b[13]) * a6 + Scalar(b[11]) * a4 + Scalar(b[9]) * a2;
-    const Plain uw = a6 * uh + Scalar(b[7]) * a6 + Scalar(b[5]) * a4 + Scalar(b[3]) * a2 + Scalar(b[1]) * identity;
+    const Matrix a4 = a2 * a2;
+    const Matrix a6 = a4 * a2;
+    const Matrix uh = Scalar(b[13]) * a6 + Scalar(b[11]) * a4 + Scalar(b[9]) * a2;
+    const Matrix uw = a6 * uh + Scalar(b[7]) * a6 + Scalar(b[5]) * a4 + Scalar(b[3]) * a2 + Scalar(b[1]) * identity;
     u.noalias() = a * uw;
-    const Plain vh = Scalar(b[12]) * a6 + Scalar(b[10]) * a4 + Scalar(b[8]) * a2;
+    const Matrix vh = Scalar(b[12]) * a6 + Scalar(b[10]) * a4 + Scalar(b[8]) * a2;
     v.noalias() = a6 * vh;
     v += Scalar(b[6]) * a6 + Scalar(b[4]) * a4 + Scalar(b[2]) * a2 + Scalar(b[0]) * identity;
   } else {
-    // Horner-free evaluation with the even powers A^0, A^2, ..., A^{M-1}.
-    Plain power = identity;
-    Plain uw = Scalar(b[1]) * identity;
+    // The even powers A^0, A^2, ..., A^{M-1} serve both parts.
+    Matrix power = identity;
+    Matrix uw = Scalar(b[1]) * identity;
     v = Scalar(b[0]) * identity;
     for (int j = 2; j <= M; j += 2) {
       power = (power * a2).eval();
@@ -104,40 +136,333 @@ Plain pade_approximant(const Plain& a) {
   return (v - u).partialPivLu().solve(v + u);
 }
 
-}  // namespace detail
+template <typename Scalar>
+[[nodiscard]] DynamicMatrix<Scalar> pade_approximant(int degree, const DynamicMatrix<Scalar>& a) {
+  switch (degree) {
+    case 3: return pade_approximant<3>(a);
+    case 5: return pade_approximant<5>(a);
+    case 7: return pade_approximant<7>(a);
+    case 9: return pade_approximant<9>(a);
+    default: return pade_approximant<13>(a);
+  }
+}
 
-/// \f$e^{A}\f$ of a square matrix (fixed or dynamic size). Throws
-/// `ConfigurationError` when A is not square or holds NaN/Inf.
-template <class Derived>
-[[nodiscard]] typename Derived::PlainObject matrix_exponential(const Eigen::MatrixBase<Derived>& a_in) {
-  using Plain = typename Derived::PlainObject;
-  using Scalar = typename Derived::Scalar;
-  using Bounds = detail::PadeBounds<std::remove_cv_t<Scalar>>;
-  detail::require_square(a_in, "matrix_exponential", "A");
-  detail::require_finite(a_in, "matrix_exponential", "A");
-  const Plain a = a_in;
-  if (a.size() == 0) return a;
-  const Scalar norm = detail::one_norm(a);
+/// log₂ of the error constant (m!)² / ((2m)! (2m+1)!) of the [m/m] Padé approximant.
+inline double log2_pade_error_constant(int m) {
+  return (2 * std::lgamma(m + 1.0) - std::lgamma(2 * m + 1.0) - std::lgamma(2 * m + 2.0)) / std::log(2.0);
+}
 
-  // Smallest Padé degree whose bound covers ‖A‖₁ without scaling.
-  for (std::size_t i = 0; i + 1 < Bounds::degrees.size(); ++i) {
-    if (norm <= Scalar(Bounds::theta[i])) {
-      switch (Bounds::degrees[i]) {
-        case 3: return detail::pade_approximant<3>(a);
-        case 5: return detail::pade_approximant<5>(a);
-        case 7: return detail::pade_approximant<7>(a);
-        default: return detail::pade_approximant<9>(a);
+/// Diagonal similarity by powers of two that makes each row's and column's
+/// off-diagonal 1-norms nearly equal (Parlett–Reinsch balancing, without
+/// permutations): on return a holds D⁻¹ A D and d the diagonal of D. Powers of
+/// two keep the similarity free of rounding.
+template <typename Scalar>
+void balance(DynamicMatrix<Scalar>& a, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& d) {
+  const Index n = a.rows();
+  d.setOnes(n);
+  for (int sweep = 0; sweep < 64; ++sweep) {
+    bool changed = false;
+    for (Index i = 0; i < n; ++i) {
+      // Off-diagonal sums formed without the diagonal, which could absorb them.
+      Scalar c(0), r(0);
+      for (Index j = 0; j < n; ++j) {
+        if (j == i) continue;
+        c += std::abs(a(j, i));
+        r += std::abs(a(i, j));
       }
+      if (!(c > Scalar(0)) || !(r > Scalar(0))) continue;
+      // f = 2^k with f² ≈ r / c balances c f against r / f.
+      const int k = static_cast<int>(std::lround(0.5 * (std::log2(double(r)) - std::log2(double(c)))));
+      if (k == 0) continue;
+      const Scalar f = std::ldexp(Scalar(1), k);
+      if (!(c * f + r / f < Scalar(0.95) * (c + r))) continue;
+      a.col(i) *= f;
+      a.row(i) /= f;
+      d(i) *= f;
+      changed = true;
+    }
+    if (!changed) break;
+  }
+}
+
+/// log₂ d_k = log₂ ‖Aᵏ‖₁^{1/k} for k = 4, 6, 8, 10 (−∞ for a zero power).
+///
+/// The powers are formed as they are, which keeps every entry a nonnormal A
+/// needs (for [[−1, b], [0, −1]], A⁴ = [[1, −4b], [0, 1]]). A power that
+/// overflows is formed again from A / 2^e, ‖A / 2^e‖₁ ≈ 1, with 2^{ke} taken
+/// out; if that one underflows to zero, the safe bound d_k ≤ ‖A‖₁ is used.
+template <typename Scalar>
+[[nodiscard]] std::array<double, 4> log2_power_roots(const DynamicMatrix<Scalar>& a) {
+  using Matrix = DynamicMatrix<Scalar>;
+  const auto log2_root = [](const Matrix& power, int k, double exponent) {
+    const Scalar norm = one_norm(power);
+    return norm > Scalar(0) ? (std::log2(double(norm)) + exponent) / k : -std::numeric_limits<double>::infinity();
+  };
+  const auto roots = [&](const Matrix& base, double exponent) {
+    const Matrix p2 = base * base;
+    const Matrix p4 = p2 * p2;
+    const Matrix p6 = p4 * p2;
+    const std::array<const Matrix, 4> powers{p4, p6, p4 * p4, p4 * p6};
+    std::array<double, 4> out{};
+    std::array<bool, 4> finite{};
+    for (std::size_t i = 0; i < 4; ++i) {
+      const int k = 4 + 2 * int(i);
+      finite[i] = powers[i].allFinite();
+      out[i] = finite[i] ? log2_root(powers[i], k, k * exponent) : std::numeric_limits<double>::quiet_NaN();
+    }
+    return out;
+  };
+  const double log2_norm = std::log2(double(one_norm(a)));
+  std::array<double, 4> plain = roots(a, 0);
+  if (std::none_of(plain.begin(), plain.end(), [](double x) { return std::isnan(x); })) return plain;
+  int e = 0;
+  (void)std::frexp(one_norm(a), &e);
+  const std::array<double, 4> normalized = roots(Matrix(a * std::ldexp(Scalar(1), -e)), e);
+  for (std::size_t i = 0; i < 4; ++i) {
+    if (!std::isnan(plain[i])) continue;
+    plain[i] = std::isfinite(normalized[i]) ? normalized[i] : log2_norm;
+  }
+  return plain;
+}
+
+/// log₂ ‖|A|ᵏ‖₁ for the ℓ(A, m) term: 1ᵀ|A|ᵏ is formed row by row, renormalized
+/// by powers of two, and its largest entry is the 1-norm of the nonnegative |A|ᵏ.
+template <typename Scalar>
+[[nodiscard]] double log2_abs_power_norm(const DynamicMatrix<Scalar>& a, int k) {
+  const DynamicMatrix<Scalar> abs_a = a.cwiseAbs();
+  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> row = Eigen::Matrix<Scalar, 1, Eigen::Dynamic>::Ones(a.cols());
+  double exponent = 0;
+  for (int i = 0; i < k; ++i) {
+    row = (row * abs_a).eval();
+    const Scalar top = row.maxCoeff();
+    if (!(top > Scalar(0))) return -std::numeric_limits<double>::infinity();
+    int e = 0;
+    (void)std::frexp(top, &e);
+    row *= std::ldexp(Scalar(1), -e);
+    exponent += e;
+  }
+  return std::log2(double(row.maxCoeff())) + exponent;
+}
+
+/// e^{(λ₁ + λ₂)/2} sinh((λ₁ − λ₂)/2) / ((λ₁ − λ₂)/2) = (e^{λ₁} − e^{λ₂}) / (λ₁ − λ₂): the
+/// (1, 2) entry of exp([[λ₁, 1], [0, λ₂]]) (Higham, Functions of Matrices, eq. (10.42)).
+/// The sinh form avoids cancellation for close λ; the difference quotient, free of
+/// cancellation once |λ₁ − λ₂| ≥ 2, avoids 0·∞ when they are far apart.
+template <typename Scalar>
+[[nodiscard]] Scalar exp_divided_difference(Scalar l1, Scalar l2) {
+  const Scalar half = (l1 - l2) / 2;
+  if (std::abs(half) >= Scalar(1)) return (std::exp(l1) - std::exp(l2)) / (l1 - l2);
+  const Scalar sinhc = half == Scalar(0) ? Scalar(1) : std::sinh(half) / half;
+  return std::exp((l1 + l2) / 2) * sinhc;
+}
+
+/// Diagonal and first superdiagonal of e^{2^{−j}T} for upper-triangular T, in place in x
+/// (AMH Code Fragment 2.1).
+template <typename Scalar>
+void set_exact_triangular_bands(DynamicMatrix<Scalar>& x, const DynamicMatrix<Scalar>& t, int j) {
+  const Index n = t.rows();
+  const Scalar scale = std::ldexp(Scalar(1), -j);
+  for (Index i = 0; i < n; ++i) x(i, i) = std::exp(scale * t(i, i));
+  for (Index i = 0; i + 1 < n; ++i)
+    x(i, i + 1) = scale * t(i, i + 1) * exp_divided_difference(scale * t(i, i), scale * t(i + 1, i + 1));
+}
+
+/// Labels of the decoupled blocks of A: i and j share a label when a path of nonzero
+/// entries joins them, so that a permutation makes A block-diagonal by label.
+template <typename Scalar>
+[[nodiscard]] std::vector<Index> decoupled_blocks(const DynamicMatrix<Scalar>& a) {
+  const Index n = a.rows();
+  std::vector<Index> label(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) label[std::size_t(i)] = i;
+  const auto root = [&label](Index i) {
+    while (label[std::size_t(i)] != i) i = label[std::size_t(i)] = label[std::size_t(label[std::size_t(i)])];
+    return i;
+  };
+  for (Index j = 0; j < n; ++j)
+    for (Index i = 0; i < n; ++i)
+      if (i != j && a(i, j) != Scalar(0)) label[std::size_t(root(i))] = root(j);
+  for (Index i = 0; i < n; ++i) label[std::size_t(i)] = root(i);
+  return label;
+}
+
+template <typename Scalar>
+[[nodiscard]] DynamicMatrix<Scalar> matrix_exponential_dense(const DynamicMatrix<Scalar>& a_in);
+
+/// e^A block by block when A is block-diagonal up to a permutation: the squarings a
+/// stiff block needs would otherwise cost the other blocks ‖A‖·u of their accuracy.
+/// Returns false, doing nothing, when A is one block.
+template <typename Scalar>
+bool exponentiate_decoupled_blocks(const DynamicMatrix<Scalar>& a, DynamicMatrix<Scalar>& out) {
+  const Index n = a.rows();
+  const std::vector<Index> label = decoupled_blocks(a);
+  if (std::all_of(label.begin(), label.end(), [&](Index l) { return l == label.front(); })) return false;
+  out.setZero(n, n);
+  std::vector<Index> members;
+  for (Index block = 0; block < n; ++block) {
+    members.clear();
+    for (Index i = 0; i < n; ++i)
+      if (label[std::size_t(i)] == block) members.push_back(i);
+    if (members.empty()) continue;
+    const auto size = static_cast<Index>(members.size());
+    DynamicMatrix<Scalar> sub(size, size);
+    for (Index j = 0; j < size; ++j)
+      for (Index i = 0; i < size; ++i) sub(i, j) = a(members[std::size_t(i)], members[std::size_t(j)]);
+    const DynamicMatrix<Scalar> e = matrix_exponential_dense(sub);
+    for (Index j = 0; j < size; ++j)
+      for (Index i = 0; i < size; ++i) out(members[std::size_t(i)], members[std::size_t(j)]) = e(i, j);
+  }
+  return true;
+}
+
+/// r_m(2^{−s}A)^{2^s} with m and s chosen as in AMH Algorithm 5.1, and for an
+/// upper-triangular A the diagonal and superdiagonal set exactly at every step
+/// (AMH Code Fragment 2.1).
+template <typename Scalar>
+[[nodiscard]] DynamicMatrix<Scalar> scaling_and_squaring(const DynamicMatrix<Scalar>& a, bool triangular) {
+  using Bounds = PadeBounds<Scalar>;
+  const Scalar norm = one_norm(a);
+  const auto [log_d4, log_d6, log_d8, log_d10] = log2_power_roots(a);
+  // AMH Theorem 4.2 with p(p − 1) ≤ m: η for p = 2 serves m ≥ 2, p = 3 serves m ≥ 6, p = 4 serves m ≥ 12.
+  const auto log2_eta = [&](int m) {
+    double eta = std::max(log_d4, log_d6);
+    if (m >= 6) eta = std::min(eta, std::max(log_d6, log_d8));
+    if (m >= 12) eta = std::min(eta, std::max(log_d8, log_d10));
+    return eta;
+  };
+  // ℓ(2^{−s}A, m) = max(⌈log₂(α/u) / (2m)⌉, 0), α = |c_{2m+1}| ‖|A|^{2m+1}‖₁ / ‖A‖₁ (AMH eq. (5.1)),
+  // using α(2^{−s}A) = 2^{−2ms} α(A).
+  const double log2_u = std::log2(double(std::numeric_limits<Scalar>::epsilon()) / 2);
+  const double log2_norm = std::log2(double(norm));
+  const auto extra_squarings = [&](int m, int s) {
+    const double log2_alpha =
+        log2_pade_error_constant(m) + log2_abs_power_norm(a, 2 * m + 1) - log2_norm - 2.0 * m * s;
+    return std::max(0, static_cast<int>(std::ceil((log2_alpha - log2_u) / (2 * m))));
+  };
+
+  int degree = Bounds::degrees.back();
+  int squarings = 0;
+  bool chosen = false;
+  for (std::size_t i = 0; i + 1 < Bounds::degrees.size() && !chosen; ++i) {
+    const int m = Bounds::degrees[i];
+    if (log2_eta(m) <= std::log2(Bounds::theta[i]) && extra_squarings(m, 0) == 0) {
+      degree = m;
+      chosen = true;
     }
   }
-  constexpr int top_degree = Bounds::degrees.back();
-  const Scalar top_theta = Scalar(Bounds::theta.back());
-  int squarings = 0;
-  if (norm > top_theta) squarings = std::max(0, static_cast<int>(std::ceil(std::log2(norm / top_theta))));
-  const Plain scaled = a * std::ldexp(Scalar(1), -squarings);
-  Plain result = detail::pade_approximant<top_degree>(scaled);
-  for (int i = 0; i < squarings; ++i) result = (result * result).eval();
-  return result;
+  if (!chosen) {
+    const double log2_excess = log2_eta(degree) - std::log2(Bounds::theta.back());
+    squarings = log2_excess > 0 ? static_cast<int>(std::ceil(log2_excess)) : 0;
+    squarings += extra_squarings(degree, squarings);
+  }
+
+  DynamicMatrix<Scalar> x = pade_approximant(degree, DynamicMatrix<Scalar>(a * std::ldexp(Scalar(1), -squarings)));
+  if (triangular) set_exact_triangular_bands(x, a, squarings);
+  for (int j = squarings - 1; j >= 0; --j) {
+    x = (x * x).eval();
+    if (triangular) set_exact_triangular_bands(x, a, j);
+  }
+
+  return x;
+}
+
+/// I + A + … + A^{k−1}/(k−1)! when A^k = 0 exactly in floating point for some k ≤ 10;
+/// false otherwise. A nilpotent A has this finite series as its exponential, while
+/// scaling and squaring, for a nonnormal nilpotent A such as [[b, −b], [b, −b]],
+/// loses ‖A‖·u of accuracy that the series keeps. Where A^k overflows, the test for
+/// zero uses (A / 2^e)^k, 2^e ≈ ‖A‖₁, instead (a power of two keeps it exact).
+template <typename Scalar>
+bool nilpotent_series(const DynamicMatrix<Scalar>& a, DynamicMatrix<Scalar>& out) {
+  const Index n = a.rows();
+  int e = 0;
+  (void)std::frexp(one_norm(a), &e);
+  const DynamicMatrix<Scalar> normalized = a * std::ldexp(Scalar(1), -e);
+  DynamicMatrix<Scalar> power = a;
+  DynamicMatrix<Scalar> normalized_power = normalized;
+  DynamicMatrix<Scalar> sum = DynamicMatrix<Scalar>::Identity(n, n) + a;
+  Scalar factorial(1);
+  for (int k = 2; k <= 10; ++k) {
+    power = (power * a).eval();
+    normalized_power = (normalized_power * normalized).eval();
+    const bool finite = power.allFinite();
+    if (finite ? power.isZero(Scalar(0)) : normalized_power.isZero(Scalar(0))) {
+      out = std::move(sum);
+      return true;
+    }
+    if (!finite) return false;
+    factorial *= Scalar(k);
+    sum += power / factorial;
+  }
+  return false;
+}
+
+/// e^A of a finite square matrix: the scaling and squaring core (AMH Algorithm 5.1).
+/// Throws `ConfigurationError` naming `A` when e^A is beyond the range of `Scalar`.
+template <typename Scalar>
+[[nodiscard]] DynamicMatrix<Scalar> matrix_exponential_dense(const DynamicMatrix<Scalar>& a_in) {
+  using Matrix = DynamicMatrix<Scalar>;
+  const Index n = a_in.rows();
+  if (n == 0 || a_in.isZero(Scalar(0))) return Matrix::Identity(n, n);
+  if (Matrix blocks; n > 1 && exponentiate_decoupled_blocks(a_in, blocks)) return blocks;
+
+  // Lower-triangular A: e^A = (e^{Aᵀ})ᵀ, so only the upper case is special below.
+  const auto strictly_lower_is_zero = [n](const Matrix& m) {
+    for (Index j = 0; j < n; ++j)
+      for (Index i = j + 1; i < n; ++i)
+        if (m(i, j) != Scalar(0)) return false;
+    return true;
+  };
+  const bool upper = strictly_lower_is_zero(a_in);
+  const bool lower = !upper && strictly_lower_is_zero(a_in.transpose());
+  Matrix a = lower ? Matrix(a_in.transpose()) : a_in;
+  const bool triangular = upper || lower;
+
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> d = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Ones(n);
+  {
+    Matrix balanced = a;
+    balance(balanced, d);
+    if (one_norm(balanced) < one_norm(a)) {
+      a = std::move(balanced);
+    } else {
+      d.setOnes();
+    }
+  }
+
+  Matrix x;
+  if (!nilpotent_series(a, x)) x = scaling_and_squaring(a, triangular);
+
+  // Undo the balancing: e^A = D e^B D⁻¹, exact with powers of two.
+  for (Index col = 0; col < n; ++col)
+    for (Index row = 0; row < n; ++row) x(row, col) *= d(row) / d(col);
+  if (!x.allFinite()) {
+    std::ostringstream os;
+    os << "has an exponential beyond the floating-point range (‖A‖₁ = " << one_norm(a_in)
+       << "; the largest representable entry is " << std::numeric_limits<Scalar>::max() << ")";
+    fail_argument("matrix_exponential", "A", os.str());
+  }
+  if (lower) x.transposeInPlace();
+  return x;
+}
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE DynamicMatrix<double> matrix_exponential_dense<double>(const DynamicMatrix<double>&);
+#endif
+
+}  // namespace detail
+
+/// \f$e^{A}\f$ of a square matrix (fixed or dynamic size), accurate for large,
+/// stiff, nonnormal and badly scaled A (see the file comment). Throws
+/// `ConfigurationError` naming `A` when A is not square, holds NaN/Inf, or has
+/// an exponential beyond the floating-point range.
+template <class Derived>
+[[nodiscard]] typename Derived::PlainObject matrix_exponential(const Eigen::MatrixBase<Derived>& a) {
+  using Plain = typename Derived::PlainObject;
+  using Scalar = std::remove_cv_t<typename Derived::Scalar>;
+  detail::require_square(a, "matrix_exponential", "A");
+  detail::require_finite(a, "matrix_exponential", "A");
+  const detail::DynamicMatrix<Scalar> e = detail::matrix_exponential_dense<Scalar>(detail::dynamic_copy(a));
+  Plain out(a.rows(), a.cols());
+  for (Index j = 0; j < a.cols(); ++j)
+    for (Index i = 0; i < a.rows(); ++i) out(i, j) = e(i, j);
+  return out;
 }
 
 }  // namespace adaptobs
