@@ -131,6 +131,34 @@ TEST(AugmentedKalman, NonFiniteSamplesAreRejectedAndChangeNothing) {
   EXPECT_EQ(filter.step(), 50);
 }
 
+TEST(AugmentedKalman, AStepThatWouldLeaveTheCovarianceIndefiniteIsRejected) {
+  auto filter = make_filter();
+  auto plant = satellite::make_plant<double>();
+  for (Index k = 0; k < 50; ++k) {
+    ASSERT_EQ(filter.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  const Eigen::Vector4d x = filter.state();
+  const Eigen::Vector2d theta = filter.parameters();
+  const Matrix6 p = filter.covariance();
+  // Finite, but Ψ P Ψᵀ ≈ 1e300 swamps P: in floating point P⁺ is no longer positive
+  // definite, and accepting it would make every later step overflow.
+  auto s = plant.sample();
+  s.Psi.setConstant(1e150);
+  EXPECT_EQ(filter.update(s), UpdateStatus::indefinite_covariance);
+  using adaptobs::testing::bitwise_equal;
+  EXPECT_TRUE(bitwise_equal(filter.state(), x) && bitwise_equal(filter.parameters(), theta) &&
+              bitwise_equal(filter.covariance(), p));
+  // The filter goes on from where it was and still converges.
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (Index k = 0; k < 3000; ++k) {
+    ASSERT_EQ(filter.update(plant.sample()), UpdateStatus::accepted) << "step " << k;
+    plant.advance();
+    if (k >= 2000) sum += filter.parameters();
+  }
+  EXPECT_MATRIX_NEAR(Eigen::Vector2d(sum / 1000.0), satellite::true_parameters<double>(), 0.02, 0.0);
+}
+
 TEST(AugmentedKalman, BadCovariancesNameTheArgument) {
   auto message_of = [](adaptobs::AugmentedKalmanCovariances<Dims> c) -> std::string {
     try {

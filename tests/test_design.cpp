@@ -285,6 +285,23 @@ TEST(ExcitationMonitor, RunningSumDoesNotDrift) {
   EXPECT_MATRIX_NEAR(monitor.average(), Eigen::Matrix3d(expected / 7), 1e-9 * expected.norm(), 0.0);
 }
 
+TEST(ExcitationMonitor, AnOverflowingContributionMakesTheLevelUnavailableUntilItLeavesTheWindow) {
+  adaptobs::ExcitationMonitor<double, 2> monitor(3);
+  const Eigen::RowVector2d e1(1, 0), e2(0, 2);
+  monitor.add(e1);
+  monitor.add(Eigen::RowVector2d(1e160, 1e160));  // ΦᵀΦ = 1e320: beyond double
+  monitor.add(e2);
+  ASSERT_TRUE(monitor.full());
+  EXPECT_FALSE(monitor.available());
+  EXPECT_TRUE(std::isnan(monitor.level()));
+  monitor.add(e1);  // window: e1, huge, e2
+  EXPECT_FALSE(monitor.available());
+  monitor.add(e2);  // window: e1, e2, e2, so (e1ᵀe1 + 2 e2ᵀe2)/3 = diag(1, 8)/3
+  ASSERT_TRUE(monitor.available());
+  EXPECT_MATRIX_NEAR(monitor.average(), Eigen::Matrix2d(Eigen::Vector2d(1.0 / 3, 8.0 / 3).asDiagonal()), 1e-15, 0.0);
+  EXPECT_DOUBLE_EQ(monitor.level(), 1.0 / 3);
+}
+
 TEST(ExcitationMonitor, RefusesWrongColumnsNonFiniteEntriesAndBadWeightsAddingNothing) {
   adaptobs::ExcitationMonitor<double, Eigen::Dynamic> monitor(3, 2);
   monitor.add(Eigen::RowVector2d(1, 0));

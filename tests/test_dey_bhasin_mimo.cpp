@@ -7,6 +7,7 @@
 #include <adaptobs/adaptation/recursive_least_squares.hpp>
 #include <adaptobs/core/observer.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/design/stability.hpp>
 #include <adaptobs/observers/dey_bhasin.hpp>
 
@@ -360,6 +361,11 @@ TEST(DeyBhasin, Theorem5Step26FailsButTheWeightedNormStepHolds) {
   const Eigen::Vector2d phi(1, 1);
   const Eigen::Matrix2d m = (Eigen::Matrix2d::Identity() + gamma * phi * phi.transpose()).inverse();
   EXPECT_NEAR(adaptobs::spectral_norm(m), 1.394, 1e-3);
+  // Lemma 4(2), (I + M₁)⁻¹ ⪯ I, is itself false: its appendix B bounds the quadratic
+  // form by the largest eigenvalue of a non-symmetric matrix. The symmetric part of
+  // this (I + M₁)⁻¹ has the eigenvalue (103 + √(103² + 4·2348.25))/204 = 1.19818.
+  const Eigen::Matrix2d symmetric_part = 0.5 * (m + m.transpose());
+  EXPECT_NEAR(adaptobs::symmetric_eigenvalues(symmetric_part)(1), 1.19818, 1e-5);
 
   auto observer = mimo::make_observer();
   auto plant = mimo::make_plant(mimo::RichInput{});

@@ -15,7 +15,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -242,33 +244,49 @@ double printed_tolerance(const Printed& p) {
   return 0.5 * std::pow(10.0, exponent - p.digits + 1);
 }
 
-TEST(ZeroOrderHold, SatelliteMatchesPaper) {
-  const auto zoh = satellite::discretized<double>();
-  // A_d as printed.
-  const Printed a_printed[] = {
-      {0, 0, 1, 1},          {0, 1, 0.1, 1},        {0, 2, 0, 1},     {0, 3, 3.49e-6, 3},
-      {1, 1, 1, 1},          {1, 2, 0, 1},          {1, 3, 6.98e-5, 3},
-      {2, 0, -4.25e-14, 3},  {2, 1, -3.49e-6, 3},   {2, 2, 1, 1},     {2, 3, 0.1, 1},
-      {3, 0, -1.28e-12, 3},  {3, 1, -6.98e-5, 3},   {3, 2, 0, 1},     {3, 3, 1, 1},
-  };
-  for (const Printed& p : a_printed) {
-    EXPECT_NEAR(zoh.Ad(p.row, p.col), p.value, printed_tolerance(p)) << "A(" << p.row << "," << p.col << ")";
-  }
-  // A(1,0) is printed 3.66e-8, but 3ω²Ts = 3.654e-8 for ω = 3.49e-4; every other
-  // entry in ω² (H(1,0) = 1.83e-9 = 3ω²Ts²/2) confirms ω = 3.49e-4, so the
-  // printed third digit is off by one. Hold it to one unit in the last digit.
-  EXPECT_NEAR(zoh.Ad(1, 0), 3.66e-8, 1e-10);
-  EXPECT_NEAR(zoh.Ad(1, 0), 3 * satellite::omega * satellite::omega * satellite::sampling_period, 1e-12);
+// A_d and H as printed in §4; A(1,0) = 3.66e-8 included.
+const Printed satellite_a_printed[] = {
+    {0, 0, 1, 1},          {0, 1, 0.1, 1},        {0, 2, 0, 1},     {0, 3, 3.49e-6, 3},
+    {1, 0, 3.66e-8, 3},    {1, 1, 1, 1},          {1, 2, 0, 1},     {1, 3, 6.98e-5, 3},
+    {2, 0, -4.25e-14, 3},  {2, 1, -3.49e-6, 3},   {2, 2, 1, 1},     {2, 3, 0.1, 1},
+    {3, 0, -1.28e-12, 3},  {3, 1, -6.98e-5, 3},   {3, 2, 0, 1},     {3, 3, 1, 1},
+};
+const Printed satellite_h_printed[] = {
+    {0, 0, 0.1, 1},         {0, 1, 0.005, 1},       {0, 2, 0, 1},   {0, 3, 1.16e-7, 3},
+    {1, 0, 1.83e-9, 3},     {1, 1, 0.1, 1},         {1, 2, 0, 1},   {1, 3, 3.49e-6, 3},
+    {2, 0, -1.06e-15, 3},   {2, 1, -1.16e-7, 3},    {2, 2, 0.1, 1}, {2, 3, 0.005, 1},
+    {3, 0, -4.25e-14, 3},   {3, 1, -3.49e-6, 3},    {3, 2, 0, 1},   {3, 3, 0.1, 1},
+};
 
-  const Printed h_printed[] = {
-      {0, 0, 0.1, 1},         {0, 1, 0.005, 1},       {0, 2, 0, 1},   {0, 3, 1.16e-7, 3},
-      {1, 0, 1.83e-9, 3},     {1, 1, 0.1, 1},         {1, 2, 0, 1},   {1, 3, 3.49e-6, 3},
-      {2, 0, -1.06e-15, 3},   {2, 1, -1.16e-7, 3},    {2, 2, 0.1, 1}, {2, 3, 0.005, 1},
-      {3, 0, -4.25e-14, 3},   {3, 1, -3.49e-6, 3},    {3, 2, 0, 1},   {3, 3, 0.1, 1},
-  };
-  for (const Printed& p : h_printed) {
-    EXPECT_NEAR(zoh.Bd(p.row, p.col), p.value, printed_tolerance(p)) << "H(" << p.row << "," << p.col << ")";
+// Printed entries that the discretization with angular velocity w misses.
+std::vector<std::string> satellite_misses(double w) {
+  const auto zoh = discretize_zoh(satellite::continuous_dynamics<double>(w), Eigen::Matrix4d::Identity(),
+                                  satellite::sampling_period);
+  std::vector<std::string> misses;
+  for (const Printed& p : satellite_a_printed)
+    if (!(std::abs(zoh.Ad(p.row, p.col) - p.value) <= printed_tolerance(p)))
+      misses.push_back("A(" + std::to_string(p.row) + "," + std::to_string(p.col) + ")");
+  for (const Printed& p : satellite_h_printed)
+    if (!(std::abs(zoh.Bd(p.row, p.col) - p.value) <= printed_tolerance(p)))
+      misses.push_back("H(" + std::to_string(p.row) + "," + std::to_string(p.col) + ")");
+  return misses;
+}
+
+// The paper prints ω = 3.49e-4 rounded: with exactly that value A(1,0) = 3ω²Ts is
+// 3.654e-8, not the printed 3.66e-8. Every printed entry, this one included, is
+// reproduced by any ω in about [3.4905, 3.4911]·10⁻⁴, 2π/18000 (a 5-hour orbit) for one.
+TEST(ZeroOrderHold, SatelliteMatchesEveryPrintedEntryForTheUnroundedOmega) {
+  for (double w : {3.4906e-4, 2 * std::numbers::pi / 18000, 3.4910e-4}) {
+    const std::vector<std::string> misses = satellite_misses(w);
+    EXPECT_TRUE(misses.empty()) << "w = " << w << " misses " << misses.front();
   }
+  EXPECT_EQ(satellite_misses(3.49e-4), std::vector<std::string>{"A(1,0)"});
+  EXPECT_FALSE(satellite_misses(3.4895e-4).empty());
+  EXPECT_FALSE(satellite_misses(3.4920e-4).empty());
+  // The model the examples use keeps the printed ω = 3.49e-4: A(1,0) = 3ω sin(ωTs).
+  const auto zoh = satellite::discretized<double>();
+  const double w = satellite::omega, ts = satellite::sampling_period;
+  EXPECT_NEAR(zoh.Ad(1, 0), 3 * w * std::sin(w * ts), 1e-14 * zoh.Ad(1, 0));
 }
 
 TEST(ZeroOrderHold, FloatAgreesWithDouble) {

@@ -149,6 +149,63 @@ TEST(GuyaderZhang, Theorem1TimeVaryingSystemWithRiccatiGains) {
   EXPECT_LT(decay_rate(combined, 1e-10), 0.999);
 }
 
+// The identities in the proof of theorem 1, step by step along a noise-free LTV
+// trajectory. With x̃ = x − x̂, θ̃ = θ − θ̂, η = x̃ − Υθ̃ and δ_k = θ_{k+1} − θ_k:
+//   η_{k+1} = (A_k − K_kC_k) η_k − Υ_{k+1} δ_k,
+//   θ̃_{k+1} = θ̃_k − μ Υ_kᵀC_kᵀC_k x̃_k + δ_k.
+// The drift term Υ_{k+1}δ_k is the one theorem 2 bounds for a slowly varying θ;
+// with δ = 0 these are the proof's exact recursions. Each uses a different Υ
+// (Υ_k in (2b), Υ_{k+1} in (2c)), so trading one for the other breaks them.
+TEST(GuyaderZhang, ProofRecursionsHoldStepByStepWithConstantAndDriftingParameters) {
+  const auto model = adaptobs::make_discrete_ltv_model<Ltv>(ltv_system);
+  const double mu = 0.05;
+  for (double drift : {0.0, 2e-3}) {
+    const auto theta_at = [drift](Index k) {
+      const double t = double(k);
+      return Eigen::Vector2d(0.7 + drift * t * std::sin(0.01 * t) / 10, -1.2 + drift * std::cos(0.03 * t) * 50);
+    };
+    adaptobs::KalmanGainRecursion<Ltv> gains(Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity() * 0.1,
+                                             Eigen::Matrix<double, 1, 1>(1.0));
+    adaptobs::GuyaderZhangObserver observer(model, Eigen::Vector3d::Zero().eval(), mu, Eigen::Vector3d::Zero().eval(),
+                                            Eigen::Vector2d::Zero().eval());
+    Eigen::Vector3d x(1, -1, 0.5);
+    double worst_eta = 0, worst_theta = 0, largest_drift_term = 0;
+    for (Index k = 0; k < 2000; ++k) {
+      const auto& system = model.at(k);
+      const Eigen::Vector3d gain = gains.next_gain(system);
+      observer.set_gain(gain);
+      const Eigen::Matrix<double, 1, 1> u(std::sin(0.02 * double(k)));
+      const Eigen::Matrix<double, 3, 2> psi = ltv_regressor(k, u);
+      const Eigen::Vector2d theta = theta_at(k), delta = theta_at(k + 1) - theta;
+      const Eigen::Matrix<double, 1, 1> y = system.C * x;
+
+      const Eigen::Vector3d x_error = x - observer.state();
+      const Eigen::Vector2d theta_error = theta - observer.parameters();
+      const Eigen::Matrix<double, 3, 2> upsilon = observer.upsilon();
+      const Eigen::Vector3d eta = x_error - upsilon * theta_error;
+      ASSERT_EQ(observer.update({u, y, psi}), UpdateStatus::accepted);
+      x = system.A * x + system.B * u + psi * theta;
+
+      const Eigen::Vector2d next_theta_error = theta + delta - observer.parameters();
+      const Eigen::Vector3d next_eta = x - observer.state() - observer.upsilon() * next_theta_error;
+      const Eigen::Matrix3d closed_loop = system.A - gain * system.C;
+      const Eigen::Vector3d drift_term = observer.upsilon() * delta;
+      const Eigen::Vector3d eta_expected = closed_loop * eta - drift_term;
+      const Eigen::Vector2d theta_error_expected =
+          theta_error - mu * upsilon.transpose() * system.C.transpose() * (system.C * x_error) + delta;
+      const double scale = std::max(1.0, x.norm());
+      worst_eta = std::max(worst_eta, (next_eta - eta_expected).norm() / scale);
+      worst_theta = std::max(worst_theta, (next_theta_error - theta_error_expected).norm() / scale);
+      largest_drift_term = std::max(largest_drift_term, drift_term.norm());
+    }
+    EXPECT_LT(worst_eta, 1e-12) << "drift " << drift;
+    EXPECT_LT(worst_theta, 1e-12) << "drift " << drift;
+    if (drift > 0) {
+      EXPECT_GT(largest_drift_term, 1e-3) << "the drift term must be exercised";
+    }
+  }
+}
+
 // Theorem 2: with bounded noises, the errors stay bounded over 10⁵ steps.
 TEST(GuyaderZhang, Theorem2BoundedErrorsOverLongRun) {
   adaptobs::PlantNoise<double> noise;
@@ -274,6 +331,34 @@ TEST(GuyaderZhang, ExcitationMonitorDetectsUnidentifiableParameter) {
   };
   EXPECT_GT(level_after({}, true), 1e-3);
   EXPECT_LT(level_after({}, false), 1e-12);
+}
+
+TEST(GuyaderZhang, DiagnosticsStayFiniteOrUnavailableAfterAHugeRegressor) {
+  auto observer = make_satellite_observer<double>({.excitation_window = 20});
+  // Samples whose output is the observer's own prediction: the innovation is zero, so
+  // the estimates stay put and only Υ moves. One regressor of 1e160 is accepted (all
+  // finite), and for many steps after it μ ΥᵀCᵀCΥ ≈ 1e320 is not representable.
+  const auto sample = [&](double psi) {
+    adaptobs::DiscreteSample<satellite::Dims<double>> s;
+    s.u.setZero();
+    s.y = satellite::output_matrix<double>() * observer.state();
+    s.Psi.setConstant(psi);
+    return s;
+  };
+  ASSERT_EQ(observer.update(sample(1e160)), UpdateStatus::accepted);
+  int unavailable = 0;
+  for (Index k = 0; k < 3000; ++k) {
+    ASSERT_EQ(observer.update(sample(0)), UpdateStatus::accepted) << "step " << k;
+    ASSERT_TRUE(std::isfinite(observer.assumption2_norm())) << "step " << k;
+    const auto level = observer.excitation_level();
+    if (level) {
+      ASSERT_TRUE(std::isfinite(*level)) << "step " << k;
+    } else {
+      ++unavailable;
+    }
+  }
+  EXPECT_GT(unavailable, 0);
+  EXPECT_TRUE(observer.excitation_level().has_value()) << "Υ has decayed: the level is back";
 }
 
 TEST(GuyaderZhang, DynamicSizesGiveTheSameNumbersAsFixedSizes) {

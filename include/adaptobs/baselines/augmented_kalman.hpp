@@ -78,11 +78,14 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     w_.x.setZero(s.nx);
     w_.theta.setZero(s.np);
     w_.llt.compute(cov_.R);
+    w_.p_llt.compute(cov_.P0);  // sizes its storage, so that updates do not allocate
   }
 
   /// Correction with \f$y_k\f$, then prediction to step k + 1 with \f$(A_k, B_k, \Psi_k, u_k)\f$.
   /// With run-time sizes, a sample of the wrong shape throws `ConfigurationError`
-  /// naming it, and the filter is left as it was.
+  /// naming it, and the filter is left as it was. A step whose covariance would
+  /// not be positive definite is rejected (`UpdateStatus::indefinite_covariance`)
+  /// and changes nothing.
   [[nodiscard]] UpdateStatus update(const Sample& sample) {
     if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "AugmentedKalmanFilter::update");
     if (!detail::all_finite(sample.u, sample.y, sample.Psi)) return UpdateStatus::nonfinite_input;
@@ -123,6 +126,11 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     w.scratch = Scalar(0.5) * (w.p + w.p.transpose());
 
     if (!detail::all_finite(w.x, w.theta, w.scratch)) return UpdateStatus::nonfinite_result;
+    // A covariance that lost definiteness, e.g. to rounding under a regressor of 1e150
+    // whose Ψ P Ψᵀ dwarfs the rest, would poison every later step: P⁺ must have a
+    // Cholesky factor (about (n+p)³/6 flops, small beside the products above).
+    w.p_llt.compute(w.scratch);
+    if (w.p_llt.info() != Eigen::Success) return UpdateStatus::indefinite_covariance;
     detail::commit(x_, w.x);
     detail::commit(theta_, w.theta);
     detail::commit(p_, w.scratch);
@@ -155,6 +163,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     Eigen::Matrix<Scalar, na, Dims::ny> pht, gain;
     typename Dims::OutputMatrixSquare s;
     Eigen::LLT<typename Dims::OutputMatrixSquare> llt;
+    Eigen::LLT<AugmentedMatrix> p_llt;
     typename Dims::Output innovation;
     State x;
     Parameters theta;

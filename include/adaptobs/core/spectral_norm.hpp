@@ -11,24 +11,29 @@
 
 namespace adaptobs {
 
-/// \f$\|M\|_2 = \sqrt{\lambda_{\max}(M^TM)}\f$, through the Gram matrix of the
-/// smaller side (cheap for the m × p matrices observers monitor), whose
-/// eigenvalues come from `symmetric_eigenvalues` (Jacobi).
+/// \f$\|M\|_2 = s\sqrt{\lambda_{\max}((M/s)^T(M/s))}\f$ with s = max |m_ij|, through
+/// the Gram matrix of the smaller side (cheap for the m × p matrices observers
+/// monitor), whose eigenvalues come from `symmetric_eigenvalues` (Jacobi).
+/// Dividing by s first keeps the Gram matrix from overflowing (or underflowing)
+/// for entries beyond about 10^154 (or below 10^−154): the norm of any finite M
+/// is finite unless it exceeds the floating-point range itself.
 template <class Derived>
 [[nodiscard]] typename Derived::Scalar spectral_norm(const Eigen::MatrixBase<Derived>& m) {
   using Scalar = typename Derived::Scalar;
   if (m.size() == 0) return Scalar(0);
   constexpr int R = Derived::RowsAtCompileTime;
   constexpr int C = Derived::ColsAtCompileTime;
+  const Scalar scale = m.cwiseAbs().maxCoeff();
+  if (!(scale > Scalar(0)) || !std::isfinite(scale)) return scale;
   Scalar largest;
   if (m.cols() <= m.rows()) {
-    const Eigen::Matrix<Scalar, C, C> gram = m.transpose() * m;
+    const Eigen::Matrix<Scalar, C, C> gram = (m.transpose() / scale) * (m / scale);
     largest = symmetric_eigenvalues(gram)(m.cols() - 1);
   } else {
-    const Eigen::Matrix<Scalar, R, R> gram = m * m.transpose();
+    const Eigen::Matrix<Scalar, R, R> gram = (m / scale) * (m.transpose() / scale);
     largest = symmetric_eigenvalues(gram)(m.rows() - 1);
   }
-  return std::sqrt(std::max(largest, Scalar(0)));
+  return scale * std::sqrt(std::max(largest, Scalar(0)));
 }
 
 }  // namespace adaptobs

@@ -15,6 +15,7 @@ enum class UpdateStatus {
   nonfinite_input,   ///< a NaN or Inf in the sample (u, y, a regressor or premise variable)
   nonfinite_result,  ///< the step would have produced NaN or Inf (overflow, NaN system matrix)
   nonincreasing_time,  ///< a continuous-time sample whose time is not after the previous sample's
+  indefinite_covariance,  ///< the step would leave a covariance that is not positive definite
 };
 
 [[nodiscard]] constexpr bool accepted(UpdateStatus s) noexcept { return s == UpdateStatus::accepted; }
@@ -29,6 +30,8 @@ enum class UpdateStatus {
       return "rejected: the step would produce non-finite estimates";
     case UpdateStatus::nonincreasing_time:
       return "rejected: the sample's time does not advance";
+    case UpdateStatus::indefinite_covariance:
+      return "rejected: the step would leave the covariance indefinite";
   }
   return "unknown";
 }

@@ -9,6 +9,11 @@
 /// holds on that window. A value that stays away from zero says the unknown
 /// parameters are identifiable from the data; a value near zero says some
 /// direction of θ is not excited.
+///
+/// A contribution too large for the floating-point range (a Φ beyond about
+/// 10^154) cannot enter the average: while it is in the window the level is
+/// unavailable (`available()` false, `level()` NaN), and it comes back once the
+/// window has moved past it.
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
@@ -16,7 +21,9 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string_view>
 #include <vector>
 
@@ -32,6 +39,7 @@ class ExcitationMonitor {
     detail::require(window >= 1, "ExcitationMonitor", "window", "must be at least 1");
     detail::require(np >= 0, "ExcitationMonitor", "np", "must be non-negative");
     ring_.assign(static_cast<std::size_t>(window), Gramian::Zero(np, np));
+    overflowed_.assign(static_cast<std::size_t>(window), 0);
     sum_.setZero(np, np);
   }
 
@@ -46,7 +54,11 @@ class ExcitationMonitor {
     detail::require(weight >= Scalar(0) && std::isfinite(weight), who, "weight", "must be non-negative and finite");
     Gramian& slot = ring_[next_];
     sum_ -= slot;
+    overflowed_slots_ -= overflowed_[next_];
     slot.noalias() = weight * phi.transpose() * phi;
+    overflowed_[next_] = !slot.allFinite();
+    if (overflowed_[next_]) slot.setZero();
+    overflowed_slots_ += overflowed_[next_];
     sum_ += slot;
     next_ = (next_ + 1) % ring_.size();
     if (count_ < window_) ++count_;
@@ -67,14 +79,20 @@ class ExcitationMonitor {
     return count_ == 0 ? Gramian(sum_) : Gramian(sum_ / Scalar(count_));
   }
 
-  /// Smallest eigenvalue of `average()`: the excitation level α.
+  /// False while a contribution in the window, or their sum, exceeded the floating-point range.
+  [[nodiscard]] bool available() const { return overflowed_slots_ == 0 && sum_.allFinite(); }
+
+  /// Smallest eigenvalue of `average()`: the excitation level α; NaN while not `available()`.
   [[nodiscard]] Scalar level() const {
     if (sum_.size() == 0) return Scalar(0);
+    if (!available()) return std::numeric_limits<Scalar>::quiet_NaN();
     return symmetric_eigenvalues(average())(0);
   }
 
   void reset() {
     for (Gramian& g : ring_) g.setZero();
+    std::fill(overflowed_.begin(), overflowed_.end(), 0);
+    overflowed_slots_ = 0;
     sum_.setZero();
     next_ = 0;
     count_ = 0;
@@ -82,6 +100,8 @@ class ExcitationMonitor {
 
  private:
   std::vector<Gramian> ring_;
+  std::vector<unsigned char> overflowed_;  // 1 where the slot's contribution overflowed (stored as zero)
+  Index overflowed_slots_ = 0;
   Gramian sum_;
   std::size_t next_ = 0;
   Index count_ = 0;

@@ -20,7 +20,8 @@
 /// (checked), \f$\dot e_2 = A_{22}(t)e_2\f$ exponentially stable (checked as A22 Hurwitz
 /// for a constant model; for a periodic one use `floquet_exponents` — frozen-time
 /// eigenvalues are not enough), \f$\mathrm{sym}(A_{11} - K_1) < 0\f$ (checked for a
-/// constant model), Λ persistently exciting (`excitation_level()`).
+/// constant model; this is the library's own sufficient condition for the V above,
+/// not one the paper states), Λ persistently exciting (`excitation_level()`).
 
 #include <adaptobs/adaptation/gradient_law.hpp>
 #include <adaptobs/core/dimensions.hpp>
@@ -90,7 +91,9 @@ struct Besancon {
     const Dense a11 = so.Ao.topLeftCorner(m, m) - K1;
     const Dense sym = Scalar(0.5) * (a11 + a11.transpose());
     detail::require(symmetric_eigenvalues(sym)(m - 1) < 0,
-                    name, "K1", "must make A11 - K1 + (A11 - K1)^T negative definite");
+                    name, "K1",
+                    "must make A11 - K1 + (A11 - K1)^T negative definite (the library's sufficient condition "
+                    "for the Lyapunov function above, not a condition of the paper)");
   }
 };
 

@@ -145,9 +145,10 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
 
   /// Excitation level α of assumption 3 (eq. (4)) over the last L accepted
   /// steps, i.e. the smallest eigenvalue of \f$\frac1L\sum\mu_i\Upsilon_i^TC_i^TC_i\Upsilon_i\f$;
-  /// empty while the monitor is off or its window has not filled.
+  /// empty while the monitor is off, its window has not filled, or a contribution
+  /// in the window overflowed (`ExcitationMonitor::available`).
   [[nodiscard]] std::optional<Scalar> excitation_level() const {
-    if (!excitation_ || !excitation_->full()) return std::nullopt;
+    if (!excitation_ || !excitation_->full() || !excitation_->available()) return std::nullopt;
     return excitation_->level();
   }
 

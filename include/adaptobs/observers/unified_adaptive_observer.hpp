@@ -256,9 +256,10 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
 
   /// Excitation level over the last window: the smallest eigenvalue of the
   /// average of \f$R^TR\f$ (for Alg. 4 \f$\Omega^TC^TC\Omega\f$, whose integral is
-  /// the Gramian of eq. (15)); empty while the monitor is off or not full.
+  /// the Gramian of eq. (15)); empty while the monitor is off, not full, or
+  /// holding an overflowed contribution (`ExcitationMonitor::available`).
   [[nodiscard]] std::optional<Scalar> excitation_level() const {
-    if (!excitation_ || !excitation_->full()) return std::nullopt;
+    if (!excitation_ || !excitation_->full() || !excitation_->available()) return std::nullopt;
     return excitation_->level();
   }
 
