@@ -147,6 +147,14 @@ template <typename Scalar>
   }
 }
 
+/// e with x = f·2^e, 1/2 ≤ f < 1: dividing by 2^e brings x near 1 without rounding.
+template <typename Scalar>
+[[nodiscard]] int binary_exponent(Scalar x) {
+  int e = 0;
+  (void)std::frexp(x, &e);
+  return e;
+}
+
 /// log₂ of the error constant (m!)² / ((2m)! (2m+1)!) of the [m/m] Padé approximant.
 inline double log2_pade_error_constant(int m) {
   return (2 * std::lgamma(m + 1.0) - std::lgamma(2 * m + 1.0) - std::lgamma(2 * m + 2.0)) / std::log(2.0);
@@ -204,19 +212,16 @@ template <typename Scalar>
     const Matrix p6 = p4 * p2;
     const std::array<const Matrix, 4> powers{p4, p6, p4 * p4, p4 * p6};
     std::array<double, 4> out{};
-    std::array<bool, 4> finite{};
     for (std::size_t i = 0; i < 4; ++i) {
       const int k = 4 + 2 * int(i);
-      finite[i] = powers[i].allFinite();
-      out[i] = finite[i] ? log2_root(powers[i], k, k * exponent) : std::numeric_limits<double>::quiet_NaN();
+      out[i] = powers[i].allFinite() ? log2_root(powers[i], k, k * exponent) : std::numeric_limits<double>::quiet_NaN();
     }
     return out;
   };
   const double log2_norm = std::log2(double(one_norm(a)));
   std::array<double, 4> plain = roots(a, 0);
   if (std::none_of(plain.begin(), plain.end(), [](double x) { return std::isnan(x); })) return plain;
-  int e = 0;
-  (void)std::frexp(one_norm(a), &e);
+  const int e = binary_exponent(one_norm(a));
   const std::array<double, 4> normalized = roots(Matrix(a * std::ldexp(Scalar(1), -e)), e);
   for (std::size_t i = 0; i < 4; ++i) {
     if (!std::isnan(plain[i])) continue;
@@ -236,8 +241,7 @@ template <typename Scalar>
     row = (row * abs_a).eval();
     const Scalar top = row.maxCoeff();
     if (!(top > Scalar(0))) return -std::numeric_limits<double>::infinity();
-    int e = 0;
-    (void)std::frexp(top, &e);
+    const int e = binary_exponent(top);
     row *= std::ldexp(Scalar(1), -e);
     exponent += e;
   }
@@ -321,12 +325,12 @@ template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> scaling_and_squaring(const DynamicMatrix<Scalar>& a, bool triangular) {
   using Bounds = PadeBounds<Scalar>;
   const Scalar norm = one_norm(a);
-  const auto [log_d4, log_d6, log_d8, log_d10] = log2_power_roots(a);
+  const std::array<double, 4> log_d = log2_power_roots(a);  // log₂ d_4, d_6, d_8, d_10
   // AMH Theorem 4.2 with p(p − 1) ≤ m: η for p = 2 serves m ≥ 2, p = 3 serves m ≥ 6, p = 4 serves m ≥ 12.
   const auto log2_eta = [&](int m) {
-    double eta = std::max(log_d4, log_d6);
-    if (m >= 6) eta = std::min(eta, std::max(log_d6, log_d8));
-    if (m >= 12) eta = std::min(eta, std::max(log_d8, log_d10));
+    double eta = std::max(log_d[0], log_d[1]);
+    if (m >= 6) eta = std::min(eta, std::max(log_d[1], log_d[2]));
+    if (m >= 12) eta = std::min(eta, std::max(log_d[2], log_d[3]));
     return eta;
   };
   // ℓ(2^{−s}A, m) = max(⌈log₂(α/u) / (2m)⌉, 0), α = |c_{2m+1}| ‖|A|^{2m+1}‖₁ / ‖A‖₁ (AMH eq. (5.1)),
@@ -373,8 +377,7 @@ template <typename Scalar>
 template <typename Scalar>
 bool nilpotent_series(const DynamicMatrix<Scalar>& a, DynamicMatrix<Scalar>& out) {
   const Index n = a.rows();
-  int e = 0;
-  (void)std::frexp(one_norm(a), &e);
+  const int e = binary_exponent(one_norm(a));
   const DynamicMatrix<Scalar> normalized = a * std::ldexp(Scalar(1), -e);
   DynamicMatrix<Scalar> power = a;
   DynamicMatrix<Scalar> normalized_power = normalized;
