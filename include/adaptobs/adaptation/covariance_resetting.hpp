@@ -57,29 +57,6 @@
 
 namespace adaptobs {
 
-namespace detail {
-
-/// Cholesky factorization of the lower triangle of `a`, in place (right-looking,
-/// column by column). Returns false at the first pivot that is not positive —
-/// NaN included — leaving `a` partly overwritten.
-template <class Derived>
-[[nodiscard]] bool cholesky_in_place(Eigen::MatrixBase<Derived>& a) {
-  using Scalar = typename Derived::Scalar;
-  const Index n = a.rows();
-  for (Index k = 0; k < n; ++k) {
-    const Scalar pivot = a(k, k);
-    if (!(pivot > Scalar(0))) return false;
-    const Scalar root = std::sqrt(pivot);
-    a(k, k) = root;
-    const Index rest = n - k - 1;
-    a.col(k).tail(rest) /= root;
-    for (Index j = k + 1; j < n; ++j) a.col(j).tail(n - j) -= a(j, k) * a.col(k).tail(n - j);
-  }
-  return true;
-}
-
-}  // namespace detail
-
 /// \f$\lambda_{\min}(\Gamma) > \text{bound}\f$ for a symmetric Γ (lower triangle
 /// read), decided exactly by a Cholesky factorization of \f$\Gamma - \text{bound}\,I\f$;
 /// false for a Γ with non-finite entries.

@@ -78,7 +78,6 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     w_.x.setZero(s.nx);
     w_.theta.setZero(s.np);
     w_.llt.compute(cov_.R);
-    w_.p_llt.compute(cov_.P0);  // sizes its storage, so that updates do not allocate
   }
 
   /// Correction with \f$y_k\f$, then prediction to step k + 1 with \f$(A_k, B_k, \Psi_k, u_k)\f$.
@@ -128,9 +127,9 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     if (!detail::all_finite(w.x, w.theta, w.scratch)) return UpdateStatus::nonfinite_result;
     // A covariance that lost definiteness, e.g. to rounding under a regressor of 1e150
     // whose Ψ P Ψᵀ dwarfs the rest, would poison every later step: P⁺ must have a
-    // Cholesky factor (about (n+p)³/6 flops, small beside the products above).
-    w.p_llt.compute(w.scratch);
-    if (w.p_llt.info() != Eigen::Success) return UpdateStatus::indefinite_covariance;
+    // Cholesky factor (about (n+p)³/6 flops, in the no longer needed Joseph workspace).
+    w.joseph = w.scratch;
+    if (!detail::cholesky_in_place(w.joseph)) return UpdateStatus::indefinite_covariance;
     detail::commit(x_, w.x);
     detail::commit(theta_, w.theta);
     detail::commit(p_, w.scratch);
@@ -163,7 +162,6 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     Eigen::Matrix<Scalar, na, Dims::ny> pht, gain;
     typename Dims::OutputMatrixSquare s;
     Eigen::LLT<typename Dims::OutputMatrixSquare> llt;
-    Eigen::LLT<AugmentedMatrix> p_llt;
     typename Dims::Output innovation;
     State x;
     Parameters theta;

@@ -86,26 +86,37 @@ void require_symmetric(const Eigen::MatrixBase<Derived>& m, std::string_view who
   if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= tol)) fail_argument(who, argument, "must be symmetric");
 }
 
-/// True when the Cholesky factorization \f$M = LL^T\f$ of the symmetric matrix
-/// `m` (lower triangle read) runs to the end with positive pivots. Plain loops,
-/// so that a constructor's check costs nothing to compile beside the update it guards.
+/// Cholesky factorization of the symmetric matrix held in `a` (lower triangle
+/// read), in place, column by column (left-looking). Returns false at the first
+/// pivot that is not positive and finite (NaN included), leaving `a` partly
+/// overwritten; true means `a` was positive definite and its lower triangle now
+/// holds L. Plain loops and no storage: cheap to compile, and for the small
+/// matrices of an update faster than Eigen's blocked `LLT` (350 against 400 ns
+/// for the satellite's augmented Kalman update), with the caller's workspace.
 template <class Derived>
-[[nodiscard]] bool cholesky_succeeds(const Eigen::MatrixBase<Derived>& m) {
+[[nodiscard]] bool cholesky_in_place(Eigen::MatrixBase<Derived>& a) {
   using Scalar = typename Derived::Scalar;
-  Eigen::Matrix<Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> l = m;
-  const Index n = l.rows();
+  const Index n = a.rows();
   for (Index j = 0; j < n; ++j) {
-    Scalar pivot = l(j, j);
-    for (Index k = 0; k < j; ++k) pivot -= l(j, k) * l(j, k);
+    Scalar pivot = a(j, j);
+    for (Index k = 0; k < j; ++k) pivot -= a(j, k) * a(j, k);
     if (!(pivot > Scalar(0)) || !std::isfinite(pivot)) return false;
-    l(j, j) = std::sqrt(pivot);
+    const Scalar root = std::sqrt(pivot);
+    a(j, j) = root;
     for (Index i = j + 1; i < n; ++i) {
-      Scalar v = l(i, j);
-      for (Index k = 0; k < j; ++k) v -= l(i, k) * l(j, k);
-      l(i, j) = v / l(j, j);
+      Scalar v = a(i, j);
+      for (Index k = 0; k < j; ++k) v -= a(i, k) * a(j, k);
+      a(i, j) = v / root;
     }
   }
   return true;
+}
+
+/// True when the symmetric `m` (lower triangle read) is positive definite: `cholesky_in_place` on a copy.
+template <class Derived>
+[[nodiscard]] bool cholesky_succeeds(const Eigen::MatrixBase<Derived>& m) {
+  Eigen::Matrix<typename Derived::Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> l = m;
+  return cholesky_in_place(l);
 }
 
 /// Symmetric positive definite (a Cholesky factorization exists).
