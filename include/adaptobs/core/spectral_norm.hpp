@@ -25,12 +25,13 @@ template <class Derived>
   constexpr int C = Derived::ColsAtCompileTime;
   const Scalar scale = m.cwiseAbs().maxCoeff();
   if (!(scale > Scalar(0)) || !std::isfinite(scale)) return scale;
+  const typename Derived::PlainObject scaled = m / scale;
   Scalar largest;
   if (m.cols() <= m.rows()) {
-    const Eigen::Matrix<Scalar, C, C> gram = (m.transpose() / scale) * (m / scale);
+    const Eigen::Matrix<Scalar, C, C> gram = scaled.transpose() * scaled;
     largest = symmetric_eigenvalues(gram)(m.cols() - 1);
   } else {
-    const Eigen::Matrix<Scalar, R, R> gram = (m / scale) * (m.transpose() / scale);
+    const Eigen::Matrix<Scalar, R, R> gram = scaled * scaled.transpose();
     largest = symmetric_eigenvalues(gram)(m.rows() - 1);
   }
   return scale * std::sqrt(std::max(largest, Scalar(0)));

@@ -21,7 +21,6 @@
 
 #include <Eigen/Core>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string_view>
@@ -39,7 +38,6 @@ class ExcitationMonitor {
     detail::require(window >= 1, "ExcitationMonitor", "window", "must be at least 1");
     detail::require(np >= 0, "ExcitationMonitor", "np", "must be non-negative");
     ring_.assign(static_cast<std::size_t>(window), Gramian::Zero(np, np));
-    overflowed_.assign(static_cast<std::size_t>(window), 0);
     sum_.setZero(np, np);
   }
 
@@ -54,11 +52,13 @@ class ExcitationMonitor {
     detail::require(weight >= Scalar(0) && std::isfinite(weight), who, "weight", "must be non-negative and finite");
     Gramian& slot = ring_[next_];
     sum_ -= slot;
-    overflowed_slots_ -= overflowed_[next_];
     slot.noalias() = weight * phi.transpose() * phi;
-    overflowed_[next_] = !slot.allFinite();
-    if (overflowed_[next_]) slot.setZero();
-    overflowed_slots_ += overflowed_[next_];
+    if (slot.allFinite()) {
+      if (adds_since_overflow_ < window_) ++adds_since_overflow_;
+    } else {
+      slot.setZero();  // kept out of the sum; the level is unavailable until it leaves the window
+      adds_since_overflow_ = 0;
+    }
     sum_ += slot;
     next_ = (next_ + 1) % ring_.size();
     if (count_ < window_) ++count_;
@@ -80,7 +80,7 @@ class ExcitationMonitor {
   }
 
   /// False while a contribution in the window, or their sum, exceeded the floating-point range.
-  [[nodiscard]] bool available() const { return overflowed_slots_ == 0 && sum_.allFinite(); }
+  [[nodiscard]] bool available() const { return adds_since_overflow_ >= window_ && sum_.allFinite(); }
 
   /// Smallest eigenvalue of `average()`: the excitation level α; NaN while not `available()`.
   [[nodiscard]] Scalar level() const {
@@ -91,8 +91,7 @@ class ExcitationMonitor {
 
   void reset() {
     for (Gramian& g : ring_) g.setZero();
-    std::fill(overflowed_.begin(), overflowed_.end(), 0);
-    overflowed_slots_ = 0;
+    adds_since_overflow_ = window_;
     sum_.setZero();
     next_ = 0;
     count_ = 0;
@@ -100,12 +99,11 @@ class ExcitationMonitor {
 
  private:
   std::vector<Gramian> ring_;
-  std::vector<unsigned char> overflowed_;  // 1 where the slot's contribution overflowed (stored as zero)
-  Index overflowed_slots_ = 0;
   Gramian sum_;
   std::size_t next_ = 0;
   Index count_ = 0;
   Index window_;
+  Index adds_since_overflow_ = window_;  // the last overflowing contribution left the window at window_
 };
 
 }  // namespace adaptobs
