@@ -1,12 +1,16 @@
 # Flags for the project's own targets (tests, examples, benchmarks, header
-# checks). They travel through an INTERFACE target, never through global
+# checks). They travel through INTERFACE targets, never through global
 # variables, so that consumers of adaptobs inherit none of them.
+#   adaptobs_warnings            the warning flags;
+#   adaptobs_developer_options   the warning flags and, with ADAPTOBS_SANITIZE,
+#                                the sanitizers.
+add_library(adaptobs_warnings INTERFACE)
 add_library(adaptobs_developer_options INTERFACE)
 
 if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-  target_compile_options(adaptobs_developer_options INTERFACE -Wall -Wextra -Wpedantic)
+  target_compile_options(adaptobs_warnings INTERFACE -Wall -Wextra -Wpedantic)
   if(ADAPTOBS_WARNINGS_AS_ERRORS)
-    target_compile_options(adaptobs_developer_options INTERFACE -Werror)
+    target_compile_options(adaptobs_warnings INTERFACE -Werror)
   endif()
   if(ADAPTOBS_SANITIZE)
     set(_adaptobs_sanitizers -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
@@ -14,10 +18,11 @@ if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_link_options(adaptobs_developer_options INTERFACE ${_adaptobs_sanitizers})
   endif()
 elseif(MSVC)
-  target_compile_options(adaptobs_developer_options INTERFACE /W4 $<$<BOOL:${ADAPTOBS_WARNINGS_AS_ERRORS}>:/WX>)
+  target_compile_options(adaptobs_warnings INTERFACE /W4 $<$<BOOL:${ADAPTOBS_WARNINGS_AS_ERRORS}>:/WX>)
 endif()
 
-target_link_libraries(adaptobs_developer_options INTERFACE adaptobs::adaptobs)
+target_link_libraries(adaptobs_warnings INTERFACE adaptobs::adaptobs)
+target_link_libraries(adaptobs_developer_options INTERFACE adaptobs_warnings)
 
 # adaptobs::precompiled: the double-precision design routines compiled once
 # (include/adaptobs/core/precompiled.hpp). The tests and examples link it; the
