@@ -50,7 +50,7 @@ configure "$root/build/test" -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release
   -DADAPTOBS_WARNINGS_AS_ERRORS=ON -DADAPTOBS_BUILD_BENCHMARKS=OFF
 cmake --build "$root/build/test" -j "$jobs"
 ctest --test-dir "$root/build/test" --output-on-failure -j "$jobs"
-echo "-- g++ Release build and tests: $((SECONDS - start)) s"
+echo "-- g++ build and tests: $((SECONDS - start)) s"
 
 if ((sanitize)); then
   echo "== clang++ AddressSanitizer + UndefinedBehaviorSanitizer build"

@@ -4,6 +4,7 @@
 // fixed/dynamic agreement, and rejection of bad input.
 
 #include <adaptobs/core/observer.hpp>
+#include <adaptobs/design/dense_eigenvalues.hpp>
 #include <adaptobs/design/riccati_recursion.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
@@ -17,6 +18,7 @@
 #include <limits>
 #include <string>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -84,7 +86,14 @@ TYPED_TEST(GuyaderZhangTyped, Theorem1SatelliteNoiseFreeConvergesGeometrically) 
   const double scale = std::max(1.0, static_cast<double>(plant.state().norm()));
   EXPECT_LT(h.state.back() / scale, Tolerance<S>::converged);
   EXPECT_LT(h.parameter.back(), Tolerance<S>::converged);
-  EXPECT_LT(decay_rate(h.combined, 100 * Tolerance<S>::converged), 1.0);
+  // Down to 1e-3, a range float resolves, both scalars decay at the rate of the
+  // double-precision run (0.963 per sample here; a Υ index error gives 0.949).
+  if constexpr (std::is_same_v<S, float>) {
+    auto reference = make_satellite_observer<double>();
+    auto reference_plant = satellite::make_plant<double>(0.0);
+    const ErrorHistory r = run(reference, reference_plant, 600);
+    EXPECT_NEAR(decay_rate(h.combined, 1e-3), decay_rate(r.combined, 1e-3), 1e-3);
+  }
 }
 
 TEST(GuyaderZhang, Theorem1SatelliteRateAndFloor) {
@@ -93,10 +102,17 @@ TEST(GuyaderZhang, Theorem1SatelliteRateAndFloor) {
   const ErrorHistory h = run(observer, plant, 6000);
   EXPECT_LT(h.state.back(), 1e-9);
   EXPECT_LT(h.parameter.back(), 1e-9);
-  // Rate per sample over the decay, about 0.93 per sample (ρ(A − KC) = 0.932).
-  const double rate = decay_rate(h.combined, 1e-10);
-  EXPECT_LT(rate, 0.97);
-  EXPECT_GT(rate, 0.5);
+  // Theorem 1: once θ̃ has converged the error decays like η, at the spectral
+  // radius of A − KC (0.932). Fitted on the errors from 1e-3 down to 1e-10: 0.929;
+  // with Υ_k for Υ_{k+1} in (2c), 0.948.
+  std::vector<double> late;
+  for (double e : h.combined)
+    if (e < 1e-3 && e > 1e-10) late.push_back(e);
+  ASSERT_GT(late.size(), 100u);
+  const auto model = satellite::model<double>();
+  const Eigen::MatrixXd closed_loop = model.system().A - satellite::paper_gain<double>() * model.system().C;
+  const double radius = adaptobs::detail::dense_eigenvalues<double>(closed_loop).cwiseAbs().maxCoeff();
+  EXPECT_NEAR(adaptobs::testing::fit_geometric_rate(late), radius, 0.008);
 }
 
 // A genuinely time-varying system: A_k, C_k and Ψ_k vary, K_k comes from the
@@ -222,8 +238,17 @@ TEST(GuyaderZhang, Theorem2BoundedErrorsOverLongRun) {
   double early = 0, late = 0;
   for (Index k = 10000; k < 50000; ++k) early = std::max(early, h.combined[size_t(k)]);
   for (Index k = 50000; k < 100000; ++k) late = std::max(late, h.combined[size_t(k)]);
+  const auto rms = [&](Index from, Index to) {
+    double sum = 0;
+    for (Index k = from; k < to; ++k) sum += h.combined[size_t(k)] * h.combined[size_t(k)];
+    return std::sqrt(sum / double(to - from));
+  };
+  // Bounded and stationary: the error's RMS level is the same (±10%) over four
+  // quarters of the run, and its envelope does not grow.
+  const double first = rms(10000, 32500);
+  for (const Index from : {32500, 55000, 77500}) EXPECT_NEAR(rms(from, from + 22500) / first, 1.0, 0.1) << from;
   EXPECT_LT(early, 1.0);
-  EXPECT_LT(late, 2.0 * early) << "the error envelope grows: not bounded";
+  EXPECT_LT(late, 1.25 * early) << "the error envelope grows: not bounded";
 }
 
 // Theorem 2: with zero-mean noise the errors converge to zero in the mean.

@@ -73,6 +73,30 @@ TEST(Besancon, ConvergesOnThePeriodicMimoPlant) {
   EXPECT_GT(observer.excitation_level().value(), 0.1);  // Λ is persistently exciting (≈ 1.96 / 2π)
 }
 
+// Algorithm 3's gain L = [K₁; A₂₁(t)] is what makes the error dynamics
+// triangular: with C_o = [I 0], A_o − L C_o = [A₁₁ − K₁, A₁₂; 0, A₂₂] at every t.
+TEST(Besancon, InjectionGainCancelsTheLowerLeftBlockOfTheErrorDynamics) {
+  auto observer = besancon_observer<double>();
+  const auto& algorithm = observer.algorithm();
+  double smallest_a21 = std::numeric_limits<double>::infinity();
+  for (const double t : {0.0, 0.37, 1.9, 4.2}) {
+    const auto so = observer.transformed_system(t);
+    const Index m = so.Co.rows(), r = so.Ao.rows() - m;
+    ASSERT_EQ(so.Co.leftCols(m), Eigen::MatrixXd::Identity(m, m));
+    ASSERT_TRUE(so.Co.rightCols(r).isZero(0));
+    decltype(observer)::GainMatrix L;
+    algorithm.injection_gain(so, t, L);
+    const Eigen::MatrixXd closed = so.Ao - L * so.Co;
+    const double scale = so.Ao.cwiseAbs().maxCoeff();
+    EXPECT_LT(closed.bottomLeftCorner(r, m).cwiseAbs().maxCoeff(), 1e-15 * scale) << "t = " << t;
+    EXPECT_LT((closed.topLeftCorner(m, m) - (so.Ao.topLeftCorner(m, m) - algorithm.K1)).cwiseAbs().maxCoeff(),
+              1e-15 * scale);
+    EXPECT_EQ(closed.rightCols(r), so.Ao.rightCols(r));
+    smallest_a21 = std::min(smallest_a21, so.Ao.bottomLeftCorner(r, m).norm());
+  }
+  EXPECT_GT(smallest_a21, 0.1) << "A₂₁ must not vanish, or the cancellation is not tested";
+}
+
 TEST(ZhangContinuous, ConvergesOnThePeriodicMimoPlant) {
   auto observer = zhang_observer<double>(50.0, {.sampling = quadratic(), .excitation_window = 629});
   auto plant = periodic::make_plant<double>();
@@ -118,6 +142,61 @@ TEST(KalmanBucy, WithoutParameterNoiseConvergesOnlyLikeOneOverT) {
   const double at100 = 100.0 * trace.theta_rel[10000], at200 = 200.0 * trace.theta_rel[20000];
   EXPECT_NEAR(at100 / at200, 1.0, 0.1) << at100 << " " << at200;
   EXPECT_GT(trace.theta_rel.back(), 1e-4);
+}
+
+// ---------------------------------------------------------------------------
+// A gap between samples: 20 s of 10-ms samples, then one sample `gap` seconds
+// later, held and interpolated across. The observer with the learned step limit
+// (SamplingOptions::max_step = 0) must agree with one stepped eight times finer
+// on every sample; one RK4 step over the gap leaves the stability region of the
+// filter dynamics (errors of 1e3 after 2 s, a Kalman–Bucy P with an eigenvalue
+// of −5e11 after 20 s).
+
+template <class Make>
+void expect_gap_integrated_like_a_fine_step(Make make, double gap, double tolerance) {
+  auto observer = make(adaptobs::SamplingOptions{});
+  auto fine = make(adaptobs::SamplingOptions{.max_step = 0.01 / 8});
+  auto plant = siso::make_plant<double>();
+  for (int k = 0; k < 2000; ++k) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    ASSERT_EQ(fine.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  for (int k = 0; k < int(std::lround(gap / 0.01)); ++k) plant.advance();
+  auto sample = plant.sample();
+  sample.midpoint.reset();
+  ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
+  ASSERT_EQ(fine.update(sample), UpdateStatus::accepted);
+  EXPECT_LT((observer.state() - fine.state()).norm(), tolerance * fine.state().norm());
+  EXPECT_LT((observer.parameters() - fine.parameters()).norm(), tolerance * fine.parameters().norm());
+}
+
+TEST(SampledIntegration, BastinGeversCrossesAGapWithTheLearnedStep) {
+  for (const double gap : {2.0, 20.0}) {
+    SCOPED_TRACE(gap);
+    expect_gap_integrated_like_a_fine_step(
+        [](adaptobs::SamplingOptions sampling) { return bastin_gevers_observer<double>({.sampling = sampling}); }, gap,
+        1e-6);
+  }
+}
+
+TEST(SampledIntegration, KalmanBucyCrossesAGapWithItsCovariancePositiveDefinite) {
+  for (const double gap : {2.0, 20.0}) {
+    SCOPED_TRACE(gap);
+    expect_gap_integrated_like_a_fine_step(
+        [](adaptobs::SamplingOptions sampling) { return kalman_bucy_filter<double>(1e-4, sampling); }, gap, 1e-6);
+  }
+  // The covariance itself, after the longer gap.
+  auto filter = kalman_bucy_filter<double>(1e-4, adaptobs::SamplingOptions{});
+  auto plant = siso::make_plant<double>();
+  for (int k = 0; k < 2000; ++k, plant.advance()) ASSERT_EQ(filter.update(plant.sample()), UpdateStatus::accepted);
+  for (int k = 0; k < 2000; ++k) plant.advance();
+  auto sample = plant.sample();
+  sample.midpoint.reset();
+  ASSERT_EQ(filter.update(sample), UpdateStatus::accepted);
+  const Eigen::MatrixXd P = filter.covariance();
+  EXPECT_EQ(P, P.transpose());
+  EXPECT_TRUE(adaptobs::detail::cholesky_succeeds(P));
 }
 
 // ---------------------------------------------------------------------------

@@ -15,7 +15,8 @@
 /// out as P → 0 and \f$\tilde\theta\f$ decays like 1/t. It costs an (n + p)² Riccati
 /// equation against the n × n one (or none) of the adaptive observers.
 /// The filter works in the original coordinates and is stepped like them
-/// (`core/sampled_integration.hpp`); P is re-symmetrized after every sample.
+/// (`core/sampled_integration.hpp`); P is re-symmetrized after every sample,
+/// and a sample whose step would leave P not positive definite is rejected.
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/core/commit.hpp>
@@ -75,6 +76,7 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     detail::require_positive_definite(cov_.R, name, "covariances.R");
     llt_.compute(cov_.R);
     w_.ae.setZero(n, n);
+    w_.factor.setZero(n, n);
     w_.pct.setZero(n, s.ny);
     w_.gain.setZero(n, s.ny);
     w_.epsilon.setZero(s.ny);
@@ -83,16 +85,19 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     set_initial(eta0, theta0);
   }
 
+  /// Advances the estimates to `sample.t` (see `SampledIntegrator`, which bounds
+  /// the RK4 step over long intervals). The integrated P is re-symmetrized; a
+  /// step that would leave it not positive definite is rejected
+  /// (`UpdateStatus::indefinite_covariance`). A rejected sample leaves the filter
+  /// exactly as it was.
   [[nodiscard]] UpdateStatus update(const Sample& sample) {
     const UpdateStatus status = integrator_.advance(
         sample, internal_,
         [this](const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) {
           derivative(s, ds, t, u, y);
         },
-        name);
+        name, [this](InternalState& candidate) { return symmetrize_covariance(candidate); });
     if (status != UpdateStatus::accepted) return status;
-    auto p = covariance_map();
-    p = (Scalar(0.5) * (p + p.transpose())).eval();
     refresh_estimates();
     return status;
   }
@@ -153,6 +158,11 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     return true;
   }
 
+  /// Keeps every estimate and P but forgets the previous sample: the next one
+  /// sets a new time origin. For resuming after an interval rejected as
+  /// `UpdateStatus::interval_too_long`.
+  void resynchronize() noexcept { integrator_.resynchronize(); }
+
   void reset(const State& eta0, const Parameters& theta0) {
     constexpr std::string_view who = "AugmentedKalmanBucyFilter::reset";
     detail::require_shape(eta0, sizes_.nx, 1, who, "eta0");
@@ -165,10 +175,22 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
 
  private:
   struct Workspace {
-    AugmentedMatrix ae;
+    AugmentedMatrix ae, factor;
     Eigen::Matrix<Scalar, na, Dims::ny> pct, gain;
     Output epsilon;
   };
+
+  // P of an integrated step made exactly symmetric, then tested by a Cholesky
+  // factorization: RK4 on the Riccati equation keeps P neither symmetric nor,
+  // with a step too long for its dynamics, positive definite.
+  UpdateStatus symmetrize_covariance(InternalState& candidate) {
+    const Index n = sizes_.nx + sizes_.np;
+    Eigen::Map<AugmentedMatrix> p(candidate.data() + n, n, n);
+    for (Index j = 0; j < n; ++j)
+      for (Index i = j + 1; i < n; ++i) p(i, j) = p(j, i) = Scalar(0.5) * (p(i, j) + p(j, i));
+    w_.factor = p;
+    return detail::cholesky_in_place(w_.factor) ? UpdateStatus::accepted : UpdateStatus::indefinite_covariance;
+  }
 
   auto covariance_map() {
     const Index n = sizes_.nx + sizes_.np;

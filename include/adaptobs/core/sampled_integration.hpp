@@ -21,6 +21,20 @@
 /// simulation, `simulation/joint_integration.hpp`) has no floor at all.
 ///
 /// The default reconstruction holds u (digital actuators) and interpolates y linearly.
+///
+/// **Long intervals.** RK4 is stable only for steps h with hλ inside its
+/// stability region (|hλ| ≲ 2.78 on the negative real axis), so a fixed number
+/// of steps per interval fails on a gap between samples: with 10-ms samples and
+/// one step, a 2-s gap drives a Kalman–Bucy covariance indefinite and a
+/// 20-s gap multiplies the errors by 10¹¹. The step is therefore bounded:
+/// an interval is cut into `substeps` steps, or more when those would be longer
+/// than `max_step`. Left at 0, `max_step` is learned from the first interval:
+/// 1.25 times its step, so that sampling jitter below 25% never changes the cost
+/// of an update, and a gap runs with the step the observer was tuned with.
+/// An interval that would need more than `max_substeps` steps is rejected
+/// (`UpdateStatus::interval_too_long`), keeping the cost of one update bounded;
+/// `resynchronize()` then restarts the time origin at the next sample without
+/// touching the estimates.
 
 #include <adaptobs/core/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
@@ -31,6 +45,7 @@
 
 #include <cmath>
 #include <string_view>
+#include <utility>
 
 namespace adaptobs {
 
@@ -44,6 +59,10 @@ enum class SignalReconstruction {
 /// Stepping options shared by every continuous-time observer.
 struct SamplingOptions {
   int substeps = 1;                                               ///< RK4 steps per sampling interval (≥ 1)
+  /// Longest RK4 step, in the time unit of the samples; 0 learns it from the
+  /// first interval (1.25 × its step; see the file comment).
+  double max_step = 0;
+  int max_substeps = 1'000'000;  ///< most RK4 steps in one interval; a longer interval is rejected
   SignalReconstruction input = SignalReconstruction::hold;        ///< reconstruction of u
   SignalReconstruction output = SignalReconstruction::linear;     ///< reconstruction of y
 };
@@ -63,6 +82,10 @@ class SampledIntegrator {
   SampledIntegrator(const InternalState& like, Sizes sizes, SamplingOptions options, std::string_view who)
       : rk4_(like), candidate_(like), sizes_(sizes), options_(options) {
     detail::require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
+    detail::require(std::isfinite(options.max_step) && options.max_step >= 0, who, "options.max_step",
+                    "must be finite and non-negative (0 learns it from the first interval)");
+    detail::require(options.max_substeps >= options.substeps, who, "options.max_substeps",
+                    "must be at least options.substeps");
     previous_.u.setZero(sizes.nu);
     previous_.y.setZero(sizes.ny);
     u_.setZero(sizes.nu);
@@ -74,12 +97,27 @@ class SampledIntegrator {
   /// Time of the last accepted sample.
   [[nodiscard]] Scalar time() const noexcept { return previous_.t; }
   [[nodiscard]] const SamplingOptions& options() const noexcept { return options_; }
-  /// Forgets the previous sample: the next one starts the integration anew.
-  void restart() noexcept { started_ = false; }
+  /// Forgets the previous sample and a learned step limit: the next sample
+  /// starts the integration anew, as after construction.
+  void restart() noexcept {
+    started_ = false;
+    learned_step_ = 0;
+  }
+  /// Forgets the previous sample only: the next sample sets a new time origin,
+  /// and the step limit stays what it was.
+  void resynchronize() noexcept { started_ = false; }
+  /// Longest RK4 step from now on: `options.max_step`, or the learned limit (0 until the first interval).
+  [[nodiscard]] Scalar max_step() const noexcept {
+    return options_.max_step > 0 ? Scalar(options_.max_step) : learned_step_;
+  }
 
-  /// Integrates `state` with `rhs(x, dxdt, t, u, y)` from the previous sample to `sample.t`.
-  template <class Rhs>
-  UpdateStatus advance(const Sample& sample, InternalState& state, Rhs&& rhs, std::string_view who) {
+  /// Integrates `state` with `rhs(x, dxdt, t, u, y)` from the previous sample
+  /// to `sample.t`. `validate(candidate)` may adjust the integrated state (for
+  /// example re-symmetrize a covariance) and returns `accepted`, or the reason
+  /// to reject it; nothing is committed unless it accepts.
+  template <class Rhs, class Validate>
+  UpdateStatus advance(const Sample& sample, InternalState& state, Rhs&& rhs, std::string_view who,
+                       Validate&& validate) {
     if constexpr (!D::is_fixed) check_sizes(sample, who);
     if (!std::isfinite(sample.t) || !detail::all_finite(sample.u, sample.y)) return UpdateStatus::nonfinite_input;
     if (sample.midpoint && !detail::all_finite(sample.midpoint->u, sample.midpoint->y))
@@ -97,6 +135,8 @@ class SampledIntegrator {
 
     const Scalar t0 = previous_.t;
     const Scalar interval = sample.t - t0;
+    const int steps = steps_for(interval);
+    if (steps == 0) return UpdateStatus::interval_too_long;
     const auto system = [&](const InternalState& x, InternalState& dxdt, Scalar t) {
       const Scalar s = (t - t0) / interval;
       reconstruct(options_.input, s, previous_.u, sample.midpoint ? &sample.midpoint->u : nullptr, sample.u, u_);
@@ -104,15 +144,32 @@ class SampledIntegrator {
       rhs(x, dxdt, t, u_, y_);
     };
     candidate_ = state;
-    const Scalar h = interval / Scalar(options_.substeps);
-    for (int i = 0; i < options_.substeps; ++i) rk4_.step(system, candidate_, t0 + Scalar(i) * h, h, candidate_);
+    const Scalar h = interval / Scalar(steps);
+    for (int i = 0; i < steps; ++i) rk4_.step(system, candidate_, t0 + Scalar(i) * h, h, candidate_);
     if (!detail::all_finite(candidate_)) return UpdateStatus::nonfinite_result;
+    if (const UpdateStatus verdict = validate(candidate_); verdict != UpdateStatus::accepted) return verdict;
+    if (!(learned_step_ > 0)) learned_step_ = Scalar(1.25) * h;
     detail::commit(state, candidate_);
     remember(sample);
     return UpdateStatus::accepted;
   }
 
+  /// `advance` without a check of the step's result beyond finiteness.
+  template <class Rhs>
+  UpdateStatus advance(const Sample& sample, InternalState& state, Rhs&& rhs, std::string_view who) {
+    return advance(sample, state, std::forward<Rhs>(rhs), who, [](InternalState&) { return UpdateStatus::accepted; });
+  }
+
  private:
+  // RK4 steps for an interval (see the file comment); 0 when more than max_substeps.
+  [[nodiscard]] int steps_for(Scalar interval) const {
+    const Scalar limit = max_step();
+    if (!(limit > 0)) return options_.substeps;
+    const Scalar needed = std::ceil(interval / limit);
+    if (needed <= Scalar(options_.substeps)) return options_.substeps;
+    return needed <= Scalar(options_.max_substeps) ? int(needed) : 0;
+  }
+
   // Signal at the normalized time s ∈ [0, 1] of the interval.
   template <class V>
   static void reconstruct(SignalReconstruction how, Scalar s, const V& v0, const V* mid, const V& v1, V& out) {
@@ -160,6 +217,7 @@ class SampledIntegrator {
   Sizes sizes_;
   SamplingOptions options_;
   Measurement previous_;
+  Scalar learned_step_ = 0;
   bool started_ = false;
   typename D::Input u_;
   typename D::Output y_;

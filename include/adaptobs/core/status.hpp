@@ -16,6 +16,7 @@ enum class UpdateStatus {
   nonfinite_result,  ///< the step would have produced NaN or Inf (overflow, NaN system matrix)
   nonincreasing_time,  ///< a continuous-time sample whose time is not after the previous sample's
   indefinite_covariance,  ///< the step would leave a covariance that is not positive definite
+  interval_too_long,  ///< a continuous-time interval that needs more than `SamplingOptions::max_substeps` steps
 };
 
 [[nodiscard]] constexpr bool accepted(UpdateStatus s) noexcept { return s == UpdateStatus::accepted; }
@@ -32,6 +33,8 @@ enum class UpdateStatus {
       return "rejected: the sample's time does not advance";
     case UpdateStatus::indefinite_covariance:
       return "rejected: the step would leave the covariance indefinite";
+    case UpdateStatus::interval_too_long:
+      return "rejected: the interval since the previous sample needs more than max_substeps integration steps";
   }
   return "unknown";
 }

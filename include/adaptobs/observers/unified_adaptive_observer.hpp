@@ -263,6 +263,11 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     return excitation_->level();
   }
 
+  /// Keeps every estimate and filter but forgets the previous sample: the next
+  /// one sets a new time origin. For resuming after an interval rejected as
+  /// `UpdateStatus::interval_too_long`.
+  void resynchronize() noexcept { integrator_.resynchronize(); }
+
   /// Restarts from \f$\hat\eta_0, \hat\theta_0\f$ with Ξ = 0; the next sample sets the time origin.
   void reset(const State& eta0, const Parameters& theta0) {
     constexpr std::string_view who = "UnifiedAdaptiveObserver::reset";

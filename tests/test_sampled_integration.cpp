@@ -1,0 +1,145 @@
+// How a continuous-time observer steps between samples (core/sampled_integration.hpp):
+// the number of RK4 steps per interval, the learned step limit, and the bound on
+// the work of one update. The test system ẋ = −λx (λ = 50) makes the steps
+// visible in the result: n equal RK4 steps over an interval T give x·R(−λT/n)ⁿ
+// with R(z) = 1 + z + z²/2 + z³/6 + z⁴/24.
+#include <adaptobs/core/sampled_integration.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+using adaptobs::SampledIntegrator;
+using adaptobs::SamplingOptions;
+using adaptobs::UpdateStatus;
+using Dims = adaptobs::Dimensions<double, 1, 1, 1, 1>;
+using State = Eigen::Matrix<double, 1, 1>;
+using Sample = adaptobs::ContinuousSample<Dims>;
+
+Sample at(double t) { return Sample{t, Dims::Input::Zero(), Dims::Output::Zero()}; }
+
+constexpr double lambda = 50;
+
+double rk4_decay(double interval, int steps) {
+  const double z = -lambda * interval / steps;
+  return std::pow(1 + z + z * z / 2 + z * z * z / 6 + z * z * z * z / 24, steps);
+}
+
+struct Decay {
+  int* evaluations;
+  void operator()(const State& x, State& dxdt, double, const Dims::Input&, const Dims::Output&) const {
+    ++*evaluations;
+    dxdt = -lambda * x;
+  }
+};
+
+class SampledIntegration : public ::testing::Test {
+ protected:
+  // Integrates to `t`; returns the status and records the RK4 steps taken.
+  UpdateStatus advance_to(double t) {
+    evaluations = 0;
+    const State before = x;
+    const UpdateStatus status = integrator.advance(at(t), x, Decay{&evaluations}, "test");
+    steps = evaluations / 4;
+    if (status == UpdateStatus::accepted && steps > 0) {
+      const double expected = rk4_decay(t - integrator_time_before, steps);
+      EXPECT_NEAR(x(0) / before(0), expected, 1e-12 * expected);
+    }
+    integrator_time_before = integrator.time();
+    return status;
+  }
+  void make(SamplingOptions options) {
+    integrator = SampledIntegrator<Dims, State>(State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, options, "test");
+  }
+
+  SampledIntegrator<Dims, State> integrator{State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, SamplingOptions{.substeps = 2},
+                                            "test"};
+  State x = State::Constant(1.0);
+  int evaluations = 0, steps = 0;
+  double integrator_time_before = 0;
+};
+
+TEST_F(SampledIntegration, LearnsItsStepLimitFromTheFirstInterval) {
+  ASSERT_EQ(advance_to(0.0), UpdateStatus::accepted);  // the time origin: nothing integrated
+  EXPECT_EQ(steps, 0);
+  EXPECT_EQ(integrator.max_step(), 0.0);
+  ASSERT_EQ(advance_to(0.01), UpdateStatus::accepted);
+  EXPECT_EQ(steps, 2);
+  EXPECT_DOUBLE_EQ(integrator.max_step(), 1.25 * 0.005);
+  // Jitter below 25% keeps the configured two steps.
+  ASSERT_EQ(advance_to(0.0224), UpdateStatus::accepted);
+  EXPECT_EQ(steps, 2);
+  // A gap of 0.098 is cut into ⌈0.098 / 0.00625⌉ = 16 steps, 0.1006 into 17.
+  ASSERT_EQ(advance_to(0.1204), UpdateStatus::accepted);
+  EXPECT_EQ(steps, 16);
+  ASSERT_EQ(advance_to(0.221), UpdateStatus::accepted);
+  EXPECT_EQ(steps, 17);
+}
+
+TEST_F(SampledIntegration, AnExplicitStepLimitBoundsEveryInterval) {
+  make({.substeps = 1, .max_step = 0.004});
+  ASSERT_EQ(advance_to(1.0), UpdateStatus::accepted);
+  ASSERT_EQ(advance_to(1.01), UpdateStatus::accepted);
+  EXPECT_EQ(steps, 3);
+  ASSERT_EQ(advance_to(1.012), UpdateStatus::accepted);
+  EXPECT_EQ(steps, 1);
+  EXPECT_EQ(integrator.max_step(), 0.004);
+}
+
+TEST_F(SampledIntegration, AnIntervalBeyondTheStepBudgetIsRejectedUntilResynchronized) {
+  make({.substeps = 1, .max_substeps = 50});
+  ASSERT_EQ(advance_to(0.0), UpdateStatus::accepted);
+  ASSERT_EQ(advance_to(0.01), UpdateStatus::accepted);  // learns 0.0125
+  ASSERT_EQ(advance_to(0.6), UpdateStatus::accepted);  // ⌈0.59 / 0.0125⌉ = 48 steps: within budget
+  EXPECT_EQ(steps, 48);
+  const State before = x;
+  EXPECT_EQ(advance_to(1.3), UpdateStatus::interval_too_long);  // 56 steps
+  EXPECT_EQ(evaluations, 0);
+  EXPECT_EQ(x, before);
+  EXPECT_EQ(integrator.time(), 0.6);
+  // Resynchronized, the next sample is a new time origin; the step limit stays.
+  integrator.resynchronize();
+  ASSERT_EQ(advance_to(1.3), UpdateStatus::accepted);
+  EXPECT_EQ(steps, 0);
+  EXPECT_EQ(x, before);
+  ASSERT_EQ(advance_to(1.34), UpdateStatus::accepted);  // ⌈0.04 / 0.0125⌉
+  EXPECT_EQ(steps, 4);
+  // restart() forgets the limit as well: the next first interval sets it anew.
+  integrator.restart();
+  EXPECT_EQ(integrator.max_step(), 0.0);
+}
+
+TEST_F(SampledIntegration, AValidatorCanRejectTheStepAndNothingIsCommitted) {
+  ASSERT_EQ(advance_to(0.0), UpdateStatus::accepted);
+  const State before = x;
+  int evaluations_seen = 0;
+  const UpdateStatus status = integrator.advance(
+      at(0.01), x, Decay{&evaluations_seen}, "test",
+      [](State& candidate) {
+        candidate.setZero();
+        return UpdateStatus::indefinite_covariance;
+      });
+  EXPECT_EQ(status, UpdateStatus::indefinite_covariance);
+  EXPECT_EQ(evaluations_seen, 8);
+  EXPECT_EQ(x, before);
+  EXPECT_EQ(integrator.time(), 0.0);
+  EXPECT_EQ(integrator.max_step(), 0.0);  // a rejected first interval teaches nothing
+}
+
+TEST_F(SampledIntegration, BadStepOptionsNameTheArgument) {
+  const auto message = [](SamplingOptions options) -> std::string {
+    try {
+      SampledIntegrator<Dims, State>(State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, options, "test");
+    } catch (const adaptobs::ConfigurationError& e) {
+      return e.what();
+    }
+    return "<no exception>";
+  };
+  EXPECT_NE(message({.max_step = -1.0}).find("'options.max_step'"), std::string::npos);
+  EXPECT_NE(message({.max_step = std::nan("")}).find("'options.max_step'"), std::string::npos);
+  EXPECT_NE(message({.substeps = 4, .max_substeps = 3}).find("'options.max_substeps'"), std::string::npos);
+}
+
+}  // namespace
