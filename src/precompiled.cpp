@@ -6,6 +6,7 @@
 #define ADAPTOBS_INSTANTIATE template
 
 #include <adaptobs/core/matrix_exponential.hpp>
+#include <adaptobs/design/care.hpp>
 #include <adaptobs/design/dare.hpp>
 #include <adaptobs/design/dense_eigenvalues.hpp>
 #include <adaptobs/design/guiro_gains.hpp>

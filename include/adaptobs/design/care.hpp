@@ -11,12 +11,32 @@
 /// (Newton iteration \f$Z \leftarrow \tfrac12(cZ + (cZ)^{-1})\f$ with determinant
 /// scaling; R. Byers, "Solving the algebraic Riccati equation with the matrix
 /// sign function", Linear Algebra Appl. 85, 1987) from
-/// \f$(W + I)\begin{bmatrix} I\\ X\end{bmatrix} = 0\f$, then polished by Newton–Kleinman
-/// steps (each a Lyapunov solve) and verified by its residual. G may be
-/// indefinite, which the positive-real certificate of `positive_real.hpp` needs.
+/// \f$(W + I)\begin{bmatrix} I\\ X\end{bmatrix} = 0\f$, then refined by Newton's method
+/// (D. L. Kleinman, "On an iterative technique for Riccati equation computations",
+/// IEEE TAC 13(1), 1968) in defect-correction form: with
+/// \f$\mathcal R(X) = A^TX + XA - XGX + Q\f$ and \f$A_c = A - GX\f$, the step N solves the
+/// Lyapunov equation \f$A_c^TN + NA_c + \mathcal R(X) = 0\f$; steps stop when the residual
+/// no longer decreases. G may be indefinite, which the positive-real
+/// certificate of `positive_real.hpp` needs.
+///
+/// `solve_care` (G = BR⁻¹Bᵀ ⪰ 0) first scales X and balances the states
+/// (design/riccati_support.hpp). When the sign function fails (a badly
+/// conditioned Hamiltonian), Newton's method starts instead from a gain K₀ with
+/// A − BK₀ Hurwitz, taken from the well-scaled CARE (A, B, I, ‖B‖²I), whose
+/// solution exists exactly when (A, B) is stabilizable: X₀ solves
+/// \f$(A - BK_0)^TX_0 + X_0(A - BK_0) + Q + K_0^TRK_0 = 0\f$. The result is accepted only if
+/// its relative residual
+/// \f$\|\mathcal R(X)\|_F / (2\|A\|_F\|X\|_F + \|G\|_F\|X\|_F^2 + \|Q\|_F)\f$ is at most max(1e-10, 1000 ε)
+/// and A − GX is Hurwitz with a margin of √ε‖A − GX‖_F. Otherwise it refuses,
+/// naming the reason it can establish: (A, B) not stabilizable, a mode on the
+/// imaginary axis unobserved by Q, or an equation too ill-conditioned for the
+/// working precision.
 
+#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/lyapunov.hpp>
+#include <adaptobs/design/riccati_support.hpp>
 #include <adaptobs/design/stability.hpp>
 
 #include <Eigen/Cholesky>
@@ -28,6 +48,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <string_view>
 
 namespace adaptobs {
 
@@ -35,34 +56,67 @@ namespace adaptobs {
 template <typename Scalar, int N>
 struct CareSolution {
   Eigen::Matrix<Scalar, N, N> X;  ///< symmetric solution with A − GX Hurwitz
-  int iterations = 0;             ///< sign-function iterations
-  Scalar relative_residual = 0;   ///< ‖AᵀX + XA − XGX + Q‖_F / max(1, ‖X‖_F)
+  int iterations = 0;             ///< sign-function iterations plus Newton steps
+  Scalar relative_residual = 0;   ///< relative residual, each term bounded by its factors' norms (see file comment)
 };
 
 namespace detail {
-template <class X, class A, class G, class Q>
-typename X::Scalar care_residual(const X& x, const A& a, const G& g, const Q& q) {
-  using Scalar = typename X::Scalar;
-  return (a.transpose() * x + x * a - x * g * x + q).norm() / std::max(Scalar(1), x.norm());
-}
-}  // namespace detail
 
-/// Stabilizing solution of \f$A^TX + XA - XGX + Q = 0\f$ (G, Q symmetric),
-/// or nothing when the Hamiltonian has eigenvalues on the imaginary axis or
-/// the computed X fails its residual or stability check.
-template <class DA, class DG, class DQ>
-[[nodiscard]] std::optional<CareSolution<typename DA::Scalar, DA::RowsAtCompileTime>> solve_riccati_hamiltonian(
-    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DG>& G, const Eigen::MatrixBase<DQ>& Q,
-    int max_iterations = 100) {
-  using Scalar = typename DA::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  constexpr int N = DA::RowsAtCompileTime;
-  const Index n = A.rows();
-  const Matrix a = A, g = G, q = Q;
+/// The CARE residual at X and the closed loop Newton's method uses.
+template <typename Scalar>
+struct CareEvaluation {
+  DynamicMatrix<Scalar> residual;     ///< AᵀX + XA − XGX + Q
+  DynamicMatrix<Scalar> closed_loop;  ///< A − GX
+  Scalar relative = std::numeric_limits<Scalar>::infinity();
+};
+
+template <typename Scalar>
+CareEvaluation<Scalar> evaluate_care(const DynamicMatrix<Scalar>& X, const DynamicMatrix<Scalar>& A,
+                                     const DynamicMatrix<Scalar>& G, const DynamicMatrix<Scalar>& Q) {
+  CareEvaluation<Scalar> e;
+  const DynamicMatrix<Scalar> atx = A.transpose() * X;
+  const DynamicMatrix<Scalar> gx = G * X;
+  const DynamicMatrix<Scalar> xgx = X * gx;
+  e.residual = atx + atx.transpose() - xgx + Q;
+  e.residual = Scalar(0.5) * (e.residual + e.residual.transpose()).eval();
+  e.closed_loop = A - gx;
+  const Scalar x_norm = X.norm();
+  const Scalar scale = Scalar(2) * A.norm() * x_norm + G.norm() * x_norm * x_norm + Q.norm();
+  e.relative = scale > Scalar(0) ? e.residual.norm() / scale : Scalar(0);
+  if (!std::isfinite(e.relative)) e.relative = std::numeric_limits<Scalar>::infinity();
+  return e;
+}
+
+/// Hurwitz with the margin √ε‖M‖_F that keeps the Newton Lyapunov equations regular.
+template <typename Scalar>
+bool is_hurwitz_with_margin(const DynamicMatrix<Scalar>& m) {
+  return m.allFinite() && is_hurwitz_stable(m, std::sqrt(std::numeric_limits<Scalar>::epsilon()) * m.norm());
+}
+
+/// Solution of \f$M^TN + NM + W = 0\f$, or nothing when M has a pair of
+/// eigenvalues summing to (nearly) zero, where the Lyapunov solver refuses.
+template <typename Scalar>
+std::optional<DynamicMatrix<Scalar>> lyapunov_if_regular(const DynamicMatrix<Scalar>& M,
+                                                         const DynamicMatrix<Scalar>& W) {
+  try {
+    return solve_continuous_lyapunov_dense<Scalar>(M, W);
+  } catch (const ConfigurationError&) {
+    return std::nullopt;
+  }
+}
+
+/// X from the sign function of the Hamiltonian, or nothing when the Hamiltonian
+/// has an eigenvalue at 0 or an iterate is not finite.
+template <typename Scalar>
+std::optional<DynamicMatrix<Scalar>> care_sign_function_start(const DynamicMatrix<Scalar>& a,
+                                                              const DynamicMatrix<Scalar>& g,
+                                                              const DynamicMatrix<Scalar>& q, int max_iterations,
+                                                              int& iterations) {
+  using Matrix = DynamicMatrix<Scalar>;
+  const Index n = a.rows();
   Matrix z(2 * n, 2 * n);
   z << a, -g, -q, -a.transpose();
   const Scalar eps = std::numeric_limits<Scalar>::epsilon();
-  CareSolution<Scalar, N> result;
   bool converged = false;
   for (int it = 0; it < max_iterations && !converged; ++it) {
     const Eigen::PartialPivLU<Matrix> lu(z);
@@ -79,55 +133,168 @@ template <class DA, class DG, class DQ>
     const Scalar change = (next - z).cwiseAbs().colwise().sum().maxCoeff();
     converged = change <= Scalar(1000) * Scalar(2 * n) * eps * next.cwiseAbs().colwise().sum().maxCoeff();
     z = next;
-    result.iterations = it + 1;
+    ++iterations;
   }
   Matrix lhs(2 * n, n), rhs(2 * n, n);
   lhs << z.topRightCorner(n, n), z.bottomRightCorner(n, n) + Matrix::Identity(n, n);
   rhs << -(z.topLeftCorner(n, n) + Matrix::Identity(n, n)), -z.bottomLeftCorner(n, n);
   Matrix x = lhs.colPivHouseholderQr().solve(rhs);
-  x = Scalar(0.5) * (x + x.transpose());
+  x = Scalar(0.5) * (x + x.transpose()).eval();
   if (!x.allFinite()) return std::nullopt;
+  return x;
+}
 
-  // Newton–Kleinman polish: (A − GX)ᵀX⁺ + X⁺(A − GX) = −(Q + XGX).
-  Scalar residual = detail::care_residual(x, a, g, q);
-  for (int k = 0; k < 3 && residual > 10 * eps; ++k) {
-    const Matrix closed = a - g * x;
-    // A margin keeps the Lyapunov equation regular (no eigenvalue pair with λ_i + λ_j ≈ 0).
-    if (!is_hurwitz_stable(closed, std::sqrt(eps) * std::max(Scalar(1), closed.cwiseAbs().maxCoeff()))) break;
-    const Matrix candidate = solve_continuous_lyapunov(closed, Matrix(q + x * g * x));
-    const Scalar candidate_residual = detail::care_residual(candidate, a, g, q);
-    if (!(candidate_residual < residual)) break;
-    x = candidate;
-    residual = candidate_residual;
+/// Newton steps (file comment) from x while the residual decreases and A − GX
+/// stays Hurwitz with a margin; returns the evaluation of the final x.
+template <typename Scalar>
+CareEvaluation<Scalar> care_newton_refinement(DynamicMatrix<Scalar>& x, const DynamicMatrix<Scalar>& a,
+                                              const DynamicMatrix<Scalar>& g, const DynamicMatrix<Scalar>& q,
+                                              int& iterations) {
+  auto e = evaluate_care<Scalar>(x, a, g, q);
+  for (int step = 0; step < 50 && e.relative > std::numeric_limits<Scalar>::epsilon(); ++step) {
+    if (!is_hurwitz_with_margin(e.closed_loop)) break;
+    const auto step_matrix = lyapunov_if_regular<Scalar>(e.closed_loop, e.residual);
+    if (!step_matrix) break;
+    DynamicMatrix<Scalar> candidate = x + *step_matrix;
+    candidate = Scalar(0.5) * (candidate + candidate.transpose()).eval();
+    auto next = evaluate_care<Scalar>(candidate, a, g, q);
+    if (!(next.relative < e.relative)) break;
+    x = std::move(candidate);
+    e = std::move(next);
+    ++iterations;
   }
-  result.X = x;
-  result.relative_residual = residual;
-  if (!(residual <= std::sqrt(eps)) || !is_hurwitz_stable(Matrix(a - g * x))) return std::nullopt;
+  return e;
+}
+
+inline constexpr RiccatiRoles control_care_roles{
+    "solve_care", "B",
+    "must be stabilizable: a mode of A in the closed right half-plane is not reached by B, so no gain makes A - BK "
+    "Hurwitz",
+    "leave a mode of A on the imaginary axis unobserved by Q: the CARE has no stabilizing solution"};
+
+/// A gain K with A − BK Hurwitz, from the well-scaled CARE (A, B, I, ‖B‖²I) of
+/// the balanced problem, or nothing when (A, B) is not stabilizable (or too
+/// close to it for the precision).
+template <typename Scalar>
+std::optional<DynamicMatrix<Scalar>> continuous_stabilizing_gain(const DynamicMatrix<Scalar>& A,
+                                                                 const DynamicMatrix<Scalar>& B, int& iterations) {
+  using Matrix = DynamicMatrix<Scalar>;
+  const Index n = A.rows();
+  const Scalar b2 = B.squaredNorm();
+  if (!(b2 > Scalar(0))) {  // K = 0 is the only gain: A itself must be Hurwitz
+    if (!is_hurwitz_with_margin(A)) return std::nullopt;
+    return Matrix::Zero(B.cols(), n);
+  }
+  Matrix a = A, g = B * B.transpose() / b2, q = Matrix::Identity(n, n);
+  const auto d = balance_hamiltonian<Scalar>(a, g, q);
+  auto x = care_sign_function_start<Scalar>(a, g, q, 100, iterations);
+  if (!x) return std::nullopt;
+  const auto e = care_newton_refinement<Scalar>(*x, a, g, q, iterations);
+  if (!is_hurwitz_with_margin(e.closed_loop)) return std::nullopt;
+  // Back to the caller's states: X = D⁻¹X̃D⁻¹ and K = BᵀX / ‖B‖².
+  const Matrix x_original = d.cwiseInverse().asDiagonal() * *x * d.cwiseInverse().asDiagonal();
+  Matrix k = B.transpose() * x_original / b2;
+  if (!k.allFinite() || !is_hurwitz_with_margin(Matrix(A - B * k))) return std::nullopt;
+  return k;
+}
+
+template <typename Scalar>
+CareSolution<Scalar, Eigen::Dynamic> solve_care(const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& B,
+                                                const DynamicMatrix<Scalar>& Q, const DynamicMatrix<Scalar>& R,
+                                                const RiccatiRoles& roles = control_care_roles) {
+  using Matrix = DynamicMatrix<Scalar>;
+  validate_riccati_data(A, B, Q, R, roles);
+  const Index n = A.rows();
+  constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
+  const Scalar tolerance = std::max(Scalar(1e-10), Scalar(1000) * eps);
+
+  CareSolution<Scalar, Eigen::Dynamic> result;
+  // X = σ D⁻¹X̃D⁻¹: X̃ solves the scaled, balanced equation (a, g, q).
+  const Scalar sigma = riccati_solution_scale<Scalar>(B, Q, R);
+  Matrix a = A, g = B * (R / sigma).llt().solve(B.transpose()), q = Q / sigma;
+  g = Scalar(0.5) * (g + g.transpose()).eval();
+  const auto d = balance_hamiltonian<Scalar>(a, g, q);
+  auto start = care_sign_function_start<Scalar>(a, g, q, 100, result.iterations);
+  if (start && !is_hurwitz_with_margin(evaluate_care<Scalar>(*start, a, g, q).closed_loop)) start.reset();
+  bool stabilizability_known = false;
+  if (!start) {
+    const auto k0 = continuous_stabilizing_gain<Scalar>(A, B, result.iterations);
+    if (!k0) fail_not_stabilizable(roles);
+    stabilizability_known = true;
+    // Kleinman's first step, in the scaled and balanced coordinates: K̃ = K₀D.
+    const Matrix k = *k0 * d.asDiagonal();
+    const Matrix rk = (R / sigma) * k;
+    start = lyapunov_if_regular<Scalar>(Matrix(a - d.cwiseInverse().asDiagonal() * B * k),
+                                        Matrix(q + k.transpose() * rk));
+    if (!start) start = Matrix::Constant(n, n, std::numeric_limits<Scalar>::infinity());  // refused below
+  }
+  Matrix x = *start;
+  const auto e = care_newton_refinement<Scalar>(x, a, g, q, result.iterations);
+  if (e.relative <= tolerance && is_hurwitz_with_margin(e.closed_loop)) {
+    result.X = sigma * (d.cwiseInverse().asDiagonal() * x * d.cwiseInverse().asDiagonal());
+    result.relative_residual = e.relative;
+    return result;
+  }
+
+  int ignored = 0;
+  if (!stabilizability_known && !continuous_stabilizing_gain<Scalar>(A, B, ignored)) fail_not_stabilizable(roles);
+  if (!continuous_stabilizing_gain<Scalar>(Matrix(A.transpose()), Matrix(Q / sigma), ignored))
+    fail_unreached_mode(roles);
+  const bool finite = e.closed_loop.allFinite();
+  fail_ill_conditioned(roles, e.relative, tolerance, "spectral abscissa",
+                       finite ? spectral_abscissa(e.closed_loop) : std::numeric_limits<Scalar>::infinity(),
+                       finite ? -std::sqrt(eps) * e.closed_loop.norm() : Scalar(0));
+}
+
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE CareSolution<double, Eigen::Dynamic> solve_care<double>(const DynamicMatrix<double>&,
+                                                                            const DynamicMatrix<double>&,
+                                                                            const DynamicMatrix<double>&,
+                                                                            const DynamicMatrix<double>&,
+                                                                            const RiccatiRoles&);
+ADAPTOBS_INSTANTIATE std::optional<DynamicMatrix<double>> care_sign_function_start<double>(
+    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const DynamicMatrix<double>&, int, int&);
+ADAPTOBS_INSTANTIATE CareEvaluation<double> care_newton_refinement<double>(DynamicMatrix<double>&,
+                                                                          const DynamicMatrix<double>&,
+                                                                          const DynamicMatrix<double>&,
+                                                                          const DynamicMatrix<double>&, int&);
+#endif
+
+}  // namespace detail
+
+/// Stabilizing solution of \f$A^TX + XA - XGX + Q = 0\f$ (G, Q symmetric, G possibly
+/// indefinite): the sign-function start refined by Newton's method, or nothing
+/// when the Hamiltonian has eigenvalues on the imaginary axis or the result
+/// fails its residual (√ε) or stability check.
+template <class DA, class DG, class DQ>
+[[nodiscard]] std::optional<CareSolution<typename DA::Scalar, DA::RowsAtCompileTime>> solve_riccati_hamiltonian(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DG>& G, const Eigen::MatrixBase<DQ>& Q,
+    int max_iterations = 100) {
+  using Scalar = typename DA::Scalar;
+  using Matrix = detail::DynamicMatrix<Scalar>;
+  const Matrix a = detail::dynamic_copy(A), g = detail::dynamic_copy(G), q = detail::dynamic_copy(Q);
+  CareSolution<Scalar, DA::RowsAtCompileTime> result;
+  auto x = detail::care_sign_function_start<Scalar>(a, g, q, max_iterations, result.iterations);
+  if (!x) return std::nullopt;
+  const auto e = detail::care_newton_refinement<Scalar>(*x, a, g, q, result.iterations);
+  if (!(e.relative <= std::sqrt(std::numeric_limits<Scalar>::epsilon())) || !is_hurwitz_stable(e.closed_loop))
+    return std::nullopt;
+  result.X = *x;
+  result.relative_residual = e.relative;
   return result;
 }
 
-/// Stabilizing solution of the control CARE \f$A^TX + XA - XBR^{-1}B^TX + Q = 0\f$.
-/// Throws `ConfigurationError` when (A, B) is not stabilizable or (A, Q) not detectable.
+/// Stabilizing solution of the control CARE \f$A^TX + XA - XBR^{-1}B^TX + Q = 0\f$
+/// (see file comment). Throws `ConfigurationError` on invalid arguments, and
+/// refuses, naming the reason, when no stabilizing solution exists or the
+/// working precision cannot reach the stated residual.
 template <class DA, class DB, class DQ, class DR>
 [[nodiscard]] auto solve_care(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
                               const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R) {
-  constexpr std::string_view who = "solve_care";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
-  const Index n = A.rows();
-  detail::require_shape(B, n, B.cols(), who, "B");
-  detail::require_finite(B, who, "B");
-  detail::require_shape(Q, n, n, who, "Q");
-  detail::require_positive_semidefinite(Q, who, "Q");
-  detail::require_shape(R, B.cols(), B.cols(), who, "R");
-  detail::require_positive_definite(R, who, "R");
-  using Matrix = Eigen::Matrix<typename DA::Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  const Matrix g = B * R.llt().solve(B.transpose());
-  auto solution = solve_riccati_hamiltonian(A, g, Q);
-  if (!solution)
-    detail::fail_argument(who, "A, B", "admit no stabilizing CARE solution: (A, B) must be stabilizable and "
-                                       "(A, Q) detectable");
-  return *solution;
+  using Scalar = typename DA::Scalar;
+  using detail::dynamic_copy;
+  const auto dynamic = detail::solve_care<Scalar>(dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R));
+  return CareSolution<Scalar, DA::RowsAtCompileTime>{dynamic.X, dynamic.iterations, dynamic.relative_residual};
 }
 
 /// Steady-state Kalman–Bucy gain of \f$\dot x = Ax + w,\ y = Cx + v\f$ (spectral
@@ -146,8 +313,20 @@ template <class DA, class DC, class DQ, class DR>
   using Scalar = typename DA::Scalar;
   constexpr int N = DA::RowsAtCompileTime;
   constexpr int M = DC::RowsAtCompileTime;
-  detail::require_shape(C, C.rows(), A.cols(), "kalman_bucy_gain", "C");
-  const auto dual = solve_care(A.transpose(), C.transpose(), Q, R);
+  // The dual equation (Aᵀ, Cᵀ, Q, R), with its refusals in the filter's terms.
+  static constexpr detail::RiccatiRoles roles{
+      "kalman_bucy_gain", "C",
+      "must be detectable: a mode of A in the closed right half-plane is not seen by C, so no gain makes A - KC "
+      "Hurwitz",
+      "leave a mode of A on the imaginary axis unexcited by the process noise Q: the filter CARE has no stabilizing "
+      "solution"};
+  detail::require_square(A, roles.who, "A");
+  detail::require_shape(C, C.rows(), A.cols(), roles.who, "C");
+  detail::require_finite(C, roles.who, "C");
+  using detail::dynamic_copy;
+  const auto dual = detail::solve_care<Scalar>(detail::DynamicMatrix<Scalar>(dynamic_copy(A).transpose()),
+                                               detail::DynamicMatrix<Scalar>(dynamic_copy(C).transpose()),
+                                               dynamic_copy(Q), dynamic_copy(R), roles);
   KalmanBucyGain<Scalar, N, M> result;
   result.P = dual.X;
   result.relative_residual = dual.relative_residual;

@@ -4,27 +4,59 @@
 ///
 /// The DARE
 /// \f[ X = A^T X A - A^T X B (R + B^T X B)^{-1} B^T X A + Q \f]
-/// is solved by the structure-preserving doubling algorithm (SDA; E. K.-W. Chu,
-/// H.-Y. Fan, W.-W. Lin, "A structure-preserving doubling algorithm for
-/// discrete-time algebraic Riccati equations", Linear Algebra Appl. 396, 2005):
-/// with \f$A_0 = A,\ G_0 = B R^{-1} B^T,\ H_0 = Q\f$,
-/// \f[ A_{j+1} = A_j W_j^{-1} A_j,\quad G_{j+1} = G_j + A_j W_j^{-1} G_j A_j^T,\quad
-///     H_{j+1} = H_j + A_j^T H_j W_j^{-1} A_j,\quad W_j = I + G_j H_j, \f]
-/// and \f$H_j \to X\f$ quadratically when (A, B) is stabilizable and (A, Q) detectable.
-/// Only n × n linear solves are needed, no eigenvalue reordering.
+/// has a stabilizing solution (A − BK Schur with \f$K = (R + B^TXB)^{-1}B^TXA\f$)
+/// exactly when (A, B) is stabilizable and no mode of A on the unit circle is
+/// unobserved by Q. It is computed in three stages:
+///
+/// 1. **Scaling.** With \f$X = \sigma\tilde X\f$ the equation keeps its form with
+///    \f$(A, B, Q/\sigma, R/\sigma)\f$. σ, a power of two (no rounding), is the larger
+///    of \f$\|Q\|\f$ and \f$\|R\|/\|B\|^2\f$ (design/riccati_support.hpp), so that a huge R
+///    (X of order R) or a huge Q cannot overflow the products below.
+/// 2. **Doubling.** The structure-preserving doubling algorithm (SDA; E. K.-W. Chu,
+///    H.-Y. Fan, W.-W. Lin, "A structure-preserving doubling algorithm for
+///    discrete-time algebraic Riccati equations", Linear Algebra Appl. 396, 2005):
+///    with \f$A_0 = A,\ G_0 = B R^{-1} B^T,\ H_0 = Q\f$,
+///    \f[ A_{j+1} = A_j W_j^{-1} A_j,\quad G_{j+1} = G_j + A_j W_j^{-1} G_j A_j^T,\quad
+///        H_{j+1} = H_j + A_j^T H_j W_j^{-1} A_j,\quad W_j = I + G_j H_j, \f]
+///    and \f$H_j \to X\f$ quadratically. When \f$G_0H_0\f$ is huge (a tiny R), \f$W_j\f$ is
+///    ill-conditioned and SDA loses digits or fails; the start then comes from
+///    a stabilizing gain \f$K_0\f$ of the well-scaled DARE \f$(A, B, I, \|B\|^2 I)\f$,
+///    whose solution exists exactly when (A, B) is stabilizable, and the Stein
+///    equation \f$X_0 = A_0^TX_0A_0 + Q + K_0^TRK_0\f$, \f$A_0 = A - BK_0\f$ (Hewer's step).
+/// 3. **Newton refinement** (G. A. Hewer, "An iterative technique for the computation
+///    of the steady state gains for the discrete optimal regulator", IEEE TAC 16(4),
+///    1971), in defect-correction form: with the residual
+///    \f$\mathcal R(X) = A^TXA - A^TXBK + Q - X\f$ and \f$A_c = A - BK\f$, the
+///    derivative of \f$\mathcal R\f$ is \f$N \mapsto A_c^TNA_c - N\f$, so the step N solves the
+///    Stein equation \f$N = A_c^TNA_c + \mathcal R(X)\f$ (design/stein.hpp). Steps stop
+///    when the residual no longer decreases.
+///
+/// The result is accepted only if its relative residual is at most the stated
+/// tolerance and its closed loop is Schur with a margin. The residual is scaled
+/// per term, \f$\|\mathcal R(X)\|_F / (\|X\|_F + \|A^TXA\|_F + \|A^TXBK\|_F + \|Q\|_F)\f$: it is the
+/// relative size of the perturbation of the terms that X satisfies exactly, and
+/// it does not read large when two huge terms cancel. Otherwise the solver
+/// refuses, naming the reason it can establish: (A, B) not stabilizable, a mode
+/// on the unit circle unobserved by Q, or an equation too ill-conditioned for
+/// the working precision (with the residual reached).
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/riccati_support.hpp>
 #include <adaptobs/design/schur_stability.hpp>
+#include <adaptobs/design/stein.hpp>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string_view>
 
 namespace adaptobs {
 
@@ -32,13 +64,18 @@ namespace adaptobs {
 template <typename Scalar, int N>
 struct DareSolution {
   Eigen::Matrix<Scalar, N, N> X;  ///< symmetric positive semidefinite solution
-  int iterations = 0;             ///< doubling steps taken
-  Scalar relative_residual = 0;   ///< ‖X − Ric(X)‖_F / max(1, ‖X‖_F)
+  int iterations = 0;             ///< doubling steps plus Newton steps
+  Scalar relative_residual = 0;   ///< per-term relative residual (see file comment), at most the tolerance
 };
 
 struct DareOptions {
-  int max_iterations = 100;
-  double tolerance = 0;  ///< relative change that stops the doubling; 0 selects 100 ε
+  int max_iterations = 100;  ///< doubling steps; Newton steps are limited to 50
+  double tolerance = 0;      ///< relative change that stops the doubling; 0 selects 100 ε
+  /// Largest accepted per-term relative residual; 0 selects max(1e-10, 1000 ε).
+  double residual_tolerance = 0;
+  /// The closed loop must have spectral radius below 1 − margin; 0 selects √ε.
+  /// A smaller radius cannot be told apart from a mode on the unit circle.
+  double stability_margin = 0;
 };
 
 namespace detail {
@@ -48,41 +85,63 @@ namespace detail {
 // use are costly to compile, and one instantiation per scalar type then serves
 // every size.
 
+inline constexpr RiccatiRoles control_dare_roles{
+    "solve_dare", "B",
+    "must be stabilizable: a mode of A on or outside the unit circle is not reached by B, so no gain makes A - BK Schur",
+    "leave a mode of A on the unit circle unobserved by Q: the DARE has no stabilizing solution"};
+
+/// The DARE residual at X and the quantities Newton's method reuses.
+template <typename Scalar>
+struct DareEvaluation {
+  DynamicMatrix<Scalar> residual;  ///< AᵀXA − AᵀXBK + Q − X
+  DynamicMatrix<Scalar> gain;      ///< K = (R + BᵀXB)⁻¹BᵀXA
+  Scalar relative = std::numeric_limits<Scalar>::infinity();
+  bool valid = false;  ///< R + BᵀXB positive definite and everything finite
+};
+
+template <typename Scalar>
+DareEvaluation<Scalar> evaluate_dare(const DynamicMatrix<Scalar>& X, const DynamicMatrix<Scalar>& A,
+                                     const DynamicMatrix<Scalar>& B, const DynamicMatrix<Scalar>& Q,
+                                     const DynamicMatrix<Scalar>& R) {
+  DareEvaluation<Scalar> e;
+  const Eigen::LLT<DynamicMatrix<Scalar>> s(R + B.transpose() * X * B);
+  if (s.info() != Eigen::Success) return e;
+  const DynamicMatrix<Scalar> btxa = B.transpose() * X * A;
+  e.gain = s.solve(btxa);
+  const DynamicMatrix<Scalar> ata = A.transpose() * X * A;
+  const DynamicMatrix<Scalar> correction = btxa.transpose() * e.gain;
+  e.residual = ata - correction + Q - X;
+  e.residual = Scalar(0.5) * (e.residual + e.residual.transpose()).eval();
+  const Scalar scale = X.norm() + ata.norm() + correction.norm() + Q.norm();
+  e.relative = scale > Scalar(0) ? e.residual.norm() / scale : Scalar(0);
+  e.valid = std::isfinite(e.relative) && e.gain.allFinite();
+  return e;
+}
+
 template <typename Scalar>
 Scalar dare_relative_residual(const DynamicMatrix<Scalar>& X, const DynamicMatrix<Scalar>& A,
                               const DynamicMatrix<Scalar>& B, const DynamicMatrix<Scalar>& Q,
                               const DynamicMatrix<Scalar>& R) {
-  const DynamicMatrix<Scalar> btxa = B.transpose() * X * A;
-  const DynamicMatrix<Scalar> s = R + B.transpose() * X * B;
-  const DynamicMatrix<Scalar> ric = A.transpose() * X * A - btxa.transpose() * s.llt().solve(btxa) + Q;
-  return (X - ric).norm() / std::max(Scalar(1), X.norm());
+  const auto e = evaluate_dare<Scalar>(X, A, B, Q, R);
+  return e.valid ? e.relative : std::numeric_limits<Scalar>::infinity();
 }
 
+/// SDA (file comment, stage 2) on G = B R⁻¹ Bᵀ, H = Q: the limit of H_j, or
+/// nothing when an iterate is not finite or the doubling does not settle.
 template <typename Scalar>
-DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& B,
-                                                const DynamicMatrix<Scalar>& Q, const DynamicMatrix<Scalar>& R,
-                                                DareOptions options) {
+std::optional<DynamicMatrix<Scalar>> structure_preserving_doubling(const DynamicMatrix<Scalar>& A,
+                                                                   const DynamicMatrix<Scalar>& B,
+                                                                   const DynamicMatrix<Scalar>& Q,
+                                                                   const DynamicMatrix<Scalar>& R, int max_iterations,
+                                                                   Scalar tolerance, int& iterations) {
   using Square = DynamicMatrix<Scalar>;
-  constexpr std::string_view who = "solve_dare";
-  require_square(A, who, "A");
-  require_finite(A, who, "A");
   const Index n = A.rows();
-  require_shape(B, n, B.cols(), who, "B");
-  require_finite(B, who, "B");
-  require_shape(Q, n, n, who, "Q");
-  require_positive_semidefinite(Q, who, "Q");
-  require_shape(R, B.cols(), B.cols(), who, "R");
-  require_positive_definite(R, who, "R");
-
-  const Scalar tol = options.tolerance > 0 ? Scalar(options.tolerance)
-                                           : Scalar(100) * std::numeric_limits<Scalar>::epsilon();
   const Square identity = Square::Identity(n, n);
   Square a = A;
   Square g = B * R.llt().solve(B.transpose());
+  g = Scalar(0.5) * (g + g.transpose()).eval();
   Square h = Q;
-  DareSolution<Scalar, Eigen::Dynamic> result;
-  bool converged = false;
-  for (int j = 0; j < options.max_iterations && !converged; ++j) {
+  for (int j = 0; j < max_iterations; ++j) {
     const Eigen::PartialPivLU<Square> w(identity + g * h);
     const Square w_inv_a = w.solve(a);
     const Square w_inv_g = w.solve(g);
@@ -92,31 +151,112 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
     const Scalar change = (h_next - h).norm();
     h = Scalar(0.5) * (h_next + h_next.transpose());
     g = Scalar(0.5) * (g_next + g_next.transpose());
-    result.iterations = j + 1;
-    if (!h.allFinite() || !g.allFinite() || !a.allFinite()) break;
-    converged = change <= tol * std::max(Scalar(1), h.norm());
+    ++iterations;
+    if (!h.allFinite() || !g.allFinite() || !a.allFinite()) return std::nullopt;
+    if (change <= tolerance * h.norm()) return h;
   }
-  result.X = h;
-  constexpr std::string_view no_solution =
-      "admit no stabilizing DARE solution: (A, B) must be stabilizable and (A, Q) detectable";
-  if (!converged || !result.X.allFinite()) fail_argument(who, "A, B", no_solution);
-  result.relative_residual = detail::dare_relative_residual<Scalar>(result.X, A, B, Q, R);
-  // The stabilizing solution makes A − B (R + BᵀXB)⁻¹ BᵀXA Schur.
-  const Square s = R + B.transpose() * result.X * B;
-  const Square closed_loop = A - B * s.llt().solve(B.transpose() * result.X * A);
-  if (!is_schur_stable(closed_loop)) fail_argument(who, "A, B", no_solution);
-  return result;
+  return std::nullopt;
+}
+
+/// A gain K with A − BK Schur, from the well-scaled DARE (A, B, I, ‖B‖²I), or
+/// nothing when (A, B) is not stabilizable (or too close to it for the precision).
+template <typename Scalar>
+std::optional<DynamicMatrix<Scalar>> stabilizing_gain(const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& B,
+                                                      int max_iterations, Scalar tolerance, int& iterations) {
+  const Index n = A.rows(), m = B.cols();
+  const Scalar b2 = B.squaredNorm();
+  const DynamicMatrix<Scalar> q = DynamicMatrix<Scalar>::Identity(n, n);
+  const DynamicMatrix<Scalar> r = (b2 > Scalar(0) ? b2 : Scalar(1)) * DynamicMatrix<Scalar>::Identity(m, m);
+  const auto x = structure_preserving_doubling<Scalar>(A, B, q, r, max_iterations, tolerance, iterations);
+  if (!x) return std::nullopt;
+  const auto e = evaluate_dare<Scalar>(*x, A, B, q, r);
+  if (!e.valid || !is_schur_stable(DynamicMatrix<Scalar>(A - B * e.gain))) return std::nullopt;
+  return e.gain;
+}
+
+template <typename Scalar>
+DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& B,
+                                                const DynamicMatrix<Scalar>& Q, const DynamicMatrix<Scalar>& R,
+                                                DareOptions options, const RiccatiRoles& roles = control_dare_roles) {
+  using Square = DynamicMatrix<Scalar>;
+  validate_riccati_data(A, B, Q, R, roles);
+
+  constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
+  const Scalar sda_tolerance = options.tolerance > 0 ? Scalar(options.tolerance) : Scalar(100) * eps;
+  const Scalar residual_tolerance = options.residual_tolerance > 0 ? Scalar(options.residual_tolerance)
+                                                                   : std::max(Scalar(1e-10), Scalar(1000) * eps);
+  const Scalar margin = options.stability_margin > 0 ? Scalar(options.stability_margin) : std::sqrt(eps);
+
+  // Stage 1: X = σ X̃ with σ a power of two (design/riccati_support.hpp).
+  const Scalar sigma = riccati_solution_scale<Scalar>(B, Q, R);
+  const Square q = Q / sigma, r = R / sigma;
+
+  DareSolution<Scalar, Eigen::Dynamic> result;
+  auto stabilizing = [&](const Square& gain, Scalar radius_margin) {
+    return is_schur_stable(Square(A - B * gain), radius_margin);
+  };
+
+  // Stage 2: a start whose closed loop is Schur.
+  std::optional<Square> start =
+      structure_preserving_doubling<Scalar>(A, B, q, r, options.max_iterations, sda_tolerance, result.iterations);
+  if (start) {
+    const auto e = evaluate_dare<Scalar>(*start, A, B, q, r);
+    if (!e.valid || !stabilizing(e.gain, Scalar(0))) start.reset();
+  }
+  bool stabilizability_known = false;
+  if (!start) {
+    const auto k0 = stabilizing_gain<Scalar>(A, B, options.max_iterations, sda_tolerance, result.iterations);
+    if (!k0) fail_not_stabilizable(roles);
+    stabilizability_known = true;
+    const Square closed = A - B * *k0;
+    start = solve_stein_doubling<Scalar>(closed, Square(q + k0->transpose() * r * *k0));
+  }
+
+  // Stage 3: Newton steps while the residual decreases.
+  Square x = *start;
+  auto e = evaluate_dare<Scalar>(x, A, B, q, r);
+  for (int step = 0; step < 50 && e.valid && e.relative > eps; ++step) {
+    const Square closed = A - B * e.gain;
+    if (!is_schur_stable(closed)) break;
+    Square candidate = x + solve_stein_doubling<Scalar>(closed, e.residual);
+    candidate = Scalar(0.5) * (candidate + candidate.transpose()).eval();
+    auto next = evaluate_dare<Scalar>(candidate, A, B, q, r);
+    if (!(next.valid && next.relative < e.relative)) break;
+    x = std::move(candidate);
+    e = std::move(next);
+    ++result.iterations;
+  }
+  if (e.valid && e.relative <= residual_tolerance && stabilizing(e.gain, margin)) {
+    result.X = sigma * x;
+    result.relative_residual = e.relative;
+    return result;
+  }
+
+  // Refusal: the first reason that can be established.
+  int ignored = 0;
+  if (!stabilizability_known && !stabilizing_gain<Scalar>(A, B, options.max_iterations, sda_tolerance, ignored))
+    fail_not_stabilizable(roles);
+  // A mode of A that Q does not observe is reached by no term of the equation:
+  // (A, Q) undetectable together with a failure points at such a mode on the circle.
+  if (!stabilizing_gain<Scalar>(Square(A.transpose()), q, options.max_iterations, sda_tolerance, ignored))
+    fail_unreached_mode(roles);
+  fail_ill_conditioned(roles, e.relative, residual_tolerance, "spectral radius",
+                       e.valid ? spectral_radius_bound(Square(A - B * e.gain)) : std::numeric_limits<Scalar>::infinity(),
+                       Scalar(1) - margin);
 }
 #ifdef ADAPTOBS_PRECOMPILED
 ADAPTOBS_INSTANTIATE DareSolution<double, Eigen::Dynamic> solve_dare<double>(const DynamicMatrix<double>&,
                                                                             const DynamicMatrix<double>&,
                                                                             const DynamicMatrix<double>&,
-                                                                            const DynamicMatrix<double>&, DareOptions);
+                                                                            const DynamicMatrix<double>&, DareOptions,
+                                                                            const RiccatiRoles&);
 #endif
 
 }  // namespace detail
 
-/// Relative residual \f$\|X - (A^TXA - A^TXB(R + B^TXB)^{-1}B^TXA + Q)\|_F / \max(1,\|X\|_F)\f$.
+/// Per-term relative residual of X in the DARE (A, B, Q, R): \f$\|\mathcal R(X)\|_F /
+/// (\|X\|_F + \|A^TXA\|_F + \|A^TXBK\|_F + \|Q\|_F)\f$ (see file comment); infinite when
+/// \f$R + B^TXB\f$ is not positive definite.
 template <class DX, class DA, class DB, class DQ, class DR>
 [[nodiscard]] typename DX::Scalar dare_relative_residual(const Eigen::MatrixBase<DX>& X, const Eigen::MatrixBase<DA>& A,
                                                          const Eigen::MatrixBase<DB>& B, const Eigen::MatrixBase<DQ>& Q,
@@ -127,8 +267,11 @@ template <class DX, class DA, class DB, class DQ, class DR>
 }
 
 /// Stabilizing solution of the control-form DARE (see file comment).
-/// Throws `ConfigurationError` on invalid arguments or when no stabilizing
-/// solution exists ((A, B) not stabilizable or (A, Q) not detectable).
+/// Throws `ConfigurationError` on invalid arguments, and refuses, naming the
+/// reason, when no stabilizing solution exists ((A, B) not stabilizable, or a
+/// mode on the unit circle unobserved by Q) or when the working precision
+/// cannot reach `options.residual_tolerance` with a closed-loop spectral radius
+/// below 1 − `options.stability_margin`.
 template <class DA, class DB, class DQ, class DR>
 [[nodiscard]] auto solve_dare(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
                               const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R,
@@ -157,10 +300,19 @@ KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> steady_state_kalman_gain(cons
                                                                             const DynamicMatrix<Scalar>& Q,
                                                                             const DynamicMatrix<Scalar>& R,
                                                                             DareOptions options) {
-  require_shape(C, C.rows(), A.cols(), "steady_state_kalman_gain", "C");
+  // The dual equation (Aᵀ, Cᵀ, Q, R): its stabilizability is the detectability
+  // of (A, C), and its "unobserved by Q" is "not excited by the process noise".
+  static constexpr RiccatiRoles roles{
+      "steady_state_kalman_gain", "C",
+      "must be detectable: a mode of A on or outside the unit circle is not seen by C, so no gain makes A - KC Schur",
+      "leave a mode of A on the unit circle unexcited by the process noise Q: the filter DARE has no stabilizing "
+      "solution"};
+  require_square(A, roles.who, "A");
+  require_shape(C, C.rows(), A.cols(), roles.who, "C");
+  require_finite(C, roles.who, "C");
   const DynamicMatrix<Scalar> at = A.transpose();
   const DynamicMatrix<Scalar> ct = C.transpose();
-  const auto dual = detail::solve_dare<Scalar>(at, ct, Q, R, options);
+  const auto dual = detail::solve_dare<Scalar>(at, ct, Q, R, options, roles);
   KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> result;
   result.P = dual.X;
   result.relative_residual = dual.relative_residual;

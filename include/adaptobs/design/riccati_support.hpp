@@ -1,0 +1,124 @@
+#pragma once
+/// \file
+/// What the algebraic Riccati solvers (dare.hpp, care.hpp) share: the
+/// scalings they apply before they iterate, and the terms of their refusals.
+///
+/// Both the discrete and the continuous equation keep their form under
+/// - **X = σX̃**: (A, B, Q, R) becomes (A, B, Q/σ, R/σ);
+/// - **a state scaling x = Dx̃** (D diagonal): (A, B, Q, R) becomes
+///   (D⁻¹AD, D⁻¹B, DQD, R) and X̃ = DXD.
+///
+/// Both are exact when σ and the entries of D are powers of two. The first
+/// keeps X, Q and R of order one (X of order R for a huge R would overflow
+/// the products otherwise); the second equalizes the rows and columns of the
+/// Hamiltonian matrix so that an iteration on it does not lose the small
+/// entries against the large ones.
+
+#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <string_view>
+
+namespace adaptobs::detail {
+
+/// The power of two nearest below max(max|Q|, max|R| / max‖B e_j‖²), or 1 when that is 0.
+template <typename Scalar>
+[[nodiscard]] Scalar riccati_solution_scale(const DynamicMatrix<Scalar>& B, const DynamicMatrix<Scalar>& Q,
+                                            const DynamicMatrix<Scalar>& R) {
+  const Scalar b2 = B.size() ? B.cwiseAbs2().colwise().sum().maxCoeff() : Scalar(0);
+  const Scalar r = R.size() ? R.cwiseAbs().maxCoeff() : Scalar(0);
+  const Scalar q = Q.size() ? Q.cwiseAbs().maxCoeff() : Scalar(0);
+  const Scalar sigma = std::max(q, b2 > Scalar(0) ? r / b2 : Scalar(0));
+  return sigma > Scalar(0) ? std::ldexp(Scalar(1), std::ilogb(sigma)) : Scalar(1);
+}
+
+/// Diagonal state scaling D (powers of two) that balances the Hamiltonian
+/// \f$\begin{bmatrix} A & -G\\ -Q & -A^T\end{bmatrix}\f$ under the symplectic similarity
+/// diag(D, D⁻¹), applied in place to A, G = BR⁻¹Bᵀ and Q; returns the diagonal of D.
+///
+/// Scaling state i by f multiplies column i of A and row i of Q by f and
+/// divides row i of A and row i of G by f (and likewise the symmetric
+/// columns), so f² should equal r_i / c_i with
+/// \f$c_i = \sum_{j\ne i}|a_{ji}| + \sum_j|q_{ji}|\f$ and \f$r_i = \sum_{j\ne i}|a_{ij}| + \sum_j|g_{ij}|\f$.
+/// Sweeps apply the power of two nearest to √(r_i / c_i) while that lowers
+/// c_i f + r_i / f by 5% or more, as in Osborne's balancing (E. E. Osborne,
+/// "On pre-conditioning of matrices", J. ACM 7(4), 1960).
+template <typename Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, 1> balance_hamiltonian(DynamicMatrix<Scalar>& A, DynamicMatrix<Scalar>& G,
+                                                             DynamicMatrix<Scalar>& Q) {
+  const Index n = A.rows();
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> d = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Ones(n);
+  for (int sweep = 0; sweep < 64; ++sweep) {
+    bool changed = false;
+    for (Index i = 0; i < n; ++i) {
+      const Scalar c = A.col(i).cwiseAbs().sum() - std::abs(A(i, i)) + Q.col(i).cwiseAbs().sum();
+      const Scalar r = A.row(i).cwiseAbs().sum() - std::abs(A(i, i)) + G.row(i).cwiseAbs().sum();
+      if (!(c > Scalar(0)) || !(r > Scalar(0)) || !std::isfinite(c) || !std::isfinite(r)) continue;
+      const Scalar f = std::ldexp(Scalar(1), static_cast<int>(std::lround(Scalar(0.5) * std::log2(r / c))));
+      if (!(c * f + r / f < Scalar(0.95) * (c + r))) continue;
+      changed = true;
+      d(i) *= f;
+      A.col(i) *= f;
+      A.row(i) /= f;
+      Q.col(i) *= f;
+      Q.row(i) *= f;
+      G.col(i) /= f;
+      G.row(i) /= f;
+    }
+    if (!changed) break;
+  }
+  return d;
+}
+
+/// The names a refusal uses. The control equations speak of (A, B, Q, R);
+/// the Kalman gains solve the dual equation (Aᵀ, Cᵀ, Q, R) and speak of C,
+/// detectability and process noise.
+struct RiccatiRoles {
+  std::string_view who;
+  std::string_view b;                 ///< the input (or output) matrix
+  std::string_view not_stabilizable;  ///< message for argument "A, <b>"
+  std::string_view unreached_mode;    ///< message for argument "A, Q": a marginal mode Q does not see
+};
+
+/// The checks both equations make of their data: A square and finite, B
+/// finite with A's rows, Q positive semidefinite, R positive definite.
+template <typename Scalar>
+void validate_riccati_data(const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& B,
+                           const DynamicMatrix<Scalar>& Q, const DynamicMatrix<Scalar>& R, const RiccatiRoles& roles) {
+  require_square(A, roles.who, "A");
+  require_finite(A, roles.who, "A");
+  require_shape(B, A.rows(), B.cols(), roles.who, roles.b);
+  require_finite(B, roles.who, roles.b);
+  require_shape(Q, A.rows(), A.rows(), roles.who, "Q");
+  require_positive_semidefinite(Q, roles.who, "Q");
+  require_shape(R, B.cols(), B.cols(), roles.who, "R");
+  require_positive_definite(R, roles.who, "R");
+}
+
+[[noreturn]] inline void fail_not_stabilizable(const RiccatiRoles& roles) {
+  fail_argument(roles.who, std::string("A, ").append(roles.b), roles.not_stabilizable);
+}
+
+[[noreturn]] inline void fail_unreached_mode(const RiccatiRoles& roles) {
+  fail_argument(roles.who, "A, Q", roles.unreached_mode);
+}
+
+/// Refusal of a well-posed equation that the precision cannot solve to the
+/// stated accuracy: the figures reached and those required.
+template <typename Scalar>
+[[noreturn]] void fail_ill_conditioned(const RiccatiRoles& roles, Scalar residual, Scalar tolerance,
+                                       std::string_view stability_figure, Scalar reached, Scalar required) {
+  std::ostringstream os;
+  os << "give a Riccati equation too ill-conditioned for this precision: the best solution found has relative "
+        "residual "
+     << residual << " (at most " << tolerance << " required) and closed-loop " << stability_figure << " " << reached
+     << " (below " << required << " required)";
+  fail_argument(roles.who, std::string("A, ").append(roles.b).append(", Q, R"), os.str());
+}
+
+}  // namespace adaptobs::detail

@@ -1,0 +1,42 @@
+#pragma once
+/// \file
+/// Discrete Lyapunov (Stein) equation \f$X = F^TXF + W\f$ by Smith's doubling.
+///
+/// For a Schur-stable F the solution is the series \f$\sum_{k\ge0} (F^T)^k W F^k\f$.
+/// Doubling sums it in \f$\log_2\f$ as many steps as the series needs terms,
+/// \f[ X_{j+1} = X_j + F_j^T X_j F_j,\qquad F_{j+1} = F_j^2,\qquad X_0 = W,\ F_0 = F, \f]
+/// so that \f$X_j\f$ holds the first \f$2^j\f$ terms (R. A. Smith, "Matrix equation
+/// XA + BX = C", SIAM J. Appl. Math. 16(1), 1968). It needs matrix products
+/// only: cheap to compile, and accurate for the Schur-stable F of Newton's
+/// method for the discrete Riccati equation, whose spectral radius the caller
+/// has already bounded away from 1.
+
+#include <adaptobs/core/dimensions.hpp>
+
+#include <Eigen/Core>
+
+#include <limits>
+
+namespace adaptobs::detail {
+
+/// Solution of \f$X = F^TXF + W\f$ for a Schur-stable F (W symmetric), or a
+/// non-finite matrix when the series does not converge within 64 doublings
+/// (\f$2^{64}\f$ terms: \f$\rho(F) \ge 1 - 10^{-18}\f$ in practice).
+template <typename Scalar>
+[[nodiscard]] Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> solve_stein_doubling(
+    const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& F,
+    const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& W) {
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  Matrix x = W, f = F;
+  constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
+  for (int j = 0; j < 64; ++j) {
+    const Matrix term = f.transpose() * x * f;
+    x += Scalar(0.5) * (term + term.transpose());
+    // The tail left after 2^(j+1) terms is at most about ‖term‖: stop once it is rounding.
+    if (!(term.cwiseAbs().maxCoeff() > eps * x.cwiseAbs().maxCoeff())) return x;
+    f = (f * f).eval();
+  }
+  return Matrix::Constant(F.rows(), F.cols(), std::numeric_limits<Scalar>::quiet_NaN());
+}
+
+}  // namespace adaptobs::detail
