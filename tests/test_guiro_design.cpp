@@ -260,6 +260,13 @@ TEST(GuiroConvergence, PaperSplitAroundH0CertifiesNothing) {
   EXPECT_NEAR(w[5], 0.148481410920994, 1e-12);
   EXPECT_NEAR(w[10], 0.17886340017982783, 1e-12);
   EXPECT_NEAR(w[100], 0.21937840520170795, 1e-12);
+  // The paper prints 0.2156, which is ‖W(59)‖; the norms grow towards their
+  // supremum ‖W(∞)‖ = 0.2251, with H∞ = (T, −T²/2) = (1, −1/2).
+  EXPECT_NEAR(w[59], 0.2156, 5e-5);
+  const double w_limit =
+      ((Eigen::Matrix2d::Identity() - gains.K * paper.C) * paper.E * (Eigen::Vector2d(1, -0.5) - paper.H0)).norm();
+  EXPECT_NEAR(w_limit, 0.2251, 5e-5);
+  EXPECT_LT(*std::max_element(w.begin(), w.end()), w_limit);
   // The printed entries of W(1).
   const Eigen::Vector2d w1 = (Eigen::Matrix2d::Identity() - gains.K * paper.C) * paper.E *
                              (g::closed_form_H<double>(1) - paper.H0);
