@@ -320,6 +320,30 @@ TEST(Riccati, DifferentialEquationTendsToTheAlgebraicSolution) {
   EXPECT_MATRIX_NEAR(rde.gain(siso::output_matrix<double>()), kb.K, 1e-8, 1e-8);
 }
 
+// A stiff system (eigenvalue −200) sampled every 0.1 s: one RK4 step per sample
+// would have h|λ| = 40, far outside RK4's stability interval. The step is
+// bounded by 2.5 / (2‖A − KC‖_F), and P follows a run with 1000 steps per sample.
+TEST(Riccati, DifferentialEquationSubstepsALongIntervalOfAStiffSystem) {
+  using D = adaptobs::Dimensions<double, 2, 1, 1, 0>;
+  Eigen::Matrix2d a;
+  a << -200, 1, 0, -1;
+  const auto model = adaptobs::make_continuous_lti_model<D>(a, Eigen::Vector2d(0, 1), Eigen::RowVector2d(1, 1),
+                                                            [](double) { return Eigen::Matrix<double, 2, 0>(); });
+  const Eigen::Matrix<double, 1, 1> r(0.5);
+  adaptobs::RiccatiDifferentialEquation<D> bounded(Eigen::Matrix2d::Identity(), Eigen::Matrix2d::Identity(), r);
+  adaptobs::RiccatiDifferentialEquation<D> fine(Eigen::Matrix2d::Identity(), Eigen::Matrix2d::Identity(), r);
+  int bounded_steps = 0;
+  for (int k = 0; k < 50; ++k) {
+    bounded_steps += bounded.advance(model, 0.1 * k, 0.1 * (k + 1));
+    EXPECT_EQ(fine.advance(model, 0.1 * k, 0.1 * (k + 1), 1000), 1000);
+  }
+  // At least 2‖A − KC‖_F · 0.1 / 2.5 ≥ 16 steps per sample, and not many more.
+  EXPECT_GE(bounded_steps, 50 * 16);
+  EXPECT_LE(bounded_steps, 50 * 20);
+  EXPECT_MATRIX_NEAR(bounded.covariance(), fine.covariance(), 1e-9, 1e-6);
+  EXPECT_GT(bounded.covariance().determinant(), 0.0);
+}
+
 TEST(LtvStability, FloquetExponents) {
   // Markus–Yamabe: frozen eigenvalues −1/4 ± 0.66i at every t, yet a Floquet exponent of +1/2.
   const auto markus_yamabe = [](double t) {
