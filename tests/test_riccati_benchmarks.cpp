@@ -15,6 +15,7 @@
 #include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -433,9 +434,12 @@ TEST(RiccatiHostile, DareWithHugeRIsAccurateNormwise) {
   const RiccatiCase c{"huge R", diagonal({1.2, 0.5}), rows(2, 1, {1, 1}), Matrix::Identity(2, 2), scalar(1e300)};
   const auto solution = adaptobs::solve_dare(c.A, c.B, c.Q, c.R);
   EXPECT_NEAR(solution.X(0, 0) / 4.4e299, 1.0, 1e-14);
-  // Entries far below ‖X‖ carry accuracy relative to ‖X‖ only (the exact
-  // X01 and X11 are -0.419 and 1.333).
-  EXPECT_LE(std::abs(solution.X(1, 1)), 1e-14 * solution.X(0, 0));
+  // Entries far below ‖X‖ carry accuracy relative to ‖X‖ only: against the
+  // 60-digit X (X01 = −0.41905, X11 = 1.33333), the error is at rounding
+  // relative to X00 (norms taken entry by entry: ‖X‖_F² would overflow).
+  const double worst = std::max({std::abs(solution.X(0, 0) - 4.4e299), std::abs(solution.X(0, 1) + 0.41904761904761905),
+                                 std::abs(solution.X(1, 1) - 1.3333333333333333)});
+  EXPECT_LE(worst / 4.4e299, 1e-14);
   EXPECT_LE(solution.relative_residual, 1e-15);
 }
 
@@ -468,6 +472,17 @@ TEST(RiccatiHostile, DareRefusalsNameTheTrueReason) {
   // its mirror image 1/2 (X00 = 3 solves x = 4x − 4x²/(1 + x)).
   const auto undetectable = adaptobs::solve_dare(diagonal({2, 0.5}), identity, diagonal({0, 1}), identity);
   EXPECT_NEAR(undetectable.X(0, 0), 3.0, 1e-14);
+  // Mode 1 on the circle again, with a mode inside: the Newton steps converge
+  // only linearly towards a closed loop with radius 1, which the margin rejects.
+  EXPECT_NE(dare_error(diagonal({1, 0.9}), identity, diagonal({0, 1}), identity)
+                .find("argument 'A, Q' leave a mode of A on the unit circle unobserved by Q"),
+            std::string::npos);
+  // An unobserved mode outside the circle is no reason to refuse: when an
+  // impossible tolerance makes the solver refuse, it does not blame that mode.
+  adaptobs::DareOptions strict;
+  strict.residual_tolerance = 1e-300;
+  const std::string outside = dare_error(diagonal({2, 0.5}), identity, diagonal({0, 1}), identity, strict);
+  EXPECT_NE(outside.find("too ill-conditioned"), std::string::npos) << outside;
   // A residual tolerance no solution can meet: the refusal says so, with the figures.
   adaptobs::DareOptions impossible;
   impossible.residual_tolerance = 1e-300;
@@ -522,10 +537,30 @@ TEST(RiccatiHostile, CareOnBadlyScaledStatesAndUndampedOscillators) {
   // Not reached by B at all.
   expect_care_outcome({"oscillator without input", rows(2, 2, {0, 1, -1, 0}), Matrix::Zero(2, 1),
                        Matrix::Identity(2, 2), scalar(1), {}, 0, "argument 'A, B' must be stabilizable"});
+  // A stable mode at −1e-9 that B does not reach leaves (A, B) stabilizable:
+  // solved, or refused as ill-conditioned, but never as unstabilizable.
+  const std::string slow = configuration_error_of(
+      [&] { (void)adaptobs::solve_care(diagonal({-1e-9, -1}), rows(2, 1, {0, 1}), Matrix::Identity(2, 2), scalar(1)); });
+  EXPECT_EQ(slow.find("stabilizable"), std::string::npos) << slow;
   // The discrete counterpart: a rotation (eigenvalues on the unit circle) reached by B.
   const double angle = 0.3;
   expect_dare_outcome({"rotation", rows(2, 2, {std::cos(angle), std::sin(angle), -std::sin(angle), std::cos(angle)}),
                        rows(2, 1, {0, 1}), Matrix::Identity(2, 2), scalar(1)});
+}
+
+TEST(RiccatiHostile, EmptyStateAndNoInput) {
+  EXPECT_EQ(adaptobs::solve_dare(Matrix(0, 0), Matrix(0, 1), Matrix(0, 0), scalar(1)).X.size(), 0);
+  EXPECT_EQ(adaptobs::solve_care(Matrix(0, 0), Matrix(0, 1), Matrix(0, 0), scalar(1)).X.size(), 0);
+  // No input: X solves the Stein (Lyapunov) equation when A is stable, and
+  // (A, B) is not stabilizable when it is not.
+  const auto stein = adaptobs::solve_dare(diagonal({0.5, 0.2}), Matrix(2, 0), Matrix::Identity(2, 2), Matrix(0, 0));
+  EXPECT_MATRIX_NEAR(stein.X, diagonal({1 / 0.75, 1 / 0.96}), 0, 1e-14);
+  const auto lyapunov = adaptobs::solve_care(diagonal({-1, -2}), Matrix(2, 0), Matrix::Identity(2, 2), Matrix(0, 0));
+  EXPECT_MATRIX_NEAR(lyapunov.X, diagonal({0.5, 0.25}), 0, 1e-14);
+  EXPECT_NE(configuration_error_of([] {
+              (void)adaptobs::solve_dare(diagonal({1.5, 0.2}), Matrix(2, 0), Matrix::Identity(2, 2), Matrix(0, 0));
+            }).find("argument 'A, B' must be stabilizable"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -81,6 +81,7 @@ template <class Derived>
 void require_symmetric(const Eigen::MatrixBase<Derived>& m, std::string_view who, std::string_view argument) {
   using Scalar = typename Derived::Scalar;
   require_square(m, who, argument);
+  if (m.size() == 0) return;
   const Scalar scale = m.cwiseAbs().maxCoeff();
   const Scalar tol = Scalar(100) * std::numeric_limits<Scalar>::epsilon() * (scale > Scalar(0) ? scale : Scalar(1));
   if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= tol)) fail_argument(who, argument, "must be symmetric");

@@ -82,15 +82,18 @@ CareEvaluation<Scalar> evaluate_care(const DynamicMatrix<Scalar>& X, const Dynam
   e.closed_loop = A - gx;
   const Scalar x_norm = X.norm();
   const Scalar scale = Scalar(2) * A.norm() * x_norm + G.norm() * x_norm * x_norm + Q.norm();
-  e.relative = scale > Scalar(0) ? e.residual.norm() / scale : Scalar(0);
-  if (!std::isfinite(e.relative)) e.relative = std::numeric_limits<Scalar>::infinity();
+  const Scalar residual_norm = e.residual.norm();
+  e.relative = scale > Scalar(0) ? residual_norm / scale : residual_norm;
+  if (!X.allFinite() || !std::isfinite(e.relative)) e.relative = std::numeric_limits<Scalar>::infinity();
   return e;
 }
 
-/// Hurwitz with the margin √ε‖M‖_F that keeps the Newton Lyapunov equations regular.
+/// Hurwitz with a margin relative to ‖M‖_F: by default √ε, which keeps the
+/// Newton Lyapunov equations regular and accepts a solution.
 template <typename Scalar>
-bool is_hurwitz_with_margin(const DynamicMatrix<Scalar>& m) {
-  return m.allFinite() && is_hurwitz_stable(m, std::sqrt(std::numeric_limits<Scalar>::epsilon()) * m.norm());
+bool is_hurwitz_with_margin(const DynamicMatrix<Scalar>& m,
+                            Scalar relative_margin = std::sqrt(std::numeric_limits<Scalar>::epsilon())) {
+  return m.allFinite() && is_hurwitz_stable(m, relative_margin * m.norm());
 }
 
 /// Solution of \f$M^TN + NM + W = 0\f$, or nothing when M has a pair of
@@ -150,8 +153,10 @@ template <typename Scalar>
 CareEvaluation<Scalar> care_newton_refinement(DynamicMatrix<Scalar>& x, const DynamicMatrix<Scalar>& a,
                                               const DynamicMatrix<Scalar>& g, const DynamicMatrix<Scalar>& q,
                                               int& iterations) {
+  // No stop at a small residual: near a mode on the axis the steps converge only
+  // linearly, and the closed loop reaches the axis's neighbourhood that the margin rejects.
   auto e = evaluate_care<Scalar>(x, a, g, q);
-  for (int step = 0; step < 50 && e.relative > std::numeric_limits<Scalar>::epsilon(); ++step) {
+  for (int step = 0; step < 50; ++step) {
     if (!is_hurwitz_with_margin(e.closed_loop)) break;
     const auto step_matrix = lyapunov_if_regular<Scalar>(e.closed_loop, e.residual);
     if (!step_matrix) break;
@@ -172,6 +177,12 @@ inline constexpr RiccatiRoles control_care_roles{
     "Hurwitz",
     "leave a mode of A on the imaginary axis unobserved by Q: the CARE has no stabilizing solution"};
 
+/// X = D⁻¹X̃D⁻¹: a solution of the balanced equation in the caller's states.
+template <typename Scalar>
+DynamicMatrix<Scalar> unbalance(const DynamicMatrix<Scalar>& x, const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& d) {
+  return d.cwiseInverse().asDiagonal() * x * d.cwiseInverse().asDiagonal();
+}
+
 /// A gain K with A − BK Hurwitz, from the well-scaled CARE (A, B, I, ‖B‖²I) of
 /// the balanced problem, or nothing when (A, B) is not stabilizable (or too
 /// close to it for the precision).
@@ -182,19 +193,18 @@ std::optional<DynamicMatrix<Scalar>> continuous_stabilizing_gain(const DynamicMa
   const Index n = A.rows();
   const Scalar b2 = B.squaredNorm();
   if (!(b2 > Scalar(0))) {  // K = 0 is the only gain: A itself must be Hurwitz
-    if (!is_hurwitz_with_margin(A)) return std::nullopt;
+    if (!is_hurwitz_with_margin(A, stabilizability_margin<Scalar>)) return std::nullopt;
     return Matrix::Zero(B.cols(), n);
   }
   Matrix a = A, g = B * B.transpose() / b2, q = Matrix::Identity(n, n);
   const auto d = balance_hamiltonian<Scalar>(a, g, q);
   auto x = care_sign_function_start<Scalar>(a, g, q, 100, iterations);
   if (!x) return std::nullopt;
-  const auto e = care_newton_refinement<Scalar>(*x, a, g, q, iterations);
-  if (!is_hurwitz_with_margin(e.closed_loop)) return std::nullopt;
-  // Back to the caller's states: X = D⁻¹X̃D⁻¹ and K = BᵀX / ‖B‖².
-  const Matrix x_original = d.cwiseInverse().asDiagonal() * *x * d.cwiseInverse().asDiagonal();
-  Matrix k = B.transpose() * x_original / b2;
-  if (!k.allFinite() || !is_hurwitz_with_margin(Matrix(A - B * k))) return std::nullopt;
+  (void)care_newton_refinement<Scalar>(*x, a, g, q, iterations);
+  // Back to the caller's states, K = BᵀX / ‖B‖² with X = D⁻¹X̃D⁻¹; an A − BK
+  // Hurwitz beyond rounding proves stabilizability.
+  Matrix k = B.transpose() * unbalance(*x, d) / b2;
+  if (!k.allFinite() || !is_hurwitz_with_margin(Matrix(A - B * k), stabilizability_margin<Scalar>)) return std::nullopt;
   return k;
 }
 
@@ -204,23 +214,28 @@ CareSolution<Scalar, Eigen::Dynamic> solve_care(const DynamicMatrix<Scalar>& A, 
                                                 const RiccatiRoles& roles = control_care_roles) {
   using Matrix = DynamicMatrix<Scalar>;
   validate_riccati_data(A, B, Q, R, roles);
+  CareSolution<Scalar, Eigen::Dynamic> result;
   const Index n = A.rows();
+  if (n == 0) return result;
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   const Scalar tolerance = std::max(Scalar(1e-10), Scalar(1000) * eps);
 
-  CareSolution<Scalar, Eigen::Dynamic> result;
   // X = σ D⁻¹X̃D⁻¹: X̃ solves the scaled, balanced equation (a, g, q).
   const Scalar sigma = riccati_solution_scale<Scalar>(B, Q, R);
   Matrix a = A, g = B * (R / sigma).llt().solve(B.transpose()), q = Q / sigma;
   g = Scalar(0.5) * (g + g.transpose()).eval();
   const auto d = balance_hamiltonian<Scalar>(a, g, q);
   auto start = care_sign_function_start<Scalar>(a, g, q, 100, result.iterations);
-  if (start && !is_hurwitz_with_margin(evaluate_care<Scalar>(*start, a, g, q).closed_loop)) start.reset();
-  bool stabilizability_known = false;
+  bool stabilizable = false;  // proven by a gain that makes A − BK Hurwitz
+  if (start) {
+    stabilizable = is_hurwitz_with_margin(evaluate_care<Scalar>(*start, a, g, q).closed_loop,
+                                          stabilizability_margin<Scalar>);
+    if (!stabilizable) start.reset();
+  }
   if (!start) {
     const auto k0 = continuous_stabilizing_gain<Scalar>(A, B, result.iterations);
     if (!k0) fail_not_stabilizable(roles);
-    stabilizability_known = true;
+    stabilizable = true;
     // Kleinman's first step, in the scaled and balanced coordinates: K̃ = K₀D.
     const Matrix k = *k0 * d.asDiagonal();
     const Matrix rk = (R / sigma) * k;
@@ -231,14 +246,20 @@ CareSolution<Scalar, Eigen::Dynamic> solve_care(const DynamicMatrix<Scalar>& A, 
   Matrix x = *start;
   const auto e = care_newton_refinement<Scalar>(x, a, g, q, result.iterations);
   if (e.relative <= tolerance && is_hurwitz_with_margin(e.closed_loop)) {
-    result.X = sigma * (d.cwiseInverse().asDiagonal() * x * d.cwiseInverse().asDiagonal());
+    result.X = sigma * unbalance(x, d);
     result.relative_residual = e.relative;
     return result;
   }
 
   int ignored = 0;
-  if (!stabilizability_known && !continuous_stabilizing_gain<Scalar>(A, B, ignored)) fail_not_stabilizable(roles);
-  if (!continuous_stabilizing_gain<Scalar>(Matrix(A.transpose()), Matrix(Q / sigma), ignored))
+  if (!stabilizable && !continuous_stabilizing_gain<Scalar>(A, B, ignored)) fail_not_stabilizable(roles);
+  // A mode unobserved by Q on the imaginary axis: (Aᵀ, Q) is not stabilizable,
+  // but becomes so once A is shifted left by 1e-6 ‖A‖, which moves the axis's
+  // modes into the left half-plane and leaves those further right unstable.
+  const Matrix at = A.transpose(), q_scaled = Q / sigma;
+  const Scalar shift = Scalar(1e-6) * (A.norm() > Scalar(0) ? A.norm() : Scalar(1));
+  if (!continuous_stabilizing_gain<Scalar>(at, q_scaled, ignored) &&
+      continuous_stabilizing_gain<Scalar>(Matrix(at - shift * Matrix::Identity(n, n)), q_scaled, ignored))
     fail_unreached_mode(roles);
   const bool finite = e.closed_loop.allFinite();
   fail_ill_conditioned(roles, e.relative, tolerance, "spectral abscissa",
@@ -274,6 +295,7 @@ template <class DA, class DG, class DQ>
   using Matrix = detail::DynamicMatrix<Scalar>;
   const Matrix a = detail::dynamic_copy(A), g = detail::dynamic_copy(G), q = detail::dynamic_copy(Q);
   CareSolution<Scalar, DA::RowsAtCompileTime> result;
+  if (a.rows() == 0) return result;
   auto x = detail::care_sign_function_start<Scalar>(a, g, q, max_iterations, result.iterations);
   if (!x) return std::nullopt;
   const auto e = detail::care_newton_refinement<Scalar>(*x, a, g, q, result.iterations);

@@ -113,8 +113,9 @@ DareEvaluation<Scalar> evaluate_dare(const DynamicMatrix<Scalar>& X, const Dynam
   e.residual = ata - correction + Q - X;
   e.residual = Scalar(0.5) * (e.residual + e.residual.transpose()).eval();
   const Scalar scale = X.norm() + ata.norm() + correction.norm() + Q.norm();
-  e.relative = scale > Scalar(0) ? e.residual.norm() / scale : Scalar(0);
-  e.valid = std::isfinite(e.relative) && e.gain.allFinite();
+  const Scalar residual_norm = e.residual.norm();
+  e.relative = scale > Scalar(0) ? residual_norm / scale : residual_norm;
+  e.valid = X.allFinite() && std::isfinite(e.relative) && e.gain.allFinite();
   return e;
 }
 
@@ -170,7 +171,8 @@ std::optional<DynamicMatrix<Scalar>> stabilizing_gain(const DynamicMatrix<Scalar
   const auto x = structure_preserving_doubling<Scalar>(A, B, q, r, max_iterations, tolerance, iterations);
   if (!x) return std::nullopt;
   const auto e = evaluate_dare<Scalar>(*x, A, B, q, r);
-  if (!e.valid || !is_schur_stable(DynamicMatrix<Scalar>(A - B * e.gain))) return std::nullopt;
+  if (!e.valid || !is_schur_stable(DynamicMatrix<Scalar>(A - B * e.gain), stabilizability_margin<Scalar>))
+    return std::nullopt;
   return e.gain;
 }
 
@@ -180,6 +182,8 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
                                                 DareOptions options, const RiccatiRoles& roles = control_dare_roles) {
   using Square = DynamicMatrix<Scalar>;
   validate_riccati_data(A, B, Q, R, roles);
+  DareSolution<Scalar, Eigen::Dynamic> result;
+  if (A.rows() == 0) return result;
 
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   const Scalar sda_tolerance = options.tolerance > 0 ? Scalar(options.tolerance) : Scalar(100) * eps;
@@ -191,7 +195,6 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   const Scalar sigma = riccati_solution_scale<Scalar>(B, Q, R);
   const Square q = Q / sigma, r = R / sigma;
 
-  DareSolution<Scalar, Eigen::Dynamic> result;
   auto stabilizing = [&](const Square& gain, Scalar radius_margin) {
     return is_schur_stable(Square(A - B * gain), radius_margin);
   };
@@ -199,23 +202,26 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   // Stage 2: a start whose closed loop is Schur.
   std::optional<Square> start =
       structure_preserving_doubling<Scalar>(A, B, q, r, options.max_iterations, sda_tolerance, result.iterations);
+  bool stabilizable = false;  // proven by a gain that makes A − BK Schur
   if (start) {
     const auto e = evaluate_dare<Scalar>(*start, A, B, q, r);
-    if (!e.valid || !stabilizing(e.gain, Scalar(0))) start.reset();
+    stabilizable = e.valid && stabilizing(e.gain, stabilizability_margin<Scalar>);
+    if (!stabilizable) start.reset();
   }
-  bool stabilizability_known = false;
   if (!start) {
     const auto k0 = stabilizing_gain<Scalar>(A, B, options.max_iterations, sda_tolerance, result.iterations);
     if (!k0) fail_not_stabilizable(roles);
-    stabilizability_known = true;
+    stabilizable = true;
     const Square closed = A - B * *k0;
     start = solve_stein_doubling<Scalar>(closed, Square(q + k0->transpose() * r * *k0));
   }
 
-  // Stage 3: Newton steps while the residual decreases.
+  // Stage 3: Newton steps while the residual decreases. No stop at a small
+  // residual: near a marginal mode the steps converge only linearly, and the
+  // closed loop reaches the circle's neighbourhood that the margin rejects.
   Square x = *start;
   auto e = evaluate_dare<Scalar>(x, A, B, q, r);
-  for (int step = 0; step < 50 && e.valid && e.relative > eps; ++step) {
+  for (int step = 0; step < 50 && e.valid; ++step) {
     const Square closed = A - B * e.gain;
     if (!is_schur_stable(closed)) break;
     Square candidate = x + solve_stein_doubling<Scalar>(closed, e.residual);
@@ -232,14 +238,18 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
     return result;
   }
 
-  // Refusal: the first reason that can be established.
+  // Refusal: the first reason that can be established (with the default
+  // doubling limit, whatever the caller's).
   int ignored = 0;
-  if (!stabilizability_known && !stabilizing_gain<Scalar>(A, B, options.max_iterations, sda_tolerance, ignored))
-    fail_not_stabilizable(roles);
-  // A mode of A that Q does not observe is reached by no term of the equation:
-  // (A, Q) undetectable together with a failure points at such a mode on the circle.
-  if (!stabilizing_gain<Scalar>(Square(A.transpose()), q, options.max_iterations, sda_tolerance, ignored))
-    fail_unreached_mode(roles);
+  const auto stabilizable_pair = [&](const Square& a, const Square& b) {
+    return stabilizing_gain<Scalar>(a, b, DareOptions{}.max_iterations, Scalar(100) * eps, ignored).has_value();
+  };
+  if (!stabilizable && !stabilizable_pair(A, B)) fail_not_stabilizable(roles);
+  // A mode unobserved by Q on the unit circle: (Aᵀ, Q) is not stabilizable,
+  // but becomes so once A is shrunk by 1 + 1e-6, which moves the circle's
+  // modes inside and leaves those further out where they were.
+  const Square at = A.transpose();
+  if (!stabilizable_pair(at, q) && stabilizable_pair(Square(at / Scalar(1 + 1e-6)), q)) fail_unreached_mode(roles);
   fail_ill_conditioned(roles, e.relative, residual_tolerance, "spectral radius",
                        e.valid ? spectral_radius_bound(Square(A - B * e.gain)) : std::numeric_limits<Scalar>::infinity(),
                        Scalar(1) - margin);

@@ -28,6 +28,7 @@ template <typename Scalar>
     const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& W) {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   Matrix x = W, f = F;
+  if (F.size() == 0) return x;
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   for (int j = 0; j < 64; ++j) {
     const Matrix term = f.transpose() * x * f;
