@@ -344,7 +344,6 @@ template <class DA, class DC, class DQ, class DR>
       "solution"};
   detail::require_square(A, roles.who, "A");
   detail::require_shape(C, C.rows(), A.cols(), roles.who, "C");
-  detail::require_finite(C, roles.who, "C");
   using detail::dynamic_copy;
   const auto dual = detail::solve_care<Scalar>(detail::DynamicMatrix<Scalar>(dynamic_copy(A).transpose()),
                                                detail::DynamicMatrix<Scalar>(dynamic_copy(C).transpose()),

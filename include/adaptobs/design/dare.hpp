@@ -319,7 +319,6 @@ KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> steady_state_kalman_gain(cons
       "solution"};
   require_square(A, roles.who, "A");
   require_shape(C, C.rows(), A.cols(), roles.who, "C");
-  require_finite(C, roles.who, "C");
   const DynamicMatrix<Scalar> at = A.transpose();
   const DynamicMatrix<Scalar> ct = C.transpose();
   const auto dual = detail::solve_dare<Scalar>(at, ct, Q, R, options, roles);
