@@ -34,6 +34,7 @@
 
 #include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
+#include <adaptobs/core/small_dense.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/lyapunov.hpp>
 #include <adaptobs/design/riccati_support.hpp>
@@ -41,7 +42,6 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/LU>
 #include <Eigen/QR>
 
 #include <algorithm>
@@ -74,9 +74,9 @@ template <typename Scalar>
 CareEvaluation<Scalar> evaluate_care(const DynamicMatrix<Scalar>& X, const DynamicMatrix<Scalar>& A,
                                      const DynamicMatrix<Scalar>& G, const DynamicMatrix<Scalar>& Q) {
   CareEvaluation<Scalar> e;
-  const DynamicMatrix<Scalar> atx = A.transpose() * X;
-  const DynamicMatrix<Scalar> gx = G * X;
-  const DynamicMatrix<Scalar> xgx = X * gx;
+  const DynamicMatrix<Scalar> atx = multiply_transposed(A, X);
+  const DynamicMatrix<Scalar> gx = multiply(G, X);
+  const DynamicMatrix<Scalar> xgx = multiply(X, gx);
   e.residual = atx + atx.transpose() - xgx + Q;
   e.residual = Scalar(0.5) * (e.residual + e.residual.transpose()).eval();
   e.closed_loop = A - gx;
@@ -122,16 +122,10 @@ std::optional<DynamicMatrix<Scalar>> care_sign_function_start(const DynamicMatri
   const Scalar eps = std::numeric_limits<Scalar>::epsilon();
   bool converged = false;
   for (int it = 0; it < max_iterations && !converged; ++it) {
-    const Eigen::PartialPivLU<Matrix> lu(z);
-    const Matrix& lu_matrix = lu.matrixLU();
-    Scalar log_det = 0;
-    for (Index i = 0; i < 2 * n; ++i) {
-      const Scalar d = std::abs(lu_matrix(i, i));
-      if (!(d > 0)) return std::nullopt;  // eigenvalue at 0: not hyperbolic
-      log_det += std::log(d);
-    }
-    const Scalar c = std::exp(-log_det / Scalar(2 * n));
-    const Matrix next = Scalar(0.5) * (c * z + lu.inverse() / c);
+    const LuFactorization<Scalar> lu(z);
+    if (lu.singular) return std::nullopt;  // eigenvalue at 0: not hyperbolic
+    const Scalar c = std::exp(-lu.log_abs_determinant() / Scalar(2 * n));
+    const Matrix next = Scalar(0.5) * (c * z + lu.solve(Matrix::Identity(2 * n, 2 * n)) / c);
     if (!next.allFinite()) return std::nullopt;
     const Scalar change = (next - z).cwiseAbs().colwise().sum().maxCoeff();
     converged = change <= Scalar(1000) * Scalar(2 * n) * eps * next.cwiseAbs().colwise().sum().maxCoeff();
@@ -196,15 +190,16 @@ std::optional<DynamicMatrix<Scalar>> continuous_stabilizing_gain(const DynamicMa
     if (!is_hurwitz_with_margin(A, stabilizability_margin<Scalar>)) return std::nullopt;
     return Matrix::Zero(B.cols(), n);
   }
-  Matrix a = A, g = B * B.transpose() / b2, q = Matrix::Identity(n, n);
+  Matrix a = A, g = multiply_by_transpose(B, B) / b2, q = Matrix::Identity(n, n);
   const auto d = balance_hamiltonian<Scalar>(a, g, q);
   auto x = care_sign_function_start<Scalar>(a, g, q, 100, iterations);
   if (!x) return std::nullopt;
   (void)care_newton_refinement<Scalar>(*x, a, g, q, iterations);
   // Back to the caller's states, K = BᵀX / ‖B‖² with X = D⁻¹X̃D⁻¹; an A − BK
   // Hurwitz beyond rounding proves stabilizability.
-  Matrix k = B.transpose() * unbalance(*x, d) / b2;
-  if (!k.allFinite() || !is_hurwitz_with_margin(Matrix(A - B * k), stabilizability_margin<Scalar>)) return std::nullopt;
+  Matrix k = multiply_transposed(B, unbalance(*x, d)) / b2;
+  if (!k.allFinite() || !is_hurwitz_with_margin(Matrix(A - multiply(B, k)), stabilizability_margin<Scalar>))
+    return std::nullopt;
   return k;
 }
 
@@ -222,7 +217,7 @@ CareSolution<Scalar, Eigen::Dynamic> solve_care(const DynamicMatrix<Scalar>& A, 
 
   // X = σ D⁻¹X̃D⁻¹: X̃ solves the scaled, balanced equation (a, g, q).
   const Scalar sigma = riccati_solution_scale<Scalar>(B, Q, R);
-  Matrix a = A, g = B * (R / sigma).llt().solve(B.transpose()), q = Q / sigma;
+  Matrix a = A, g = multiply(B, CholeskyFactorization<Scalar>(R / sigma).solve(B.transpose())), q = Q / sigma;
   g = Scalar(0.5) * (g + g.transpose()).eval();
   const auto d = balance_hamiltonian<Scalar>(a, g, q);
   auto start = care_sign_function_start<Scalar>(a, g, q, 100, result.iterations);
@@ -238,9 +233,8 @@ CareSolution<Scalar, Eigen::Dynamic> solve_care(const DynamicMatrix<Scalar>& A, 
     stabilizable = true;
     // Kleinman's first step, in the scaled and balanced coordinates: K̃ = K₀D.
     const Matrix k = *k0 * d.asDiagonal();
-    const Matrix rk = (R / sigma) * k;
-    start = lyapunov_if_regular<Scalar>(Matrix(a - d.cwiseInverse().asDiagonal() * B * k),
-                                        Matrix(q + k.transpose() * rk));
+    start = lyapunov_if_regular<Scalar>(Matrix(a - multiply(Matrix(d.cwiseInverse().asDiagonal() * B), k)),
+                                        Matrix(q + congruence(k, Matrix(R / sigma))));
     if (!start) start = Matrix::Constant(n, n, std::numeric_limits<Scalar>::infinity());  // refused below
   }
   Matrix x = *start;

@@ -43,14 +43,13 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
+#include <adaptobs/core/small_dense.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/riccati_support.hpp>
 #include <adaptobs/design/schur_stability.hpp>
 #include <adaptobs/design/stein.hpp>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -104,12 +103,13 @@ DareEvaluation<Scalar> evaluate_dare(const DynamicMatrix<Scalar>& X, const Dynam
                                      const DynamicMatrix<Scalar>& B, const DynamicMatrix<Scalar>& Q,
                                      const DynamicMatrix<Scalar>& R) {
   DareEvaluation<Scalar> e;
-  const Eigen::LLT<DynamicMatrix<Scalar>> s(R + B.transpose() * X * B);
-  if (s.info() != Eigen::Success) return e;
-  const DynamicMatrix<Scalar> btxa = B.transpose() * X * A;
+  const DynamicMatrix<Scalar> xb = multiply(X, B);
+  const CholeskyFactorization<Scalar> s(R + multiply_transposed(B, xb));
+  if (!s.positive_definite) return e;
+  const DynamicMatrix<Scalar> btxa = multiply_transposed(xb, A);  // (XB)ᵀA = BᵀXA, X symmetric
   e.gain = s.solve(btxa);
-  const DynamicMatrix<Scalar> ata = A.transpose() * X * A;
-  const DynamicMatrix<Scalar> correction = btxa.transpose() * e.gain;
+  const DynamicMatrix<Scalar> ata = congruence(A, X);
+  const DynamicMatrix<Scalar> correction = multiply_transposed(btxa, e.gain);
   e.residual = ata - correction + Q - X;
   e.residual = Scalar(0.5) * (e.residual + e.residual.transpose()).eval();
   const Scalar scale = X.norm() + ata.norm() + correction.norm() + Q.norm();
@@ -139,16 +139,17 @@ std::optional<DynamicMatrix<Scalar>> structure_preserving_doubling(const Dynamic
   const Index n = A.rows();
   const Square identity = Square::Identity(n, n);
   Square a = A;
-  Square g = B * R.llt().solve(B.transpose());
+  Square g = multiply(B, CholeskyFactorization<Scalar>(R).solve(B.transpose()));
   g = Scalar(0.5) * (g + g.transpose()).eval();
   Square h = Q;
   for (int j = 0; j < max_iterations; ++j) {
-    const Eigen::PartialPivLU<Square> w(identity + g * h);
+    const LuFactorization<Scalar> w(identity + multiply(g, h));
+    if (w.singular) return std::nullopt;
     const Square w_inv_a = w.solve(a);
     const Square w_inv_g = w.solve(g);
-    const Square h_next = h + a.transpose() * h * w_inv_a;
-    const Square g_next = g + a * w_inv_g * a.transpose();
-    a = (a * w_inv_a).eval();
+    const Square h_next = h + multiply(multiply_transposed(a, h), w_inv_a);
+    const Square g_next = g + multiply_by_transpose(multiply(a, w_inv_g), a);
+    a = multiply(a, w_inv_a);
     const Scalar change = (h_next - h).norm();
     h = Scalar(0.5) * (h_next + h_next.transpose());
     g = Scalar(0.5) * (g_next + g_next.transpose());
@@ -171,7 +172,7 @@ std::optional<DynamicMatrix<Scalar>> stabilizing_gain(const DynamicMatrix<Scalar
   const auto x = structure_preserving_doubling<Scalar>(A, B, q, r, max_iterations, tolerance, iterations);
   if (!x) return std::nullopt;
   const auto e = evaluate_dare<Scalar>(*x, A, B, q, r);
-  if (!e.valid || !is_schur_stable(DynamicMatrix<Scalar>(A - B * e.gain), stabilizability_margin<Scalar>))
+  if (!e.valid || !is_schur_stable(DynamicMatrix<Scalar>(A - multiply(B, e.gain)), stabilizability_margin<Scalar>))
     return std::nullopt;
   return e.gain;
 }
@@ -196,7 +197,7 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   const Square q = Q / sigma, r = R / sigma;
 
   auto stabilizing = [&](const Square& gain, Scalar radius_margin) {
-    return is_schur_stable(Square(A - B * gain), radius_margin);
+    return is_schur_stable(Square(A - multiply(B, gain)), radius_margin);
   };
 
   // Stage 2: a start whose closed loop is Schur.
@@ -212,8 +213,8 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
     const auto k0 = stabilizing_gain<Scalar>(A, B, options.max_iterations, sda_tolerance, result.iterations);
     if (!k0) fail_not_stabilizable(roles);
     stabilizable = true;
-    const Square closed = A - B * *k0;
-    start = solve_stein_doubling<Scalar>(closed, Square(q + k0->transpose() * r * *k0));
+    const Square closed = A - multiply(B, *k0);
+    start = solve_stein_doubling<Scalar>(closed, Square(q + congruence(*k0, r)));
   }
 
   // Stage 3: Newton steps while the residual decreases. No stop at a small
@@ -222,7 +223,7 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   Square x = *start;
   auto e = evaluate_dare<Scalar>(x, A, B, q, r);
   for (int step = 0; step < 50 && e.valid; ++step) {
-    const Square closed = A - B * e.gain;
+    const Square closed = A - multiply(B, e.gain);
     if (!is_schur_stable(closed)) break;
     Square candidate = x + solve_stein_doubling<Scalar>(closed, e.residual);
     candidate = Scalar(0.5) * (candidate + candidate.transpose()).eval();
@@ -251,7 +252,7 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   const Square at = A.transpose();
   if (!stabilizable_pair(at, q) && stabilizable_pair(Square(at / Scalar(1 + 1e-6)), q)) fail_unreached_mode(roles);
   fail_ill_conditioned(roles, e.relative, residual_tolerance, "spectral radius",
-                       e.valid ? spectral_radius_bound(Square(A - B * e.gain)) : std::numeric_limits<Scalar>::infinity(),
+                       e.valid ? spectral_radius_bound(Square(A - multiply(B, e.gain))) : std::numeric_limits<Scalar>::infinity(),
                        Scalar(1) - margin);
 }
 #ifdef ADAPTOBS_PRECOMPILED
@@ -325,9 +326,9 @@ KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> steady_state_kalman_gain(cons
   KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> result;
   result.P = dual.X;
   result.relative_residual = dual.relative_residual;
-  const DynamicMatrix<Scalar> s = C * result.P * ct + R;
+  const CholeskyFactorization<Scalar> s(congruence(ct, result.P) + R);  // S = C P Cᵀ + R
   // K = A P Cᵀ S⁻¹  ⇔  Kᵀ = S⁻¹ C P Aᵀ (S and P symmetric).
-  result.K = s.llt().solve(C * result.P * at).transpose();
+  result.K = s.solve(multiply_transposed(ct, multiply(result.P, at))).transpose();
   return result;
 }
 }  // namespace detail

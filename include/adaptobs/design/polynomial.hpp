@@ -11,6 +11,7 @@
 /// arithmetic, and accurate in floating point for the small orders (n ≲ 10)
 /// of the design problems it serves.
 
+#include <adaptobs/core/small_dense.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -37,7 +38,7 @@ template <class Derived>
   p(0) = Scalar(1);
   Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> b = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Identity(n, n);
   for (Index k = 1; k <= n; ++k) {
-    const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> ab = a * b;
+    const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> ab = detail::multiply(a, b);
     p(k) = -ab.trace() / Scalar(k);
     b = ab;
     b.diagonal().array() += p(k);
@@ -212,10 +213,10 @@ template <class DA, class DB, class DC>
   g.denominator = characteristic_polynomial(A);
   g.numerator.resize(n);
   Matrix bk = Matrix::Identity(n, n);
-  const Matrix a = A;
+  const Matrix a = detail::dynamic_copy(A), column = detail::dynamic_copy(b), row = detail::dynamic_copy(c);
   for (Index k = 0; k < n; ++k) {
-    g.numerator(k) = (c * bk * b)(0, 0);
-    bk = (a * bk).eval();
+    g.numerator(k) = detail::multiply(row, detail::multiply(bk, column))(0, 0);
+    bk = detail::multiply(a, bk);
     if (k + 1 <= n) bk.diagonal().array() += g.denominator(k + 1);
   }
   return g;

@@ -10,6 +10,7 @@
 /// representable. This needs nothing beyond matrix products, so it is cheap
 /// to compile, unlike a real Schur decomposition.
 
+#include <adaptobs/core/small_dense.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -40,7 +41,11 @@ template <class Derived>
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   for (int k = 1; k <= 64 && !(bound < target); ++k) {
     power /= norm;
-    power = (power * power).eval();
+    if constexpr (Derived::RowsAtCompileTime == Eigen::Dynamic) {
+      power = detail::multiply(power, power);  // no GEMM kernel for a design-time check
+    } else {
+      power = power.lazyProduct(power).eval();
+    }
     log_scale = Scalar(2) * (log_scale + std::log(norm));
     exponent *= Scalar(2);
     norm = power.norm();

@@ -12,6 +12,7 @@
 /// has already bounded away from 1.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/small_dense.hpp>
 
 #include <Eigen/Core>
 
@@ -31,11 +32,11 @@ template <typename Scalar>
   if (F.size() == 0) return x;
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   for (int j = 0; j < 64; ++j) {
-    const Matrix term = f.transpose() * x * f;
-    x += Scalar(0.5) * (term + term.transpose());
+    const Matrix term = congruence(f, x);
+    x += term;
     // The tail left after 2^(j+1) terms is at most about ‖term‖: stop once it is rounding.
     if (!(term.cwiseAbs().maxCoeff() > eps * x.cwiseAbs().maxCoeff())) return x;
-    f = (f * f).eval();
+    f = multiply(f, f);
   }
   return Matrix::Constant(F.rows(), F.cols(), std::numeric_limits<Scalar>::quiet_NaN());
 }
