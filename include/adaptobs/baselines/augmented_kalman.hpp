@@ -11,6 +11,15 @@
 /// time varying through \f$\Psi_k\f$ even for constant \f$(A, B, C)\f$. Each update
 /// corrects with \f$y_k\f$ (covariance in Joseph form
 /// \f$(I - LH)P(I - LH)^T + LRL^T\f$) and predicts to step k + 1.
+///
+/// **Missing and partial outputs.** A sample carrying only the channels of a
+/// mask \f$D = \mathrm{diag}(\text{present})\f$ is corrected with the measured
+/// sub-vector alone: \f$\bar H = [DC\ \ 0]\f$ and \f$\bar R = DRD + (I - D)\f$. The absent
+/// channels' rows of \f$\bar H\f$ and entries of the innovation are zero and \f$\bar R\f$
+/// decouples them, so \f$\bar S = \bar HP\bar H^T + \bar R\f$ is block diagonal, the gain's
+/// absent columns are zero, and the step equals the Kalman correction with the
+/// present rows of C and the present block of R. No channel present leaves
+/// only the prediction.
 
 #include <adaptobs/core/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
@@ -74,6 +83,8 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     w_.pht.setZero(n, s.ny);
     w_.gain.setZero(n, s.ny);
     w_.s.setZero(s.ny, s.ny);
+    w_.r_masked.setZero(s.ny, s.ny);
+    w_.c_masked.setZero(s.ny, s.nx);
     w_.innovation.setZero(s.ny);
     w_.x.setZero(s.nx);
     w_.theta.setZero(s.np);
@@ -85,31 +96,83 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
   /// naming it, and the filter is left as it was. A step whose covariance would
   /// not be positive definite is rejected (`UpdateStatus::indefinite_covariance`)
   /// and changes nothing.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) {
+  [[nodiscard]] UpdateStatus update(const Sample& sample) { return step_with(sample, nullptr); }
+
+  /// The same with only the output channels in `present` measured (file comment,
+  /// "Missing and partial outputs"); absent entries of `sample.y` are not read.
+  /// All channels present is `update(sample)`, bit for bit; none is the prediction alone.
+  [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
+    if constexpr (!Dims::is_fixed) detail::require_mask_size<Dims>(present, model_.sizes(), "AugmentedKalmanFilter::update");
+    return step_with(sample, present.all() ? nullptr : &present);
+  }
+
+  [[nodiscard]] const State& state() const noexcept { return x_; }
+  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  /// Covariance of the augmented estimate [x̂; θ̂].
+  [[nodiscard]] const AugmentedMatrix& covariance() const noexcept { return p_; }
+  [[nodiscard]] Index step() const noexcept { return step_; }
+
+  void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
+    constexpr std::string_view who = "AugmentedKalmanFilter::reset";
+    detail::require_shape(x0, x_.rows(), 1, who, "x0");
+    detail::require_finite(x0, who, "x0");
+    detail::require_shape(theta0, theta_.rows(), 1, who, "theta0");
+    detail::require_finite(theta0, who, "theta0");
+    x_ = x0;
+    theta_ = theta0;
+    p_ = cov_.P0;
+    step_ = start_step;
+  }
+
+ private:
+  // `present` is null when every channel is.
+  UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
     if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "AugmentedKalmanFilter::update");
-    if (!detail::all_finite(sample.u, sample.y, sample.Psi)) return UpdateStatus::nonfinite_input;
+    const bool finite = present ? detail::all_finite(sample.u, sample.Psi) &&
+                                      detail::present_outputs_finite<Dims>(sample.y, *present)
+                                : detail::all_finite(sample.u, sample.y, sample.Psi);
+    if (!finite) return UpdateStatus::nonfinite_input;
     const auto& system = model_.at(step_);
     const Index nx = x_.rows();
     Workspace& w = w_;
 
+    // C̄ = DC and R̄ = DRD + (I − D) with a mask; C and R without.
+    if (present) {
+      w.c_masked = system.C;
+      w.r_masked = cov_.R;
+      for (Index i = 0; i < w.c_masked.rows(); ++i) {
+        if ((*present)(i)) continue;
+        w.c_masked.row(i).setZero();
+        w.r_masked.row(i).setZero();
+        w.r_masked.col(i).setZero();
+        w.r_masked(i, i) = Scalar(1);
+      }
+    }
+    const typename Dims::OutputMatrix& c = present ? w.c_masked : system.C;
+    const typename Dims::OutputMatrixSquare& r = present ? w.r_masked : cov_.R;
+
     // Correction: S = C Pxx Cᵀ + R, L = P Hᵀ S⁻¹ with H = [C 0].
-    w.pht.noalias() = p_.leftCols(nx) * system.C.transpose();
-    w.s = cov_.R;
-    w.s.noalias() += system.C * w.pht.topRows(nx);
+    w.pht.noalias() = p_.leftCols(nx) * c.transpose();
+    w.s = r;
+    w.s.noalias() += c * w.pht.topRows(nx);
     w.llt.compute(w.s);
     if (w.llt.info() != Eigen::Success) return UpdateStatus::nonfinite_result;
     w.gain.transpose() = w.llt.solve(w.pht.transpose());
     w.innovation = sample.y;
-    w.innovation.noalias() -= system.C * x_;
+    w.innovation.noalias() -= c * x_;
+    if (present) {
+      for (Index i = 0; i < w.innovation.size(); ++i)
+        if (!(*present)(i)) w.innovation(i) = Scalar(0);
+    }
     w.xi.head(nx) = x_;
     w.xi.tail(theta_.rows()) = theta_;
     w.xi.noalias() += w.gain * w.innovation;
     // Joseph form: P⁺ = (I − L H) P (I − L H)ᵀ + L R Lᵀ.
     w.joseph.setIdentity();
-    w.joseph.leftCols(nx).noalias() -= w.gain * system.C;
+    w.joseph.leftCols(nx).noalias() -= w.gain * c;
     w.scratch.noalias() = w.joseph * p_;
     w.p.noalias() = w.scratch * w.joseph.transpose();
-    w.pht.noalias() = w.gain * cov_.R;  // reuse as L R
+    w.pht.noalias() = w.gain * r;  // reuse as L R
     w.p.noalias() += w.pht * w.gain.transpose();
 
     // Prediction with F_k = [A Ψ; 0 I].
@@ -137,30 +200,12 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     return UpdateStatus::accepted;
   }
 
-  [[nodiscard]] const State& state() const noexcept { return x_; }
-  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
-  /// Covariance of the augmented estimate [x̂; θ̂].
-  [[nodiscard]] const AugmentedMatrix& covariance() const noexcept { return p_; }
-  [[nodiscard]] Index step() const noexcept { return step_; }
-
-  void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
-    constexpr std::string_view who = "AugmentedKalmanFilter::reset";
-    detail::require_shape(x0, x_.rows(), 1, who, "x0");
-    detail::require_finite(x0, who, "x0");
-    detail::require_shape(theta0, theta_.rows(), 1, who, "theta0");
-    detail::require_finite(theta0, who, "theta0");
-    x_ = x0;
-    theta_ = theta0;
-    p_ = cov_.P0;
-    step_ = start_step;
-  }
-
- private:
   struct Workspace {
     AugmentedVector xi;
     AugmentedMatrix p, f, joseph, scratch;
     Eigen::Matrix<Scalar, na, Dims::ny> pht, gain;
-    typename Dims::OutputMatrixSquare s;
+    typename Dims::OutputMatrixSquare s, r_masked;
+    typename Dims::OutputMatrix c_masked;
     Eigen::LLT<typename Dims::OutputMatrixSquare> llt;
     typename Dims::Output innovation;
     State x;

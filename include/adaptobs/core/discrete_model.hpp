@@ -9,6 +9,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/validation.hpp>
 
+#include <cmath>
 #include <concepts>
 #include <string_view>
 #include <utility>
@@ -32,6 +33,14 @@ struct DiscreteSample {
   typename D::RegressorMatrix Psi;
 };
 
+/// The output channels a sample carries: entry i is true when \f$y_k(i)\f$ was
+/// measured. An observer does not read the entries of y whose channel is
+/// absent (they may hold NaN). No channel present is a time update: the model
+/// and the known input and regressor move the estimates on, and the step
+/// counter advances, so time-varying models and gain schedules stay in phase.
+template <StateSpace D>
+using OutputMask = Eigen::Array<bool, D::ny, 1>;
+
 /// One measured sample of a system with no separately measured regressor:
 /// input \f$u_k\f$ and output \f$y_k\f$ (e.g. a Takagi–Sugeno model, where the
 /// parameters act through the model's weights).
@@ -49,6 +58,20 @@ template <StateSpace D>
 void require_sample_sizes(const InputOutputSample<D>& sample, const Sizes& s, std::string_view who) {
   require_shape(sample.u, s.nu, 1, who, "sample.u");
   require_shape(sample.y, s.ny, 1, who, "sample.y");
+}
+
+/// Throws `ConfigurationError` when a run-time-sized output mask does not have ny entries.
+template <StateSpace D>
+void require_mask_size(const OutputMask<D>& present, const Sizes& s, std::string_view who) {
+  require(present.size() == s.ny, who, "present", "must have one entry per output channel");
+}
+
+/// True when the entries of y whose channel is present are finite.
+template <StateSpace D>
+[[nodiscard]] bool present_outputs_finite(const typename D::Output& y, const OutputMask<D>& present) {
+  for (Index i = 0; i < y.size(); ++i)
+    if (present(i) && !std::isfinite(y(i))) return false;
+  return true;
 }
 
 /// The same for a sample with a regressor, which must be nx × np.

@@ -22,15 +22,25 @@
 
 namespace adaptobs::detail {
 
+// The loops index the column-major storage directly: besides being the
+// natural form of these kernels, it keeps them fast in an unoptimized
+// (sanitizer) build, where every Eigen coefficient access is a function call.
+
 /// \f$ab\f$.
 template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> multiply(const DynamicMatrix<Scalar>& a, const DynamicMatrix<Scalar>& b) {
-  DynamicMatrix<Scalar> c = DynamicMatrix<Scalar>::Zero(a.rows(), b.cols());
-  for (Index j = 0; j < b.cols(); ++j)
-    for (Index k = 0; k < a.cols(); ++k) {
-      const Scalar bkj = b(k, j);
-      for (Index i = 0; i < a.rows(); ++i) c(i, j) += a(i, k) * bkj;
+  const Index m = a.rows(), n = b.cols(), depth = a.cols();
+  DynamicMatrix<Scalar> c = DynamicMatrix<Scalar>::Zero(m, n);
+  const Scalar* pa = a.data();
+  for (Index j = 0; j < n; ++j) {
+    Scalar* cj = c.data() + j * m;
+    const Scalar* bj = b.data() + j * depth;
+    for (Index k = 0; k < depth; ++k) {
+      const Scalar bkj = bj[k];
+      const Scalar* ak = pa + k * m;
+      for (Index i = 0; i < m; ++i) cj[i] += ak[i] * bkj;
     }
+  }
   return c;
 }
 
@@ -38,13 +48,17 @@ template <typename Scalar>
 template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> multiply_transposed(const DynamicMatrix<Scalar>& a,
                                                         const DynamicMatrix<Scalar>& b) {
-  DynamicMatrix<Scalar> c(a.cols(), b.cols());
-  for (Index j = 0; j < b.cols(); ++j)
-    for (Index i = 0; i < a.cols(); ++i) {
+  const Index m = a.cols(), n = b.cols(), depth = a.rows();
+  DynamicMatrix<Scalar> c(m, n);
+  for (Index j = 0; j < n; ++j) {
+    const Scalar* bj = b.data() + j * depth;
+    for (Index i = 0; i < m; ++i) {
+      const Scalar* ai = a.data() + i * depth;
       Scalar s = 0;
-      for (Index k = 0; k < a.rows(); ++k) s += a(k, i) * b(k, j);
-      c(i, j) = s;
+      for (Index k = 0; k < depth; ++k) s += ai[k] * bj[k];
+      c.data()[i + j * m] = s;
     }
+  }
   return c;
 }
 
@@ -52,12 +66,16 @@ template <typename Scalar>
 template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> multiply_by_transpose(const DynamicMatrix<Scalar>& a,
                                                           const DynamicMatrix<Scalar>& b) {
-  DynamicMatrix<Scalar> c = DynamicMatrix<Scalar>::Zero(a.rows(), b.rows());
-  for (Index j = 0; j < b.rows(); ++j)
-    for (Index k = 0; k < a.cols(); ++k) {
-      const Scalar bjk = b(j, k);
-      for (Index i = 0; i < a.rows(); ++i) c(i, j) += a(i, k) * bjk;
+  const Index m = a.rows(), n = b.rows(), depth = a.cols();
+  DynamicMatrix<Scalar> c = DynamicMatrix<Scalar>::Zero(m, n);
+  for (Index j = 0; j < n; ++j) {
+    Scalar* cj = c.data() + j * m;
+    for (Index k = 0; k < depth; ++k) {
+      const Scalar bjk = b.data()[j + k * n];
+      const Scalar* ak = a.data() + k * m;
+      for (Index i = 0; i < m; ++i) cj[i] += ak[i] * bjk;
     }
+  }
   return c;
 }
 
@@ -91,11 +109,12 @@ struct LuFactorization {
         lu.row(k).swap(lu.row(p));
         std::swap(rows(k), rows(p));
       }
-      const Scalar pivot = lu(k, k);
-      for (Index i = k + 1; i < n; ++i) lu(i, k) /= pivot;
+      Scalar* lk = lu.data() + k * n;  // column k: the multipliers below the pivot
+      for (Index i = k + 1; i < n; ++i) lk[i] /= lk[k];
       for (Index j = k + 1; j < n; ++j) {
-        const Scalar ukj = lu(k, j);
-        for (Index i = k + 1; i < n; ++i) lu(i, j) -= lu(i, k) * ukj;
+        Scalar* uj = lu.data() + j * n;
+        const Scalar ukj = uj[k];
+        for (Index i = k + 1; i < n; ++i) uj[i] -= lk[i] * ukj;
       }
     }
   }
@@ -106,11 +125,15 @@ struct LuFactorization {
     DynamicMatrix<Scalar> x(n, b.cols());
     for (Index i = 0; i < n; ++i) x.row(i) = b.row(rows(i));
     for (Index j = 0; j < x.cols(); ++j) {
-      for (Index k = 0; k < n; ++k)
-        for (Index i = k + 1; i < n; ++i) x(i, j) -= lu(i, k) * x(k, j);
+      Scalar* xj = x.data() + j * n;
+      for (Index k = 0; k < n; ++k) {
+        const Scalar* lk = lu.data() + k * n;
+        for (Index i = k + 1; i < n; ++i) xj[i] -= lk[i] * xj[k];
+      }
       for (Index k = n - 1; k >= 0; --k) {
-        x(k, j) /= lu(k, k);
-        for (Index i = 0; i < k; ++i) x(i, j) -= lu(i, k) * x(k, j);
+        const Scalar* uk = lu.data() + k * n;
+        xj[k] /= uk[k];
+        for (Index i = 0; i < k; ++i) xj[i] -= uk[i] * xj[k];
       }
     }
     return x;
@@ -136,13 +159,16 @@ struct CholeskyFactorization {
   [[nodiscard]] DynamicMatrix<Scalar> solve(DynamicMatrix<Scalar> x) const {
     const Index n = l.rows();
     for (Index j = 0; j < x.cols(); ++j) {
-      for (Index k = 0; k < n; ++k) {
-        x(k, j) /= l(k, k);
-        for (Index i = k + 1; i < n; ++i) x(i, j) -= l(i, k) * x(k, j);
+      Scalar* xj = x.data() + j * n;
+      for (Index k = 0; k < n; ++k) {  // L z = b
+        const Scalar* lk = l.data() + k * n;
+        xj[k] /= lk[k];
+        for (Index i = k + 1; i < n; ++i) xj[i] -= lk[i] * xj[k];
       }
-      for (Index k = n - 1; k >= 0; --k) {
-        for (Index i = k + 1; i < n; ++i) x(k, j) -= l(i, k) * x(i, j);
-        x(k, j) /= l(k, k);
+      for (Index k = n - 1; k >= 0; --k) {  // Lᵀ x = z: row k of Lᵀ is column k of L
+        const Scalar* lk = l.data() + k * n;
+        for (Index i = k + 1; i < n; ++i) xj[k] -= lk[i] * xj[i];
+        xj[k] /= lk[k];
       }
     }
     return x;

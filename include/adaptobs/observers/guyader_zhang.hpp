@@ -14,6 +14,23 @@
 ///     \tilde\theta_{k+1} = (I - \mu_k\Upsilon_k^TC_k^TC_k\Upsilon_k)\tilde\theta_k
 ///                         - \mu_k\Upsilon_k^TC_k^TC_k\eta_k, \f]
 /// which converge exponentially under assumptions 1–3 (theorem 1).
+///
+/// **Missing and partial outputs.** A sample that carries only the channels
+/// of a mask \f$D_k = \mathrm{diag}(\text{present})\f$ measures \f$D_ky_k = D_kC_kx_k\f$: the
+/// system of eq. (1) with output matrix \f$\bar C_k = D_kC_k\f$, whose absent rows are
+/// zero. The observer runs (2a)–(2c) with \f$\bar C_k\f$ in place of \f$C_k\f$ — the
+/// output error of an absent channel is 0, and so is its row of \f$C_k\Upsilon_k\f$ — and
+/// the proof of theorem 1 goes through unchanged, with
+/// \f$\eta_{k+1} = (A_k - K_k\bar C_k)\eta_k\f$. With no channel present this is the time
+/// update \f$\Upsilon_{k+1} = A_k\Upsilon_k + \Psi_k\f$, \f$\hat\theta_{k+1} = \hat\theta_k\f$,
+/// \f$\hat x_{k+1} = A_k\hat x_k + B_ku_k + \Psi_k\hat\theta_k\f$: filtering Υ through
+/// \f$A_k - K_kC_k\f$ instead would leave \f$K_kC_k\Upsilon_k\tilde\theta_k\f$ in η's recursion,
+/// a coupling the proof has no term for. What the theorem then asks is of the
+/// sequence actually run: assumption 1 of the products of \f$A_k - K_k\bar C_k\f$ (a gap
+/// of g steps multiplies η by \f$A^g\f$, which the surrounding corrected steps must
+/// outweigh), and assumption 3 of \f$\sum\mu\Upsilon_k^T\bar C_k^T\bar C_k\Upsilon_k\f$, the
+/// information the present channels deliver — which is what the excitation
+/// monitor accumulates.
 
 #include <adaptobs/core/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
@@ -37,6 +54,13 @@ struct GuyaderZhangOptions {
   /// Window L of the assumption-3 excitation monitor (eq. (4)); 0 turns it off
   /// and saves its per-step cost (one p × p outer product).
   Index excitation_window = 0;
+  /// Step size \f$\mu_k = \mu / \max(1, \mu\|\bar C_k\Upsilon_k\|_F^2)\f$ instead of μ, so
+  /// that assumption 2, \f$\|\sqrt{\mu_k}\bar C_k\Upsilon_k\|_2 \le 1\f$, holds at every step
+  /// by construction (theorem 1 allows a time-varying \f$\mu_k\f$). Off, μ is used as
+  /// given, bit for bit. Needed after long output gaps on a marginally stable A:
+  /// without the output injection Υ grows as \f$\sum A^j\Psi\f$, and the first steps
+  /// after the gap would break assumption 2 and diverge.
+  bool normalized_step = false;
 };
 
 /// Guyader–Zhang adaptive observer over a discrete model (LTI or LTV).
@@ -59,7 +83,12 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   /// \param mu step size \f$\mu > 0\f$ small enough for assumption 2.
   GuyaderZhangObserver(Model model, GainMatrix K, Scalar mu, State x0, Parameters theta0,
                        GuyaderZhangOptions options = {})
-      : model_(std::move(model)), gain_(std::move(K)), mu_(mu), x_(std::move(x0)), theta_(std::move(theta0)) {
+      : model_(std::move(model)),
+        gain_(std::move(K)),
+        mu_(mu),
+        x_(std::move(x0)),
+        theta_(std::move(theta0)),
+        normalized_step_(options.normalized_step) {
     constexpr std::string_view who = "GuyaderZhangObserver";
     const Sizes s = model_.sizes();
     detail::require_shape(gain_, s.nx, s.ny, who, "K");
@@ -83,15 +112,15 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   /// Returns `nonfinite_input` for a NaN/Inf in the sample and
   /// `nonfinite_result` when the step would produce one; in both cases the
   /// observer is left exactly as it was.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) {
-    if constexpr (Dims::is_fixed) {
-      // Fixed sizes: the workspace lives on the stack, where the compiler can keep it in registers.
-      Workspace w;
-      return advance(sample, w);
-    } else {
-      detail::require_sample_sizes(sample, model_.sizes(), "GuyaderZhangObserver::update");
-      return advance(sample, work_);
-    }
+  [[nodiscard]] UpdateStatus update(const Sample& sample) { return step_with(sample, nullptr); }
+
+  /// One step with only the output channels in `present` measured (file
+  /// comment, "Missing and partial outputs"); absent entries of `sample.y` are
+  /// not read. All channels present is `update(sample)`, bit for bit; none is
+  /// the time update.
+  [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
+    if constexpr (!Dims::is_fixed) detail::require_mask_size<Dims>(present, model_.sizes(), "GuyaderZhangObserver::update");
+    return step_with(sample, present.all() ? nullptr : &present);
   }
 
   /// State estimate \f$\hat x_k\f$.
@@ -171,24 +200,54 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     }
   };
 
-  UpdateStatus advance(const Sample& sample, Workspace& w) {
-    if (!detail::all_finite(sample.u, sample.y, sample.Psi)) return UpdateStatus::nonfinite_input;
+  // `present` is null when every channel is.
+  UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
+    if constexpr (Dims::is_fixed) {
+      // Fixed sizes: the workspace lives on the stack, where the compiler can keep it in registers.
+      Workspace w;
+      return advance(sample, present, w);
+    } else {
+      detail::require_sample_sizes(sample, model_.sizes(), "GuyaderZhangObserver::update");
+      return advance(sample, present, work_);
+    }
+  }
+
+  UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
+    const bool finite = present ? detail::all_finite(sample.u, sample.Psi) &&
+                                      detail::present_outputs_finite<Dims>(sample.y, *present)
+                                : detail::all_finite(sample.u, sample.y, sample.Psi);
+    if (!finite) return UpdateStatus::nonfinite_input;
     const auto& system = model_.at(step_);
     if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
 
-    // Output error y_k − C_k x̂_k and C_k Υ_k, shared by (2a)–(2c).
+    // Output error y_k − C_k x̂_k and C_k Υ_k, shared by (2a)–(2c); with a mask,
+    // their absent rows are those of C̄_k = D_kC_k, i.e. zero.
     w.innovation = sample.y;
     w.innovation.noalias() -= system.C * x_;
     w.c_upsilon.noalias() = detail::product(system.C, upsilon_);
+    if (present) {
+      for (Index i = 0; i < w.innovation.size(); ++i) {
+        if ((*present)(i)) continue;
+        w.innovation(i) = Scalar(0);
+        w.c_upsilon.row(i).setZero();
+      }
+    }
 
     /// (2b) \f$\hat\theta_{k+1} = \hat\theta_k + \mu_k\Upsilon_k^TC_k^T(y_k - C_k\hat x_k)\f$
-    w.theta_step.noalias() = mu_ * (w.c_upsilon.transpose() * w.innovation);
+    Scalar mu_k = mu_;
+    if (normalized_step_) {
+      const Scalar energy = mu_ * w.c_upsilon.squaredNorm();
+      if (energy > Scalar(1)) mu_k = mu_ / energy;
+    }
+    w.theta_step.noalias() = mu_k * (w.c_upsilon.transpose() * w.innovation);
     w.theta = theta_ + w.theta_step;
 
-    /// (2a) \f$\Upsilon_{k+1} = (A_k - K_kC_k)\Upsilon_k + \Psi_k\f$; for an LTV model
-    /// evaluated as \f$A_k\Upsilon_k - K_k(C_k\Upsilon_k)\f$, reusing \f$C_k\Upsilon_k\f$.
+    /// (2a) \f$\Upsilon_{k+1} = (A_k - K_kC_k)\Upsilon_k + \Psi_k\f$; for an LTV model or a
+    /// mask evaluated as \f$A_k\Upsilon_k - K_k(\bar C_k\Upsilon_k)\f$, reusing \f$\bar C_k\Upsilon_k\f$.
     w.upsilon = sample.Psi;
-    if constexpr (Model::time_invariant) {
+    bool cached_closed_loop = false;
+    if constexpr (Model::time_invariant) cached_closed_loop = present == nullptr;
+    if (cached_closed_loop) {
       w.upsilon.noalias() += detail::product(closed_loop_, upsilon_);
     } else {
       w.upsilon.noalias() += detail::product(system.A, upsilon_);
@@ -211,7 +270,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     detail::commit(theta_, w.theta);
     detail::commit(upsilon_, w.upsilon);
     detail::commit(last_c_upsilon_, w.c_upsilon);
-    last_mu_ = mu_;
+    last_mu_ = mu_k;
     if (excitation_) excitation_->add(last_c_upsilon_, last_mu_);
     ++step_;
     return UpdateStatus::accepted;
@@ -242,6 +301,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   typename Dims::OutputRegressor last_c_upsilon_;
   Scalar last_mu_ = Scalar(0);
   Index step_ = 0;
+  bool normalized_step_;
   std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;
   // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
   [[no_unique_address]] std::conditional_t<Dims::is_fixed, std::monostate, Workspace> work_;
