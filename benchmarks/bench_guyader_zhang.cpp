@@ -29,6 +29,23 @@ void BM_GuyaderZhang_Satellite_ExcitationMonitor(benchmark::State& state) {
 }
 BENCHMARK(BM_GuyaderZhang_Satellite_ExcitationMonitor);
 
+// Masked updates: Arg(1) with the second output absent (Υ through A Υ − K(C̄Υ)
+// instead of the cached A − KC), Arg(0) with none (the time update).
+void BM_GuyaderZhang_Satellite_Masked(benchmark::State& state) {
+  adaptobs::GuyaderZhangObserver observer(satellite::model<double>(), satellite::paper_gain<double>(), satellite::mu,
+                                          satellite::initial_state_estimate<double>(),
+                                          satellite::initial_parameter_estimate<double>(), {.normalized_step = true});
+  auto ring = adaptobs::bench::satellite_ring();
+  const adaptobs::OutputMask<satellite::Dims<double>> present(state.range(0) != 0, false);
+  for (auto _ : state) {
+    auto status = observer.update(ring.next(), present);
+    benchmark::DoNotOptimize(status);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_GuyaderZhang_Satellite_Masked)->Arg(1)->Arg(0);
+
 template <int N>
 void BM_GuyaderZhang_Sweep(benchmark::State& state) {
   using Dims = adaptobs::bench::SweepDims<N>;
