@@ -34,7 +34,7 @@ BENCHMARK(BM_GuyaderZhang_Satellite_ExcitationMonitor);
 void BM_GuyaderZhang_Satellite_Masked(benchmark::State& state) {
   adaptobs::GuyaderZhangObserver observer(satellite::model<double>(), satellite::paper_gain<double>(), satellite::mu,
                                           satellite::initial_state_estimate<double>(),
-                                          satellite::initial_parameter_estimate<double>(), {.normalized_step = true});
+                                          satellite::initial_parameter_estimate<double>());
   auto ring = adaptobs::bench::satellite_ring();
   const adaptobs::OutputMask<satellite::Dims<double>> present(state.range(0) != 0, false);
   for (auto _ : state) {

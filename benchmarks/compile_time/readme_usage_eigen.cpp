@@ -1,6 +1,7 @@
 // Compile-time benchmark, hand-written side: the README's usage program with
 // Eigen alone — the steady-state Kalman gain by the structure-preserving
-// doubling algorithm, the Guyader–Zhang update (2a)–(2c), ten updates, and the
+// doubling algorithm, the Guyader–Zhang update (2a)–(2c) with the second output
+// missing one sample in seven (its rows of C set to zero), ten updates, and the
 // two diagnostics (‖√μ C Υ‖₂; smallest eigenvalue of the average of μ ΥᵀCᵀCΥ
 // over the last 100 steps). Paired with examples/readme_usage.cpp.
 
@@ -51,11 +52,17 @@ int main() {
     const Eigen::Vector2d u{k % 100 < 10 ? 1.0 : 0.0, (k + 50) % 100 < 10 ? 1.0 : 0.0};
     Eigen::Matrix<double, 4, 2> Psi;
     Psi << H.col(1) * u(0), H.col(3) * u(1);
-    const Eigen::Vector2d e = C * x - C * xhat;
+    Eigen::Vector2d e = C * x - C * xhat;
     x = A * x + Psi * theta;
     cu = C * upsilon;
+    const bool second_present = k % 7 != 3;  // the second sensor loses one sample in seven
+    if (!second_present) {
+      e(1) = 0;
+      cu.row(1).setZero();
+    }
     const Eigen::Vector2d step = mu * cu.transpose() * e;          // (2b)
-    upsilon = closed_loop * upsilon + Psi;                         // (2a)
+    upsilon = second_present ? Eigen::Matrix<double, 4, 2>(closed_loop * upsilon + Psi)
+                             : Eigen::Matrix<double, 4, 2>(A * upsilon - K * cu + Psi);  // (2a)
     xhat = A * xhat + Psi * thetahat + K * e + upsilon * step;     // (2c)
     thetahat += step;
     window[k % 100] = mu * cu.transpose() * cu;

@@ -99,7 +99,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
   [[nodiscard]] UpdateStatus update(const Sample& sample) { return step_with(sample, nullptr); }
 
   /// The same with only the output channels in `present` measured (file comment,
-  /// "Missing and partial outputs"); absent entries of `sample.y` are not read.
+  /// "Missing and partial outputs"); absent entries of `sample.y` are ignored (they may be NaN or Inf).
   /// All channels present is `update(sample)`, bit for bit; none is the prediction alone.
   [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
     if constexpr (!Dims::is_fixed) detail::require_mask_size<Dims>(present, model_.sizes(), "AugmentedKalmanFilter::update");

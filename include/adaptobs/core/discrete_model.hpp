@@ -34,8 +34,8 @@ struct DiscreteSample {
 };
 
 /// The output channels a sample carries: entry i is true when \f$y_k(i)\f$ was
-/// measured. An observer does not read the entries of y whose channel is
-/// absent (they may hold NaN). No channel present is a time update: the model
+/// measured. An observer ignores the entries of y whose channel is absent:
+/// they may hold NaN or Inf (they must still be initialized values). No channel present is a time update: the model
 /// and the known input and regressor move the estimates on, and the step
 /// counter advances, so time-varying models and gain schedules stay in phase.
 template <StateSpace D>
@@ -60,6 +60,14 @@ void require_sample_sizes(const InputOutputSample<D>& sample, const Sizes& s, st
   require_shape(sample.y, s.ny, 1, who, "sample.y");
 }
 
+/// The same for a sample with a regressor, which must be nx × np.
+template <StateSpace D>
+void require_sample_sizes(const DiscreteSample<D>& sample, const Sizes& s, std::string_view who) {
+  require_shape(sample.u, s.nu, 1, who, "sample.u");
+  require_shape(sample.y, s.ny, 1, who, "sample.y");
+  require_shape(sample.Psi, s.nx, s.np, who, "sample.Psi");
+}
+
 /// Throws `ConfigurationError` when a run-time-sized output mask does not have ny entries.
 template <StateSpace D>
 void require_mask_size(const OutputMask<D>& present, const Sizes& s, std::string_view who) {
@@ -72,14 +80,6 @@ template <StateSpace D>
   for (Index i = 0; i < y.size(); ++i)
     if (present(i) && !std::isfinite(y(i))) return false;
   return true;
-}
-
-/// The same for a sample with a regressor, which must be nx × np.
-template <StateSpace D>
-void require_sample_sizes(const DiscreteSample<D>& sample, const Sizes& s, std::string_view who) {
-  require_shape(sample.u, s.nu, 1, who, "sample.u");
-  require_shape(sample.y, s.ny, 1, who, "sample.y");
-  require_shape(sample.Psi, s.nx, s.np, who, "sample.Psi");
 }
 
 }  // namespace detail

@@ -30,6 +30,7 @@ namespace adaptobs::detail {
 template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> multiply(const DynamicMatrix<Scalar>& a, const DynamicMatrix<Scalar>& b) {
   const Index m = a.rows(), n = b.cols(), depth = a.cols();
+  eigen_assert(b.rows() == depth && "multiply: inner dimensions differ");
   DynamicMatrix<Scalar> c = DynamicMatrix<Scalar>::Zero(m, n);
   const Scalar* pa = a.data();
   for (Index j = 0; j < n; ++j) {
@@ -49,6 +50,7 @@ template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> multiply_transposed(const DynamicMatrix<Scalar>& a,
                                                         const DynamicMatrix<Scalar>& b) {
   const Index m = a.cols(), n = b.cols(), depth = a.rows();
+  eigen_assert(b.rows() == depth && "multiply_transposed: inner dimensions differ");
   DynamicMatrix<Scalar> c(m, n);
   for (Index j = 0; j < n; ++j) {
     const Scalar* bj = b.data() + j * depth;
@@ -67,6 +69,7 @@ template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> multiply_by_transpose(const DynamicMatrix<Scalar>& a,
                                                           const DynamicMatrix<Scalar>& b) {
   const Index m = a.rows(), n = b.rows(), depth = a.cols();
+  eigen_assert(b.cols() == depth && "multiply_by_transpose: inner dimensions differ");
   DynamicMatrix<Scalar> c = DynamicMatrix<Scalar>::Zero(m, n);
   for (Index j = 0; j < n; ++j) {
     Scalar* cj = c.data() + j * m;
@@ -92,7 +95,7 @@ template <typename Scalar>
 struct LuFactorization {
   DynamicMatrix<Scalar> lu;
   Eigen::Matrix<Index, Eigen::Dynamic, 1> rows;
-  bool singular = false;  ///< a zero (or non-finite) pivot: no solve is attempted
+  bool singular = false;  ///< a zero (or non-finite) pivot: the factors are incomplete and must not be solved with
 
   explicit LuFactorization(DynamicMatrix<Scalar> a) : lu(std::move(a)), rows(lu.rows()) {
     const Index n = lu.rows();
@@ -122,6 +125,7 @@ struct LuFactorization {
   /// \f$A^{-1}b\f$ by forward and back substitution.
   [[nodiscard]] DynamicMatrix<Scalar> solve(const DynamicMatrix<Scalar>& b) const {
     const Index n = lu.rows();
+    eigen_assert(!singular && b.rows() == n && "LuFactorization::solve: singular factors or wrong row count");
     DynamicMatrix<Scalar> x(n, b.cols());
     for (Index i = 0; i < n; ++i) x.row(i) = b.row(rows(i));
     for (Index j = 0; j < x.cols(); ++j) {
@@ -151,13 +155,14 @@ struct LuFactorization {
 template <typename Scalar>
 struct CholeskyFactorization {
   DynamicMatrix<Scalar> l;
-  bool positive_definite;  ///< false when a pivot is not positive and finite: no solve is attempted
+  bool positive_definite;  ///< false when a pivot is not positive and finite: then the factor must not be solved with
 
   explicit CholeskyFactorization(DynamicMatrix<Scalar> a) : l(std::move(a)), positive_definite(cholesky_in_place(l)) {}
 
   /// \f$A^{-1}b\f$ by forward and back substitution.
   [[nodiscard]] DynamicMatrix<Scalar> solve(DynamicMatrix<Scalar> x) const {
     const Index n = l.rows();
+    eigen_assert(positive_definite && x.rows() == n && "CholeskyFactorization::solve: no factor or wrong row count");
     for (Index j = 0; j < x.cols(); ++j) {
       Scalar* xj = x.data() + j * n;
       for (Index k = 0; k < n; ++k) {  // L z = b

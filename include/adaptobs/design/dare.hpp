@@ -103,12 +103,12 @@ DareEvaluation<Scalar> evaluate_dare(const DynamicMatrix<Scalar>& X, const Dynam
                                      const DynamicMatrix<Scalar>& B, const DynamicMatrix<Scalar>& Q,
                                      const DynamicMatrix<Scalar>& R) {
   DareEvaluation<Scalar> e;
-  const DynamicMatrix<Scalar> xb = multiply(X, B);
-  const CholeskyFactorization<Scalar> s(R + multiply_transposed(B, xb));
+  const DynamicMatrix<Scalar> xa = multiply(X, A);
+  const CholeskyFactorization<Scalar> s(R + multiply(multiply_transposed(B, X), B));
   if (!s.positive_definite) return e;
-  const DynamicMatrix<Scalar> btxa = multiply_transposed(xb, A);  // (XB)ᵀA = BᵀXA, X symmetric
+  const DynamicMatrix<Scalar> btxa = multiply_transposed(B, xa);
   e.gain = s.solve(btxa);
-  const DynamicMatrix<Scalar> ata = congruence(A, X);
+  const DynamicMatrix<Scalar> ata = multiply_transposed(A, xa);
   const DynamicMatrix<Scalar> correction = multiply_transposed(btxa, e.gain);
   e.residual = ata - correction + Q - X;
   e.residual = Scalar(0.5) * (e.residual + e.residual.transpose()).eval();
@@ -267,12 +267,20 @@ ADAPTOBS_INSTANTIATE DareSolution<double, Eigen::Dynamic> solve_dare<double>(con
 
 /// Per-term relative residual of X in the DARE (A, B, Q, R): \f$\|\mathcal R(X)\|_F /
 /// (\|X\|_F + \|A^TXA\|_F + \|A^TXBK\|_F + \|Q\|_F)\f$ (see file comment); infinite when
-/// \f$R + B^TXB\f$ is not positive definite.
+/// \f$R + B^TXB\f$ is not positive definite. Throws `ConfigurationError` naming the
+/// first argument whose shape does not fit A (n × n) and B (n × m).
 template <class DX, class DA, class DB, class DQ, class DR>
 [[nodiscard]] typename DX::Scalar dare_relative_residual(const Eigen::MatrixBase<DX>& X, const Eigen::MatrixBase<DA>& A,
                                                          const Eigen::MatrixBase<DB>& B, const Eigen::MatrixBase<DQ>& Q,
                                                          const Eigen::MatrixBase<DR>& R) {
   using detail::dynamic_copy;
+  constexpr std::string_view who = "dare_relative_residual";
+  detail::require_square(A, who, "A");
+  const Index n = A.rows(), m = B.cols();
+  detail::require_shape(B, n, m, who, "B");
+  detail::require_shape(X, n, n, who, "X");
+  detail::require_shape(Q, n, n, who, "Q");
+  detail::require_shape(R, m, m, who, "R");
   return detail::dare_relative_residual<typename DA::Scalar>(dynamic_copy(X), dynamic_copy(A), dynamic_copy(B),
                                                              dynamic_copy(Q), dynamic_copy(R));
 }

@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace adaptobs {
 
@@ -35,14 +36,19 @@ template <class Derived>
   // M^(2^k) = exp(log_scale) · power with ‖power‖ = norm, so the bound is
   // exp((log_scale + log norm) / 2^k). Starting from M / max|m_ij| keeps the
   // Frobenius norm itself from overflowing.
-  Eigen::Matrix<Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> power = m / largest;
+  // Run-time sizes square with the plain-loop product (no GEMM kernel for a design-time check).
+  constexpr bool run_time_sized =
+      Derived::RowsAtCompileTime == Eigen::Dynamic || Derived::ColsAtCompileTime == Eigen::Dynamic;
+  using Power = std::conditional_t<run_time_sized, detail::DynamicMatrix<Scalar>,
+                                   Eigen::Matrix<Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime>>;
+  Power power = m / largest;
   Scalar norm = power.norm();
   Scalar log_scale = std::log(largest), exponent = 1, bound = std::exp(log_scale + std::log(norm));
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   for (int k = 1; k <= 64 && !(bound < target); ++k) {
     power /= norm;
-    if constexpr (Derived::RowsAtCompileTime == Eigen::Dynamic) {
-      power = detail::multiply(power, power);  // no GEMM kernel for a design-time check
+    if constexpr (run_time_sized) {
+      power = detail::multiply(power, power);
     } else {
       power = power.lazyProduct(power).eval();
     }

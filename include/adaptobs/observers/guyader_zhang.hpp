@@ -57,9 +57,10 @@ struct GuyaderZhangOptions {
   /// Step size \f$\mu_k = \mu / \max(1, \mu\|\bar C_k\Upsilon_k\|_F^2)\f$ instead of μ, so
   /// that assumption 2, \f$\|\sqrt{\mu_k}\bar C_k\Upsilon_k\|_2 \le 1\f$, holds at every step
   /// by construction (theorem 1 allows a time-varying \f$\mu_k\f$). Off, μ is used as
-  /// given, bit for bit. Needed after long output gaps on a marginally stable A:
-  /// without the output injection Υ grows as \f$\sum A^j\Psi\f$, and the first steps
-  /// after the gap would break assumption 2 and diverge.
+  /// given, bit for bit. Turn it on whenever outputs can be lost: without the
+  /// output injection Υ grows as \f$\sum A^j\Psi\f$ over a gap (on the satellite, a
+  /// few lost samples already push \f$\|\sqrt\mu C\Upsilon\|\f$ to 2, and after a 20-s
+  /// outage the observer diverges).
   bool normalized_step = false;
 };
 
@@ -116,8 +117,8 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
 
   /// One step with only the output channels in `present` measured (file
   /// comment, "Missing and partial outputs"); absent entries of `sample.y` are
-  /// not read. All channels present is `update(sample)`, bit for bit; none is
-  /// the time update.
+  /// ignored (they may be NaN or Inf). All channels present is `update(sample)`,
+  /// bit for bit; none is the time update.
   [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
     if constexpr (!Dims::is_fixed) detail::require_mask_size<Dims>(present, model_.sizes(), "GuyaderZhangObserver::update");
     return step_with(sample, present.all() ? nullptr : &present);
