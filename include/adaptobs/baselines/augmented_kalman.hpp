@@ -128,10 +128,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
   // `present` is null when every channel is.
   UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
     if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "AugmentedKalmanFilter::update");
-    const bool finite = present ? detail::all_finite(sample.u, sample.Psi) &&
-                                      detail::present_outputs_finite<Dims>(sample.y, *present)
-                                : detail::all_finite(sample.u, sample.y, sample.Psi);
-    if (!finite) return UpdateStatus::nonfinite_input;
+    if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
     const auto& system = model_.at(step_);
     const Index nx = x_.rows();
     Workspace& w = w_;
@@ -139,10 +136,10 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     // C̄ = DC and R̄ = DRD + (I − D) with a mask; C and R without.
     if (present) {
       w.c_masked = system.C;
+      detail::zero_absent_rows<Dims>(w.c_masked, present);
       w.r_masked = cov_.R;
-      for (Index i = 0; i < w.c_masked.rows(); ++i) {
+      for (Index i = 0; i < w.r_masked.rows(); ++i) {
         if ((*present)(i)) continue;
-        w.c_masked.row(i).setZero();
         w.r_masked.row(i).setZero();
         w.r_masked.col(i).setZero();
         w.r_masked(i, i) = Scalar(1);
@@ -160,10 +157,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     w.gain.transpose() = w.llt.solve(w.pht.transpose());
     w.innovation = sample.y;
     w.innovation.noalias() -= c * x_;
-    if (present) {
-      for (Index i = 0; i < w.innovation.size(); ++i)
-        if (!(*present)(i)) w.innovation(i) = Scalar(0);
-    }
+    detail::zero_absent_rows<Dims>(w.innovation, present);
     w.xi.head(nx) = x_;
     w.xi.tail(theta_.rows()) = theta_;
     w.xi.noalias() += w.gain * w.innovation;

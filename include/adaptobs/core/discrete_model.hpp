@@ -74,12 +74,22 @@ void require_mask_size(const OutputMask<D>& present, const Sizes& s, std::string
   require(present.size() == s.ny, who, "present", "must have one entry per output channel");
 }
 
-/// True when the entries of y whose channel is present are finite.
+/// True when u, Ψ and the entries of y whose channel is present (all of them
+/// for a null mask) are finite.
 template <StateSpace D>
-[[nodiscard]] bool present_outputs_finite(const typename D::Output& y, const OutputMask<D>& present) {
-  for (Index i = 0; i < y.size(); ++i)
-    if (present(i) && !std::isfinite(y(i))) return false;
-  return true;
+[[nodiscard]] bool finite_sample(const DiscreteSample<D>& sample, const OutputMask<D>* present) {
+  if (!present) return all_finite(sample.u, sample.y, sample.Psi);
+  for (Index i = 0; i < sample.y.size(); ++i)
+    if ((*present)(i) && !std::isfinite(sample.y(i))) return false;
+  return all_finite(sample.u, sample.Psi);
+}
+
+/// Zeroes the rows of `m` whose output channel is absent (nothing for a null mask).
+template <StateSpace D, class Derived>
+void zero_absent_rows(Eigen::MatrixBase<Derived>& m, const OutputMask<D>* present) {
+  if (!present) return;
+  for (Index i = 0; i < m.rows(); ++i)
+    if (!(*present)(i)) m.row(i).setZero();
 }
 
 }  // namespace detail

@@ -214,10 +214,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   }
 
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
-    const bool finite = present ? detail::all_finite(sample.u, sample.Psi) &&
-                                      detail::present_outputs_finite<Dims>(sample.y, *present)
-                                : detail::all_finite(sample.u, sample.y, sample.Psi);
-    if (!finite) return UpdateStatus::nonfinite_input;
+    if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
     const auto& system = model_.at(step_);
     if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
 
@@ -226,13 +223,8 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     w.innovation = sample.y;
     w.innovation.noalias() -= system.C * x_;
     w.c_upsilon.noalias() = detail::product(system.C, upsilon_);
-    if (present) {
-      for (Index i = 0; i < w.innovation.size(); ++i) {
-        if ((*present)(i)) continue;
-        w.innovation(i) = Scalar(0);
-        w.c_upsilon.row(i).setZero();
-      }
-    }
+    detail::zero_absent_rows<Dims>(w.innovation, present);
+    detail::zero_absent_rows<Dims>(w.c_upsilon, present);
 
     /// (2b) \f$\hat\theta_{k+1} = \hat\theta_k + \mu_k\Upsilon_k^TC_k^T(y_k - C_k\hat x_k)\f$
     Scalar mu_k = mu_;
