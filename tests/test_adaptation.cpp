@@ -1,7 +1,7 @@
 // Adaptation laws on their own (paper 003, eq. (17)–(23); exponential
 // forgetting; normalized gradient): the recursions against their closed forms,
-// the exactness and the cost of the reset test, compute-then-commit, and
-// configuration checks.
+// the exactness and the cost of the reset test, partial measurements (the step
+// on the present sub-regression), compute-then-commit, and configuration checks.
 
 #include <adaptobs/adaptation/adaptation_law.hpp>
 #include <adaptobs/adaptation/covariance_resetting.hpp>
@@ -354,6 +354,84 @@ TEST(AdaptationLaws, ProposeChangesNothingUntilCommit) {
   check_compute_then_commit(forgetting, phi, z);
   Gradient gradient(Vector4::Zero(), {});
   check_compute_then_commit(gradient, phi, z);
+}
+
+// A masked step is the law's step on the present sub-regression: the columns of
+// φ, the entries of z and the block R_PP of R for the present set P. R couples
+// the entries, so zeroing the absent ones alone would not give it. The masks run
+// through all eight subsets of three entries; absent entries of z hold NaN.
+TEST(AdaptationLaws, MaskedStepIsTheStepOnThePresentSubRegression) {
+  using Dynamic = Eigen::MatrixXd;
+  using DynamicRls = adaptobs::RecursiveLeastSquares<double, Eigen::Dynamic, Eigen::Dynamic>;
+  using DynamicForgetting = adaptobs::ExponentialForgettingRls<double, Eigen::Dynamic, Eigen::Dynamic>;
+  using DynamicGradient = adaptobs::NormalizedGradient<double, Eigen::Dynamic, Eigen::Dynamic>;
+  RandomMatrices rng(14);
+  const Index np = 5, nz = 3;
+  const double lambda = 0.9;
+  const Dynamic r = random_spd<Dynamic>(rng, nz, 0.2, 2.0);
+  const Dynamic gamma0 = random_spd<Dynamic>(rng, np, 1.0, 10.0);
+  const Eigen::VectorXd p0 = rng.uniform<Eigen::VectorXd>(np, 1);
+  DynamicRls rls(p0, {gamma0, r});
+  DynamicResetting resetting(p0, {.k0 = 5, .kmin = 1e-9, .R = r});
+  DynamicForgetting forgetting(p0, {gamma0, r, lambda});
+  DynamicGradient gradient(p0, {}, nz);
+  for (Index t = 0; t < 48; ++t) {
+    adaptobs::RegressionTypes<double, Eigen::Dynamic, Eigen::Dynamic>::Presence present(nz);
+    std::vector<Index> kept;
+    for (Index j = 0; j < nz; ++j) {
+      present(j) = ((t >> j) & 1) != 0;
+      if (present(j)) kept.push_back(j);
+    }
+    const Dynamic phi = rng.uniform<Dynamic>(np, nz);
+    Eigen::VectorXd z = rng.uniform<Eigen::VectorXd>(nz, 1);
+    for (Index j = 0; j < nz; ++j)
+      if (!present(j)) z(j) = std::numeric_limits<double>::quiet_NaN();
+    const Dynamic phi_p = phi(Eigen::all, kept);
+    const Eigen::VectorXd z_p = z(kept);
+    const Dynamic r_pp = r(kept, kept);
+    const auto m = static_cast<Index>(kept.size());
+
+    // The references: each law restarted from the current state on the sub-regression.
+    if (m > 0) {
+      DynamicRls rls_ref(rls.parameters(), {rls.covariance(), r_pp});
+      DynamicRls resetting_ref(resetting.parameters(), {resetting.covariance(), r_pp});
+      DynamicForgetting forgetting_ref(forgetting.parameters(), {forgetting.covariance(), r_pp, lambda});
+      DynamicGradient gradient_ref(gradient.parameters(), {}, m);
+      ASSERT_TRUE(rls_ref.propose(phi_p, z_p) && resetting_ref.propose(phi_p, z_p) &&
+                  forgetting_ref.propose(phi_p, z_p) && gradient_ref.propose(phi_p, z_p));
+      ASSERT_TRUE(rls.propose(phi, z, present) && resetting.propose(phi, z, present) &&
+                  forgetting.propose(phi, z, present) && gradient.propose(phi, z, present));
+      EXPECT_MATRIX_NEAR(rls.proposal(), rls_ref.proposal(), 1e-12, 1e-12) << "t = " << t;
+      EXPECT_MATRIX_NEAR(rls.proposed_covariance(), rls_ref.proposed_covariance(), 1e-12, 1e-12) << "t = " << t;
+      EXPECT_MATRIX_NEAR(resetting.proposal(), resetting_ref.proposal(), 1e-12, 1e-12) << "t = " << t;
+      EXPECT_MATRIX_NEAR(resetting.proposed_covariance(), resetting_ref.proposed_covariance(), 1e-12, 1e-12);
+      EXPECT_MATRIX_NEAR(forgetting.proposal(), forgetting_ref.proposal(), 1e-12, 1e-12) << "t = " << t;
+      EXPECT_MATRIX_NEAR(forgetting.proposed_covariance(), forgetting_ref.proposed_covariance(), 1e-12, 1e-12);
+      EXPECT_MATRIX_NEAR(gradient.proposal(), gradient_ref.proposal(), 1e-12, 1e-12) << "t = " << t;
+    } else {  // no data: p unchanged; Γ unchanged, or divided by λ under forgetting
+      ASSERT_TRUE(rls.propose(phi, z, present) && resetting.propose(phi, z, present) &&
+                  forgetting.propose(phi, z, present) && gradient.propose(phi, z, present));
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(rls.proposal(), rls.parameters()));
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(rls.proposed_covariance(), rls.covariance()));
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(resetting.proposal(), resetting.parameters()));
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(forgetting.proposal(), forgetting.parameters()));
+      EXPECT_MATRIX_NEAR(forgetting.proposed_covariance(), Dynamic(forgetting.covariance() / lambda), 1e-12, 1e-14);
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(gradient.proposal(), gradient.parameters()));
+    }
+    if (m == nz) {  // all present: the unmasked step, bit for bit
+      DynamicRls rls_plain = rls;
+      DynamicForgetting forgetting_plain = forgetting;
+      ASSERT_TRUE(rls_plain.propose(phi, z) && forgetting_plain.propose(phi, z));
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(rls_plain.proposed_covariance(), rls.proposed_covariance()));
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(forgetting_plain.proposal(), forgetting.proposal()));
+    }
+    rls.commit();
+    resetting.commit();
+    forgetting.commit();
+    gradient.commit();
+  }
+  EXPECT_EQ(resetting.reset_count(), 0);  // the resetting law compared as plain RLS
+  EXPECT_GT((rls.parameters() - p0).norm(), 0.1);
 }
 
 TEST(AdaptationLaws, DynamicSizesGiveTheSameNumbersAsFixedSizes) {

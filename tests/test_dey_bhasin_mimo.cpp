@@ -2,7 +2,7 @@
 // dimensions: the reading of the example, eq. (7) and (12), the structured
 // filters against the literal (8)–(11), convergence with a sufficiently rich
 // input (theorem 6), boundedness without it (theorem 5, both bounds), batch
-// least squares (18), bad input and configuration.
+// least squares (18), missing and partial outputs, bad input and configuration.
 
 #include <adaptobs/adaptation/recursive_least_squares.hpp>
 #include <adaptobs/core/observer.hpp>
@@ -23,6 +23,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -221,15 +222,25 @@ struct RunSummary {
   Index resets = 0;
 };
 
-template <class Input>
-RunSummary run_example(Observer& observer, Input input, Index steps) {
+using Mask = adaptobs::OutputMask<Observer::Dims>;
+
+// Which output channels each sample carries: by default all of them.
+struct EveryChannel {
+  Mask operator()(Index /*t*/) const { return Mask::Constant(true); }
+};
+
+template <class Input, class Presence = EveryChannel>
+RunSummary run_example(Observer& observer, Input input, Index steps, Presence presence = {}) {
   auto plant = mimo::make_plant(input);
   const Vector15 p = true_p(observer);
   RunSummary s;
   s.initial_state_error = (plant.state() - observer.current_state()).norm();
   s.max_parameter_error = (p - observer.parameters()).norm();
   for (Index t = 0; t < steps; ++t) {
-    EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted) << "step " << t;
+    const Mask present = presence(t);
+    EXPECT_EQ(present.all() ? observer.update(plant.sample()) : observer.update(plant.sample(), present),
+              UpdateStatus::accepted)
+        << "step " << t;
     const double deviation =
         (db::normalized_estimates(observer, mimo::a(), mimo::B()).array() - 1.0).abs().maxCoeff();
     const double state_error = (plant.state() - observer.current_state()).norm();
@@ -271,6 +282,111 @@ TEST(DeyBhasin, Theorem6NotRichInputDoesNotIdentify) {
   EXPECT_GT(s.final_deviation, 1.0);
   EXPECT_LT(s.within_one_percent_from, 0);
   EXPECT_TRUE(observer.parameters().allFinite());
+}
+
+// --- Missing and partial outputs (file comment of observers/dey_bhasin.hpp) ---------
+
+TEST(DeyBhasinMissing, AllChannelsPresentIsTheUpdateBitForBit) {
+  auto plain = mimo::make_observer();
+  auto masked = mimo::make_observer();
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t < 300; ++t) {
+    ASSERT_EQ(plain.update(plant.sample()), UpdateStatus::accepted);
+    ASSERT_EQ(masked.update(plant.sample(), Mask::Constant(true)), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(masked.parameters(), plain.parameters()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(masked.state(), plain.state()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(masked.current_state(), plain.current_state()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(masked.law().covariance(), plain.law().covariance()));
+}
+
+// Started at the truth, the outputs predicted for the absent channels are the
+// measured ones: through dropped samples and dropped channels (absent entries
+// NaN) the observer stays on the plant, and no channel present is the prediction.
+TEST(DeyBhasinMissing, ExactModelStaysOnThePlantThroughMissingOutputs) {
+  auto observer = Observer(mimo::f(), mimo::x0(), mimo::a(), mimo::B(), mimo::law_options());
+  const Vector15 p = true_p(observer);
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  std::mt19937_64 generator(31);
+  std::uniform_int_distribution<int> pattern(0, 3);
+  Index time_updates = 0;
+  for (Index t = 0; t < 400; ++t) {
+    const int bits = pattern(generator);
+    const Mask present((bits & 1) != 0, (bits & 2) != 0);
+    auto sample = plant.sample();
+    for (Index i = 0; i < 2; ++i)
+      if (!present(i)) sample.y(i) = std::numeric_limits<double>::quiet_NaN();
+    const Eigen::Matrix<double, 6, 1> predicted = observer.state();
+    ASSERT_EQ(observer.update(sample, present), UpdateStatus::accepted) << "step " << t;
+    if (!present.any()) {
+      ++time_updates;
+      EXPECT_MATRIX_NEAR(observer.current_state(), predicted, 1e-12, 1e-12) << "step " << t;
+    }
+    EXPECT_MATRIX_NEAR(observer.current_state(), plant.state(), 1e-10, 1e-10) << "step " << t;
+    plant.advance();
+    EXPECT_MATRIX_NEAR(observer.state(), plant.state(), 1e-10, 1e-10) << "step " << t;
+  }
+  EXPECT_EQ(observer.step(), 400);
+  EXPECT_GT(time_updates, 50);
+  EXPECT_MATRIX_NEAR(observer.parameters(), p, 1e-12, 0.0);
+}
+
+// The example of theorem 6 with 20 % of the samples lost at random, and with the
+// second output lost half of the time: still every entry of A and B to 1 %.
+TEST(DeyBhasinMissing, RichInputStillIdentifiesWithDroppedSamplesAndChannels) {
+  std::mt19937_64 generator(20);
+  std::bernoulli_distribution lost(0.2), second_present(0.5);
+  auto dropped = [&](Index /*t*/) { return Mask::Constant(!lost(generator)); };
+  auto observer = mimo::make_observer();
+  const RunSummary s = run_example(observer, mimo::RichInput{}, 1000, dropped);
+  EXPECT_LT(s.final_deviation, 0.01);
+  EXPECT_GE(s.within_one_percent_from, 0);
+  EXPECT_LT(s.within_one_percent_from, 200);  // every sample present: step 68
+  EXPECT_LT(s.final_state_error, 1e-6 * s.initial_state_error);
+  RecordProperty("dropped_within_one_percent_from", std::to_string(s.within_one_percent_from));
+
+  auto half = [&](Index /*t*/) { return Mask(true, second_present(generator)); };
+  auto partial = mimo::make_observer();
+  const RunSummary h = run_example(partial, mimo::RichInput{}, 1000, half);
+  EXPECT_LT(h.final_deviation, 0.01);
+  EXPECT_GE(h.within_one_percent_from, 0);
+  EXPECT_LT(h.within_one_percent_from, 200);
+  EXPECT_LT(h.final_state_error, 1e-6 * h.initial_state_error);
+  RecordProperty("half_within_one_percent_from", std::to_string(h.within_one_percent_from));
+}
+
+TEST(DeyBhasinMissing, NonFiniteOutputRejectedOnlyOnAPresentChannel) {
+  auto observer = mimo::make_observer();
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t < 20; ++t) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  auto sample = plant.sample();
+  sample.y(0) = std::numeric_limits<double>::infinity();
+  const auto before = observer;
+  EXPECT_EQ(observer.update(sample, Mask(true, false)), UpdateStatus::nonfinite_input);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.parameters(), before.parameters()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.state(), before.state()));
+  EXPECT_EQ(observer.step(), before.step());
+  EXPECT_EQ(observer.update(sample, Mask(false, true)), UpdateStatus::accepted);
+  EXPECT_EQ(observer.step(), before.step() + 1);
+  // The same step, the mask read off the finite entries of y.
+  static_assert(adaptobs::PartialOutputObserver<Observer>);
+  auto glitched = before;
+  EXPECT_EQ(adaptobs::update_finite_outputs(glitched, Observer::Sample{sample.u, sample.y}), UpdateStatus::accepted);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(glitched.parameters(), observer.parameters()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(glitched.state(), observer.state()));
+  DynamicObserver dynamic(Eigen::VectorXd(mimo::f()), Eigen::VectorXd(mimo::x_hat0()),
+                          Eigen::VectorXd(mimo::a_hat0()), Eigen::MatrixXd(mimo::B_hat0()),
+                          {.k0 = 10, .kmin = 1e-3, .R = Eigen::MatrixXd::Identity(2, 2)});
+  const std::string message = adaptobs::testing::configuration_error_of([&] {
+    (void)dynamic.update(DynamicObserver::Sample{Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2)},
+                         adaptobs::OutputMask<DynamicObserver::Dims>::Constant(3, true));
+  });
+  EXPECT_NE(message.find("'present'"), std::string::npos) << message;
+  EXPECT_EQ(dynamic.step(), 0);
 }
 
 // "Sufficiently rich" here: every input channel needs two sinusoids at frequencies

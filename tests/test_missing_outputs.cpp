@@ -4,9 +4,11 @@
 // of paper 000 §4 keeps its accuracy with random drops and an outage, where
 // skipping the samples does not; an LTV model stays in phase. The augmented
 // Kalman filter: a mask is the Kalman correction with the present rows of C
-// and the present block of R.
+// and the present block of R. `update_finite_outputs`: a glitch in y is the
+// masked update without that channel. (Dey–Bhasin: test_dey_bhasin_mimo.cpp.)
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/observer.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 
@@ -364,3 +366,46 @@ TEST(AugmentedKalmanMissing, MaskedStepIsTheCorrectionWithThePresentChannelsOnly
 }
 
 }  // namespace
+
+// `update_finite_outputs`, written once against `PartialOutputObserver`: a NaN or
+// Inf in y is the masked update without that channel, bit for bit; no finite
+// entry is the time update; a non-finite input is still rejected.
+template <class MakeObserver>
+void check_finite_outputs(MakeObserver make) {
+  auto glitched = make(), masked = make();
+  static_assert(adaptobs::PartialOutputObserver<decltype(glitched)>);
+  auto plant = satellite::make_plant<double>();
+  for (Index k = 0; k < 300; ++k) {
+    auto sample = plant.sample();
+    Mask present = Mask::Constant(true);
+    if (k % 5 == 1) present(1) = false;
+    if (k % 7 == 2) present.setConstant(false);
+    for (Index i = 0; i < 2; ++i)
+      if (!present(i)) sample.y(i) = k % 2 ? std::numeric_limits<double>::quiet_NaN() : -HUGE_VAL;
+    ASSERT_EQ(adaptobs::update_finite_outputs(glitched, sample), UpdateStatus::accepted);
+    ASSERT_EQ(masked.update(plant.sample(), present), UpdateStatus::accepted);
+    ASSERT_TRUE(bitwise_equal(glitched.state(), masked.state()) &&
+                bitwise_equal(glitched.parameters(), masked.parameters()))
+        << "step " << k;
+    plant.advance();
+  }
+  auto sample = plant.sample();
+  sample.u(0) = std::numeric_limits<double>::quiet_NaN();
+  const auto before = glitched;
+  EXPECT_EQ(adaptobs::update_finite_outputs(glitched, sample), UpdateStatus::nonfinite_input);
+  EXPECT_TRUE(bitwise_equal(glitched.state(), before.state()) &&
+              bitwise_equal(glitched.parameters(), before.parameters()));
+  EXPECT_EQ(glitched.step(), before.step());
+}
+
+TEST(FiniteOutputs, GlitchesBecomeMaskedUpdatesForGuyaderZhangAndTheKalmanFilter) {
+  check_finite_outputs([] { return make_observer({.normalized_step = true}); });
+  check_finite_outputs([] {
+    using Matrix6 = Eigen::Matrix<double, 6, 6>;
+    Matrix6 p0 = Matrix6::Identity() * 0.1, q = Matrix6::Identity() * 1e-10;
+    return adaptobs::AugmentedKalmanFilter(satellite::model<double>(), satellite::initial_state_estimate<double>(),
+                                           satellite::initial_parameter_estimate<double>(),
+                                           adaptobs::AugmentedKalmanCovariances<SatelliteDims>{
+                                               p0, q, Eigen::Matrix2d::Identity() * 1e-4});
+  });
+}

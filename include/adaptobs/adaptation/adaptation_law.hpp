@@ -53,6 +53,7 @@ struct RegressionTypes {
   using Covariance = Eigen::Matrix<S, NP, NP>;         ///< Γ
   using MeasurementWeight = Eigen::Matrix<S, NZ, NZ>;  ///< R (the cost weighs errors with R⁻¹)
   using Gain = Eigen::Matrix<S, NP, NZ>;               ///< Γφ and its factors
+  using Presence = Eigen::Array<bool, NZ, 1>;          ///< which entries of z were measured
 };
 
 namespace detail {
@@ -68,6 +69,54 @@ void require_regression_sizes(const typename Types::Regressor& phi, const typena
     require_shape(z, nz, 1, who, "z");
   }
 }
+
+/// Throws a `ConfigurationError` naming `present` when a run-time-sized presence
+/// mask does not have nz entries.
+template <class Types>
+void require_presence_size(const typename Types::Presence& present, Index nz, std::string_view who) {
+  if constexpr (Types::nz == Eigen::Dynamic) require(present.size() == nz, who, "present", "must have nz entries");
+}
+
+/// The regression of the measured entries only, kept at full size (see
+/// `AdaptationLaw`, "Partial measurements"): the columns of φ and the entries of z
+/// of absent measurements are zero, and the weight is
+/// \f$\bar R = DRD + (I - D)\f$, \f$D = \mathrm{diag}(\text{present})\f$ — R on the measured
+/// block, the identity on the absent one.
+template <class Types>
+struct MaskedRegression {
+  typename Types::Regressor phi;
+  typename Types::Measurement z;
+  typename Types::MeasurementWeight weight;
+
+  MaskedRegression(Index np, Index nz, bool weighted) {
+    phi.setZero(np, nz);
+    z.setZero(nz);
+    if (weighted) weight.setZero(nz, nz);
+  }
+
+  /// φ and z with their absent columns and entries zeroed (absent entries of z may be NaN).
+  void assign(const typename Types::Regressor& phi_in, const typename Types::Measurement& z_in,
+              const typename Types::Presence& present) {
+    phi = phi_in;
+    z = z_in;
+    for (Index j = 0; j < present.size(); ++j)
+      if (!present(j)) {
+        phi.col(j).setZero();
+        z(j) = 0;
+      }
+  }
+
+  /// \f$\bar R\f$ from R.
+  void assign_weight(const typename Types::MeasurementWeight& R, const typename Types::Presence& present) {
+    weight = R;
+    for (Index j = 0; j < present.size(); ++j)
+      if (!present(j)) {
+        weight.row(j).setZero();
+        weight.col(j).setZero();
+        weight(j, j) = 1;
+      }
+  }
+};
 
 }  // namespace detail
 
@@ -86,16 +135,33 @@ void require_regression_sizes(const typename Types::Regressor& phi, const typena
 ///   the law then follows its recursion in plain IEEE arithmetic, which is
 ///   how an example records a law breaking down. Observers never do that;
 /// - `restart(p0)` starts again from \f$\hat p_0\f$ and the initial gain.
+///
+/// **Partial measurements.** `propose(phi, z, present)` uses only the entries
+/// of z marked present (the others may be NaN): it is the law's step on the
+/// sub-regression \f$z_P = \varphi_P^Tp + v_P\f$ of the present set P, the columns
+/// \f$\varphi_P\f$ of φ and, for the weighted laws, the block \f$R_{PP}\f$ of R. It runs
+/// as the full-size step with the absent columns of φ and entries of z zeroed and R
+/// replaced by \f$\bar R = DRD + (I - D)\f$: then
+/// \f$R + \varphi^T\Gamma\varphi\f$ is block diagonal, \f$R_{PP} + \varphi_P^T\Gamma\varphi_P\f$ and I, so
+/// the gain of an absent entry is zero and the rest is the sub-regression's step
+/// exactly. (Zeroing alone would not do when R couples the entries: the present
+/// block of \f$(R + \varphi^T\Gamma\varphi)^{-1}\f$ would then condition on the noise of
+/// entries that were never measured.) All present is `propose(phi, z)`, bit for
+/// bit; none present is the recursion without data (p unchanged; Γ unchanged,
+/// or divided by λ under forgetting).
 template <class L>
 concept AdaptationLaw = requires(L& law, const L& const_law, const typename L::Regressor& phi,
-                                 const typename L::Measurement& z, const typename L::Parameters& p0) {
+                                 const typename L::Measurement& z, const typename L::Presence& present,
+                                 const typename L::Parameters& p0) {
   typename L::Scalar;
   typename L::Parameters;
   typename L::Regressor;
   typename L::Measurement;
+  typename L::Presence;
   typename L::Options;
   { const_law.parameters() } -> std::convertible_to<const typename L::Parameters&>;
   { law.propose(phi, z) } -> std::same_as<bool>;
+  { law.propose(phi, z, present) } -> std::same_as<bool>;
   { const_law.proposal() } -> std::convertible_to<const typename L::Parameters&>;
   law.commit();
   law.restart(p0);

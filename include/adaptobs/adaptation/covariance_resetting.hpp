@@ -80,6 +80,7 @@ class CovarianceResettingRls {
   using Measurement = typename Types::Measurement;
   using Covariance = typename Types::Covariance;
   using MeasurementWeight = typename Types::MeasurementWeight;
+  using Presence = typename Types::Presence;
 
   struct Options {
     Scalar k0;            ///< \f$\Gamma_0 = k_0I\f$ and the reset value, > kmin
@@ -94,7 +95,8 @@ class CovarianceResettingRls {
   CovarianceResettingRls(Parameters p0, Options options, Index nz = NZ)
       : options_(std::move(options)),
         nz_(detail::measurement_size<NZ>(nz, options_.R)),
-        correction_(p0.rows(), nz_) {
+        correction_(p0.rows(), nz_),
+        masked_(p0.rows(), nz_, true) {
     constexpr std::string_view who = "CovarianceResettingRls";
     detail::require_finite(p0, who, "p0");
     detail::require_positive(options_.k0, who, "k0");
@@ -137,11 +139,40 @@ class CovarianceResettingRls {
   /// (22), then (23), with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
     detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "CovarianceResettingRls::propose");
+    return step(phi, z, options_.R);
+  }
+
+  /// (22), then (23), with the present entries of \f$z_t\f$ only; see `AdaptationLaw`,
+  /// "Partial measurements". The reset screen stays valid: with the absent
+  /// columns of φ zeroed, \f$\varphi^T\bar R^{-1}\varphi\f$ involves only \f$R_{PP}^{-1}\f$, whose
+  /// largest eigenvalue is at most \f$1/\lambda_{\min}(R)\f$ (interlacing).
+  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
+    constexpr std::string_view who = "CovarianceResettingRls::propose";
+    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, who);
+    detail::require_presence_size<Types>(present, nz_, who);
+    if (present.all()) return step(phi, z, options_.R);
+    masked_.assign(phi, z, present);
+    masked_.assign_weight(options_.R, present);
+    return step(masked_.phi, masked_.z, masked_.weight);
+  }
+
+  void commit() noexcept { current_ = 1 - current_; }
+
+  /// Back to \f$\hat p_0\f$ and \f$\Gamma_0 = k_0I\f$, counters cleared.
+  void restart(const Parameters& p0) {
+    detail::require_shape(p0, parameter_count(), 1, "CovarianceResettingRls::restart", "p0");
+    detail::require_finite(p0, "CovarianceResettingRls::restart", "p0");
+    p_[current_] = p0;
+    start();
+  }
+
+ private:
+  bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
     const int next = 1 - current_;
     Tracking& track = track_[next];
     track = track_[current_];
     track.reset_last = false;
-    if (!correction_.apply(gamma_[current_], options_.R, phi, z, p_[current_], Scalar(1), p_[next], gamma_[next]))
+    if (!correction_.apply(gamma_[current_], weight, phi, z, p_[current_], Scalar(1), p_[next], gamma_[next]))
       return false;
     if (!detail::all_finite(p_[next], gamma_[next])) return false;
 
@@ -168,17 +199,6 @@ class CovarianceResettingRls {
     return true;
   }
 
-  void commit() noexcept { current_ = 1 - current_; }
-
-  /// Back to \f$\hat p_0\f$ and \f$\Gamma_0 = k_0I\f$, counters cleared.
-  void restart(const Parameters& p0) {
-    detail::require_shape(p0, parameter_count(), 1, "CovarianceResettingRls::restart", "p0");
-    detail::require_finite(p0, "CovarianceResettingRls::restart", "p0");
-    p_[current_] = p0;
-    start();
-  }
-
- private:
   void start() {
     const Index np = parameter_count();
     gamma_[current_].setZero(np, np);
@@ -203,6 +223,7 @@ class CovarianceResettingRls {
   Scalar rounding_margin_ = 0;       // η
   Covariance shifted_;               // Γ̄ − kmin I, factored in place by the reset test
   detail::RlsCorrection<S, NP, NZ> correction_;
+  detail::MaskedRegression<Types> masked_;
 };
 
 }  // namespace adaptobs

@@ -66,6 +66,7 @@ class ExponentialForgettingRls {
   using Measurement = typename Types::Measurement;
   using Covariance = typename Types::Covariance;
   using MeasurementWeight = typename Types::MeasurementWeight;
+  using Presence = typename Types::Presence;
 
   struct Options {
     Covariance gamma0;    ///< \f$\Gamma_0\f$, symmetric positive definite
@@ -77,7 +78,8 @@ class ExponentialForgettingRls {
   ExponentialForgettingRls(Parameters p0, Options options, Index nz = NZ)
       : options_(std::move(options)),
         nz_(detail::measurement_size<NZ>(nz, options_.R)),
-        factorization_(nz_) {
+        factorization_(nz_),
+        masked_(p0.rows(), nz_, true) {
     constexpr std::string_view who = "ExponentialForgettingRls";
     detail::validate_least_squares(p0, options_.gamma0, options_.R, nz_, who);
     detail::require(options_.lambda > Scalar(0) && options_.lambda <= Scalar(1), who, "lambda",
@@ -106,10 +108,38 @@ class ExponentialForgettingRls {
   /// One weighted step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
     detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "ExponentialForgettingRls::propose");
+    return step(phi, z, weight_);
+  }
+
+  /// One weighted step with the present entries of \f$z_t\f$ only; see `AdaptationLaw`,
+  /// "Partial measurements". Forgetting is per step, measured or not: with no
+  /// entry present, Γ is divided by λ.
+  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
+    constexpr std::string_view who = "ExponentialForgettingRls::propose";
+    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, who);
+    detail::require_presence_size<Types>(present, nz_, who);
+    if (present.all()) return step(phi, z, weight_);
+    masked_.assign(phi, z, present);
+    masked_.assign_weight(weight_, present);
+    return step(masked_.phi, masked_.z, masked_.weight);
+  }
+
+  void commit() noexcept { current_ = 1 - current_; }
+
+  void restart(const Parameters& p0) {
+    detail::require_shape(p0, parameter_count(), 1, "ExponentialForgettingRls::restart", "p0");
+    detail::require_finite(p0, "ExponentialForgettingRls::restart", "p0");
+    p_[current_] = p0;
+    gamma_[current_] = options_.gamma0;
+  }
+
+ private:
+  // The step with weight λR (or its masked form).
+  bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
     const int next = 1 - current_;
     const Covariance& gamma = gamma_[current_];
     gamma_phi_.noalias() = detail::product(gamma, phi);
-    innovation_weight_ = weight_;
+    innovation_weight_ = weight;
     innovation_weight_.noalias() += detail::product(phi.transpose(), gamma_phi_);
     factorization_.compute(innovation_weight_);
     // A singular or non-finite M leaves no gain (the factorization would quietly
@@ -132,16 +162,6 @@ class ExponentialForgettingRls {
     return detail::all_finite(p_[next], gamma_[next]);
   }
 
-  void commit() noexcept { current_ = 1 - current_; }
-
-  void restart(const Parameters& p0) {
-    detail::require_shape(p0, parameter_count(), 1, "ExponentialForgettingRls::restart", "p0");
-    detail::require_finite(p0, "ExponentialForgettingRls::restart", "p0");
-    p_[current_] = p0;
-    gamma_[current_] = options_.gamma0;
-  }
-
- private:
   Options options_;
   Index nz_;
   MeasurementWeight weight_;  // λR
@@ -153,6 +173,7 @@ class ExponentialForgettingRls {
   MeasurementWeight innovation_weight_;             // M = λR + φᵀΓφ
   Eigen::LDLT<MeasurementWeight> factorization_;    // of M, which need not be positive definite
   Measurement innovation_;
+  detail::MaskedRegression<Types> masked_;
 };
 
 }  // namespace adaptobs

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <string_view>
 #include <utility>
@@ -32,6 +33,7 @@ class NormalizedGradient {
   using Parameters = typename Types::Parameters;
   using Regressor = typename Types::Regressor;
   using Measurement = typename Types::Measurement;
+  using Presence = typename Types::Presence;
 
   struct Options {
     Scalar mu = 1;      ///< step μ ∈ (0, 2)
@@ -40,7 +42,7 @@ class NormalizedGradient {
 
   /// \param nz measurement count (only read when `NZ` is dynamic, where it is required).
   NormalizedGradient(Parameters p0, Options options, Index nz = NZ)
-      : options_(options), nz_(NZ == Eigen::Dynamic ? nz : NZ) {
+      : options_(options), nz_(NZ == Eigen::Dynamic ? nz : NZ), masked_(p0.rows(), std::max<Index>(nz_, 0), false) {
     constexpr std::string_view who = "NormalizedGradient";
     detail::require(nz_ >= 0, who, "nz", "must be given (non-negative) when the measurement size is dynamic");
     detail::require_finite(p0, who, "p0");
@@ -60,13 +62,19 @@ class NormalizedGradient {
   /// One gradient step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
     detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "NormalizedGradient::propose");
-    const int next = 1 - current_;
-    innovation_ = z;
-    innovation_.noalias() -= phi.transpose() * p_[current_];
-    innovation_ *= options_.mu / (options_.offset + phi.squaredNorm());
-    p_[next] = p_[current_];
-    p_[next].noalias() += phi * innovation_;
-    return detail::all_finite(p_[next]);
+    return step(phi, z);
+  }
+
+  /// One gradient step with the present entries of \f$z_t\f$ only (absent columns of φ
+  /// and entries of z zeroed, so they add neither to the step nor to \f$\|\varphi_t\|_F^2\f$);
+  /// see `AdaptationLaw`, "Partial measurements".
+  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
+    constexpr std::string_view who = "NormalizedGradient::propose";
+    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, who);
+    detail::require_presence_size<Types>(present, nz_, who);
+    if (present.all()) return step(phi, z);
+    masked_.assign(phi, z, present);
+    return step(masked_.phi, masked_.z);
   }
 
   void commit() noexcept { current_ = 1 - current_; }
@@ -78,11 +86,22 @@ class NormalizedGradient {
   }
 
  private:
+  bool step(const Regressor& phi, const Measurement& z) {
+    const int next = 1 - current_;
+    innovation_ = z;
+    innovation_.noalias() -= phi.transpose() * p_[current_];
+    innovation_ *= options_.mu / (options_.offset + phi.squaredNorm());
+    p_[next] = p_[current_];
+    p_[next].noalias() += phi * innovation_;
+    return detail::all_finite(p_[next]);
+  }
+
   Options options_;
   Index nz_;
   std::array<Parameters, 2> p_;
   int current_ = 0;  // slot of the current estimate; the other slot holds the proposal
   Measurement innovation_;
+  detail::MaskedRegression<Types> masked_;
 };
 
 }  // namespace adaptobs

@@ -62,6 +62,7 @@ class RecursiveLeastSquares {
   using Measurement = typename Types::Measurement;
   using Covariance = typename Types::Covariance;
   using MeasurementWeight = typename Types::MeasurementWeight;
+  using Presence = typename Types::Presence;
 
   struct Options {
     Covariance gamma0;    ///< \f$\Gamma_0\f$, symmetric positive definite
@@ -72,7 +73,8 @@ class RecursiveLeastSquares {
   RecursiveLeastSquares(Parameters p0, Options options, Index nz = NZ)
       : options_(std::move(options)),
         nz_(detail::measurement_size<NZ>(nz, options_.R)),
-        correction_(p0.rows(), nz_) {
+        correction_(p0.rows(), nz_),
+        masked_(p0.rows(), nz_, true) {
     detail::validate_least_squares(p0, options_.gamma0, options_.R, nz_, "RecursiveLeastSquares");
     p_[0] = p0;
     p_[1] = std::move(p0);
@@ -93,10 +95,18 @@ class RecursiveLeastSquares {
   /// (22) and (21) with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
     detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "RecursiveLeastSquares::propose");
-    const int next = 1 - current_;
-    if (!correction_.apply(gamma_[current_], options_.R, phi, z, p_[current_], S(1), p_[next], gamma_[next]))
-      return false;
-    return detail::all_finite(p_[next], gamma_[next]);
+    return step(phi, z, options_.R);
+  }
+
+  /// (22) and (21) with the present entries of \f$z_t\f$ only; see `AdaptationLaw`, "Partial measurements".
+  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
+    constexpr std::string_view who = "RecursiveLeastSquares::propose";
+    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, who);
+    detail::require_presence_size<Types>(present, nz_, who);
+    if (present.all()) return step(phi, z, options_.R);
+    masked_.assign(phi, z, present);
+    masked_.assign_weight(options_.R, present);
+    return step(masked_.phi, masked_.z, masked_.weight);
   }
 
   void commit() noexcept { current_ = 1 - current_; }
@@ -109,12 +119,19 @@ class RecursiveLeastSquares {
   }
 
  private:
+  bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
+    const int next = 1 - current_;
+    if (!correction_.apply(gamma_[current_], weight, phi, z, p_[current_], S(1), p_[next], gamma_[next])) return false;
+    return detail::all_finite(p_[next], gamma_[next]);
+  }
+
   Options options_;
   Index nz_;
   std::array<Parameters, 2> p_;
   std::array<Covariance, 2> gamma_;
   int current_ = 0;  // p_[current_], gamma_[current_] are current; the other slot holds the proposal
   detail::RlsCorrection<S, NP, NZ> correction_;
+  detail::MaskedRegression<Types> masked_;
 };
 
 }  // namespace adaptobs

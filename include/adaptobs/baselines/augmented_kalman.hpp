@@ -102,10 +102,13 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
   /// "Missing and partial outputs"); absent entries of `sample.y` are ignored (they may be NaN or Inf).
   /// All channels present is `update(sample)`, bit for bit; none is the prediction alone.
   [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
-    if constexpr (!Dims::is_fixed) detail::require_mask_size<Dims>(present, model_.sizes(), "AugmentedKalmanFilter::update");
+    if constexpr (!Dims::is_fixed)
+      detail::require_mask_size<Dims>(present, model_.sizes().ny, "AugmentedKalmanFilter::update");
     return step_with(sample, present.all() ? nullptr : &present);
   }
 
+  /// Run-time sizes (nx, nu, ny, np).
+  [[nodiscard]] Sizes sizes() const noexcept { return model_.sizes(); }
   [[nodiscard]] const State& state() const noexcept { return x_; }
   [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
   /// Covariance of the augmented estimate [x̂; θ̂].

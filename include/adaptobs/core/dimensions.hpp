@@ -97,6 +97,15 @@ concept StateSpace = requires {
   { T::np } -> std::convertible_to<int>;
 };
 
+/// The output channels a sample carries: entry i is true when \f$y_k(i)\f$ was
+/// measured. An observer ignores the entries of y whose channel is absent:
+/// they may hold NaN or Inf (they must still be initialized values). No
+/// channel present is a time update: the model and the known input (and
+/// regressor) move the estimates on, and the step counter advances, so
+/// time-varying models and gain schedules stay in phase.
+template <StateSpace D>
+using OutputMask = Eigen::Array<bool, D::ny, 1>;
+
 /// Base of model and observer types: re-exports the sizes of its `Dimensions`.
 template <StateSpace D>
 struct SizedBy {

@@ -34,14 +34,6 @@ struct DiscreteSample {
   typename D::RegressorMatrix Psi;
 };
 
-/// The output channels a sample carries: entry i is true when \f$y_k(i)\f$ was
-/// measured. An observer ignores the entries of y whose channel is absent:
-/// they may hold NaN or Inf (they must still be initialized values). No channel present is a time update: the model
-/// and the known input and regressor move the estimates on, and the step
-/// counter advances, so time-varying models and gain schedules stay in phase.
-template <StateSpace D>
-using OutputMask = Eigen::Array<bool, D::ny, 1>;
-
 /// One measured sample of a system with no separately measured regressor:
 /// input \f$u_k\f$ and output \f$y_k\f$ (e.g. a Takagi–Sugeno model, where the
 /// parameters act through the model's weights).
@@ -69,20 +61,12 @@ void require_sample_sizes(const DiscreteSample<D>& sample, const Sizes& s, std::
   require_shape(sample.Psi, s.nx, s.np, who, "sample.Psi");
 }
 
-/// Throws `ConfigurationError` when a run-time-sized output mask does not have ny entries.
-template <StateSpace D>
-void require_mask_size(const OutputMask<D>& present, const Sizes& s, std::string_view who) {
-  require(present.size() == s.ny, who, "present", "must have one entry per output channel");
-}
-
 /// True when u, Ψ and the entries of y whose channel is present (all of them
 /// for a null mask) are finite.
 template <StateSpace D>
 [[nodiscard]] bool finite_sample(const DiscreteSample<D>& sample, const OutputMask<D>* present) {
   if (!present) return all_finite(sample.u, sample.y, sample.Psi);
-  for (Index i = 0; i < sample.y.size(); ++i)
-    if ((*present)(i) && !std::isfinite(sample.y(i))) return false;
-  return all_finite(sample.u, sample.Psi);
+  return finite_present(sample.y, *present) && all_finite(sample.u, sample.Psi);
 }
 
 /// Zeroes the rows of `m` whose output channel is absent (nothing for a null mask).

@@ -2,7 +2,9 @@
 /// \file
 /// The `Observer` concept every adaptive observer (and every baseline) satisfies.
 
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
 
 #include <concepts>
 
@@ -27,5 +29,28 @@ concept Observer = requires(O& o, const O& co, const typename O::Sample& sample)
   { o.update(sample) } -> std::same_as<UpdateStatus>;
   o.reset(co.state(), co.parameters());
 };
+
+/// An observer that also takes samples with some output channels absent:
+/// `update(sample, present)` with an `OutputMask`, where all channels present is
+/// `update(sample)` bit for bit and none is the time update.
+template <class O>
+concept PartialOutputObserver =
+    Observer<O> && requires(O& o, const typename O::Sample& sample, const OutputMask<typename O::Dims>& present) {
+      { o.update(sample, present) } -> std::same_as<UpdateStatus>;
+      { o.sizes() } -> std::same_as<Sizes>;
+    };
+
+/// `update` with the output channels whose entry of `sample.y` is finite, the
+/// others treated as absent: a sensor glitch (NaN or Inf in y) becomes a partial
+/// update, or the time update when no entry is finite, instead of a rejected
+/// sample after which the observer falls out of step with the plant. A non-finite
+/// input or regressor is still rejected, with the observer unchanged.
+template <PartialOutputObserver O>
+[[nodiscard]] UpdateStatus update_finite_outputs(O& observer, const typename O::Sample& sample) {
+  if constexpr (O::Dims::ny == Eigen::Dynamic)
+    detail::require_shape(sample.y, observer.sizes().ny, 1, "update_finite_outputs", "sample.y");
+  const OutputMask<typename O::Dims> present = sample.y.array().isFinite();
+  return observer.update(sample, present);
+}
 
 }  // namespace adaptobs

@@ -146,5 +146,19 @@ void require_positive_semidefinite(const Eigen::MatrixBase<Derived>& m, std::str
   if (!(lambda(0) >= -tol)) fail_argument(who, argument, "must be positive semidefinite");
 }
 
+/// Throws `ConfigurationError` when a run-time-sized output mask does not have ny entries.
+template <StateSpace D>
+void require_mask_size(const OutputMask<D>& present, Index ny, std::string_view who) {
+  require(present.size() == ny, who, "present", "must have one entry per output channel");
+}
+
+/// True when every entry of y whose channel is present is finite.
+template <class Derived, class Mask>
+[[nodiscard]] bool finite_present(const Eigen::MatrixBase<Derived>& y, const Mask& present) {
+  for (Index i = 0; i < y.size(); ++i)
+    if (present(i) && !std::isfinite(y(i))) return false;
+  return true;
+}
+
 }  // namespace detail
 }  // namespace adaptobs

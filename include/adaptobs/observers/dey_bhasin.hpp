@@ -36,6 +36,31 @@
 /// does not increase it, hence the tighter bound
 /// \f[ \|\tilde p_t\| \le \|\tilde p_0\| + \sqrt{k_0}\sum_{i\ge1}\|R^{-1/2}CF^i\tilde x_0\|. \f]
 /// Tests check both bounds.
+///
+/// **Missing and partial outputs.** A sample carries the channels P of a mask;
+/// the others are absent. Two things use \f$y_t\f$, and each gets what it can:
+/// - the regression (16) keeps its present rows, \f$z_{t,P} = \varphi_{t,P}^Tp + (CF^t\tilde x_0)_P\f$,
+///   and the law takes its step on them alone (`AdaptationLaw`, "Partial
+///   measurements"; for RLS, the block \f$R_{PP}\f$);
+/// - the filters (8)–(9) and the prediction (7) need all of \f$y_t\f$: an absent entry
+///   is replaced by that of \f$\hat y_t = C\hat x_t\f$, with \f$\hat x_t = S_t\hat p_t + F^t\hat x_0\f$ (13),
+///   which does not depend on \f$y_t\f$ (\f$S_t\f$ holds data up to t − 1).
+///
+/// What the substitution costs. With \f$\bar y_t\f$ the sequence fed to the filters
+/// and \f$\bar S_t\f$ the filters it produces, \f$e_t = x_t - \bar S_tp - F^tx_0\f$ obeys, from (7),
+/// \f[ e_{t+1} = Fe_t + (I_r\otimes(y_t - \bar y_t))(a - f),\qquad e_0 = 0, \f]
+/// so (12) becomes \f$z_t = \bar\varphi_t^Tp + CF^t\tilde x_0 + Ce_t\f$: each replaced
+/// entry adds a perturbation of the same kind as the initial-state term, started
+/// at the gap and decaying as \f$F^{t-1-i}\f$. After finitely many gaps the
+/// perturbation still vanishes, and theorems 5–6 hold as stated (the bound of
+/// theorem 5 gains one such sum per gap). When gaps recur for ever (random
+/// drops), it stays bounded by \f$\sup_i\|y_i - \hat y_i\|\,\|a - f\|\sum_k\|CF^k\|\f$, and
+/// \f$\hat p_t\f$ converges to a neighbourhood that shrinks with the prediction errors
+/// at the gaps — small once \f$\hat p, \hat x\f$ are close, but no theorem of the paper
+/// covers it. With no channel present, \f$\hat p_t = \hat p_{t-1}\f$ (the law is not
+/// called: there is no data, and forgetting would inflate Γ for nothing), \f$\hat x_t\f$
+/// is the prediction \f$\hat x_{t|t-1}\f$, the filters run on \f$\hat y_t = C\hat x_t\f$ and t
+/// advances.
 
 #include <adaptobs/adaptation/adaptation_law.hpp>
 #include <adaptobs/adaptation/covariance_resetting.hpp>
@@ -114,14 +139,22 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
       s.y;
     }
   [[nodiscard]] UpdateStatus update(const AnySample& sample) {
-    if constexpr (Dims::is_fixed) {
-      Workspace w;
-      return advance(sample.u, sample.y, w);
-    } else {
-      detail::require_shape(sample.u, filters_.inputs(), 1, "DeyBhasinObserver::update", "sample.u");
-      detail::require_shape(sample.y, filters_.outputs(), 1, "DeyBhasinObserver::update", "sample.y");
-      return advance(sample.u, sample.y, work_);
+    return step_with(sample.u, sample.y, nullptr);
+  }
+
+  /// The same with only the output channels in `present` measured (file comment,
+  /// "Missing and partial outputs"); absent entries of `sample.y` are ignored
+  /// (they may be NaN or Inf). All channels present is `update(sample)`, bit for
+  /// bit; none is the time update.
+  template <class AnySample>
+    requires requires(const AnySample& s) {
+      s.u;
+      s.y;
     }
+  [[nodiscard]] UpdateStatus update(const AnySample& sample, const OutputMask<Dims>& present) {
+    if constexpr (!Dims::is_fixed)
+      detail::require_mask_size<Dims>(present, filters_.outputs(), "DeyBhasinObserver::update");
+    return step_with(sample.u, sample.y, present.all() ? nullptr : &present);
   }
 
   /// \f$\hat x_{t+1|t} = S_{t+1}\hat p_t + F^{t+1}\hat x_0\f$: the estimate of the next state
@@ -143,7 +176,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   }
   /// \f$\varphi_t\f$ of the last sample (zero before the first).
   [[nodiscard]] const Regressor& regressor() const noexcept { return phi_; }
-  /// \f$z_t = y_t - CF^t\hat x_0\f$ (16) of the last sample.
+  /// \f$z_t = y_t - CF^t\hat x_0\f$ (16) of the last sample (0 in the entries of absent channels).
   [[nodiscard]] const Output& measurement() const noexcept { return z_; }
   /// \f$S_tp + F^t\hat x_0\f$ for any p at the last sample t: the state (12) of the model
   /// with parameters p (with \f$\hat x_0 = x_0\f$ and the true p it is \f$x_t\f$).
@@ -184,6 +217,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     State free;
     Regressor phi;
     Output z;
+    Output y;  // ȳ_t: y_t with its absent entries predicted
     State x;
     State next;
     void resize(const Filters& filters) {
@@ -192,6 +226,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
       free.setZero(s.nx);
       phi.setZero(s.np, s.ny);
       z.setZero(s.ny);
+      y.setZero(s.ny);
       x.setZero(s.nx);
       next.setZero(s.nx);
     }
@@ -228,9 +263,24 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     step_ = 0;
   }
 
+  // `present` is null when every channel is.
   template <class U, class Y>
-  UpdateStatus advance(const Eigen::MatrixBase<U>& u, const Eigen::MatrixBase<Y>& y, Workspace& w) {
-    if (!detail::all_finite(u, y)) return UpdateStatus::nonfinite_input;
+  UpdateStatus step_with(const U& u, const Y& y, const OutputMask<Dims>* present) {
+    if constexpr (Dims::is_fixed) {
+      Workspace w;
+      return advance(u, y, present, w);
+    } else {
+      detail::require_shape(u, filters_.inputs(), 1, "DeyBhasinObserver::update", "sample.u");
+      detail::require_shape(y, filters_.outputs(), 1, "DeyBhasinObserver::update", "sample.y");
+      return advance(u, y, present, work_);
+    }
+  }
+
+  template <class U, class Y>
+  UpdateStatus advance(const Eigen::MatrixBase<U>& u, const Eigen::MatrixBase<Y>& y, const OutputMask<Dims>* present,
+                       Workspace& w) {
+    if (present ? !detail::finite_present(y, *present) || !detail::all_finite(u) : !detail::all_finite(u, y))
+      return UpdateStatus::nonfinite_input;
     const Index q = filters_.outputs();
     const bool first = step_ == 0;
 
@@ -244,26 +294,37 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     /// (12) \f$\varphi_t = S_t^TC^T\f$ and (16) \f$z_t = y_t - CF^t\hat x_0\f$.
     filters_.regressor(w.bank, w.phi);
     w.z = y - w.free.head(q);
+    const bool adapt = !first && (!present || present->any());
 
-    /// (22)–(23) (or the chosen law): \f$\hat p_{t-1} \to \hat p_t\f$ from t = 1 on.
+    /// (22)–(23) (or the chosen law): \f$\hat p_{t-1} \to \hat p_t\f$ from t = 1 on, with
+    /// the present rows of (16) only under a mask.
     const Parameters* p = &law_.parameters();
-    if (!first) {
-      if (!law_.propose(w.phi, w.z)) return UpdateStatus::nonfinite_result;
+    if (adapt) {
+      if (!(present ? law_.propose(w.phi, w.z, *present) : law_.propose(w.phi, w.z)))
+        return UpdateStatus::nonfinite_result;
       p = &law_.proposal();
     }
-    /// (13) \f$\hat x_t = S_t\hat p_t + F^t\hat x_0\f$, and the prediction of \f$x_{t+1}\f$.
+    /// (13) \f$\hat x_t = S_t\hat p_t + F^t\hat x_0\f$, and the prediction of \f$x_{t+1}\f$ (7)
+    /// from \f$\bar y_t\f$: \f$y_t\f$, its absent entries replaced by those of \f$C\hat x_t\f$.
     filters_.state(w.bank, *p, w.free, w.x);
-    filters_.predict(w.x, *p, y, u, w.next);
+    w.y = y;
+    if (present)
+      for (Index i = 0; i < q; ++i)
+        if (!(*present)(i)) {
+          w.y(i) = w.x(i);
+          w.z(i) = 0;
+        }
+    filters_.predict(w.x, *p, w.y, u, w.next);
     if (!detail::all_finite(w.x, w.next, w.bank, w.phi)) return UpdateStatus::nonfinite_result;
 
-    if (!first) law_.commit();
+    if (adapt) law_.commit();
     detail::commit(bank_, w.bank);
     detail::commit(current_free_, w.free);
     detail::commit(phi_, w.phi);
     detail::commit(z_, w.z);
     detail::commit(state_, w.x);
     detail::commit(next_state_, w.next);
-    last_.head(q) = y;
+    last_.head(q) = w.y;
     last_.tail(filters_.inputs()) = u;
     ++step_;
     return UpdateStatus::accepted;

@@ -120,10 +120,13 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   /// ignored (they may be NaN or Inf). All channels present is `update(sample)`,
   /// bit for bit; none is the time update.
   [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
-    if constexpr (!Dims::is_fixed) detail::require_mask_size<Dims>(present, model_.sizes(), "GuyaderZhangObserver::update");
+    if constexpr (!Dims::is_fixed)
+      detail::require_mask_size<Dims>(present, model_.sizes().ny, "GuyaderZhangObserver::update");
     return step_with(sample, present.all() ? nullptr : &present);
   }
 
+  /// Run-time sizes (nx, nu, ny, np).
+  [[nodiscard]] Sizes sizes() const noexcept { return model_.sizes(); }
   /// State estimate \f$\hat x_k\f$.
   [[nodiscard]] const State& state() const noexcept { return x_; }
   /// Parameter estimate \f$\hat\theta_k\f$.

@@ -24,6 +24,20 @@
 ///   part (see `design/takagi_sugeno_lmi.hpp`).
 /// - \f$K_\theta\f$ enters as printed in (21): \f$\hat\theta_{k+1} = (I - K_\theta)\hat\theta_k + \dots\f$,
 ///   a leakage that biases θ̂ toward 0 by a term of order \f$K_\theta/K_{y}\f$ (Remark 3).
+///
+/// **Missing and partial outputs.** A sample that carries only the channels of a
+/// mask \f$D_k = \mathrm{diag}(\text{present})\f$ runs the same step with the output
+/// error \f$D_k(y_k - C\hat x_k)\f$: an absent channel corrects neither x̂ (through
+/// \f$L_i\f$) nor θ̂ (through \f$K_{y,i}\f$). The premises \f$\hat z_k = z(\hat x_k, u_k, \hat\theta_k)\f$
+/// use the estimates, not y, so the weights are those of the full step. With no
+/// channel present this is the time update
+/// \f$\hat x_{k+1} = \sum_i\hat h_i(A_i\hat x_k + B_iu_k)\f$, \f$\hat\theta_{k+1} = (I - K_\theta)\hat\theta_k\f$
+/// (the leakage of (21) acts per step, measured or not). What the LMIs of
+/// theorems 1–2 certify is a decrease of \f$V = e^TPe\f$ under
+/// \f$\sum_i h_i(A_i - L_iC)\f$; under \f$\sum_i h_i(A_i - L_iD_kC)\f$ they certify nothing, and
+/// V may grow on a gap (by at most \f$\max_i\|P^{1/2}A_iP^{-1/2}\|_2^2\f$ per step): the
+/// estimates converge when the corrected steps outweigh the gaps — a dwell-time
+/// condition that the observer does not check.
 
 #include <adaptobs/core/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
@@ -91,15 +105,20 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
   /// Returns `nonfinite_input` for a NaN/Inf in the sample or in the premise
   /// variables \f$\hat z_k\f$, `nonfinite_result` when the step would produce one; in
   /// both cases the observer is left exactly as it was.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) {
-    if constexpr (Dims::is_fixed && vertices_at_compile_time != Eigen::Dynamic) {
-      Workspace w;
-      return advance(sample, w);
-    } else {
-      detail::require_sample_sizes(sample, model_.sizes(), "TakagiSugenoObserver::update");
-      return advance(sample, work_);
-    }
+  [[nodiscard]] UpdateStatus update(const Sample& sample) { return step_with(sample, nullptr); }
+
+  /// The same with only the output channels in `present` measured (file comment,
+  /// "Missing and partial outputs"); absent entries of `sample.y` are ignored
+  /// (they may be NaN or Inf). All channels present is `update(sample)`, bit for
+  /// bit; none is the time update.
+  [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
+    if constexpr (!Dims::is_fixed)
+      detail::require_mask_size<Dims>(present, model_.sizes().ny, "TakagiSugenoObserver::update");
+    return step_with(sample, present.all() ? nullptr : &present);
   }
+
+  /// Run-time sizes (nx, nu, ny, np).
+  [[nodiscard]] Sizes sizes() const noexcept { return model_.sizes(); }
 
   /// State estimate \f$\hat x_k\f$ and parameter estimate \f$\hat\theta_k\f$.
   [[nodiscard]] const State& state() const noexcept { return x_; }
@@ -202,8 +221,21 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     }
   };
 
-  UpdateStatus advance(const Sample& sample, Workspace& w) {
-    if (!detail::all_finite(sample.u, sample.y)) return UpdateStatus::nonfinite_input;
+  // `present` is null when every channel is.
+  UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
+    if constexpr (Dims::is_fixed && vertices_at_compile_time != Eigen::Dynamic) {
+      Workspace w;
+      return advance(sample, present, w);
+    } else {
+      detail::require_sample_sizes(sample, model_.sizes(), "TakagiSugenoObserver::update");
+      return advance(sample, present, work_);
+    }
+  }
+
+  UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
+    if (present ? !detail::finite_present(sample.y, *present) || !detail::all_finite(sample.u)
+                : !detail::all_finite(sample.u, sample.y))
+      return UpdateStatus::nonfinite_input;
     const Index nx = x_.rows(), nu = sample.u.rows(), ny = sample.y.rows(), np = theta_.rows();
 
     // Premise variables at the estimates, ẑ_k = z(x̂_k, u_k, θ̂_k) (they may use unmeasured states).
@@ -216,7 +248,9 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     w.v.head(nx) = x_;
     w.v.segment(nx, nu) = sample.u;
     w.v.tail(ny) = sample.y;
-    w.v.tail(ny).noalias() -= model_.C() * x_;
+    auto output_error = w.v.tail(ny);
+    output_error.noalias() -= model_.C() * x_;
+    detail::zero_absent_rows<Dims>(output_error, present);  // D_k(y_k − C x̂_k)
 
     /// (65) \f$\hat x_{k+1} = \sum_i\hat h_i[A_i\hat x_k + B_iu_k + L_i(y_k - C\hat x_k)]\f$ and
     /// \f$\hat\theta_{k+1} = \hat\theta_k + \sum_i\hat h_iK_{y,i}(y_k - C\hat x_k)\f$ in one product:
