@@ -391,6 +391,9 @@ TEST(AdaptationLaws, MaskedStepIsTheStepOnThePresentSubRegression) {
     const Dynamic r_pp = r(kept, kept);
     const auto m = static_cast<Index>(kept.size());
 
+    // All present must be the unmasked step: copies taken before the masked proposals.
+    DynamicRls rls_plain = rls;
+    DynamicForgetting forgetting_plain = forgetting;
     // The references: each law restarted from the current state on the sub-regression.
     if (m > 0) {
       DynamicRls rls_ref(rls.parameters(), {rls.covariance(), r_pp});
@@ -419,8 +422,6 @@ TEST(AdaptationLaws, MaskedStepIsTheStepOnThePresentSubRegression) {
       EXPECT_TRUE(adaptobs::testing::bitwise_equal(gradient.proposal(), gradient.parameters()));
     }
     if (m == nz) {  // all present: the unmasked step, bit for bit
-      DynamicRls rls_plain = rls;
-      DynamicForgetting forgetting_plain = forgetting;
       ASSERT_TRUE(rls_plain.propose(phi, z) && forgetting_plain.propose(phi, z));
       EXPECT_TRUE(adaptobs::testing::bitwise_equal(rls_plain.proposed_covariance(), rls.proposed_covariance()));
       EXPECT_TRUE(adaptobs::testing::bitwise_equal(forgetting_plain.proposal(), forgetting.proposal()));
@@ -432,6 +433,12 @@ TEST(AdaptationLaws, MaskedStepIsTheStepOnThePresentSubRegression) {
   }
   EXPECT_EQ(resetting.reset_count(), 0);  // the resetting law compared as plain RLS
   EXPECT_GT((rls.parameters() - p0).norm(), 0.1);
+  // A run-time-sized mask of the wrong length is refused, naming it.
+  const std::string message = adaptobs::testing::configuration_error_of([&] {
+    (void)rls.propose(Dynamic::Zero(np, nz), Eigen::VectorXd::Zero(nz),
+                      adaptobs::RegressionTypes<double, Eigen::Dynamic, Eigen::Dynamic>::Presence::Constant(2, true));
+  });
+  EXPECT_NE(message.find("'present'"), std::string::npos) << message;
 }
 
 TEST(AdaptationLaws, DynamicSizesGiveTheSameNumbersAsFixedSizes) {

@@ -142,7 +142,7 @@ struct MaskedRegression {
 /// \f$\varphi_P\f$ of φ and, for the weighted laws, the block \f$R_{PP}\f$ of R. It runs
 /// as the full-size step with the absent columns of φ and entries of z zeroed and R
 /// replaced by \f$\bar R = DRD + (I - D)\f$: then
-/// \f$R + \varphi^T\Gamma\varphi\f$ is block diagonal, \f$R_{PP} + \varphi_P^T\Gamma\varphi_P\f$ and I, so
+/// \f$\bar R + \bar\varphi^T\Gamma\bar\varphi\f$ (φ̄: φ with those columns zeroed) is block diagonal, \f$R_{PP} + \varphi_P^T\Gamma\varphi_P\f$ and I, so
 /// the gain of an absent entry is zero and the rest is the sub-regression's step
 /// exactly. (Zeroing alone would not do when R couples the entries: the present
 /// block of \f$(R + \varphi^T\Gamma\varphi)^{-1}\f$ would then condition on the noise of

@@ -144,7 +144,7 @@ class CovarianceResettingRls {
 
   /// (22), then (23), with the present entries of \f$z_t\f$ only; see `AdaptationLaw`,
   /// "Partial measurements". The reset screen stays valid: with the absent
-  /// columns of φ zeroed, \f$\varphi^T\bar R^{-1}\varphi\f$ involves only \f$R_{PP}^{-1}\f$, whose
+  /// columns of φ zeroed, \f$\varphi\bar R^{-1}\varphi^T\f$ involves only \f$R_{PP}^{-1}\f$, whose
   /// largest eigenvalue is at most \f$1/\lambda_{\min}(R)\f$ (interlacing).
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
     constexpr std::string_view who = "CovarianceResettingRls::propose";

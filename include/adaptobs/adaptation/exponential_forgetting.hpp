@@ -112,8 +112,9 @@ class ExponentialForgettingRls {
   }
 
   /// One weighted step with the present entries of \f$z_t\f$ only; see `AdaptationLaw`,
-  /// "Partial measurements". Forgetting is per step, measured or not: with no
-  /// entry present, Γ is divided by λ.
+  /// "Partial measurements". Forgetting is per call, measured or not: with no
+  /// entry present, Γ is divided by λ. (An observer may skip the call on a sample
+  /// without data; Dey–Bhasin and Suzuki do, so Γ does not grow over a gap.)
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
     constexpr std::string_view who = "ExponentialForgettingRls::propose";
     detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, who);

@@ -44,7 +44,8 @@ concept PartialOutputObserver =
 /// others treated as absent: a sensor glitch (NaN or Inf in y) becomes a partial
 /// update, or the time update when no entry is finite, instead of a rejected
 /// sample after which the observer falls out of step with the plant. A non-finite
-/// input or regressor is still rejected, with the observer unchanged.
+/// input or regressor is still rejected, with the observer unchanged. (With a
+/// run-time number of outputs the mask is allocated per call.)
 template <PartialOutputObserver O>
 [[nodiscard]] UpdateStatus update_finite_outputs(O& observer, const typename O::Sample& sample) {
   if constexpr (O::Dims::ny == Eigen::Dynamic)

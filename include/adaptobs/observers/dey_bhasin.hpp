@@ -44,7 +44,7 @@
 ///   measurements"; for RLS, the block \f$R_{PP}\f$);
 /// - the filters (8)–(9) and the prediction (7) need all of \f$y_t\f$: an absent entry
 ///   is replaced by that of \f$\hat y_t = C\hat x_t\f$, with \f$\hat x_t = S_t\hat p_t + F^t\hat x_0\f$ (13),
-///   which does not depend on \f$y_t\f$ (\f$S_t\f$ holds data up to t − 1).
+///   which does not depend on the absent entries (\f$S_t\f$ holds data up to t − 1).
 ///
 /// What the substitution costs. With \f$\bar y_t\f$ the sequence fed to the filters
 /// and \f$\bar S_t\f$ the filters it produces, \f$e_t = x_t - \bar S_tp - F^tx_0\f$ obeys, from (7),
