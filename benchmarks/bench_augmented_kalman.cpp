@@ -13,16 +13,29 @@ namespace {
 using adaptobs::Index;
 namespace satellite = adaptobs::examples::satellite;
 
-void BM_AugmentedKalman_Satellite(benchmark::State& state) {
+auto satellite_filter() {
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
-  adaptobs::AugmentedKalmanFilter filter(satellite::model<double>(), satellite::initial_state_estimate<double>(),
+  return adaptobs::AugmentedKalmanFilter(satellite::model<double>(), satellite::initial_state_estimate<double>(),
                                          satellite::initial_parameter_estimate<double>(),
                                          {Matrix6::Identity(), Matrix6::Identity() * 1e-10,
                                           Eigen::Matrix2d::Identity() * 1e-4});
+}
+
+void BM_AugmentedKalman_Satellite(benchmark::State& state) {
+  auto filter = satellite_filter();
   auto ring = adaptobs::bench::satellite_ring();
   adaptobs::bench::time_updates(state, filter, ring);
 }
 BENCHMARK(BM_AugmentedKalman_Satellite);
+
+// No output: the prediction of x and θ and of the covariance only.
+void BM_AugmentedKalman_Satellite_TimeUpdate(benchmark::State& state) {
+  auto filter = satellite_filter();
+  auto ring = adaptobs::bench::satellite_ring();
+  adaptobs::bench::time_masked_updates(state, filter, ring,
+                                       adaptobs::OutputMask<satellite::Dims<double>>(false, false));
+}
+BENCHMARK(BM_AugmentedKalman_Satellite_TimeUpdate);
 
 template <int N>
 void BM_AugmentedKalman_Sweep(benchmark::State& state) {

@@ -50,6 +50,18 @@ void BM_DeyBhasin_MIMO(benchmark::State& state) {
 }
 BENCHMARK(BM_DeyBhasin_MIMO);
 
+// The second output absent (the law steps on one channel), and none (the time
+// update: the filters advance, the law is not called).
+template <bool FirstPresent>
+void BM_DeyBhasin_MIMO_Masked(benchmark::State& state) {
+  auto observer = db::mimo::make_observer();
+  auto ring = observer_ring<db::mimo::Observer<double>>(db::mimo::make_plant(db::mimo::RichInput{}), 3000);
+  adaptobs::bench::time_masked_updates(state, observer, ring,
+                                       adaptobs::OutputMask<db::mimo::Observer<double>::Dims>(FirstPresent, false));
+}
+BENCHMARK(BM_DeyBhasin_MIMO_Masked<true>)->Name("BM_DeyBhasin_MIMO_PartialOutput");
+BENCHMARK(BM_DeyBhasin_MIMO_Masked<false>)->Name("BM_DeyBhasin_MIMO_TimeUpdate");
+
 void BM_DeyBhasin_MIMO_Dynamic(benchmark::State& state) {
   using Dynamic = adaptobs::DeyBhasinObserver<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>;
   Dynamic observer(Eigen::VectorXd(db::mimo::f()), Eigen::VectorXd(db::mimo::x_hat0()),

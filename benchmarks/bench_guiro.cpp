@@ -52,6 +52,14 @@ void BM_Guiro_Paper(benchmark::State& state) {
 }
 BENCHMARK(BM_Guiro_Paper);
 
+// No output: the open-loop prediction z⁻ = E z + Ψ θ̂, θ̂ held.
+void BM_Guiro_Paper_TimeUpdate(benchmark::State& state) {
+  auto observer = paper_observer();
+  SampleRing ring(paper_samples());
+  adaptobs::bench::time_masked_updates(state, observer, ring, adaptobs::OutputMask<PaperDims>(false));
+}
+BENCHMARK(BM_Guiro_Paper_TimeUpdate);
+
 // Each iteration integrates H_k (and Ψ_k) for φ(t) = ((t+1)/(t+2), 0) over its period, then updates.
 void BM_Guiro_Paper_RecomputeH_Quadrature(benchmark::State& state) {
   auto observer = paper_observer();

@@ -38,4 +38,17 @@ void time_updates(benchmark::State& state, Observer& observer, SampleRing<Sample
   state.SetItemsProcessed(state.iterations());
 }
 
+/// Times `observer.update(ring.next(), present)`: with some channels absent the
+/// partial update, with none the time update. Registered as `Arg(0)` (no
+/// channel, `BM_*_TimeUpdate`) beside the observer's full update in the same run.
+template <class Observer, class Sample, class Mask>
+void time_masked_updates(benchmark::State& state, Observer& observer, SampleRing<Sample>& ring, const Mask& present) {
+  for (auto _ : state) {
+    auto status = observer.update(ring.next(), present);
+    benchmark::DoNotOptimize(status);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 }  // namespace adaptobs::bench

@@ -34,6 +34,16 @@ void BM_TakagiSugeno_WWTP(benchmark::State& state) {
 }
 BENCHMARK(BM_TakagiSugeno_WWTP);
 
+// No output: the state through the weighted vertices, θ̂ held.
+void BM_TakagiSugeno_WWTP_TimeUpdate(benchmark::State& state) {
+  adaptobs::TakagiSugenoObserver observer(wwtp::model<double>(), wwtp::paper_gains<double>(),
+                                          wwtp::initial_state_estimate<double>(),
+                                          wwtp::initial_parameter_estimate<double>());
+  auto ring = wwtp_ring();
+  adaptobs::bench::time_masked_updates(state, observer, ring, adaptobs::OutputMask<wwtp::Dims<double>>(false));
+}
+BENCHMARK(BM_TakagiSugeno_WWTP_TimeUpdate);
+
 void BM_TakagiSugeno_WWTP_TimeVarying(benchmark::State& state) {
   auto gains = wwtp::paper_gains<double>();
   gains.K_theta = wwtp::Vector1<double>(1e-3);

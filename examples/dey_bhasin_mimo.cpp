@@ -13,8 +13,12 @@
 // 2 × 6 array. Normalized estimates are â_k/a_k and b̂_j/b_j (p's first entry
 // a₁ − f₁ is 0, so p̂/p is undefined); a zero true entry would be written `nan`.
 //
-// Usage: dey_bhasin_mimo [--out DIR] [--steps 1000]
-// Writes dey_bhasin_mimo_nonpe.csv and dey_bhasin_mimo_pe.csv (t,u_*,y_*,x_*,
+// Usage: dey_bhasin_mimo [--out DIR] [--steps 1000] [--drop 0] [--outage none|T0,T1]
+//                        [--channel 0] [--seed 1]
+// With --drop P each output sample is lost with probability P, with --outage
+// none arrives for t in [T0, T1]; --channel c (1 or 2) loses only that output
+// channel, as a partial update, instead of the whole sample.
+// Writes dey_bhasin_mimo_nonpe.csv and dey_bhasin_mimo_pe.csv (t,u_*,y_*,y_available,x_*,
 // xhat_*,theta_*,thetahat_*,thetahat_norm_*,xerr_norm,resets), where row t holds
 // the paper's estimates at time t: p̂_t and x̂_t = S_t p̂_t + F^t x̂_0 (eq. (13));
 // theta = p = [a − f; vec(B)]. Then dey_bhasin_mimo.png (figures 1–3).
@@ -28,6 +32,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 namespace mimo = adaptobs::examples::dey_bhasin::mimo;
@@ -46,7 +51,7 @@ struct RunResult {
 };
 
 template <class Input>
-RunResult run(Input input, adaptobs::Index steps, const std::string& name) {
+RunResult run(Input input, adaptobs::Index steps, const std::string& name, adaptobs::OutputLoss loss) {
   auto observer = mimo::make_observer();
   auto plant = mimo::make_plant(input);
   const Eigen::Matrix<double, 15, 1> p = observer.parameters_of(mimo::a(), mimo::B());
@@ -55,7 +60,8 @@ RunResult run(Input input, adaptobs::Index steps, const std::string& name) {
   Eigen::Matrix<double, 15, 15> previous_gamma = observer.law().covariance();
   for (adaptobs::Index t = 0; t < steps; ++t) {
     const auto& sample = plant.sample();
-    if (observer.update(sample) != adaptobs::UpdateStatus::accepted) ++rejected;
+    const auto present = loss.channels_at<typename decltype(observer)::Dims>(double(t), sample.y.size());
+    if (observer.update(sample, present) != adaptobs::UpdateStatus::accepted) ++rejected;
     const auto& phi = observer.regressor();
     result.beta_phi = std::max(result.beta_phi, adaptobs::spectral_norm(phi));
     if (t > 0) {
@@ -69,6 +75,7 @@ RunResult run(Input input, adaptobs::Index steps, const std::string& name) {
         .add("t", double(t))
         .add("u", sample.u)
         .add("y", sample.y)
+        .add("y_available", adaptobs::channel_bits(present))
         .add("x", plant.state())
         .add("xhat", observer.current_state())
         .add("theta", p)
@@ -91,8 +98,12 @@ RunResult run(Input input, adaptobs::Index steps, const std::string& name) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(argc, argv, "dey_bhasin_mimo", {{"steps", "1000"}});
+  const adaptobs::examples::Arguments args(
+      argc, argv, "dey_bhasin_mimo",
+      adaptobs::examples::with_output_loss({{"steps", "1000"}, {"channel", "0"}, {"seed", "1"}}));
   const auto steps = static_cast<adaptobs::Index>(args.number("steps"));
+  const auto loss = adaptobs::examples::output_loss_options(args, static_cast<std::uint64_t>(args.number("seed")),
+                                                            adaptobs::Index(std::llround(args.number("channel"))) - 1);
 
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
   const Matrix6 a_matrix = adaptobs::block_companion_matrix<2>(mimo::a());
@@ -111,8 +122,8 @@ int main(int argc, char** argv) {
   print_value("p", p.transpose());
   print_value("phat0", observer.parameters().transpose());
 
-  const RunResult nonpe = run(mimo::NotRichInput{}, steps, "nonpe");
-  const RunResult pe = run(mimo::RichInput{}, steps, "pe");
+  const RunResult nonpe = run(mimo::NotRichInput{}, steps, "nonpe", adaptobs::OutputLoss(loss));
+  const RunResult pe = run(mimo::RichInput{}, steps, "pe", adaptobs::OutputLoss(loss));
 
   // Theorem 5 on the run without excitation: as printed, and corrected.
   const double initial_error = (p - observer.parameters()).norm();
@@ -127,7 +138,7 @@ int main(int argc, char** argv) {
 
   adaptobs::examples::write_outputs(
       {{nonpe.table, "dey_bhasin_mimo_nonpe", "nonpe"}, {pe.table, "dey_bhasin_mimo_pe", "pe"}}, args.out_dir(),
-      "dey_bhasin_mimo", R"(
+      "dey_bhasin_mimo", adaptobs::examples::gap_shading(loss) + R"(
 set multiplot layout 3,2 title 'Dey-Bhasin adaptive observer, MIMO example (paper 003, section 5)'
 set grid
 set xlabel 't'

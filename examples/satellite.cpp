@@ -3,8 +3,13 @@
 // distance and angle measurements, beside the augmented-state Kalman filter.
 //
 // Usage: satellite [--out DIR] [--seconds 300] [--seed 2003] [--noise 0.01]
-// Writes satellite.csv (t,u_*,y_*,x_*,xhat_*,theta_*,thetahat_*,
+//                  [--drop 0] [--outage none|T0,T1]
+// Writes satellite.csv (t,u_*,y_*,y_available,x_*,xhat_*,theta_*,thetahat_*,
 // xhat_akf_*,thetahat_akf_*,assumption2) and satellite.png (figures 1–3).
+// With --drop P each output sample is lost with probability P, with
+// --outage T0,T1 none arrives in [T0, T1]: both observers then take the time
+// update (Guyader-Zhang with its normalized step, as its header advises when
+// outputs can be lost).
 
 #include <adaptobs/adaptobs.hpp>
 #include <adaptobs/design/stability.hpp>
@@ -14,6 +19,7 @@
 #include "models/satellite.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <iostream>
 
 namespace satellite = adaptobs::examples::satellite;
@@ -21,8 +27,11 @@ using adaptobs::examples::print_text;
 using adaptobs::examples::print_value;
 
 int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(argc, argv, "satellite",
-                                           {{"seconds", "300"}, {"seed", "2003"}, {"noise", "0.01"}});
+  const adaptobs::examples::Arguments args(
+      argc, argv, "satellite",
+      adaptobs::examples::with_output_loss({{"seconds", "300"}, {"seed", "2003"}, {"noise", "0.01"}}));
+  const auto seed = static_cast<std::uint64_t>(args.number("seed"));
+  adaptobs::OutputLoss loss(adaptobs::examples::output_loss_options(args, seed + 1));
   const double seconds = args.number("seconds");
   const auto steps = static_cast<adaptobs::Index>(std::llround(seconds / satellite::sampling_period));
 
@@ -42,7 +51,7 @@ int main(int argc, char** argv) {
   print_text("thrusts", "unit square pulses of 1 s every 10 s; radial from t = 0, tangential from t = 5 s");
 
   adaptobs::GuyaderZhangObserver observer(model, gain, satellite::mu, satellite::initial_state_estimate<double>(),
-                                          satellite::initial_parameter_estimate<double>(), {.excitation_window = 100});
+                                          satellite::initial_parameter_estimate<double>(), {.excitation_window = 100, .normalized_step = !loss.lossless()});
 
   // Baseline: Kalman filter on [x; θ] with the true output noise level.
   const double noise = args.number("noise");
@@ -56,10 +65,10 @@ int main(int argc, char** argv) {
   adaptobs::AugmentedKalmanFilter akf(model, satellite::initial_state_estimate<double>(),
                                       satellite::initial_parameter_estimate<double>(), covariances);
 
-  auto plant = satellite::make_plant<double>(noise, static_cast<std::uint64_t>(args.number("seed")));
+  auto plant = satellite::make_plant<double>(noise, seed);
   adaptobs::SeriesTable table;
   const auto report = adaptobs::simulate(
-      plant, steps, table,
+      plant, steps, table, loss,
       [&](adaptobs::SeriesTable& row, const auto&) { row.add("assumption2", observer.assumption2_norm()); },
       adaptobs::track(observer), adaptobs::track(akf, "akf"));
 
@@ -75,6 +84,9 @@ int main(int argc, char** argv) {
   mean_akf /= double(window);
   print_value("steps", double(report.steps));
   print_value("rejected", double(report.rejected[0] + report.rejected[1]));
+  double lost = 0;
+  for (std::size_t r = 0; r < rows; ++r) lost += table.at(r, "y_available") == 0 ? 1 : 0;
+  print_value("samples_without_output", lost);
   print_value("theta", plant.parameters());
   print_value("thetahat", observer.parameters());
   print_value("thetahat_mean_last_100s", mean);
@@ -84,7 +96,8 @@ int main(int argc, char** argv) {
   print_value("excitation_level", observer.excitation_level().value_or(0.0));
   print_value("assumption2_norm", observer.assumption2_norm());
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "satellite", R"(
+  adaptobs::examples::write_outputs(table, args.out_dir(), "satellite",
+                                    adaptobs::examples::gap_shading(loss.options()) + R"(
 set multiplot layout 3,1 title 'Guyader-Zhang adaptive observer, controlled satellite (paper 000, section 4)'
 set grid
 set xlabel 't (s)'

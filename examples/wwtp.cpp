@@ -3,8 +3,11 @@
 // θ (a = 0.5 + θ) with the Takagi–Sugeno adaptive observer (65), once with the
 // printed gains and once with gains designed here by theorem 2 with DSDP.
 //
-// Usage: wwtp [--out DIR] [--theta 0.1] [--steps 500]
-// Writes wwtp.csv (t,u_1,y_1,x_*,xhat_*,theta_1,thetahat_1 for the printed gains,
+// Usage: wwtp [--out DIR] [--theta 0.1] [--steps 500] [--drop 0] [--outage none|K0,K1]
+//             [--seed 1]
+// With --drop P each output sample is lost with probability P, with --outage
+// none arrives for k in [K0, K1]; both observers then take the time update.
+// Writes wwtp.csv (t,u_1,y_1,y_available,x_*,xhat_*,theta_1,thetahat_1 for the printed gains,
 // xhat_lmi_*,thetahat_lmi_1 for the LMI gains, h_1..h_8 the weights of the
 // printed-gain observer) and wwtp.png (figures 1–5 of the paper: x1, x2, θ̂,
 // input, weights).
@@ -33,6 +36,7 @@
 #include "models/wwtp.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -78,7 +82,10 @@ int settled_from(const adaptobs::SeriesTable& table, const std::string& suffix) 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(argc, argv, "wwtp", {{"theta", "0.1"}, {"steps", "500"}});
+  const adaptobs::examples::Arguments args(
+      argc, argv, "wwtp", adaptobs::examples::with_output_loss({{"theta", "0.1"}, {"steps", "500"}, {"seed", "1"}}));
+  adaptobs::OutputLoss loss(
+      adaptobs::examples::output_loss_options(args, static_cast<std::uint64_t>(args.number("seed"))));
   const double theta = args.number("theta");
   const auto steps = static_cast<adaptobs::Index>(args.number("steps"));
 
@@ -145,7 +152,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> weight_columns;
   for (adaptobs::Index i = 0; i < model.vertex_count(); ++i) weight_columns.push_back("h_" + std::to_string(i + 1));
   const auto report = adaptobs::simulate(
-      plant, steps, table,
+      plant, steps, table, loss,
       [&](adaptobs::SeriesTable& row, const auto&) {
         // Weights ĥ_i of the printed-gain observer at this step (figure 5).
         const auto h = model.weights(model.premises(observer.state(), plant.sample().u, observer.parameters()),
@@ -164,7 +171,7 @@ int main(int argc, char** argv) {
   print_value("settled_from_sample", settled_from(table, ""));
   print_value("settled_from_sample_lmi", settled_from(table, "lmi"));
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp", R"(
+  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp", adaptobs::examples::gap_shading(loss.options()) + R"(
 set multiplot layout 3,2 title 'Takagi-Sugeno adaptive observer, waste water treatment plant (paper 004, section 6)'
 set grid
 set xlabel 'k'

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -130,6 +131,7 @@ PaperObserver<S> make_observer(adaptobs::GuiroOptions options = {}, double gamma
 
 static_assert(adaptobs::Observer<PaperObserver<double>>);
 static_assert(adaptobs::Observer<PaperObserver<float>>);
+static_assert(adaptobs::PartialOutputObserver<PaperObserver<double>>);
 
 // The example of §4, noise free: the observer uses the quadrature's Ψ_k, the
 // plant the closed form.
@@ -303,6 +305,132 @@ TEST(Guiro, MimoWithKnownInputConverges) {
   const auto report = adaptobs::check_guiro_convergence(model.system().A, c, gains.K, gains.Gamma, h_limit, hs);
   EXPECT_EQ(report.condition_ii, ConditionVerdict::holds);
   EXPECT_TRUE(report.certified());
+}
+
+// Irregular sample times, intervals jittered ±30 % (fixed seed). The sampled
+// system is LTV: E_k = e^{AT_k} and Ψ_k over [t_k, t_{k+1}], both from a
+// RegressorIntegral of period T_k; the plant uses the closed forms. Three
+// observers: gains scheduled per interval as the header derives
+// (set_gains(K^{(k−1)}, Γ^{(k)})), gains designed once for the nominal T, and
+// one that ignores the jitter (E and Ψ of the regular grid).
+enum class JitterHandling { scheduled_gains, nominal_gains, ignored };
+
+std::vector<double> jittered_run_errors(JitterHandling handling, Index samples) {
+  using Dims = g::Dims<double>;
+  const std::vector<double> t = g::jittered_sample_times(samples, 0.3, 20261125);
+  const Eigen::Matrix2d a = g::continuous_dynamics<double>();
+  const Eigen::RowVector2d c = g::output_matrix<double>();
+  std::vector<Eigen::Matrix2d> transition;
+  std::vector<Eigen::Vector2d> h, psi;
+  for (Index k = 0; k < samples; ++k) {
+    const double interval = t[std::size_t(k) + 1] - t[std::size_t(k)];
+    adaptobs::RegressorIntegral<double, 2, 1> integral(a, interval);
+    const auto r = integral.integrate(g::Regressor{}, t[std::size_t(k)]);
+    EXPECT_MATRIX_NEAR(r.Psi, g::interval_Psi(t[std::size_t(k)], interval), 1e-12, 1e-12);
+    EXPECT_MATRIX_NEAR(integral.transition(), g::transition(interval), 1e-14, 1e-14);
+    transition.push_back(integral.transition());
+    h.push_back(r.H);
+    psi.push_back(r.Psi);
+  }
+  const bool ignored = handling == JitterHandling::ignored;
+  auto model = adaptobs::make_discrete_ltv_model<Dims>([&](Index k) {
+    return adaptobs::DiscreteSystem<Dims>{ignored ? g::transition(g::period) : transition[std::size_t(k)],
+                                          Eigen::Matrix<double, 2, 0>(), c};
+  });
+  const auto design = [&](Index k) {
+    return adaptobs::design_guiro_gains(transition[std::size_t(k)], c, h[std::size_t(k)], g::requested_poles());
+  };
+  const auto nominal = paper_gains();
+  adaptobs::GuiroObserver observer(model, nominal.K, nominal.Gamma, g::initial_state_estimate<double>(),
+                                   g::initial_parameter_estimate<double>(), {.correct_initial_estimate = false});
+  Eigen::Vector2d x = g::initial_state<double>();
+  std::vector<double> theta_error;
+  for (Index k = 0; k < samples; ++k) {
+    if (handling == JitterHandling::scheduled_gains) observer.set_gains(design(std::max<Index>(k - 1, 0)).K, design(k).Gamma);
+    const Eigen::Vector2d regressor = ignored ? g::closed_form_Psi<double>(k) : psi[std::size_t(k)];
+    EXPECT_EQ(observer.update({Eigen::Matrix<double, 0, 1>(), c * x, regressor}), UpdateStatus::accepted);
+    x = g::transition(t[std::size_t(k) + 1] - t[std::size_t(k)]) * x +
+        g::interval_Psi(t[std::size_t(k)], t[std::size_t(k) + 1] - t[std::size_t(k)]) * g::theta;
+    theta_error.push_back(std::abs(observer.parameters()(0) - g::theta));
+  }
+  return theta_error;
+}
+
+TEST(Guiro, JitteredSampleTimesConvergeWithScheduledGains) {
+  const auto scheduled = jittered_run_errors(JitterHandling::scheduled_gains, 100);
+  const auto nominal = jittered_run_errors(JitterHandling::nominal_gains, 100);
+  const auto ignored = jittered_run_errors(JitterHandling::ignored, 100);
+  EXPECT_LT(scheduled.back(), 1e-6);
+  EXPECT_LT(scheduled[39], 1e-8);  // the figure the header quotes
+  EXPECT_LT(nominal.back(), 1e-6);
+  EXPECT_GT(nominal[39], 100 * scheduled[39]);  // scheduling the gains is what buys the speed
+  EXPECT_GT(ignored.back(), 1e-2);              // the regular grid's E and Ψ do not converge
+}
+
+// Missing outputs: with no channel present the step is the open-loop
+// propagation (z⁻ through E with θ̂ held, θ̂ unchanged); all channels present is
+// update(sample) bit for bit; 30 % of the samples dropped still converges.
+TEST(Guiro, MissingOutputsPropagateOpenLoopAndConverge) {
+  using Mask = adaptobs::OutputMask<g::Dims<double>>;
+  auto observer = make_observer<double>();
+  auto twin = make_observer<double>();
+  auto plant = g::make_plant<double>();
+  std::mt19937_64 rng(7);
+  std::bernoulli_distribution lost(0.3);
+  const Eigen::Matrix2d e = g::model<double>().system().A;
+  Index dropped = 0;
+  for (Index k = 0; k < 150; ++k) {
+    auto sample = plant.sample();
+    if (lost(rng)) {
+      ++dropped;
+      const Eigen::Vector2d z = observer.state();
+      const auto theta = observer.parameters();
+      sample.y(0) = std::numeric_limits<double>::quiet_NaN();
+      ASSERT_EQ(observer.update(sample, Mask::Constant(1, false)), UpdateStatus::accepted);
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.parameters(), theta));
+      EXPECT_MATRIX_NEAR(observer.state(), (e * z + sample.Psi * theta).eval(), 1e-13, 1e-13);
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.corrected_state(), z));
+      twin = observer;
+    } else {
+      ASSERT_EQ(observer.update(sample, Mask::Constant(1, true)), UpdateStatus::accepted);
+      ASSERT_EQ(twin.update(sample), UpdateStatus::accepted);
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.state(), twin.state()));
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.parameters(), twin.parameters()));
+    }
+    plant.advance();
+  }
+  EXPECT_GT(dropped, 30);
+  EXPECT_EQ(observer.step(), 150);
+  EXPECT_LT(std::abs(observer.parameters()(0) - g::theta), 1e-6);
+  EXPECT_LT((observer.state() - plant.state()).norm(), 1e-6);
+}
+
+// A channel masked at every sample gives the observer built without it: the
+// two-output MIMO system of the test above with only y₁, K and Γ restricted to
+// its column.
+TEST(Guiro, PermanentlyMaskedChannelEqualsTheObserverWithoutIt) {
+  using Dims2 = adaptobs::Dimensions<double, 3, 1, 2, 2>;
+  using Dims1 = adaptobs::Dimensions<double, 3, 1, 1, 2>;
+  RandomMatrices random(11);
+  const Eigen::Matrix3d a = 0.3 * random.uniform<Eigen::Matrix3d>();
+  const Eigen::Vector3d b = random.uniform<Eigen::Vector3d>();
+  const auto c = random.uniform<Eigen::Matrix<double, 2, 3>>();
+  const Eigen::Matrix<double, 3, 2> k = 0.3 * random.uniform<Eigen::Matrix<double, 3, 2>>();
+  const Eigen::Matrix2d gamma = 0.2 * random.uniform<Eigen::Matrix2d>();
+  const adaptobs::DiscreteLtiModel<Dims2> both(a, b, c);
+  const adaptobs::DiscreteLtiModel<Dims1> first(a, b, c.topRows<1>());
+  adaptobs::GuiroObserver masked(both, k, gamma, Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval());
+  adaptobs::GuiroObserver single(first, k.leftCols<1>().eval(), gamma.leftCols<1>().eval(),
+                                 Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval());
+  const adaptobs::OutputMask<Dims2> present(true, false);
+  for (Index step = 0; step < 40; ++step) {
+    const adaptobs::DiscreteSample<Dims2> s{random.uniform<Eigen::Matrix<double, 1, 1>>(), random.uniform<Eigen::Vector2d>(),
+                                            random.uniform<Eigen::Matrix<double, 3, 2>>()};
+    ASSERT_EQ(masked.update(s, present), UpdateStatus::accepted);
+    ASSERT_EQ(single.update({s.u, s.y.topRows<1>(), s.Psi}), UpdateStatus::accepted);
+  }
+  EXPECT_MATRIX_NEAR(masked.state(), single.state(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(masked.parameters(), single.parameters(), 1e-12, 1e-12);
 }
 
 TEST(Guiro, DynamicSizesGiveTheSameNumbersAsFixedSizes) {

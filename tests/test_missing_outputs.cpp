@@ -294,6 +294,27 @@ TEST(GuyaderZhangMissing, SatelliteConvergesWithOneOutputMissingHalfOfTheTime) {
   EXPECT_LT((observer.state() - plant.state()).norm(), 1e-6);
 }
 
+// The second output masked at every sample is the observer built with the
+// first output alone (C's first row, K's first column), to rounding.
+TEST(GuyaderZhangMissing, PermanentlyMaskedChannelEqualsTheObserverWithoutIt) {
+  using SingleDims = adaptobs::Dimensions<double, 4, 2, 1, 2>;
+  const auto full = satellite::model<double>();
+  const adaptobs::DiscreteLtiModel<SingleDims> first(full.system().A, full.system().B, full.system().C.topRows<1>());
+  auto masked = make_observer({.normalized_step = true});
+  adaptobs::GuyaderZhangObserver single(first, satellite::paper_gain<double>().leftCols<1>().eval(), satellite::mu,
+                                        satellite::initial_state_estimate<double>(),
+                                        satellite::initial_parameter_estimate<double>(), {.normalized_step = true});
+  auto plant = satellite::make_plant<double>();
+  for (Index k = 0; k < 3000; ++k) {
+    const auto& s = plant.sample();
+    ASSERT_EQ(masked.update(s, Mask(true, false)), UpdateStatus::accepted);
+    ASSERT_EQ(single.update({s.u, s.y.topRows<1>(), s.Psi}), UpdateStatus::accepted);
+    plant.advance();
+  }
+  const double scale = std::max(1.0, single.state().cwiseAbs().maxCoeff());
+  EXPECT_LT((masked.state() - single.state()).cwiseAbs().maxCoeff(), 1e-12 * scale);
+  EXPECT_LT((masked.parameters() - single.parameters()).cwiseAbs().maxCoeff(), 1e-12);
+}
 
 // The augmented Kalman filter against the textbook correction on the measured
 // sub-vector (rows of C, block of R selected explicitly), then the prediction.

@@ -6,6 +6,7 @@
 #include <adaptobs/simulation/series_table.hpp>
 
 #include "models/satellite.hpp"
+#include "support/eigen_testing.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,8 @@
 namespace {
 
 namespace satellite = adaptobs::examples::satellite;
+using adaptobs::Index;
+using adaptobs::testing::configuration_error_of;
 
 TEST(SeriesTable, WritesHeaderAndNonFiniteValues) {
   adaptobs::SeriesTable table;
@@ -83,6 +86,68 @@ TEST(Simulation, RecordsTruthAndEveryObserverInSchemaOrder) {
   EXPECT_EQ(table.at(24, "thetahat_akf_2"), table.at(24, "thetahat_akf_2"));
   // The last row's estimates are those after 24 updates.
   EXPECT_EQ(observer.step(), 25);
+}
+
+// With an output loss, the runner hands each observer the channels that
+// arrived: a lost sample is the time update, recorded as y_available = 0. The
+// observer run by hand with the same masks ends bit-identical.
+TEST(Simulation, LostOutputsBecomeMaskedUpdatesAndAreRecorded) {
+  using Mask = adaptobs::OutputMask<satellite::Dims<double>>;
+  const auto make = [] {
+    return adaptobs::GuyaderZhangObserver(satellite::model<double>(), satellite::paper_gain<double>(), satellite::mu,
+                                          satellite::initial_state_estimate<double>(),
+                                          satellite::initial_parameter_estimate<double>(), {.normalized_step = true});
+  };
+  auto simulated = make();
+  auto by_hand = make();
+  const adaptobs::OutputLossOptions options{.drop = 0.3, .outage_begin = 2.0, .outage_end = 3.0, .seed = 5};
+  adaptobs::OutputLoss loss(options);
+  adaptobs::SeriesTable table;
+  auto plant = satellite::make_plant<double>(0.01, 3);
+  const auto report = adaptobs::simulate(plant, 60, table, loss, [](adaptobs::SeriesTable&, const auto&) {},
+                                         adaptobs::track(simulated));
+  EXPECT_EQ(report.rejected[0], 0);
+  EXPECT_EQ(table.names()[5], "y_available");
+
+  adaptobs::OutputLoss replay(options);
+  auto twin = satellite::make_plant<double>(0.01, 3);
+  Index lost = 0;
+  for (Index k = 0; k < 60; ++k) {
+    const Mask present = replay.channels_at<satellite::Dims<double>>(twin.time(), 2);
+    EXPECT_EQ(table.at(std::size_t(k), "y_available"), present.all() ? 3.0 : 0.0);
+    if (twin.time() >= 2.0 && twin.time() <= 3.0) {
+      EXPECT_FALSE(present.any());
+    }
+    lost += present.any() ? 0 : 1;
+    ASSERT_EQ(by_hand.update(twin.sample(), present), adaptobs::UpdateStatus::accepted);
+    twin.advance();
+  }
+  EXPECT_GT(lost, 20);  // the 11 samples of the outage and about 30 % of the 49 others
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(simulated.state(), by_hand.state()));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(simulated.parameters(), by_hand.parameters()));
+  EXPECT_EQ(simulated.step(), 60);
+}
+
+TEST(OutputLoss, OneChannelLossAndBadConfiguration) {
+  using Dims = adaptobs::Dimensions<double, 3, 0, 3, 1>;
+  adaptobs::OutputLoss second({.drop = 0.5, .channel = 1, .seed = 2});
+  Index partial = 0;
+  for (int k = 0; k < 100; ++k) {
+    const auto present = second.channels_at<Dims>(double(k), 3);
+    EXPECT_TRUE(present(0) && present(2));
+    partial += present(1) ? 0 : 1;
+    EXPECT_EQ(adaptobs::channel_bits(present), present(1) ? 7.0 : 5.0);
+  }
+  EXPECT_GT(partial, 30);
+  EXPECT_LT(partial, 70);
+  EXPECT_TRUE(adaptobs::OutputLoss().lossless());
+  EXPECT_NE(configuration_error_of([] { adaptobs::OutputLoss l({.drop = 1.0}); }).find("'drop'"), std::string::npos);
+  EXPECT_NE(configuration_error_of([] { adaptobs::OutputLoss l({.drop = -0.1}); }).find("'drop'"), std::string::npos);
+  EXPECT_NE(configuration_error_of([] { adaptobs::OutputLoss l({.channel = -2}); }).find("'channel'"),
+            std::string::npos);
+  adaptobs::OutputLoss beyond({.drop = 0.999, .channel = 3});
+  EXPECT_NE(configuration_error_of([&] { (void)beyond.channels_at<Dims>(0.0, 3); }).find("'channel'"),
+            std::string::npos);
 }
 
 }  // namespace

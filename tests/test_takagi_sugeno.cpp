@@ -545,6 +545,17 @@ TEST(TakagiSugeno, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
   EXPECT_TRUE(dynamic.parameters() == theta);
   EXPECT_TRUE(dynamic.weights() == h);
   EXPECT_EQ(dynamic.step(), 500);
+
+  // A mask of the wrong length is refused naming it, the observer unchanged;
+  // the right length with the channel absent is the time update.
+  using DynamicMask = adaptobs::OutputMask<DD>;
+  const adaptobs::InputOutputSample<DD> sample{Eigen::VectorXd::Constant(1, 0.2), Eigen::VectorXd::Zero(1)};
+  EXPECT_NAMES((void)dynamic.update(sample, DynamicMask::Constant(2, true)), "'present'");
+  EXPECT_TRUE(dynamic.state() == x);
+  EXPECT_TRUE(dynamic.parameters() == theta);
+  EXPECT_EQ(dynamic.step(), 500);
+  EXPECT_EQ(dynamic.update(sample, DynamicMask::Constant(1, false)), UpdateStatus::accepted);
+  EXPECT_EQ(dynamic.step(), 501);
 }
 
 }  // namespace

@@ -181,6 +181,15 @@ TEST(SampledIntegration, BastinGeversCrossesAGapWithTheLearnedStep) {
   }
 }
 
+TEST(SampledIntegration, ZhangCrossesAGapWithTheLearnedStep) {
+  for (const double gap : {2.0, 20.0}) {
+    SCOPED_TRACE(gap);
+    expect_gap_integrated_like_a_fine_step(
+        [](adaptobs::SamplingOptions sampling) { return siso_zhang_observer<double>({.sampling = sampling}); }, gap,
+        1e-6);
+  }
+}
+
 TEST(SampledIntegration, KalmanBucyCrossesAGapWithItsCovariancePositiveDefinite) {
   for (const double gap : {2.0, 20.0}) {
     SCOPED_TRACE(gap);

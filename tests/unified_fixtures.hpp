@@ -30,6 +30,7 @@ using adaptobs::examples::designs::kalman_bucy_filter;
 using adaptobs::examples::designs::marino_tomei_observer;
 using adaptobs::examples::designs::marino_tomei_transform;
 using adaptobs::examples::designs::spr_report;
+using adaptobs::examples::designs::siso_zhang_observer;
 using adaptobs::examples::designs::zhang_observer;
 
 /// Errors at every sample of a run.

@@ -5,10 +5,12 @@
 // DIR/<name>.csv, then DIR/<name>.png when gnuplot is on the PATH, and prints
 // its designed gains and final estimates as `name = value` lines.
 
+#include <adaptobs/simulation/output_loss.hpp>
 #include <adaptobs/simulation/series_table.hpp>
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -64,6 +66,49 @@ class Arguments {
   std::string program_;
   std::map<std::string, std::string> values_;
 };
+
+/// The defaults plus the lost-measurement flags: `--drop P` (each output sample
+/// lost with probability P) and `--outage T0,T1` (no output in [T0, T1]).
+inline std::map<std::string, std::string> with_output_loss(std::map<std::string, std::string> defaults) {
+  defaults.try_emplace("drop", "0");
+  defaults.try_emplace("outage", "none");
+  return defaults;
+}
+
+/// The loss model of `--drop` and `--outage`, with its own seed so that the
+/// plant's noise does not change when samples are dropped.
+inline OutputLossOptions output_loss_options(const Arguments& args, std::uint64_t seed, Index channel = -1) {
+  OutputLossOptions options{.drop = args.number("drop"), .channel = channel, .seed = seed};
+  const std::string outage = args.text("outage");
+  if (outage != "none") {
+    const auto comma = outage.find(',');
+    try {
+      if (comma == std::string::npos) throw std::invalid_argument(outage);
+      options.outage_begin = std::stod(outage.substr(0, comma));
+      options.outage_end = std::stod(outage.substr(comma + 1));
+    } catch (const std::exception&) {
+      std::cerr << "--outage expects T0,T1, got '" << outage << "'\n";
+      std::exit(2);
+    }
+  }
+  return options;
+}
+
+/// Gnuplot commands that shade the outage of `options` on every later plot, and
+/// a title line naming the losses ("" when nothing is lost).
+inline std::string gap_shading(const OutputLossOptions& options) {
+  std::ostringstream gp;
+  if (options.outage_begin <= options.outage_end)
+    gp << "set object 1 rect from " << options.outage_begin << ", graph 0 to " << options.outage_end
+       << ", graph 1 behind fillcolor rgb '#e0e0e0' fillstyle solid noborder\n";
+  if (options.drop > 0 || options.outage_begin <= options.outage_end) {
+    gp << "set label 1 'outputs lost: " << options.drop * 100 << " % at random";
+    if (options.outage_begin <= options.outage_end)
+      gp << ", outage [" << options.outage_begin << ", " << options.outage_end << "] shaded";
+    gp << "' at screen 0.01, screen 0.01\n";
+  }
+  return gp.str();
+}
 
 /// Prints `name = value` with full precision (vectors as space-separated lists).
 inline void print_value(std::string_view name, double value) {

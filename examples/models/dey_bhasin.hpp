@@ -26,6 +26,7 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/design/companion_matrix.hpp>
 #include <adaptobs/observers/dey_bhasin.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 

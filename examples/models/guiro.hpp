@@ -22,6 +22,9 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
 
 namespace adaptobs::examples::guiro {
 
@@ -53,26 +56,54 @@ struct Regressor {
   }
 };
 
-/// Closed-form \f$H_k\f$ (see file comment).
+/// Closed-form H over the interval \f$[t, t + T]\f$ (see file comment, with \f$c = t + 2\f$).
 template <typename S>
-Eigen::Matrix<S, 2, 1> closed_form_H(Index k, S T = S(period)) {
-  const S c = S(k) * T + S(2);
+Eigen::Matrix<S, 2, 1> interval_H(S start, S T) {
+  const S c = start + S(2);
   const S r = std::log1p(T / c);
   return {T - r, T - T * T / S(2) - c * r};
 }
 
-/// Closed-form \f$\Psi_k = e^{AT}H_k\f$.
+/// Closed-form \f$e^{AT}H\f$ over the interval \f$[t, t + T]\f$.
 template <typename S>
-Eigen::Matrix<S, 2, 1> closed_form_Psi(Index k, S T = S(period)) {
-  const S c = S(k) * T + S(2);
+Eigen::Matrix<S, 2, 1> interval_Psi(S start, S T) {
+  const S c = start + S(2);
   const S r = std::log1p(T / c);
   return {T - r, T + T * T / S(2) - (c + T) * r};
+}
+
+/// Closed-form \f$H_k\f$ on the regular grid \f$t_k = kT\f$.
+template <typename S>
+Eigen::Matrix<S, 2, 1> closed_form_H(Index k, S T = S(period)) {
+  return interval_H<S>(S(k) * T, T);
+}
+
+/// Closed-form \f$\Psi_k = e^{AT}H_k\f$ on the regular grid.
+template <typename S>
+Eigen::Matrix<S, 2, 1> closed_form_Psi(Index k, S T = S(period)) {
+  return interval_Psi<S>(S(k) * T, T);
+}
+
+/// \f$e^{AT} = I + TA\f$ (A is nilpotent).
+template <typename S>
+Eigen::Matrix<S, 2, 2> transition(S T) {
+  return Eigen::Matrix<S, 2, 2>::Identity() + T * continuous_dynamics<S>();
 }
 
 /// \f$H_\infty = \lim_k H_k = (T, -T^2/2)\f$: φ tends to (1, 0).
 template <typename S>
 Eigen::Matrix<S, 2, 1> limit_H(S T = S(period)) {
   return {T, -T * T / S(2)};
+}
+
+/// Sample times \f$t_0 = 0\f$, \f$t_{k+1} = t_k + T(1 + J\,u_k)\f$ with \f$u_k\f$ uniform in
+/// [−1, 1] from a seeded generator: `count` + 1 instants, intervals jittered by ±J.
+inline std::vector<double> jittered_sample_times(Index count, double jitter, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<double> t{0.0};
+  for (Index k = 0; k < count; ++k) t.push_back(t.back() + period * (1.0 + jitter * unit(rng)));
+  return t;
 }
 
 /// The spectrum requested for U in §4.

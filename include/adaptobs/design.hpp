@@ -16,6 +16,7 @@
 
 // Gains, stability and excitation checks.
 #include <adaptobs/design/canonical_forms.hpp>
+#include <adaptobs/design/companion_matrix.hpp>
 #include <adaptobs/design/care.hpp>
 #include <adaptobs/design/dare.hpp>
 #include <adaptobs/design/excitation_monitor.hpp>

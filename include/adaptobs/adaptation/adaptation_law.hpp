@@ -116,6 +116,22 @@ struct MaskedRegression {
         weight(j, j) = 1;
       }
   }
+
+  /// `propose(phi, z, present)` of a law: checks the sizes, then calls
+  /// `step(phi, z, R)` on the regression itself when every entry is present,
+  /// else on its masked copy with \f$\bar R\f$ (`R` null: an unweighted law, whose
+  /// step ignores its third argument).
+  template <class Step>
+  bool propose(const typename Types::Regressor& phi_in, const typename Types::Measurement& z_in,
+               const typename Types::Presence& present, const typename Types::MeasurementWeight* R, Index np,
+               std::string_view who, Step&& step) {
+    require_regression_sizes<Types>(phi_in, z_in, np, z.size(), who);
+    require_presence_size<Types>(present, z.size(), who);
+    if (present.all()) return step(phi_in, z_in, R ? *R : weight);
+    assign(phi_in, z_in, present);
+    if (R) assign_weight(*R, present);
+    return step(phi, z, weight);
+  }
 };
 
 }  // namespace detail

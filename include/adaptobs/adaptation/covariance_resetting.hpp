@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Recursive least squares with covariance resetting on the smallest
-/// eigenvalue (paper `003_9f47869cf3ab0cdc.txt`, eq. (22)–(23)).
+/// eigenvalue (Dey & Bhasin (2022), eq. (22)–(23)).
 ///
 /// Each step computes the RLS covariance and estimate
 /// \f[ \bar\Gamma_t = \Gamma_{t-1} - \Gamma_{t-1}\varphi_tW_t\varphi_t^T\Gamma_{t-1},\qquad
@@ -147,13 +147,8 @@ class CovarianceResettingRls {
   /// columns of φ zeroed, \f$\varphi\bar R^{-1}\varphi^T\f$ involves only \f$R_{PP}^{-1}\f$, whose
   /// largest eigenvalue is at most \f$1/\lambda_{\min}(R)\f$ (interlacing).
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
-    constexpr std::string_view who = "CovarianceResettingRls::propose";
-    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, who);
-    detail::require_presence_size<Types>(present, nz_, who);
-    if (present.all()) return step(phi, z, options_.R);
-    masked_.assign(phi, z, present);
-    masked_.assign_weight(options_.R, present);
-    return step(masked_.phi, masked_.z, masked_.weight);
+    return masked_.propose(phi, z, present, &options_.R, parameter_count(), "CovarianceResettingRls::propose",
+                           [this](const auto& f, const auto& y, const auto& r) { return step(f, y, r); });
   }
 
   void commit() noexcept { current_ = 1 - current_; }

@@ -2,7 +2,7 @@
 /// \file
 /// Recursive least squares with exponential forgetting: the adaptation law of
 /// the discrete adaptive observer of Suzuki, Nakamura & Koga (1980), the
-/// baseline of paper `003_9f47869cf3ab0cdc.txt` §5.
+/// baseline of Dey & Bhasin (2022) §5.
 ///
 /// Minimizes the exponentially weighted cost
 /// \f[ J_t(\hat p) = \tfrac12\Big[\sum_{i=1}^t\lambda^{t-i}(z_i - \varphi_i^T\hat p)^TR^{-1}(z_i - \varphi_i^T\hat p)
@@ -116,13 +116,8 @@ class ExponentialForgettingRls {
   /// entry present, Γ is divided by λ. (An observer may skip the call on a sample
   /// without data; Dey–Bhasin and Suzuki do, so Γ does not grow over a gap.)
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
-    constexpr std::string_view who = "ExponentialForgettingRls::propose";
-    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, who);
-    detail::require_presence_size<Types>(present, nz_, who);
-    if (present.all()) return step(phi, z, weight_);
-    masked_.assign(phi, z, present);
-    masked_.assign_weight(weight_, present);
-    return step(masked_.phi, masked_.z, masked_.weight);
+    return masked_.propose(phi, z, present, &weight_, parameter_count(), "ExponentialForgettingRls::propose",
+                           [this](const auto& f, const auto& y, const auto& r) { return step(f, y, r); });
   }
 
   void commit() noexcept { current_ = 1 - current_; }

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Normalized gradient (the "projection algorithm" of Goodwin & Sin 1984,
-/// §3.3, the reference paper `003_9f47869cf3ab0cdc.txt` cites for its RLS):
+/// §3.3, the reference Dey & Bhasin (2022) cites for its RLS):
 /// \f[ \hat p_t = \hat p_{t-1} + \mu\,\frac{\varphi_t(z_t - \varphi_t^T\hat p_{t-1})}{c + \|\varphi_t\|_F^2},
 ///     \qquad 0 < \mu < 2,\; c > 0. \f]
 /// Without perturbation the error obeys
@@ -69,12 +69,8 @@ class NormalizedGradient {
   /// and entries of z zeroed, so they add neither to the step nor to \f$\|\varphi_t\|_F^2\f$);
   /// see `AdaptationLaw`, "Partial measurements".
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
-    constexpr std::string_view who = "NormalizedGradient::propose";
-    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, who);
-    detail::require_presence_size<Types>(present, nz_, who);
-    if (present.all()) return step(phi, z);
-    masked_.assign(phi, z, present);
-    return step(masked_.phi, masked_.z);
+    return masked_.propose(phi, z, present, nullptr, parameter_count(), "NormalizedGradient::propose",
+                           [this](const auto& f, const auto& y, const auto&) { return step(f, y); });
   }
 
   void commit() noexcept { current_ = 1 - current_; }

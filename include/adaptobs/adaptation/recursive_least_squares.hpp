@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Recursive least squares (paper `003_9f47869cf3ab0cdc.txt`, eq. (17)–(22)).
+/// Recursive least squares (Dey & Bhasin (2022), eq. (17)–(22)).
 ///
 /// Minimizes the cost (17)
 /// \f[ J_t(\hat p) = \tfrac12\Big[\sum_{i=1}^t (z_i - \varphi_i^T\hat p)^T R^{-1}(z_i - \varphi_i^T\hat p)
@@ -100,13 +100,8 @@ class RecursiveLeastSquares {
 
   /// (22) and (21) with the present entries of \f$z_t\f$ only; see `AdaptationLaw`, "Partial measurements".
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
-    constexpr std::string_view who = "RecursiveLeastSquares::propose";
-    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, who);
-    detail::require_presence_size<Types>(present, nz_, who);
-    if (present.all()) return step(phi, z, options_.R);
-    masked_.assign(phi, z, present);
-    masked_.assign_weight(options_.R, present);
-    return step(masked_.phi, masked_.z, masked_.weight);
+    return masked_.propose(phi, z, present, &options_.R, parameter_count(), "RecursiveLeastSquares::propose",
+                           [this](const auto& f, const auto& y, const auto& r) { return step(f, y, r); });
   }
 
   void commit() noexcept { current_ = 1 - current_; }

@@ -26,6 +26,7 @@
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/products.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/core/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Cholesky>
@@ -63,10 +64,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     constexpr std::string_view who = "AugmentedKalmanFilter";
     const Sizes s = model_.sizes();
     const Index n = s.nx + s.np;
-    detail::require_shape(x_, s.nx, 1, who, "x0");
-    detail::require_finite(x_, who, "x0");
-    detail::require_shape(theta_, s.np, 1, who, "theta0");
-    detail::require_finite(theta_, who, "theta0");
+    detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
     detail::require_shape(cov_.P0, n, n, who, "covariances.P0");
     detail::require_positive_definite(cov_.P0, who, "covariances.P0");
     detail::require_shape(cov_.Q, n, n, who, "covariances.Q");
@@ -102,9 +100,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
   /// "Missing and partial outputs"); absent entries of `sample.y` are ignored (they may be NaN or Inf).
   /// All channels present is `update(sample)`, bit for bit; none is the prediction alone.
   [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
-    if constexpr (!Dims::is_fixed)
-      detail::require_mask_size<Dims>(present, model_.sizes().ny, "AugmentedKalmanFilter::update");
-    return step_with(sample, present.all() ? nullptr : &present);
+    return step_with(sample, detail::partial_mask<Dims>(present, model_.sizes().ny, "AugmentedKalmanFilter::update"));
   }
 
   /// Run-time sizes (nx, nu, ny, np).
@@ -117,10 +113,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
 
   void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
     constexpr std::string_view who = "AugmentedKalmanFilter::reset";
-    detail::require_shape(x0, x_.rows(), 1, who, "x0");
-    detail::require_finite(x0, who, "x0");
-    detail::require_shape(theta0, theta_.rows(), 1, who, "theta0");
-    detail::require_finite(theta0, who, "theta0");
+    detail::require_initial_estimates(x0, x_.rows(), theta0, theta_.rows(), who);
     x_ = x0;
     theta_ = theta0;
     p_ = cov_.P0;

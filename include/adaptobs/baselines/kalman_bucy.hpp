@@ -165,10 +165,7 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
 
   void reset(const State& eta0, const Parameters& theta0) {
     constexpr std::string_view who = "AugmentedKalmanBucyFilter::reset";
-    detail::require_shape(eta0, sizes_.nx, 1, who, "eta0");
-    detail::require_finite(eta0, who, "eta0");
-    detail::require_shape(theta0, sizes_.np, 1, who, "theta0");
-    detail::require_finite(theta0, who, "theta0");
+    detail::require_initial_estimates(eta0, sizes_.nx, theta0, sizes_.np, who, "eta0", "theta0");
     set_initial(eta0, theta0);
     integrator_.restart();
   }

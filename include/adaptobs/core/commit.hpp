@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
 namespace adaptobs::detail {
 
 /// True when every coefficient of every argument is finite.
@@ -23,6 +25,19 @@ template <class First, class... Rest>
   };
   const Scalar sum = (zero_times(first) + ... + zero_times(rest));
   return sum == sum;
+}
+
+/// True when the entries of y whose channel is present (all of them for a null
+/// mask) and every entry of `rest` (the input, a regressor) are finite: the
+/// check of a sample with some output channels absent, whose other entries may be NaN.
+template <class Y, class Mask, class... Rest>
+[[nodiscard]] bool finite_measured(const Eigen::MatrixBase<Y>& y, const Mask* present,
+                                   const Eigen::DenseBase<Rest>&... rest) {
+  if (!present) return all_finite(y, rest...);
+  for (Eigen::Index i = 0; i < y.size(); ++i)
+    if ((*present)(i) && !std::isfinite(y(i))) return false;
+  if constexpr (sizeof...(Rest) > 0) return all_finite(rest...);
+  return true;
 }
 
 /// Moves a computed value into place: a pointer swap for heap storage, a copy

@@ -73,16 +73,6 @@ template <StateSpace D, class F>
   return value;
 }
 
-template <StateSpace D>
-void validate_continuous_system(const ContinuousSystem<D>& s, std::string_view who) {
-  require_square(s.A, who, "A");
-  require_finite(s.A, who, "A");
-  require_shape(s.B, s.A.rows(), s.B.cols(), who, "B");
-  require_finite(s.B, who, "B");
-  require_shape(s.C, s.C.rows(), s.A.rows(), who, "C");
-  require_finite(s.C, who, "C");
-}
-
 template <StateSpace D, class F>
 void validate_regressor(const F& phi, const Sizes& s, std::string_view who) {
   const typename D::Input u = D::Input::Zero(s.nu);
@@ -115,7 +105,7 @@ class ContinuousLtiModel : public SizedBy<D> {
                      RegressorFn Phi, Index np = D::np)
       : system_{std::move(A), std::move(B), std::move(C)}, phi_(std::move(Phi)) {
     constexpr std::string_view who = "ContinuousLtiModel";
-    detail::validate_continuous_system(system_, who);
+    detail::validate_state_space(system_, who);
     detail::require(np >= 0, who, "np", "must be non-negative");
     sizes_ = {system_.A.rows(), system_.B.cols(), system_.C.rows(), np};
     detail::validate_regressor<D>(phi_, sizes_, who);
@@ -148,7 +138,7 @@ class ContinuousLtvModel : public SizedBy<D> {
     detail::require(sizes_.nx >= 0 && sizes_.nu >= 0 && sizes_.ny >= 0 && sizes_.np >= 0, who, "sizes",
                     "must be non-negative (dynamic dimensions need explicit sizes)");
     const ContinuousSystem<D> first = matrices_at_(typename D::Scalar(0));
-    detail::validate_continuous_system(first, who);
+    detail::validate_state_space(first, who);
     detail::require(first.sizes().nx == sizes_.nx && first.sizes().nu == sizes_.nu && first.sizes().ny == sizes_.ny,
                     who, "matrices_at", "returns matrices whose sizes differ from 'sizes'");
     detail::validate_regressor<D>(phi_, sizes_, who);

@@ -65,8 +65,7 @@ void require_sample_sizes(const DiscreteSample<D>& sample, const Sizes& s, std::
 /// for a null mask) are finite.
 template <StateSpace D>
 [[nodiscard]] bool finite_sample(const DiscreteSample<D>& sample, const OutputMask<D>* present) {
-  if (!present) return all_finite(sample.u, sample.y, sample.Psi);
-  return finite_present(sample.y, *present) && all_finite(sample.u, sample.Psi);
+  return finite_measured(sample.y, present, sample.u, sample.Psi);
 }
 
 /// Zeroes the rows of `m` whose output channel is absent (nothing for a null mask).
@@ -90,12 +89,7 @@ concept DiscreteModel = StateSpace<typename M::Dims> && requires(const M& m, Ind
 namespace detail {
 template <StateSpace D>
 void validate_system(const DiscreteSystem<D>& s, Index np, std::string_view who) {
-  require_square(s.A, who, "A");
-  require_finite(s.A, who, "A");
-  require_shape(s.B, s.A.rows(), s.B.cols(), who, "B");
-  require_finite(s.B, who, "B");
-  require_shape(s.C, s.C.rows(), s.A.rows(), who, "C");
-  require_finite(s.C, who, "C");
+  validate_state_space(s, who);
   require(np >= 0, who, "np", "must be non-negative");
 }
 }  // namespace detail

@@ -137,4 +137,23 @@ class DynamicTransform {
   mutable OutputMatrix scratch_;  // A_o H
 };
 
+namespace detail {
+/// G = [−g I_r] and H = [0; I_r] for a state of size n = m + r: the dynamic
+/// transform shared by Algorithms 1–3, with F given or projected.
+template <typename Scalar, int N, int R, class DG>
+DynamicTransform<Scalar, N, R> block_transform(Index n, Index r, const Eigen::MatrixBase<DG>& g,
+                                               std::optional<Eigen::Matrix<Scalar, R, R>> f = std::nullopt) {
+  Eigen::Matrix<Scalar, R, N> gm = Eigen::Matrix<Scalar, R, N>::Zero(r, n);
+  // Element by element: GCC 12 built for AVX reports a false -Warray-bounds on
+  // Eigen's packet copy of a small fixed g into this runtime-width block.
+  for (Index j = 0; j < n - r; ++j)
+    for (Index i = 0; i < r; ++i) gm(i, j) = -g(i, j);
+  gm.rightCols(r).setIdentity();
+  Eigen::Matrix<Scalar, N, R> hm = Eigen::Matrix<Scalar, N, R>::Zero(n, r);
+  hm.bottomRows(r).setIdentity();
+  if (f) return DynamicTransform<Scalar, N, R>(std::move(*f), std::move(gm), std::move(hm));
+  return DynamicTransform<Scalar, N, R>::projected(std::move(gm), std::move(hm));
+}
+}  // namespace detail
+
 }  // namespace adaptobs

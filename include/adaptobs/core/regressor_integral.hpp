@@ -5,7 +5,7 @@
 /// For \f$\dot x = Ax + \varphi(t)\theta\f$ sampled at \f$t_k\f$ with period T,
 /// \f[ x(t_k + T) = e^{AT}\big(x(t_k) + H_k\theta\big),\qquad
 ///     H_k = \int_{t_k}^{t_k+T} e^{(t_k - s)A}\varphi(s)\,ds, \f]
-/// (paper `002_690eeac12a57821f.txt`, §2, with period T instead of 1), and the
+/// (Guiro et al. (2008), §2, with period T instead of 1), and the
 /// discrete-time regressor is \f$\Psi_k = e^{AT}H_k = \int_{t_k}^{t_k+T}e^{(t_k+T-s)A}\varphi(s)\,ds\f$:
 /// \f$x_{k+1} = e^{AT}x_k + \Psi_k\theta\f$ holds exactly. Two evaluations:
 ///

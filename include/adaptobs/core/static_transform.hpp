@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -75,6 +76,17 @@ template <class Matrix>
   const Scalar condition = n == 0 ? Scalar(1) : one_norm(t) * one_norm(inverse);
   if (!(condition * Scalar(n) * std::numeric_limits<Scalar>::epsilon() < Scalar(1))) return std::nullopt;
   return inverse;
+}
+
+/// c_o = e1ᵀ (or C_o = [I 0]) to a relative tolerance: the output matrix the
+/// forms of Algorithms 1–3 ask of the static transform.
+template <class DC>
+bool is_leading_identity(const Eigen::MatrixBase<DC>& co) {
+  using Scalar = typename DC::Scalar;
+  const Index m = co.rows();
+  const Scalar tol = Scalar(1e3) * std::numeric_limits<Scalar>::epsilon() * std::max(Scalar(1), co.cwiseAbs().maxCoeff());
+  return (co.leftCols(m) - DC::PlainObject::Identity(m, co.cols()).leftCols(m)).cwiseAbs().maxCoeff() <= tol &&
+         (co.cols() == m || co.rightCols(co.cols() - m).cwiseAbs().maxCoeff() <= tol);
 }
 
 }  // namespace detail

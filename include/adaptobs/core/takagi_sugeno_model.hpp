@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Takagi–Sugeno (polytopic quasi-LPV) models with unknown parameters, built by
-/// the sector-nonlinearity transformation (paper `004_9e717d6cc2be1dbf.txt`,
+/// the sector-nonlinearity transformation (Srinivasarengan et al. (2018),
 /// eq. (9)–(11), Remark 1, eq. (19) and (64)).
 ///
 /// A quasi-LPV system \f$x_{k+1} = A(z_k,\theta)x_k + B(z_k,\theta)u_k\f$,
@@ -35,6 +35,7 @@
 #include <algorithm>
 #include <concepts>
 #include <cstdint>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <type_traits>
@@ -42,6 +43,19 @@
 #include <vector>
 
 namespace adaptobs {
+
+/// Gains of `TakagiSugenoObserver` (declared here, below both the observer and
+/// the LMI synthesis that produces them): one \f$L_i\f$ and one \f$K_{y,i}\f$ per vertex, in the
+/// vertex order of the model, and the optional leakage \f$K_\theta\f$ of eq. (21).
+template <StateSpace D>
+struct TakagiSugenoGains {
+  using ParameterGain = Eigen::Matrix<typename D::Scalar, D::np, D::ny>;
+  std::vector<typename D::GainMatrix> L;  ///< \f$L_i \in \mathbb{R}^{n_x\times n_y}\f$
+  std::vector<ParameterGain> K;           ///< \f$K_{y,i} \in \mathbb{R}^{n_\theta\times n_y}\f$
+  /// \f$K_\theta \in \mathbb{R}^{n_\theta\times n_\theta}\f$: empty for constant parameters (eq. (65)),
+  /// set for the time-varying-parameter observer (eq. (21)).
+  std::optional<typename D::ParameterMatrix> K_theta;
+};
 
 /// Number of vertices \f$2^{n_z + n_\theta}\f$ known at compile time (or `Eigen::Dynamic`).
 [[nodiscard]] constexpr int takagi_sugeno_vertex_count(int nz, int np) noexcept {

@@ -76,6 +76,30 @@ void require_finite(const Eigen::DenseBase<Derived>& m, std::string_view who, st
   if (!m.derived().allFinite()) fail_argument(who, argument, "must contain only finite numbers");
 }
 
+/// The matrices (A, B, C) of a state-space system, discrete or continuous: A
+/// square, B with A's rows, C with A's columns, every entry finite.
+template <class System>
+void validate_state_space(const System& s, std::string_view who) {
+  require_square(s.A, who, "A");
+  require_finite(s.A, who, "A");
+  require_shape(s.B, s.A.rows(), s.B.cols(), who, "B");
+  require_finite(s.B, who, "B");
+  require_shape(s.C, s.C.rows(), s.A.rows(), who, "C");
+  require_finite(s.C, who, "C");
+}
+
+/// The initial estimates of an observer: a finite state column of nx entries
+/// and a finite parameter column of np entries, named in the error as given.
+template <class X, class Theta>
+void require_initial_estimates(const Eigen::DenseBase<X>& x0, Index nx, const Eigen::DenseBase<Theta>& theta0, Index np,
+                               std::string_view who, std::string_view x_name = "x0",
+                               std::string_view theta_name = "theta0") {
+  require_shape(x0, nx, 1, who, x_name);
+  require_finite(x0, who, x_name);
+  require_shape(theta0, np, 1, who, theta_name);
+  require_finite(theta0, who, theta_name);
+}
+
 /// Symmetric to a relative tolerance of 100 ulp of its largest entry.
 template <class Derived>
 void require_symmetric(const Eigen::MatrixBase<Derived>& m, std::string_view who, std::string_view argument) {
@@ -152,13 +176,6 @@ void require_mask_size(const OutputMask<D>& present, Index ny, std::string_view 
   require(present.size() == ny, who, "present", "must have one entry per output channel");
 }
 
-/// True when every entry of y whose channel is present is finite.
-template <class Derived, class Mask>
-[[nodiscard]] bool finite_present(const Eigen::MatrixBase<Derived>& y, const Mask& present) {
-  for (Index i = 0; i < y.size(); ++i)
-    if (present(i) && !std::isfinite(y(i))) return false;
-  return true;
-}
 
 }  // namespace detail
 }  // namespace adaptobs

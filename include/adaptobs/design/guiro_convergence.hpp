@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Proposition 2.2 of paper `002_690eeac12a57821f.txt` as a diagnostic: does
+/// Proposition 2.2 of Guiro et al. (2008) as a diagnostic: does
 /// condition (i) or (ii) of proposition 2.1 hold for the regressor data at hand?
 ///
 /// The observer's errors obey \f$v_{k+1} = (U + W(k))v_k\f$ with U built on a

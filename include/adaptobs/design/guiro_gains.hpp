@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Gains K and Γ of the continuous-discrete adaptive observer of Guiro, Iggidr,
-/// Ngom and Touré (paper `002_690eeac12a57821f.txt`, §2.2–§3) for any number of
+/// Ngom and Touré (Guiro et al. (2008), §2.2–§3) for any number of
 /// states n, outputs m and parameters p.
 ///
 /// With \f$E = e^{AT}\f$ and a nominal regressor \f$\bar H\f$ (the paper takes

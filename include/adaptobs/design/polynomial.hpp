@@ -150,18 +150,6 @@ template <typename Scalar>
   return c;
 }
 
-/// Monic polynomial with the given real roots: \f$\prod_i (s - r_i)\f$.
-template <typename Scalar>
-[[nodiscard]] Polynomial<Scalar> polynomial_from_roots(const std::vector<Scalar>& roots) {
-  Polynomial<Scalar> p = Polynomial<Scalar>::Ones(1);
-  Polynomial<Scalar> factor(2);
-  for (Scalar r : roots) {
-    factor << Scalar(1), -r;
-    p = multiply_polynomials<Scalar>(p, factor);
-  }
-  return p;
-}
-
 /// \f$p(M) = p_0M^d + \dots + p_dI\f$ by Horner's rule.
 template <class Derived>
 [[nodiscard]] Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic> evaluate_polynomial(

@@ -12,7 +12,7 @@
 /// \f$M \le \sqrt{\operatorname{cond}P}\f$, is cheaper but can be several times larger.
 ///
 /// Perturbation results such as proposition 2.1 of paper
-/// `002_690eeac12a57821f.txt` tolerate \f$\|W(k)\| < (1-\lambda)/M\f$;
+/// Guiro et al. (2008) tolerate \f$\|W(k)\| < (1-\lambda)/M\f$;
 /// `best_power_bound` picks the λ that maximizes that margin.
 
 #include <adaptobs/core/dimensions.hpp>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The vertex LMIs of theorems 1 and 2 of paper `004_9e717d6cc2be1dbf.txt`
+/// The vertex LMIs of theorems 1 and 2 of Srinivasarengan et al. (2018)
 /// (eq. (29)–(30), (55), (71)), assembled numerically from a candidate solution
 /// \f$(P_0, P_1, R_i, F_i, \lambda_m, \Gamma^j)\f$, and the check that the solution
 /// satisfies them. Eigen only: this is the independent verification of what an

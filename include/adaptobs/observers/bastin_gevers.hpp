@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Algorithm 1 of paper 001 (`001_ef18c05334b910fe.txt`, §III-A): the adaptive
+/// Algorithm 1 of Zhang (2005), §III-A: the adaptive
 /// observer of Bastin & Gevers (IEEE TAC 33(7), 1988), SISO, constant A and c.
 ///
 /// Static transform: form (5), \f$c_o = e_1^T\f$,
@@ -43,34 +43,6 @@
 #include <utility>
 
 namespace adaptobs {
-
-namespace detail {
-// c_o = e1ᵀ (or C_o = [I 0]) to a relative tolerance.
-template <class DC>
-bool is_leading_identity(const Eigen::MatrixBase<DC>& co) {
-  using Scalar = typename DC::Scalar;
-  const Index m = co.rows();
-  const Scalar tol = Scalar(1e3) * std::numeric_limits<Scalar>::epsilon() * std::max(Scalar(1), co.cwiseAbs().maxCoeff());
-  return (co.leftCols(m) - DC::PlainObject::Identity(m, co.cols()).leftCols(m)).cwiseAbs().maxCoeff() <= tol &&
-         (co.cols() == m || co.rightCols(co.cols() - m).cwiseAbs().maxCoeff() <= tol);
-}
-
-// G = [−g I_r] and H = [0; I_r] for a state of size n = m + r.
-template <typename Scalar, int N, int R, class DG>
-DynamicTransform<Scalar, N, R> block_transform(Index n, Index r, const Eigen::MatrixBase<DG>& g,
-                                               std::optional<Eigen::Matrix<Scalar, R, R>> f = std::nullopt) {
-  Eigen::Matrix<Scalar, R, N> gm = Eigen::Matrix<Scalar, R, N>::Zero(r, n);
-  // Element by element: GCC 12 built for AVX reports a false -Warray-bounds on
-  // Eigen's packet copy of a small fixed g into this runtime-width block.
-  for (Index j = 0; j < n - r; ++j)
-    for (Index i = 0; i < r; ++i) gm(i, j) = -g(i, j);
-  gm.rightCols(r).setIdentity();
-  Eigen::Matrix<Scalar, N, R> hm = Eigen::Matrix<Scalar, N, R>::Zero(n, r);
-  hm.bottomRows(r).setIdentity();
-  if (f) return DynamicTransform<Scalar, N, R>(std::move(*f), std::move(gm), std::move(hm));
-  return DynamicTransform<Scalar, N, R>::projected(std::move(gm), std::move(hm));
-}
-}  // namespace detail
 
 /// Algorithm 1 (§III-A) as an algorithm of the unified formulation.
 template <StateSpace D>

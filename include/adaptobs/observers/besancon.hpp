@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Algorithm 3 of paper 001 (`001_ef18c05334b910fe.txt`, §III-C): the adaptive
+/// Algorithm 3 of Zhang (2005), §III-C: the adaptive
 /// observer of Besançon (Systems & Control Letters 41(4), 2000), MIMO and time varying.
 ///
 /// Static transform: form (8), \f$C_o = [I_m\ 0]\f$,
@@ -29,7 +29,6 @@
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/polynomial.hpp>
-#include <adaptobs/observers/bastin_gevers.hpp>
 #include <adaptobs/observers/unified_adaptive_observer.hpp>
 
 #include <Eigen/Core>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The filters of paper `003_9f47869cf3ab0cdc.txt`, eq. (8)–(13), for a MIMO
+/// The filters of Dey & Bhasin (2022), eq. (8)–(13), for a MIMO
 /// system in observable canonical form, computed through their Kronecker
 /// structure instead of the n × (r + mn) matrix \f$S_t\f$.
 ///
@@ -34,6 +34,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/products.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/companion_matrix.hpp>
 #include <adaptobs/design/schur_stability.hpp>
 
 #include <Eigen/Core>
@@ -42,33 +43,6 @@
 #include <utility>
 
 namespace adaptobs {
-
-/// \f$\bar A(a)\f$: the r × r companion matrix with first column a and ones on the superdiagonal.
-template <class Derived>
-[[nodiscard]] auto companion_matrix(const Eigen::MatrixBase<Derived>& a) {
-  using Scalar = typename Derived::Scalar;
-  constexpr int R = Derived::SizeAtCompileTime;
-  const Index r = a.size();
-  Eigen::Matrix<Scalar, R, R> m = Eigen::Matrix<Scalar, R, R>::Zero(r, r);
-  m.col(0) = a;
-  if (r > 1) m.topRightCorner(r - 1, r - 1).setIdentity();
-  return m;
-}
-
-/// \f$\bar A(a)\otimes I_q\f$: the state matrix (3) of the observable canonical form (or F of (6)).
-template <int Q = Eigen::Dynamic, class Derived>
-[[nodiscard]] auto block_companion_matrix(const Eigen::MatrixBase<Derived>& a, Index q = Q) {
-  using Scalar = typename Derived::Scalar;
-  constexpr int N = product_of_sizes(Derived::SizeAtCompileTime, Q);
-  const Index r = a.size();
-  const Index n = r * q;
-  Eigen::Matrix<Scalar, N, N> m = Eigen::Matrix<Scalar, N, N>::Zero(n, n);
-  for (Index i = 0; i < r; ++i) {
-    m.block(i * q, 0, q, q).diagonal().setConstant(a(i));
-    if (i + 1 < r) m.block(i * q, (i + 1) * q, q, q).setIdentity();
-  }
-  return m;
-}
 
 /// Filters (8)–(11) of paper 003 for order `R`, `Q` outputs and `M` inputs (any may be `Eigen::Dynamic`).
 template <typename S, int R, int Q, int M>

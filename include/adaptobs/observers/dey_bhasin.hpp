@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// Adaptive observer for MIMO discrete LTI systems of Dey & Bhasin (paper
-/// `003_9f47869cf3ab0cdc.txt`, eq. (3)–(23)), and the Suzuki-style observer
+/// Adaptive observer for MIMO discrete LTI systems of Dey & Bhasin (2022),
+/// eq. (3)–(23) (docs/references.md), and the Suzuki-style observer
 /// it is compared with (the same filters with exponential forgetting, §5).
 ///
 /// The plant is unknown but for its structure: order r, q outputs, m inputs,
@@ -68,15 +68,14 @@
 #include <adaptobs/core/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/core/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/observers/canonical_form_filters.hpp>
 
 #include <Eigen/Core>
 
 #include <string_view>
-#include <type_traits>
 #include <utility>
-#include <variant>
 
 namespace adaptobs {
 
@@ -124,7 +123,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     last_.setZero(s.ny + s.nu);
     phi_.setZero(s.np, s.ny);
     z_.setZero(s.ny);
-    if constexpr (!Dims::is_fixed) work_.resize(filters_);
+    work_.resize(filters_);
     restart_filters();
   }
 
@@ -152,9 +151,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
       s.y;
     }
   [[nodiscard]] UpdateStatus update(const AnySample& sample, const OutputMask<Dims>& present) {
-    if constexpr (!Dims::is_fixed)
-      detail::require_mask_size<Dims>(present, filters_.outputs(), "DeyBhasinObserver::update");
-    return step_with(sample.u, sample.y, present.all() ? nullptr : &present);
+    return step_with(sample.u, sample.y, detail::partial_mask<Dims>(present, filters_.outputs(), "DeyBhasinObserver::update"));
   }
 
   /// \f$\hat x_{t+1|t} = S_{t+1}\hat p_t + F^{t+1}\hat x_0\f$: the estimate of the next state
@@ -197,10 +194,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   /// Restarts from \f$\hat x_0\f$ and \f$\hat p_0\f$ at t = 0: filters cleared, law restarted.
   void reset(const State& x0, const Parameters& p0) {
     constexpr std::string_view who = "DeyBhasinObserver::reset";
-    detail::require_shape(x0, filters_.states(), 1, who, "x0");
-    detail::require_finite(x0, who, "x0");
-    detail::require_shape(p0, filters_.parameters(), 1, who, "p0");
-    detail::require_finite(p0, who, "p0");
+    detail::require_initial_estimates(x0, filters_.states(), p0, filters_.parameters(), who, "x0", "p0");
     law_.restart(p0);
     x0_ = x0;
     restart_filters();
@@ -266,21 +260,17 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   // `present` is null when every channel is.
   template <class U, class Y>
   UpdateStatus step_with(const U& u, const Y& y, const OutputMask<Dims>* present) {
-    if constexpr (Dims::is_fixed) {
-      Workspace w;
-      return advance(u, y, present, w);
-    } else {
+    if constexpr (!Dims::is_fixed) {
       detail::require_shape(u, filters_.inputs(), 1, "DeyBhasinObserver::update", "sample.u");
       detail::require_shape(y, filters_.outputs(), 1, "DeyBhasinObserver::update", "sample.y");
-      return advance(u, y, present, work_);
     }
+    return work_.run([&](Workspace& w) { return advance(u, y, present, w); });
   }
 
   template <class U, class Y>
   UpdateStatus advance(const Eigen::MatrixBase<U>& u, const Eigen::MatrixBase<Y>& y, const OutputMask<Dims>* present,
                        Workspace& w) {
-    if (present ? !detail::finite_present(y, *present) || !detail::all_finite(u) : !detail::all_finite(u, y))
-      return UpdateStatus::nonfinite_input;
+    if (!detail::finite_measured(y, present, u)) return UpdateStatus::nonfinite_input;
     const Index q = filters_.outputs();
     const bool first = step_ == 0;
 
@@ -342,7 +332,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   State next_state_;                         // x̂_{t+1|t}
   Index step_ = 0;
   // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
-  [[no_unique_address]] std::conditional_t<Dims::is_fixed, std::monostate, Workspace> work_;
+  detail::UpdateWorkspace<Workspace, Dims::is_fixed> work_;
 };
 
 /// The Suzuki–Nakamura–Koga style observer of paper 003 §5: the same filters,

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Continuous-discrete adaptive observer of Guiro, Iggidr, Ngom and Touré
-/// (paper `002_690eeac12a57821f.txt`, eq. (2)), generalized to p parameters,
+/// (2008, docs/references.md), eq. (2), generalized to p parameters,
 /// m outputs, a sampling period T and known inputs.
 ///
 /// System (paper 002, eq. (1)): \f$\dot x = Ax + Bu(t) + \varphi(t)\theta\f$,
@@ -37,17 +37,56 @@
 /// paper's \f$z_{k-1}\f$, corrected with the last consumed output. The paper
 /// starts from an uncorrected \f$z_0\f$; `GuiroOptions::correct_initial_estimate
 /// = false` replays that exactly.
+///
+/// **Missing and partial outputs.** A sample that carries only the channels of
+/// a mask \f$D_k = \mathrm{diag}(\text{present})\f$ measures \f$D_ky_k = D_kCx(t_k)\f$, the
+/// system of eq. (1) with output matrix \f$\bar C_k = D_kC\f$. Eq. (2) with \f$\bar C_k\f$
+/// zeroes the absent entries of both output errors: \f$z_k = z^-_k - KD_k(Cz^-_k - y_k)\f$,
+/// \f$\hat\theta_{k+1} = \hat\theta_k - \Gamma D_k(Cz_k - y_k)\f$. With no channel present this
+/// is the time update \f$z_k = z^-_k\f$, \f$\hat\theta_{k+1} = \hat\theta_k\f$,
+/// \f$z^-_{k+1} = Ez_k + \Psi_k\hat\theta_k + B_du_k\f$, and the step counter advances, so an LTV
+/// model stays in phase. The errors \f$v = (z - x, \hat\theta - \theta)\f$ then obey
+/// \f$v_{k+1} = U_kv_k\f$ with \f$U_k\f$ built from \f$\bar C_k\f$: at a gap
+/// \f$\begin{bmatrix}E & EH_k\\ 0 & I\end{bmatrix}\f$, the open-loop propagation, in which θ̃
+/// is held and drives the state error. Proposition 2.1 speaks of one fixed U;
+/// with gaps the sequence of error matrices switches, and convergence asks that
+/// the products over the run contract — the corrected samples between gaps must
+/// outweigh the growth across them, which nothing in the paper bounds.
+///
+/// **Irregular sample times.** For samples at \f$t_0 < t_1 < \dots\f$ with intervals
+/// \f$T_k = t_{k+1} - t_k\f$, the exact sampled system is LTV:
+/// \f$x_{k+1} = E_kx_k + \Psi_k\theta + B_{d,k}u_k\f$ with \f$E_k = e^{AT_k}\f$ and
+/// \f$\Psi_k = E_kH_k\f$ over \f$[t_k, t_{k+1}]\f$ (a `RegressorIntegral` of period \f$T_k\f$ gives
+/// \f$E_k\f$ as `transition()` and \f$\Psi_k\f$). Give the observer a `DiscreteLtvModel` serving
+/// \f$(E_k, B_{d,k}, C)\f$ at step k and the sample of step k its \f$\Psi_k\f$. Both need
+/// \f$t_{k+1}\f$: in a real-time loop, consume sample k when sample k + 1 arrives —
+/// the update then returns \f$z^-_{k+1}\f$, the prediction for the instant at hand,
+/// so nothing is lost by the wait. The errors obey
+/// \f[ v_{k+1} = U_kv_k,\qquad U_k = \begin{bmatrix}(I - K_{k+1}C)E_k & (I - K_{k+1}C)E_kH_k
+///     \\ -\Gamma_kC & I\end{bmatrix}, \f]
+/// where \f$K_{k+1}\f$ is the correction applied at \f$t_{k+1}\f$ and \f$\Gamma_k\f$ the
+/// parameter gain applied at \f$t_k\f$. To give every interval the spectrum the
+/// design places, design \f$(K^{(k)}, \Gamma^{(k)})\f$ = `design_guiro_gains(E_k, C, H_k, poles)`
+/// per interval and, before consuming sample k, call
+/// `set_gains(K^{(k-1)}, \Gamma^{(k)})` (\f$K^{(0)}\f$ at k = 0): the correction of the interval that ends at
+/// \f$t_k\f$ and the parameter gain of the one that starts there. What is then
+/// covered: each \f$U_k\f$ has the placed spectrum; what is not: a product of
+/// matrices with stable spectra need not contract (a switched system), so
+/// proposition 2.1's argument, which perturbs one fixed U, does not carry over.
+/// A common quadratic Lyapunov function of the \f$U_k\f$ for the range of intervals
+/// would; on the paper's example with intervals jittered ±30 %, the scheduled
+/// gains reach |θ̂ − 5| < 1e-8 within 40 samples, and gains designed once for the
+/// nominal T still converge, more slowly (tests/test_guiro.cpp).
 
 #include <adaptobs/core/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/products.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/core/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 
-#include <type_traits>
 #include <utility>
-#include <variant>
 
 namespace adaptobs {
 
@@ -87,12 +126,9 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     detail::require_finite(gain_, who, "K");
     detail::require_shape(parameter_gain_, s.np, s.ny, who, "Gamma");
     detail::require_finite(parameter_gain_, who, "Gamma");
-    detail::require_shape(z_, s.nx, 1, who, "z0");
-    detail::require_finite(z_, who, "z0");
-    detail::require_shape(theta_, s.np, 1, who, "theta0");
-    detail::require_finite(theta_, who, "theta0");
+    detail::require_initial_estimates(z_, s.nx, theta_, s.np, who, "z0", "theta0");
     corrected_ = z_;
-    if constexpr (!Dims::is_fixed) work_.resize(s);
+    work_.resize(s);
   }
 
   /// One sample: correction of \f$z^-_k\f$ with \f$y_k\f$, θ̂ update, prediction
@@ -101,15 +137,18 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
   /// Returns `nonfinite_input` for a NaN/Inf in the sample and
   /// `nonfinite_result` when the step would produce one; in both cases the
   /// observer is left exactly as it was.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) {
-    if constexpr (Dims::is_fixed) {
-      Workspace w;
-      return advance(sample, w);
-    } else {
-      detail::require_sample_sizes(sample, model_.sizes(), "GuiroObserver::update");
-      return advance(sample, work_);
-    }
+  [[nodiscard]] UpdateStatus update(const Sample& sample) { return step_with(sample, nullptr); }
+
+  /// One sample with only the output channels in `present` measured (file
+  /// comment, "Missing and partial outputs"); absent entries of `sample.y` are
+  /// ignored (they may be NaN or Inf). All channels present is `update(sample)`,
+  /// bit for bit; none is the time update.
+  [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
+    return step_with(sample, detail::partial_mask<Dims>(present, model_.sizes().ny, "GuiroObserver::update"));
   }
+
+  /// Run-time sizes (nx, nu, ny, np).
+  [[nodiscard]] Sizes sizes() const noexcept { return model_.sizes(); }
 
   /// Prediction \f$z^-_k\f$ of the state at the current step, before its output is consumed.
   [[nodiscard]] const State& state() const noexcept { return z_; }
@@ -127,10 +166,7 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
   /// Restarts from \f$z_0, \hat\theta_0\f$ at step `start_step`.
   void reset(const State& z0, const Parameters& theta0, Index start_step = 0) {
     constexpr std::string_view who = "GuiroObserver::reset";
-    detail::require_shape(z0, z_.rows(), 1, who, "z0");
-    detail::require_finite(z0, who, "z0");
-    detail::require_shape(theta0, theta_.rows(), 1, who, "theta0");
-    detail::require_finite(theta0, who, "theta0");
+    detail::require_initial_estimates(z0, z_.rows(), theta0, theta_.rows(), who, "z0", "theta0");
     detail::require(start_step >= 0, who, "start_step", "must be non-negative");
     z_ = z0;
     corrected_ = z0;
@@ -139,7 +175,9 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     started_ = false;
   }
 
-  /// Gains used from the next update on.
+  /// Gains used from the next update on: K corrects that sample's prediction and
+  /// Γ multiplies its output error (file comment, "Irregular sample times", for a
+  /// schedule over varying intervals).
   void set_gains(const GainMatrix& K, const ParameterGain& Gamma) {
     constexpr std::string_view who = "GuiroObserver::set_gains";
     detail::require_shape(K, gain_.rows(), gain_.cols(), who, "K");
@@ -164,8 +202,14 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     }
   };
 
-  UpdateStatus advance(const Sample& sample, Workspace& w) {
-    if (!detail::all_finite(sample.u, sample.y, sample.Psi)) return UpdateStatus::nonfinite_input;
+  // `present` is null when every channel is.
+  UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
+    if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "GuiroObserver::update");
+    return work_.run([&](Workspace& w) { return advance(sample, present, w); });
+  }
+
+  UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
+    if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
     const auto& system = model_.at(step_);
     if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
 
@@ -173,10 +217,12 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     /// paper's uncorrected \f$z_0\f$).
     w.residual = sample.y;
     w.residual.noalias() -= system.C * z_;  // innovation y_k − C z⁻_k
+    detail::zero_absent_rows<Dims>(w.residual, present);
     w.corrected = z_;
     if (started_ || options_.correct_initial_estimate) w.corrected.noalias() += gain_ * w.residual;
     w.residual.noalias() = system.C * w.corrected;
     w.residual -= sample.y;  // a-posteriori output error C z_k − y_k
+    detail::zero_absent_rows<Dims>(w.residual, present);
 
     /// Eq. (2), third line: \f$\hat\theta_{k+1} = \hat\theta_k - \Gamma(Cz_k - y_k)\f$.
     w.theta = theta_;
@@ -215,7 +261,7 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
   GuiroOptions options_;
   Index step_ = 0;
   bool started_ = false;
-  [[no_unique_address]] std::conditional_t<Dims::is_fixed, std::monostate, Workspace> work_;
+  detail::UpdateWorkspace<Workspace, Dims::is_fixed> work_;
 };
 
 }  // namespace adaptobs

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Discrete-time MIMO LTV adaptive observer of Guyader & Zhang
-/// (paper `000_3dfd8ba7c9f11f1a.txt`, eq. (2a)–(2c)).
+/// (Guyader & Zhang (2003), eq. (2a)–(2c); docs/references.md).
 ///
 /// System (paper 000, eq. (1), noise free):
 /// \f[ x_{k+1} = A_k x_k + B_k u_k + \Psi_k\theta,\qquad y_k = C_k x_k. \f]
@@ -38,14 +38,13 @@
 #include <adaptobs/core/products.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/core/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/excitation_monitor.hpp>
 
 #include <cmath>
 #include <optional>
-#include <type_traits>
 #include <utility>
-#include <variant>
 
 namespace adaptobs {
 
@@ -95,16 +94,13 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     detail::require_shape(gain_, s.nx, s.ny, who, "K");
     detail::require_finite(gain_, who, "K");
     detail::require_positive(mu_, who, "mu");
-    detail::require_shape(x_, s.nx, 1, who, "x0");
-    detail::require_finite(x_, who, "x0");
-    detail::require_shape(theta_, s.np, 1, who, "theta0");
-    detail::require_finite(theta_, who, "theta0");
+    detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
     detail::require(options.excitation_window >= 0, who, "options.excitation_window", "must be non-negative");
     if (options.excitation_window > 0) excitation_.emplace(options.excitation_window, s.np);
 
     upsilon_.setZero(s.nx, s.np);
     last_c_upsilon_.setZero(s.ny, s.np);
-    if constexpr (!Dims::is_fixed) work_.resize(s);
+    work_.resize(s);
     if constexpr (Model::time_invariant) update_closed_loop();
   }
 
@@ -120,9 +116,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   /// ignored (they may be NaN or Inf). All channels present is `update(sample)`,
   /// bit for bit; none is the time update.
   [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
-    if constexpr (!Dims::is_fixed)
-      detail::require_mask_size<Dims>(present, model_.sizes().ny, "GuyaderZhangObserver::update");
-    return step_with(sample, present.all() ? nullptr : &present);
+    return step_with(sample, detail::partial_mask<Dims>(present, model_.sizes().ny, "GuyaderZhangObserver::update"));
   }
 
   /// Run-time sizes (nx, nu, ny, np).
@@ -142,10 +136,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   /// Restarts from \f$\hat x_0, \hat\theta_0\f$ at step `start_step`, with \f$\Upsilon = 0\f$.
   void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
     constexpr std::string_view who = "GuyaderZhangObserver::reset";
-    detail::require_shape(x0, x_.rows(), 1, who, "x0");
-    detail::require_finite(x0, who, "x0");
-    detail::require_shape(theta0, theta_.rows(), 1, who, "theta0");
-    detail::require_finite(theta0, who, "theta0");
+    detail::require_initial_estimates(x0, x_.rows(), theta0, theta_.rows(), who);
     detail::require(start_step >= 0, who, "start_step", "must be non-negative");
     x_ = x0;
     theta_ = theta0;
@@ -206,14 +197,8 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
 
   // `present` is null when every channel is.
   UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    if constexpr (Dims::is_fixed) {
-      // Fixed sizes: the workspace lives on the stack, where the compiler can keep it in registers.
-      Workspace w;
-      return advance(sample, present, w);
-    } else {
-      detail::require_sample_sizes(sample, model_.sizes(), "GuyaderZhangObserver::update");
-      return advance(sample, present, work_);
-    }
+    if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "GuyaderZhangObserver::update");
+    return work_.run([&](Workspace& w) { return advance(sample, present, w); });
   }
 
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
@@ -300,7 +285,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   bool normalized_step_;
   std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;
   // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
-  [[no_unique_address]] std::conditional_t<Dims::is_fixed, std::monostate, Workspace> work_;
+  detail::UpdateWorkspace<Workspace, Dims::is_fixed> work_;
 };
 
 }  // namespace adaptobs

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Algorithm 2 of paper 001 (`001_ef18c05334b910fe.txt`, §III-B): the adaptive
+/// Algorithm 2 of Zhang (2005), §III-B: the adaptive
 /// observer of Marino & Tomei (Nonlinear Control Design, 1995, ch. 5), SISO,
 /// constant A and c.
 ///
@@ -29,7 +29,6 @@
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/polynomial.hpp>
 #include <adaptobs/design/positive_real.hpp>
-#include <adaptobs/observers/bastin_gevers.hpp>
 #include <adaptobs/observers/unified_adaptive_observer.hpp>
 
 #include <Eigen/Core>

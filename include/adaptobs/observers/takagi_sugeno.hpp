@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// Takagi–Sugeno polytopic adaptive observer of Srinivasarengan, Ragot, Aubrun
-/// and Maquin (paper `004_9e717d6cc2be1dbf.txt`, eq. (65) for constant
-/// parameters, eq. (21) with Remark 5 for time-varying ones).
+/// and Maquin (2018, docs/references.md), eq. (65) for constant
+/// parameters, eq. (21) with Remark 5 for time-varying ones.
 ///
 /// For the polytopic model (64) \f$x_{k+1} = \sum_i h_i(z_k,\theta)(A_ix_k + B_iu_k)\f$,
 /// \f$y_k = Cx_k\f$ (see `TakagiSugenoModel`) the observer runs on the weights
@@ -45,6 +45,7 @@
 #include <adaptobs/core/products.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/takagi_sugeno_model.hpp>
+#include <adaptobs/core/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -52,24 +53,10 @@
 #include <optional>
 #include <sstream>
 #include <string_view>
-#include <type_traits>
 #include <utility>
-#include <variant>
 #include <vector>
 
 namespace adaptobs {
-
-/// Gains of `TakagiSugenoObserver`: one \f$L_i\f$ and one \f$K_{y,i}\f$ per vertex, in the
-/// vertex order of the model, and the optional leakage \f$K_\theta\f$ of eq. (21).
-template <StateSpace D>
-struct TakagiSugenoGains {
-  using ParameterGain = Eigen::Matrix<typename D::Scalar, D::np, D::ny>;
-  std::vector<typename D::GainMatrix> L;  ///< \f$L_i \in \mathbb{R}^{n_x\times n_y}\f$
-  std::vector<ParameterGain> K;           ///< \f$K_{y,i} \in \mathbb{R}^{n_\theta\times n_y}\f$
-  /// \f$K_\theta \in \mathbb{R}^{n_\theta\times n_\theta}\f$: empty for constant parameters (eq. (65)),
-  /// set for the time-varying-parameter observer (eq. (21)).
-  std::optional<typename D::ParameterMatrix> K_theta;
-};
 
 template <class Model>
 class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
@@ -90,14 +77,11 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
       : model_(std::move(model)), x_(std::move(x0)), theta_(std::move(theta0)) {
     constexpr std::string_view who = "TakagiSugenoObserver";
     const Sizes s = model_.sizes();
-    detail::require_shape(x_, s.nx, 1, who, "x0");
-    detail::require_finite(x_, who, "x0");
-    detail::require_shape(theta_, s.np, 1, who, "theta0");
-    detail::require_finite(theta_, who, "theta0");
+    detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
     set_gains(gains);
     weights_.setZero(model_.vertex_count());
     premises_.setZero(model_.premise_count());
-    if constexpr (!Dims::is_fixed || vertices_at_compile_time == Eigen::Dynamic) work_.resize(s, model_);
+    work_.resize(s, model_);
   }
 
   /// One step of eq. (65) (or (21) when \f$K_\theta\f$ is set) with the sample \f$(u_k, y_k)\f$.
@@ -112,9 +96,7 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
   /// (they may be NaN or Inf). All channels present is `update(sample)`, bit for
   /// bit; none is the time update.
   [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
-    if constexpr (!Dims::is_fixed)
-      detail::require_mask_size<Dims>(present, model_.sizes().ny, "TakagiSugenoObserver::update");
-    return step_with(sample, present.all() ? nullptr : &present);
+    return step_with(sample, detail::partial_mask<Dims>(present, model_.sizes().ny, "TakagiSugenoObserver::update"));
   }
 
   /// Run-time sizes (nx, nu, ny, np).
@@ -140,10 +122,7 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
   /// Restarts from \f$\hat x_0, \hat\theta_0\f$ at step `start_step`.
   void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
     constexpr std::string_view who = "TakagiSugenoObserver::reset";
-    detail::require_shape(x0, x_.rows(), 1, who, "x0");
-    detail::require_finite(x0, who, "x0");
-    detail::require_shape(theta0, theta_.rows(), 1, who, "theta0");
-    detail::require_finite(theta0, who, "theta0");
+    detail::require_initial_estimates(x0, x_.rows(), theta0, theta_.rows(), who);
     detail::require(start_step >= 0, who, "start_step", "must be non-negative");
     x_ = x0;
     theta_ = theta0;
@@ -223,19 +202,12 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
 
   // `present` is null when every channel is.
   UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    if constexpr (Dims::is_fixed && vertices_at_compile_time != Eigen::Dynamic) {
-      Workspace w;
-      return advance(sample, present, w);
-    } else {
-      detail::require_sample_sizes(sample, model_.sizes(), "TakagiSugenoObserver::update");
-      return advance(sample, present, work_);
-    }
+    if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "TakagiSugenoObserver::update");
+    return work_.run([&](Workspace& w) { return advance(sample, present, w); });
   }
 
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
-    if (present ? !detail::finite_present(sample.y, *present) || !detail::all_finite(sample.u)
-                : !detail::all_finite(sample.u, sample.y))
-      return UpdateStatus::nonfinite_input;
+    if (!detail::finite_measured(sample.y, present, sample.u)) return UpdateStatus::nonfinite_input;
     const Index nx = x_.rows(), nu = sample.u.rows(), ny = sample.y.rows(), np = theta_.rows();
 
     // Premise variables at the estimates, ẑ_k = z(x̂_k, u_k, θ̂_k) (they may use unmeasured states).
@@ -309,10 +281,8 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
   PremiseVector premises_;
   bool in_sectors_ = true;
   Index step_ = 0;
-  // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
-  [[no_unique_address]] std::conditional_t<Dims::is_fixed && vertices_at_compile_time != Eigen::Dynamic,
-                                           std::monostate, Workspace>
-      work_;
+  // A run-time number of vertices keeps its workspace even with fixed sizes.
+  detail::UpdateWorkspace<Workspace, Dims::is_fixed && vertices_at_compile_time != Eigen::Dynamic> work_;
 };
 
 }  // namespace adaptobs

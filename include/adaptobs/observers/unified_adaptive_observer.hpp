@@ -1,8 +1,7 @@
 #pragma once
 /// \file
-/// The unified continuous-time adaptive observer of paper 001
-/// (`001_ef18c05334b910fe.txt`, Zhang, "Revisiting different adaptive
-/// observers through a unified formulation").
+/// The unified continuous-time adaptive observer of Zhang (2005), "Revisiting
+/// different adaptive observers through a unified formulation" (docs/references.md).
 ///
 /// An algorithm is a choice of
 /// 1. a static transformation (T, K) bringing system (1) to the form (2)
@@ -129,10 +128,7 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     if constexpr (requires { law_.gamma(); }) detail::require_shape(law_.gamma(), s.np, s.np, who, "law.gamma");
     detail::require(algorithm_.dynamic_transform.state_size() == s.nx, who, "dynamic_transform",
                     "must act on a state of the model's size");
-    detail::require_shape(eta0, s.nx, 1, who, "eta0");
-    detail::require_finite(eta0, who, "eta0");
-    detail::require_shape(theta0, s.np, 1, who, "theta0");
-    detail::require_finite(theta0, who, "theta0");
+    detail::require_initial_estimates(eta0, s.nx, theta0, s.np, who, "eta0", "theta0");
     detail::require(options.excitation_window >= 0, who, "options.excitation_window", "must be non-negative");
     if (options.excitation_window > 0) excitation_.emplace(options.excitation_window, s.np);
     work_.resize(s, r_);
@@ -271,10 +267,7 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
   /// Restarts from \f$\hat\eta_0, \hat\theta_0\f$ with Ξ = 0; the next sample sets the time origin.
   void reset(const State& eta0, const Parameters& theta0) {
     constexpr std::string_view who = "UnifiedAdaptiveObserver::reset";
-    detail::require_shape(eta0, sizes_.nx, 1, who, "eta0");
-    detail::require_finite(eta0, who, "eta0");
-    detail::require_shape(theta0, sizes_.np, 1, who, "theta0");
-    detail::require_finite(theta0, who, "theta0");
+    detail::require_initial_estimates(eta0, sizes_.nx, theta0, sizes_.np, who, "eta0", "theta0");
     set_initial(eta0, theta0);
     integrator_.restart();
     if (excitation_) excitation_->reset();

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Algorithm 4 of paper 001 (`001_ef18c05334b910fe.txt`, §III-D): the adaptive
+/// Algorithm 4 of Zhang (2005), §III-D: the adaptive
 /// observer of Zhang (IEEE TAC 47(3), 2002), MIMO and time varying, without
 /// coordinate change — the continuous-time counterpart of `GuyaderZhangObserver`.
 ///

@@ -12,12 +12,14 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/observer.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/simulation/output_loss.hpp>
 #include <adaptobs/simulation/series_table.hpp>
 
 #include <array>
 #include <concepts>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 namespace adaptobs {
@@ -62,33 +64,52 @@ inline std::string column_name(std::string_view base, std::string_view suffix) {
   if (!suffix.empty()) name.append("_").append(suffix);
   return name;
 }
+/// `xhat`, the true `theta`, `thetahat`, then the `xhat_*` and `thetahat_*` of
+/// every further observer: the estimates before the sample is consumed.
+template <class Parameters, Observer First, Observer... Rest>
+void add_estimates(SeriesTable& table, const Parameters& theta, const Tracked<First>& first,
+                   const Tracked<Rest>&... rest) {
+  table.add(column_name("xhat", first.suffix), first.observer.state());
+  table.add("theta", theta);
+  table.add(column_name("thetahat", first.suffix), first.observer.parameters());
+  (table.add(column_name("xhat", rest.suffix), rest.observer.state())
+       .add(column_name("thetahat", rest.suffix), rest.observer.parameters()),
+   ...);
+}
 struct NoExtraColumns {
   template <class P>
   void operator()(SeriesTable&, const P&) const {}
 };
 }  // namespace detail
 
-/// Runs `steps` samples; `extra_columns(table, plant)` may append columns to each row
-/// (after the observers' columns).
+namespace detail {
+/// The loop of `simulate`; `loss` is null when every output arrives (and then
+/// no `y_available` column is written).
 template <Plant P, class Extras, Observer First, Observer... Rest>
-  requires std::invocable<Extras&, SeriesTable&, const P&>
-SimulationReport<1 + sizeof...(Rest)> simulate(P& plant, Index steps, SeriesTable& table, Extras&& extra_columns,
-                                               Tracked<First> first, Tracked<Rest>... rest) {
+SimulationReport<1 + sizeof...(Rest)> simulate(P& plant, Index steps, SeriesTable& table, OutputLoss* loss,
+                                               Extras& extra_columns, Tracked<First> first, Tracked<Rest>... rest) {
+  using Dims = typename First::Dims;
   SimulationReport<1 + sizeof...(Rest)> report;
   for (Index k = 0; k < steps; ++k) {
     const auto& sample = plant.sample();
-    table.begin_row().add("t", plant.time()).add("u", sample.u).add("y", sample.y).add("x", plant.state());
-    table.add(detail::column_name("xhat", first.suffix), first.observer.state());
-    table.add("theta", plant.parameters());
-    table.add(detail::column_name("thetahat", first.suffix), first.observer.parameters());
-    (table.add(detail::column_name("xhat", rest.suffix), rest.observer.state())
-         .add(detail::column_name("thetahat", rest.suffix), rest.observer.parameters()),
-     ...);
+    OutputMask<Dims> present = OutputMask<Dims>::Constant(sample.y.size(), true);
+    if (loss) present = loss->channels_at<Dims>(plant.time(), sample.y.size());
+    const bool complete = present.all();
+    table.begin_row().add("t", plant.time()).add("u", sample.u).add("y", sample.y);
+    if (loss) table.add("y_available", channel_bits(present));
+    table.add("x", plant.state());
+    add_estimates(table, plant.parameters(), first, rest...);
     extra_columns(table, std::as_const(plant));
 
     std::size_t i = 0;
     const auto feed = [&](auto& tracked) {
-      if (!accepted(tracked.observer.update(sample))) ++report.rejected[i];
+      using O = std::remove_reference_t<decltype(tracked.observer)>;
+      UpdateStatus status = UpdateStatus::nonfinite_input;
+      if (complete)
+        status = tracked.observer.update(sample);
+      else if constexpr (PartialOutputObserver<O>)
+        status = tracked.observer.update(sample, OutputMask<typename O::Dims>(present));
+      if (!accepted(status)) ++report.rejected[i];
       ++i;
     };
     feed(first);
@@ -97,6 +118,28 @@ SimulationReport<1 + sizeof...(Rest)> simulate(P& plant, Index steps, SeriesTabl
     ++report.steps;
   }
   return report;
+}
+}  // namespace detail
+
+/// Runs `steps` samples; `extra_columns(table, plant)` may append columns to each row
+/// (after the observers' columns).
+template <Plant P, class Extras, Observer First, Observer... Rest>
+  requires std::invocable<Extras&, SeriesTable&, const P&>
+SimulationReport<1 + sizeof...(Rest)> simulate(P& plant, Index steps, SeriesTable& table, Extras&& extra_columns,
+                                               Tracked<First> first, Tracked<Rest>... rest) {
+  return detail::simulate(plant, steps, table, nullptr, extra_columns, first, rest...);
+}
+
+/// As above, with the output channels that `loss` lets through: a sample with
+/// every channel is `update(sample)`, one with some or none
+/// `update(sample, present)` — a `PartialOutputObserver`'s partial or time update;
+/// an observer without one counts the sample as rejected. The table gains the
+/// column `y_available`, the channels that arrived as an integer (`channel_bits`).
+template <Plant P, class Extras, Observer First, Observer... Rest>
+  requires std::invocable<Extras&, SeriesTable&, const P&>
+SimulationReport<1 + sizeof...(Rest)> simulate(P& plant, Index steps, SeriesTable& table, OutputLoss& loss,
+                                               Extras&& extra_columns, Tracked<First> first, Tracked<Rest>... rest) {
+  return detail::simulate(plant, steps, table, &loss, extra_columns, first, rest...);
 }
 
 /// As above, with no extra columns.

@@ -2,8 +2,8 @@
 /// \file
 /// LMI synthesis of the gains of `TakagiSugenoObserver` by theorem 2 (constant
 /// parameters, observer (65)) or theorem 1 (time-varying parameters, observer
-/// (21)), optionally minimising the \f$\ell_2\f$ gain β of corollary 1 (paper
-/// `004_9e717d6cc2be1dbf.txt`), solved with DSDP. Part of the optional
+/// (21)), optionally minimising the \f$\ell_2\f$ gain β of corollary 1
+/// (Srinivasarengan et al. (2018)), solved with DSDP. Part of the optional
 /// `adaptobs::lmi` component.
 ///
 /// The LMIs are those of `design/takagi_sugeno_lmi.hpp` (see there for every
@@ -31,7 +31,7 @@
 #include <adaptobs/design/lmi/dsdp.hpp>
 #include <adaptobs/design/lmi/lmi_problem.hpp>
 #include <adaptobs/design/takagi_sugeno_lmi.hpp>
-#include <adaptobs/observers/takagi_sugeno.hpp>
+#include <adaptobs/core/takagi_sugeno_model.hpp>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>

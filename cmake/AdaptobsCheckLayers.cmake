@@ -1,0 +1,46 @@
+# The layer rule of include/adaptobs: a header includes only from its own layer
+# and the layers below it.
+#
+#   core                      -> core
+#   adaptation, design        -> core, and their own layer
+#   observers, baselines      -> core, adaptation, design, and their own layer
+#   simulation                -> anything below
+#
+# Run as a script (CTest `layer_rule`): cmake -DROOT=<include/adaptobs> -P AdaptobsCheckLayers.cmake
+# It fails naming every include that crosses upward or sideways.
+cmake_minimum_required(VERSION 3.20)
+
+set(allowed_core core)
+set(allowed_adaptation core adaptation)
+set(allowed_design core design)
+set(allowed_observers core adaptation design observers)
+set(allowed_baselines core adaptation design baselines)
+set(allowed_simulation core adaptation design observers baselines simulation)
+
+if(NOT ROOT)
+  message(FATAL_ERROR "AdaptobsCheckLayers: pass -DROOT=<path to include/adaptobs>")
+endif()
+get_filename_component(ROOT "${ROOT}" ABSOLUTE)
+set(violations "")
+set(checked 0)
+foreach(layer core adaptation design observers baselines simulation)
+  file(GLOB_RECURSE headers "${ROOT}/${layer}/*.hpp")
+  foreach(header IN LISTS headers)
+    math(EXPR checked "${checked} + 1")
+    file(STRINGS "${header}" includes REGEX "^#include <adaptobs/")
+    foreach(line IN LISTS includes)
+      string(REGEX REPLACE "^#include <adaptobs/([a-z_]+)[/.].*" "\\1" target "${line}")
+      if(NOT target IN_LIST allowed_${layer})
+        file(RELATIVE_PATH name "${ROOT}" "${header}")
+        string(APPEND violations "\n  ${name}: ${line} (layer '${layer}' may include only: ${allowed_${layer}})")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(checked EQUAL 0)
+  message(FATAL_ERROR "AdaptobsCheckLayers: no header found under ${ROOT}")
+endif()
+if(violations)
+  message(FATAL_ERROR "Layer rule broken:${violations}")
+endif()
+message(STATUS "Layer rule holds for ${checked} headers")

@@ -1,0 +1,53 @@
+#pragma once
+/// \file
+/// The scratch of one observer update, and the dispatch of an update with an
+/// output mask: written once for every observer that has them.
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+namespace adaptobs::detail {
+
+/// Where an update computes before it commits. With `on_stack` (fixed sizes)
+/// nothing is stored: each step builds its workspace on the stack, where the
+/// compiler can keep it in registers. Otherwise (run-time sizes) the observer
+/// keeps one, sized at construction, so that an update never allocates.
+template <class Workspace, bool on_stack>
+class UpdateWorkspace {
+ public:
+  /// Sizes the kept workspace (`Workspace::resize(args...)`); nothing on the stack.
+  template <class... Args>
+  void resize(const Args&... args) {
+    if constexpr (!on_stack) work_.resize(args...);
+  }
+
+  /// `step(workspace)`, on a fresh stack workspace or the kept one.
+  template <class Step>
+  decltype(auto) run(Step&& step) {
+    if constexpr (on_stack) {
+      Workspace w;
+      return std::forward<Step>(step)(w);
+    } else {
+      return std::forward<Step>(step)(work_);
+    }
+  }
+
+ private:
+  [[no_unique_address]] std::conditional_t<on_stack, std::monostate, Workspace> work_;
+};
+
+/// The mask an update with `present` hands its step: null when every channel is
+/// present (the plain update, bit for bit), after checking a run-time-sized mask
+/// against the ny outputs (`who` names the caller in the error).
+template <StateSpace D>
+[[nodiscard]] const OutputMask<D>* partial_mask(const OutputMask<D>& present, Index ny, std::string_view who) {
+  if constexpr (D::ny == Eigen::Dynamic) require_mask_size<D>(present, ny, who);
+  return present.all() ? nullptr : &present;
+}
+
+}  // namespace adaptobs::detail
