@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
 
   adaptobs::examples::write_outputs(
       {{nonpe.table, "dey_bhasin_mimo_nonpe", "nonpe"}, {pe.table, "dey_bhasin_mimo_pe", "pe"}}, args.out_dir(),
-      "dey_bhasin_mimo", adaptobs::examples::gap_shading(loss) + R"(
+      "dey_bhasin_mimo", adaptobs::examples::gap_shading(pe.table, loss) + R"(
 set multiplot layout 3,2 title 'Dey-Bhasin adaptive observer, MIMO example (paper 003, section 5)'
 set grid
 set xlabel 't'

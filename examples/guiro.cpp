@@ -210,7 +210,7 @@ int main(int argc, char** argv) {
   print_value("thetahat_printed_decimal_shifted", printed_shifted.parameters()(0));
   print_value("thetahat_printed_as_printed", printed.parameters()(0));
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "guiro", adaptobs::examples::gap_shading(loss.options()) + R"(
+  adaptobs::examples::write_outputs(table, args.out_dir(), "guiro", adaptobs::examples::gap_shading(table, loss.options()) + R"(
 set multiplot layout 2,1 title 'Guiro-Iggidr-Ngom-Toure adaptive observer, continuous dynamics and sampled output (paper 002, section 4)'
 set grid
 set xlabel 'k (sampling instants, T = 1)'

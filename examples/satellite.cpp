@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
   print_value("assumption2_norm", observer.assumption2_norm());
 
   adaptobs::examples::write_outputs(table, args.out_dir(), "satellite",
-                                    adaptobs::examples::gap_shading(loss.options()) + R"(
+                                    adaptobs::examples::gap_shading(table, loss.options()) + R"(
 set multiplot layout 3,1 title 'Guyader-Zhang adaptive observer, controlled satellite (paper 000, section 4)'
 set grid
 set xlabel 't (s)'

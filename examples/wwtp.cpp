@@ -171,7 +171,7 @@ int main(int argc, char** argv) {
   print_value("settled_from_sample", settled_from(table, ""));
   print_value("settled_from_sample_lmi", settled_from(table, "lmi"));
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp", adaptobs::examples::gap_shading(loss.options()) + R"(
+  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp", adaptobs::examples::gap_shading(table, loss.options()) + R"(
 set multiplot layout 3,2 title 'Takagi-Sugeno adaptive observer, waste water treatment plant (paper 004, section 6)'
 set grid
 set xlabel 'k'

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -94,17 +95,29 @@ inline OutputLossOptions output_loss_options(const Arguments& args, std::uint64_
   return options;
 }
 
-/// Gnuplot commands that shade the outage of `options` on every later plot, and
-/// a title line naming the losses ("" when nothing is lost).
-inline std::string gap_shading(const OutputLossOptions& options) {
+/// Gnuplot commands that shade, on every later plot, the stretches of `table`
+/// whose samples lacked an output channel (column `y_available` below its
+/// largest value), from the first such sample to the next complete one, and a
+/// label naming the losses of `options` ("" when nothing was lost).
+inline std::string gap_shading(const SeriesTable& table, const OutputLossOptions& options) {
+  const std::vector<double> t = table.column("t");
+  const std::vector<double> available = table.column("y_available");
+  if (available.empty()) return "";
+  const double complete = *std::max_element(available.begin(), available.end());
   std::ostringstream gp;
-  if (options.outage_begin <= options.outage_end)
-    gp << "set object 1 rect from " << options.outage_begin << ", graph 0 to " << options.outage_end
+  int tag = 1;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (available[k] >= complete) continue;
+    const std::size_t first = k;
+    while (k + 1 < t.size() && available[k + 1] < complete) ++k;
+    const double end = k + 1 < t.size() ? t[k + 1] : t[k];
+    gp << "set object " << tag++ << " rect from " << t[first] << ", graph 0 to " << end
        << ", graph 1 behind fillcolor rgb '#e0e0e0' fillstyle solid noborder\n";
-  if (options.drop > 0 || options.outage_begin <= options.outage_end) {
-    gp << "set label 1 'outputs lost: " << options.drop * 100 << " % at random";
+  }
+  if (tag > 1) {
+    gp << "set label 1 'outputs lost (shaded): " << options.drop * 100 << " % at random";
     if (options.outage_begin <= options.outage_end)
-      gp << ", outage [" << options.outage_begin << ", " << options.outage_end << "] shaded";
+      gp << ", outage [" << options.outage_begin << ", " << options.outage_end << "]";
     gp << "' at screen 0.01, screen 0.01\n";
   }
   return gp.str();
