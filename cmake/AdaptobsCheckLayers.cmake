@@ -1,10 +1,11 @@
 # The layer rule of include/adaptobs: a header includes only from its own layer
 # and the layers below it.
 #
-#   core                      -> core
-#   adaptation, design        -> core, and their own layer
-#   observers, baselines      -> core, adaptation, design, and their own layer
-#   simulation                -> anything below
+#   core (core/detail: helpers) -> core
+#   adaptation, design,
+#   diagnostics                 -> core, and their own layer
+#   observers, baselines        -> core, adaptation, design, diagnostics, and their own layer
+#   simulation                  -> anything below
 #
 # Run as a script (CTest `layer_rule`): cmake -DROOT=<include/adaptobs> -P AdaptobsCheckLayers.cmake
 # It fails naming every include that crosses upward or sideways.
@@ -13,9 +14,10 @@ cmake_minimum_required(VERSION 3.20)
 set(allowed_core core)
 set(allowed_adaptation core adaptation)
 set(allowed_design core design)
-set(allowed_observers core adaptation design observers)
-set(allowed_baselines core adaptation design baselines)
-set(allowed_simulation core adaptation design observers baselines simulation)
+set(allowed_diagnostics core diagnostics)
+set(allowed_observers core adaptation design diagnostics observers)
+set(allowed_baselines core adaptation design diagnostics baselines)
+set(allowed_simulation core adaptation design diagnostics observers baselines simulation)
 
 if(NOT ROOT)
   message(FATAL_ERROR "AdaptobsCheckLayers: pass -DROOT=<path to include/adaptobs>")
@@ -23,7 +25,7 @@ endif()
 get_filename_component(ROOT "${ROOT}" ABSOLUTE)
 set(violations "")
 set(checked 0)
-foreach(layer core adaptation design observers baselines simulation)
+foreach(layer core adaptation design diagnostics observers baselines simulation)
   file(GLOB_RECURSE headers "${ROOT}/${layer}/*.hpp")
   foreach(header IN LISTS headers)
     math(EXPR checked "${checked} + 1")

@@ -213,7 +213,7 @@ int main(int argc, char** argv) {
   adaptobs::examples::write_outputs(table, args.out_dir(), "guiro", adaptobs::examples::gap_shading(table, loss.options()) + R"(
 set multiplot layout 2,1 title 'Guiro-Iggidr-Ngom-Toure adaptive observer, continuous dynamics and sampled output (paper 002, section 4)'
 set grid
-set xlabel 'k (sampling instants, T = 1)'
+set xlabel 't (sample times: k on the regular grid, T = 1)'
 set title 'Figure 1: state x_1 and its estimate z_1'
 plot csv using 't':'x_1' with lines lw 2 title 'x_1', \
      csv using 't':'xhat_1' with linespoints pt 7 ps 0.6 title 'z_1 (designed gains)'

@@ -2,7 +2,7 @@
 // time-varying gains, stability checks, and the excitation monitor.
 
 #include <adaptobs/design/dare.hpp>
-#include <adaptobs/design/excitation_monitor.hpp>
+#include <adaptobs/diagnostics/excitation_monitor.hpp>
 #include <adaptobs/design/riccati_recursion.hpp>
 #include <adaptobs/design/stability.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>

@@ -8,23 +8,22 @@
 /// a translation unit that only runs an observer does not compile them.
 
 // Core: sizes, models, the Observer concept, per-step numerics.
-#include <adaptobs/core/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
-#include <adaptobs/core/dynamic_copy.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/observer.hpp>
-#include <adaptobs/core/products.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
-#include <adaptobs/core/segments.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/core/takagi_sugeno_model.hpp>
 #include <adaptobs/core/validation.hpp>
+
+// Per-step diagnostics computed inside the updates.
+#include <adaptobs/diagnostics/excitation_monitor.hpp>
 
 // Adaptation laws: parameter estimators for a regression linear in the parameters.
 #include <adaptobs/adaptation/adaptation_law.hpp>

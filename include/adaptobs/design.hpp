@@ -19,7 +19,6 @@
 #include <adaptobs/design/companion_matrix.hpp>
 #include <adaptobs/design/care.hpp>
 #include <adaptobs/design/dare.hpp>
-#include <adaptobs/design/excitation_monitor.hpp>
 #include <adaptobs/design/guiro_convergence.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
 #include <adaptobs/design/ltv_stability.hpp>

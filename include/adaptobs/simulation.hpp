@@ -7,5 +7,6 @@
 #include <adaptobs/simulation/discrete_nonlinear_plant.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 #include <adaptobs/simulation/joint_integration.hpp>
+#include <adaptobs/simulation/output_loss.hpp>
 #include <adaptobs/simulation/runner.hpp>
 #include <adaptobs/simulation/series_table.hpp>

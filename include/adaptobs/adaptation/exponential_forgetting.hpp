@@ -40,8 +40,8 @@
 #include <adaptobs/adaptation/adaptation_law.hpp>
 #include <adaptobs/adaptation/recursive_least_squares.hpp>
 #include <adaptobs/adaptation/rls_correction.hpp>
-#include <adaptobs/core/commit.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Cholesky>

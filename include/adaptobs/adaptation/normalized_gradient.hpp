@@ -12,7 +12,7 @@
 /// regressor is poorly conditioned.
 
 #include <adaptobs/adaptation/adaptation_law.hpp>
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>

@@ -19,7 +19,7 @@
 
 #include <adaptobs/adaptation/adaptation_law.hpp>
 #include <adaptobs/adaptation/rls_correction.hpp>
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>

@@ -13,7 +13,7 @@
 /// stored covariance is symmetric to the last bit.
 
 #include <adaptobs/adaptation/adaptation_law.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>

@@ -21,12 +21,12 @@
 /// present rows of C and the present block of R. No channel present leaves
 /// only the prediction.
 
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/status.hpp>
-#include <adaptobs/core/update_workspace.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Cholesky>

@@ -19,12 +19,12 @@
 /// and a sample whose step would leave P not positive definite is rejected.
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
-#include <adaptobs/core/segments.hpp>
+#include <adaptobs/core/detail/segments.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 

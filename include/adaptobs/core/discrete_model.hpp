@@ -6,7 +6,7 @@
 /// regressor \f$\Psi_k\f$ is a measured signal and travels with the sample
 /// (`DiscreteSample`), not with the model.
 
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/validation.hpp>
 

@@ -15,7 +15,7 @@
 /// Alg. 4 with G = H = I (F = A_o). A constant F may be given instead.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>

@@ -33,7 +33,7 @@
 /// two (Parlett–Reinsch), when that lowers ‖A‖₁; e^A = D e^B D⁻¹ is then
 /// exact scaling. A result beyond the floating-point range is refused.
 
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 

@@ -36,7 +36,7 @@
 /// `resynchronize()` then restarts the time origin at the next sample without
 /// touching the estimates.
 
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/runge_kutta.hpp>

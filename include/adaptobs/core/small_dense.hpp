@@ -12,7 +12,7 @@
 /// Gaussian elimination with partial pivoting, Cholesky), and compile in a
 /// fraction of that time.
 
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>

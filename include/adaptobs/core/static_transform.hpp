@@ -11,7 +11,7 @@
 
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>

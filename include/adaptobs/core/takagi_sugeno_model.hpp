@@ -27,7 +27,7 @@
 /// model at the nearest point of the box.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>

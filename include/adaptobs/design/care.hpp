@@ -32,7 +32,7 @@
 /// imaginary axis unobserved by Q, or an equation too ill-conditioned for the
 /// working precision.
 
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/small_dense.hpp>
 #include <adaptobs/core/validation.hpp>

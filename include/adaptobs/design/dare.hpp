@@ -41,7 +41,7 @@
 /// the working precision (with the residual reached).
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/small_dense.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -80,7 +80,7 @@ struct DareOptions {
 namespace detail {
 
 // Design-time computations run on dynamic-size matrices (DynamicMatrix, from
-// core/dynamic_copy.hpp) whatever the caller's sizes: the factorizations they
+// core/detail/dynamic_copy.hpp) whatever the caller's sizes: the factorizations they
 // use are costly to compile, and one instantiation per scalar type then serves
 // every size.
 

@@ -4,7 +4,7 @@
 /// `EigenSolver` that the design routines share (compiled once for `double`
 /// where `adaptobs::precompiled` is linked; see core/precompiled.hpp).
 
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
 
 #include <Eigen/Core>

@@ -32,7 +32,7 @@
 /// and (i) holds from some \f$k_0\f$. A failed check is not a proof of divergence.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
 #include <adaptobs/design/power_bound.hpp>

@@ -40,7 +40,7 @@
 /// the requested spectrum, and \f$\rho(U) < 1\f$.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/observability.hpp>

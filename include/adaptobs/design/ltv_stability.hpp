@@ -11,7 +11,7 @@
 /// Used for the conditions of Algorithm 3 (\f$\dot e_2 = A_{22}(t)e_2\f$) and
 /// Algorithm 4 (\f$\dot{\tilde z} = (A(t) - K(t)C(t))\tilde z\f$, eq. (13)) of paper 001.
 
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/dense_eigenvalues.hpp>

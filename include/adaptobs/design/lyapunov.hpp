@@ -8,7 +8,7 @@
 /// A unique solution exists when no two eigenvalues of A sum to zero; for a
 /// Hurwitz A and Q ≥ 0 it is the positive semidefinite \f$\int_0^\infty e^{A^Ts}Qe^{As}ds\f$.
 
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 

@@ -15,7 +15,7 @@
 /// generalized eigenstructure problem in linear system theory", IEEE TAC 26(1), 1981).
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/dense_eigenvalues.hpp>
 

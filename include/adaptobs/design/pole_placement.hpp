@@ -32,7 +32,7 @@
 /// `ConfigurationError`: no gain is ever returned that does not do its job.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/sylvester.hpp>
 #include <adaptobs/core/validation.hpp>

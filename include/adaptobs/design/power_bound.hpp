@@ -16,7 +16,7 @@
 /// `best_power_bound` picks the λ that maximizes that margin.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/stability.hpp>
 

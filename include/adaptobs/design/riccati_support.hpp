@@ -14,7 +14,7 @@
 /// Hamiltonian matrix so that an iteration on it does not lose the small
 /// entries against the large ones.
 
-#include <adaptobs/core/dynamic_copy.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>

@@ -27,7 +27,7 @@
 #include <adaptobs/adaptation/gradient_law.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
-#include <adaptobs/core/segments.hpp>
+#include <adaptobs/core/detail/segments.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/positive_real.hpp>

@@ -32,7 +32,7 @@
 /// r(q + m) numbers of memory instead of n(r + mn). Tests compare both.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/companion_matrix.hpp>
 #include <adaptobs/design/schur_stability.hpp>

@@ -65,10 +65,10 @@
 #include <adaptobs/adaptation/adaptation_law.hpp>
 #include <adaptobs/adaptation/covariance_resetting.hpp>
 #include <adaptobs/adaptation/exponential_forgetting.hpp>
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/status.hpp>
-#include <adaptobs/core/update_workspace.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/observers/canonical_form_filters.hpp>
 

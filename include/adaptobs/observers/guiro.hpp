@@ -78,12 +78,12 @@
 /// gains reach |θ̂ − 5| < 1e-8 within 40 samples, and gains designed once for the
 /// nominal T still converge, more slowly (tests/test_guiro.cpp).
 
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/status.hpp>
-#include <adaptobs/core/update_workspace.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <utility>

@@ -32,15 +32,15 @@
 /// information the present channels deliver — which is what the excitation
 /// monitor accumulates.
 
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/status.hpp>
-#include <adaptobs/core/update_workspace.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
-#include <adaptobs/design/excitation_monitor.hpp>
+#include <adaptobs/diagnostics/excitation_monitor.hpp>
 
 #include <cmath>
 #include <optional>

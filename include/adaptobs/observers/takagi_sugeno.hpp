@@ -39,13 +39,13 @@
 /// estimates converge when the corrected steps outweigh the gaps — a dwell-time
 /// condition that the observer does not check.
 
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/takagi_sugeno_model.hpp>
-#include <adaptobs/core/update_workspace.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>

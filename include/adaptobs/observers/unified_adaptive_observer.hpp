@@ -36,17 +36,17 @@
 /// the sample's time with RK4 (`core/sampled_integration.hpp`).
 
 #include <adaptobs/adaptation/gradient_law.hpp>
-#include <adaptobs/core/commit.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
-#include <adaptobs/core/segments.hpp>
+#include <adaptobs/core/detail/segments.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
-#include <adaptobs/design/excitation_monitor.hpp>
+#include <adaptobs/diagnostics/excitation_monitor.hpp>
 
 #include <Eigen/Core>
 

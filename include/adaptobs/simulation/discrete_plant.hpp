@@ -8,7 +8,7 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
-#include <adaptobs/core/products.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <cmath>
