@@ -27,6 +27,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <concepts>
 #include <string_view>
 #include <type_traits>
@@ -132,6 +133,43 @@ struct MaskedRegression {
     if (R) assign_weight(*R, present);
     return step(phi, z, weight);
   }
+};
+
+/// The estimate \f$(\hat p, \Gamma)\f$ of a least-squares law, current and proposed,
+/// with the accessors `AdaptationLaw` asks for: a step writes the proposal,
+/// `commit` makes it current by flipping an index (no copy), so a rejected
+/// proposal costs nothing to discard.
+template <class Parameters, class Covariance>
+class LeastSquaresEstimate {
+ public:
+  /// Estimate \f$\hat p_{t-1}\f$.
+  [[nodiscard]] const Parameters& parameters() const noexcept { return p_[current_]; }
+  /// Covariance \f$\Gamma_{t-1}\f$.
+  [[nodiscard]] const Covariance& covariance() const noexcept { return gamma_[current_]; }
+  [[nodiscard]] const Parameters& proposal() const noexcept { return p_[1 - current_]; }
+  [[nodiscard]] const Covariance& proposed_covariance() const noexcept { return gamma_[1 - current_]; }
+  [[nodiscard]] Index parameter_count() const noexcept { return p_[0].rows(); }
+  void commit() noexcept { current_ = 1 - current_; }
+
+ protected:
+  /// Both slots to \f$(\hat p, \Gamma_{\text{current}})\f$ and \f$(\hat p, \Gamma_{\text{proposed}})\f$.
+  void assign(const Parameters& p, const Covariance& gamma, const Covariance& proposed_gamma) {
+    p_[0] = p;
+    p_[1] = p;
+    gamma_[current_] = gamma;
+    gamma_[1 - current_] = proposed_gamma;
+  }
+  Parameters& current_parameters() noexcept { return p_[current_]; }
+  Covariance& current_covariance() noexcept { return gamma_[current_]; }
+  Parameters& next_parameters() noexcept { return p_[1 - current_]; }
+  Covariance& next_covariance() noexcept { return gamma_[1 - current_]; }
+  /// 0 or 1: lets a law keep more per-slot state beside the estimate.
+  [[nodiscard]] int current_slot() const noexcept { return current_; }
+
+ private:
+  std::array<Parameters, 2> p_;
+  std::array<Covariance, 2> gamma_;
+  int current_ = 0;
 };
 
 }  // namespace detail

@@ -71,7 +71,9 @@ template <class Derived>
 
 /// RLS with covariance resetting, eq. (22)–(23) of paper 003.
 template <typename S, int NP, int NZ>
-class CovarianceResettingRls {
+class CovarianceResettingRls
+    : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
+                                          typename RegressionTypes<S, NP, NZ>::Covariance> {
  public:
   using Types = RegressionTypes<S, NP, NZ>;
   using Scalar = S;
@@ -81,6 +83,7 @@ class CovarianceResettingRls {
   using Covariance = typename Types::Covariance;
   using MeasurementWeight = typename Types::MeasurementWeight;
   using Presence = typename Types::Presence;
+  using Estimate = detail::LeastSquaresEstimate<Parameters, Covariance>;
 
   struct Options {
     Scalar k0;            ///< \f$\Gamma_0 = k_0I\f$ and the reset value, > kmin
@@ -112,28 +115,20 @@ class CovarianceResettingRls {
     }
     rounding_margin_ = Scalar(8) * Scalar(np + nz_) * std::numeric_limits<Scalar>::epsilon() * options_.k0;
     shifted_.setZero(np, np);
-    gamma_[1].setZero(np, np);
-    p_[1] = p0;
-    p_[0] = std::move(p0);
+    this->assign(p0, Covariance::Zero(np, np), Covariance::Zero(np, np));
     start();
   }
 
-  /// Estimate \f$\hat p_{t-1}\f$.
-  [[nodiscard]] const Parameters& parameters() const noexcept { return p_[current_]; }
-  /// Covariance \f$\Gamma_{t-1}\f$ (after any reset).
-  [[nodiscard]] const Covariance& covariance() const noexcept { return gamma_[current_]; }
-  [[nodiscard]] const Parameters& proposal() const noexcept { return p_[1 - current_]; }
-  [[nodiscard]] const Covariance& proposed_covariance() const noexcept { return gamma_[1 - current_]; }
+  using Estimate::parameter_count;
   /// Number of resets since construction or the last restart.
-  [[nodiscard]] Index reset_count() const noexcept { return track_[current_].resets; }
+  [[nodiscard]] Index reset_count() const noexcept { return track_[this->current_slot()].resets; }
   /// True when the last committed step reset the covariance.
-  [[nodiscard]] bool reset_at_last_step() const noexcept { return track_[current_].reset_last; }
+  [[nodiscard]] bool reset_at_last_step() const noexcept { return track_[this->current_slot()].reset_last; }
   /// Number of Cholesky reset tests run (the others were settled by the bound \f$\ell_t\f$).
-  [[nodiscard]] Index reset_tests_run() const noexcept { return track_[current_].tests; }
+  [[nodiscard]] Index reset_tests_run() const noexcept { return track_[this->current_slot()].tests; }
   /// The bound \f$\ell\f$: \f$\lambda_{\min}(\Gamma) \ge \ell\f$ holds for the current covariance.
-  [[nodiscard]] Scalar eigenvalue_lower_bound() const noexcept { return track_[current_].bound; }
+  [[nodiscard]] Scalar eigenvalue_lower_bound() const noexcept { return track_[this->current_slot()].bound; }
   [[nodiscard]] const Options& options() const noexcept { return options_; }
-  [[nodiscard]] Index parameter_count() const noexcept { return p_[0].rows(); }
   [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
 
   /// (22), then (23), with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
@@ -151,43 +146,42 @@ class CovarianceResettingRls {
                            [this](const auto& f, const auto& y, const auto& r) { return step(f, y, r); });
   }
 
-  void commit() noexcept { current_ = 1 - current_; }
-
   /// Back to \f$\hat p_0\f$ and \f$\Gamma_0 = k_0I\f$, counters cleared.
   void restart(const Parameters& p0) {
     detail::require_shape(p0, parameter_count(), 1, "CovarianceResettingRls::restart", "p0");
     detail::require_finite(p0, "CovarianceResettingRls::restart", "p0");
-    p_[current_] = p0;
+    this->current_parameters() = p0;
     start();
   }
 
  private:
   bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
-    const int next = 1 - current_;
-    Tracking& track = track_[next];
-    track = track_[current_];
+    const Tracking& current = track_[this->current_slot()];
+    Tracking& track = track_[1 - this->current_slot()];
+    track = current;
     track.reset_last = false;
-    if (!correction_.apply(gamma_[current_], weight, phi, z, p_[current_], Scalar(1), p_[next], gamma_[next]))
+    Covariance& next_gamma = this->next_covariance();
+    if (!correction_.apply(this->covariance(), weight, phi, z, this->parameters(), Scalar(1), this->next_parameters(),
+                           next_gamma))
       return false;
-    if (!detail::all_finite(p_[next], gamma_[next])) return false;
+    if (!detail::all_finite(this->next_parameters(), next_gamma)) return false;
 
     Scalar bound = -std::numeric_limits<Scalar>::infinity();
-    if (options_.screen_reset_test && track_[current_].bound > Scalar(0))
-      bound = Scalar(1) / (Scalar(1) / track_[current_].bound + inverse_weight_bound_ * phi.squaredNorm()) -
-              rounding_margin_;
+    if (options_.screen_reset_test && current.bound > Scalar(0))
+      bound = Scalar(1) / (Scalar(1) / current.bound + inverse_weight_bound_ * phi.squaredNorm()) - rounding_margin_;
     if (bound > options_.kmin) {
       track.bound = bound;
       return true;
     }
     ++track.tests;
-    shifted_ = gamma_[next];
+    shifted_ = next_gamma;
     shifted_.diagonal().array() -= options_.kmin;
     if (detail::cholesky_in_place(shifted_)) {
       track.bound = std::max(bound, std::max(options_.kmin - rounding_margin_, Scalar(0)));
       return true;
     }
-    gamma_[next].setIdentity();
-    gamma_[next].diagonal().setConstant(options_.k0);
+    next_gamma.setIdentity();
+    next_gamma.diagonal().setConstant(options_.k0);
     track.bound = options_.k0;
     track.reset_last = true;
     ++track.resets;
@@ -196,9 +190,9 @@ class CovarianceResettingRls {
 
   void start() {
     const Index np = parameter_count();
-    gamma_[current_].setZero(np, np);
-    gamma_[current_].diagonal().setConstant(options_.k0);
-    track_[current_] = Tracking{0, 0, false, options_.k0};
+    this->current_covariance().setZero(np, np);
+    this->current_covariance().diagonal().setConstant(options_.k0);
+    track_[this->current_slot()] = Tracking{0, 0, false, options_.k0};
   }
 
   struct Tracking {
@@ -210,10 +204,7 @@ class CovarianceResettingRls {
 
   Options options_;
   Index nz_;
-  std::array<Parameters, 2> p_;
-  std::array<Covariance, 2> gamma_;
-  std::array<Tracking, 2> track_{};
-  int current_ = 0;  // slot of the current state; the other slot holds the proposal
+  std::array<Tracking, 2> track_{};  // per slot of the estimate
   Scalar inverse_weight_bound_ = 0;  // λ_max(R⁻¹) = 1/λ_min(R)
   Scalar rounding_margin_ = 0;       // η
   Covariance shifted_;               // Γ̄ − kmin I, factored in place by the reset test

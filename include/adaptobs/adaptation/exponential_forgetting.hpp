@@ -47,7 +47,6 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
-#include <array>
 #include <cmath>
 #include <limits>
 #include <string_view>
@@ -57,7 +56,9 @@ namespace adaptobs {
 
 /// RLS with exponential forgetting (Suzuki et al. 1980; paper 003 §5).
 template <typename S, int NP, int NZ>
-class ExponentialForgettingRls {
+class ExponentialForgettingRls
+    : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
+                                          typename RegressionTypes<S, NP, NZ>::Covariance> {
  public:
   using Types = RegressionTypes<S, NP, NZ>;
   using Scalar = S;
@@ -67,6 +68,7 @@ class ExponentialForgettingRls {
   using Covariance = typename Types::Covariance;
   using MeasurementWeight = typename Types::MeasurementWeight;
   using Presence = typename Types::Presence;
+  using Estimate = detail::LeastSquaresEstimate<Parameters, Covariance>;
 
   struct Options {
     Covariance gamma0;    ///< \f$\Gamma_0\f$, symmetric positive definite
@@ -89,20 +91,11 @@ class ExponentialForgettingRls {
     gain_transposed_.setZero(nz_, p0.rows());
     innovation_weight_.setZero(nz_, nz_);
     innovation_.setZero(nz_);
-    p_[0] = p0;
-    p_[1] = std::move(p0);
-    gamma_[0] = options_.gamma0;
-    gamma_[1] = options_.gamma0;
+    this->assign(p0, options_.gamma0, options_.gamma0);
   }
 
-  /// Estimate \f$\hat p_{t-1}\f$.
-  [[nodiscard]] const Parameters& parameters() const noexcept { return p_[current_]; }
-  /// Covariance \f$\Gamma_{t-1}\f$.
-  [[nodiscard]] const Covariance& covariance() const noexcept { return gamma_[current_]; }
-  [[nodiscard]] const Parameters& proposal() const noexcept { return p_[1 - current_]; }
-  [[nodiscard]] const Covariance& proposed_covariance() const noexcept { return gamma_[1 - current_]; }
+  using Estimate::parameter_count;
   [[nodiscard]] const Options& options() const noexcept { return options_; }
-  [[nodiscard]] Index parameter_count() const noexcept { return p_[0].rows(); }
   [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
 
   /// One weighted step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
@@ -120,20 +113,19 @@ class ExponentialForgettingRls {
                            [this](const auto& f, const auto& y, const auto& r) { return step(f, y, r); });
   }
 
-  void commit() noexcept { current_ = 1 - current_; }
-
   void restart(const Parameters& p0) {
     detail::require_shape(p0, parameter_count(), 1, "ExponentialForgettingRls::restart", "p0");
     detail::require_finite(p0, "ExponentialForgettingRls::restart", "p0");
-    p_[current_] = p0;
-    gamma_[current_] = options_.gamma0;
+    this->current_parameters() = p0;
+    this->current_covariance() = options_.gamma0;
   }
 
  private:
   // The step with weight λR (or its masked form).
   bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
-    const int next = 1 - current_;
-    const Covariance& gamma = gamma_[current_];
+    const Covariance& gamma = this->covariance();
+    Parameters& next_p = this->next_parameters();
+    Covariance& next_gamma = this->next_covariance();
     gamma_phi_.noalias() = detail::product(gamma, phi);
     innovation_weight_ = weight;
     innovation_weight_.noalias() += detail::product(phi.transpose(), gamma_phi_);
@@ -141,29 +133,26 @@ class ExponentialForgettingRls {
     // A singular or non-finite M leaves no gain (the factorization would quietly
     // zero it): the step breaks down, and its proposal says so with NaN.
     if (factorization_.info() != Eigen::Success || !(factorization_.vectorD().array().abs() > Scalar(0)).all()) {
-      p_[next].setConstant(std::numeric_limits<Scalar>::quiet_NaN());
-      gamma_[next].setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+      next_p.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+      next_gamma.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
       return false;
     }
     gain_transposed_ = gamma_phi_.transpose();
     factorization_.solveInPlace(gain_transposed_);  // Kᵀ = M⁻¹(Γφ)ᵀ
     innovation_ = z;
-    innovation_.noalias() -= phi.transpose() * p_[current_];
-    p_[next] = p_[current_];
-    p_[next].noalias() += gain_transposed_.transpose() * innovation_;
-    gamma_[next] = gamma;
-    gamma_[next].noalias() -= detail::product(gain_transposed_.transpose(), gamma_phi_.transpose());
-    gamma_[next] *= Scalar(1) / options_.lambda;
-    detail::mirror_lower_triangle(gamma_[next]);
-    return detail::all_finite(p_[next], gamma_[next]);
+    innovation_.noalias() -= phi.transpose() * this->parameters();
+    next_p = this->parameters();
+    next_p.noalias() += gain_transposed_.transpose() * innovation_;
+    next_gamma = gamma;
+    next_gamma.noalias() -= detail::product(gain_transposed_.transpose(), gamma_phi_.transpose());
+    next_gamma *= Scalar(1) / options_.lambda;
+    detail::mirror_lower_triangle(next_gamma);
+    return detail::all_finite(next_p, next_gamma);
   }
 
   Options options_;
   Index nz_;
   MeasurementWeight weight_;  // λR
-  std::array<Parameters, 2> p_;
-  std::array<Covariance, 2> gamma_;
-  int current_ = 0;  // slot of the current state; the other slot holds the proposal
   typename Types::Gain gamma_phi_;                  // Γφ
   Eigen::Matrix<S, NZ, NP> gain_transposed_;        // Kᵀ
   MeasurementWeight innovation_weight_;             // M = λR + φᵀΓφ

@@ -24,7 +24,6 @@
 
 #include <Eigen/Core>
 
-#include <array>
 #include <string_view>
 #include <utility>
 
@@ -53,7 +52,9 @@ void validate_least_squares(const P& p0, const G& gamma0, const W& weight, Index
 
 /// Plain recursive least squares, eq. (20)–(22) of paper 003.
 template <typename S, int NP, int NZ>
-class RecursiveLeastSquares {
+class RecursiveLeastSquares
+    : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
+                                          typename RegressionTypes<S, NP, NZ>::Covariance> {
  public:
   using Types = RegressionTypes<S, NP, NZ>;
   using Scalar = S;
@@ -63,6 +64,7 @@ class RecursiveLeastSquares {
   using Covariance = typename Types::Covariance;
   using MeasurementWeight = typename Types::MeasurementWeight;
   using Presence = typename Types::Presence;
+  using Estimate = detail::LeastSquaresEstimate<Parameters, Covariance>;
 
   struct Options {
     Covariance gamma0;    ///< \f$\Gamma_0\f$, symmetric positive definite
@@ -76,20 +78,11 @@ class RecursiveLeastSquares {
         correction_(p0.rows(), nz_),
         masked_(p0.rows(), nz_, true) {
     detail::validate_least_squares(p0, options_.gamma0, options_.R, nz_, "RecursiveLeastSquares");
-    p_[0] = p0;
-    p_[1] = std::move(p0);
-    gamma_[0] = options_.gamma0;
-    gamma_[1] = options_.gamma0;
+    this->assign(p0, options_.gamma0, options_.gamma0);
   }
 
-  /// Estimate \f$\hat p_{t-1}\f$.
-  [[nodiscard]] const Parameters& parameters() const noexcept { return p_[current_]; }
-  /// Covariance \f$\Gamma_{t-1}\f$.
-  [[nodiscard]] const Covariance& covariance() const noexcept { return gamma_[current_]; }
-  [[nodiscard]] const Parameters& proposal() const noexcept { return p_[1 - current_]; }
-  [[nodiscard]] const Covariance& proposed_covariance() const noexcept { return gamma_[1 - current_]; }
+  using Estimate::parameter_count;
   [[nodiscard]] const Options& options() const noexcept { return options_; }
-  [[nodiscard]] Index parameter_count() const noexcept { return p_[0].rows(); }
   [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
 
   /// (22) and (21) with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
@@ -104,27 +97,23 @@ class RecursiveLeastSquares {
                            [this](const auto& f, const auto& y, const auto& r) { return step(f, y, r); });
   }
 
-  void commit() noexcept { current_ = 1 - current_; }
-
   void restart(const Parameters& p0) {
     detail::require_shape(p0, parameter_count(), 1, "RecursiveLeastSquares::restart", "p0");
     detail::require_finite(p0, "RecursiveLeastSquares::restart", "p0");
-    p_[current_] = p0;
-    gamma_[current_] = options_.gamma0;
+    this->current_parameters() = p0;
+    this->current_covariance() = options_.gamma0;
   }
 
  private:
   bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
-    const int next = 1 - current_;
-    if (!correction_.apply(gamma_[current_], weight, phi, z, p_[current_], S(1), p_[next], gamma_[next])) return false;
-    return detail::all_finite(p_[next], gamma_[next]);
+    if (!correction_.apply(this->covariance(), weight, phi, z, this->parameters(), S(1), this->next_parameters(),
+                           this->next_covariance()))
+      return false;
+    return detail::all_finite(this->next_parameters(), this->next_covariance());
   }
 
   Options options_;
   Index nz_;
-  std::array<Parameters, 2> p_;
-  std::array<Covariance, 2> gamma_;
-  int current_ = 0;  // p_[current_], gamma_[current_] are current; the other slot holds the proposal
   detail::RlsCorrection<S, NP, NZ> correction_;
   detail::MaskedRegression<Types> masked_;
 };
