@@ -135,12 +135,12 @@ int main(int argc, char** argv) {
     return adaptobs::GuiroObserver(sampled, K, Eigen::Matrix<double, 1, 1>(gamma), g::initial_state_estimate<double>(),
                                    g::initial_parameter_estimate<double>(), {.correct_initial_estimate = false});
   };
-  // Gains of interval k: the design above on the regular grid, else placed for (E_k, H_k).
-  const auto interval_gains = [&](Index k) {
-    return jitter == 0 ? gains
-                       : adaptobs::design_guiro_gains(transitions[std::size_t(k)], C, regressors[std::size_t(k)].H,
-                                                      g::requested_poles());
-  };
+  // With jitter, the gains of each interval, placed once for (E_k, H_k).
+  std::vector<adaptobs::GuiroGains<double, 2, 1, 1>> interval_gains;
+  if (jitter != 0)
+    for (Index k = 0; k <= samples; ++k)
+      interval_gains.push_back(adaptobs::design_guiro_gains(transitions[std::size_t(k)], C,
+                                                            regressors[std::size_t(k)].H, g::requested_poles()));
 
   // Simulation of eq. (2) from the paper's initial conditions; the plant uses the closed-form H_k.
   auto observer = make_observer(gains.K, gains.Gamma(0, 0));
@@ -158,7 +158,8 @@ int main(int argc, char** argv) {
                                                            regressors[std::size_t(k)].Psi};
     const auto present = loss.channels_at<g::Dims<double>>(t[std::size_t(k)], 1);
     h_data.push_back(regressors[std::size_t(k)].H);
-    if (jitter != 0) observer.set_gains(interval_gains(std::max<Index>(k - 1, 0)).K, interval_gains(k).Gamma);
+    if (jitter != 0)  // the correction of the interval that ends here, the parameter gain of the one that starts
+      observer.set_gains(interval_gains[std::size_t(std::max<Index>(k - 1, 0))].K, interval_gains[std::size_t(k)].Gamma);
     const Eigen::Vector2d predicted = observer.state();
     const auto theta_k = observer.parameters();
     const auto theta_printed_k = printed_shifted.parameters();

@@ -337,16 +337,18 @@ std::vector<double> jittered_run_errors(JitterHandling handling, Index samples) 
     return adaptobs::DiscreteSystem<Dims>{ignored ? g::transition(g::period) : transition[std::size_t(k)],
                                           Eigen::Matrix<double, 2, 0>(), c};
   });
-  const auto design = [&](Index k) {
-    return adaptobs::design_guiro_gains(transition[std::size_t(k)], c, h[std::size_t(k)], g::requested_poles());
-  };
+  std::vector<decltype(paper_gains())> scheduled;  // placed once per interval for (E_k, H_k)
+  for (Index k = 0; k < samples; ++k)
+    scheduled.push_back(
+        adaptobs::design_guiro_gains(transition[std::size_t(k)], c, h[std::size_t(k)], g::requested_poles()));
   const auto nominal = paper_gains();
   adaptobs::GuiroObserver observer(model, nominal.K, nominal.Gamma, g::initial_state_estimate<double>(),
                                    g::initial_parameter_estimate<double>(), {.correct_initial_estimate = false});
   Eigen::Vector2d x = g::initial_state<double>();
   std::vector<double> theta_error;
   for (Index k = 0; k < samples; ++k) {
-    if (handling == JitterHandling::scheduled_gains) observer.set_gains(design(std::max<Index>(k - 1, 0)).K, design(k).Gamma);
+    if (handling == JitterHandling::scheduled_gains)
+      observer.set_gains(scheduled[std::size_t(std::max<Index>(k - 1, 0))].K, scheduled[std::size_t(k)].Gamma);
     const Eigen::Vector2d regressor = ignored ? g::closed_form_Psi<double>(k) : psi[std::size_t(k)];
     EXPECT_EQ(observer.update({Eigen::Matrix<double, 0, 1>(), c * x, regressor}), UpdateStatus::accepted);
     x = g::transition(t[std::size_t(k) + 1] - t[std::size_t(k)]) * x +
