@@ -93,6 +93,7 @@ TEST(AugmentedKalman, WrongSampleSizesThrowNamingTheEntryAndChangeNothing) {
   ASSERT_EQ(dynamic.update(DynamicSample{u, y, psi}), UpdateStatus::accepted);
   EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.output_error(), fixed.output_error(), 1e-12, 1e-12);
 }
 
 TEST(AugmentedKalman, NoiseFreeAgreesWithExactState) {
@@ -165,6 +166,52 @@ TEST(AugmentedKalman, AStepThatWouldLeaveTheCovarianceIndefiniteIsRejected) {
     if (k >= 2000) sum += filter.parameters();
   }
   EXPECT_MATRIX_NEAR(Eigen::Vector2d(sum / 1000.0), satellite::true_parameters<double>(), 0.02, 0.0);
+}
+
+// output_error(): the innovation y_k − C x̂_{k|k−1} of the correction, from the
+// state() before the update; zero in an absent channel, before the first update
+// and after a reset, and unchanged by a rejected sample (three kinds).
+TEST(AugmentedKalman, OutputErrorIsTheInnovationOfTheCorrection) {
+  static_assert(adaptobs::DiagnosableObserver<decltype(make_filter())>);
+  using Mask = adaptobs::OutputMask<Dims>;
+  auto filter = make_filter();
+  auto plant = satellite::make_plant<double>();
+  const Eigen::Matrix<double, 2, 4> c = satellite::model<double>().system().C;
+  EXPECT_TRUE(filter.output_error() == Eigen::Vector2d::Zero());
+  double largest = 0;
+  for (Index k = 0; k < 40; ++k) {
+    const Mask present(true, k % 4 != 2);
+    auto sample = plant.sample();
+    if (!present(1)) sample.y(1) = std::numeric_limits<double>::quiet_NaN();
+    const Eigen::Vector4d predicted = filter.state();
+    ASSERT_EQ(filter.update(sample, present), UpdateStatus::accepted);
+    Eigen::Vector2d expected = sample.y - c * predicted;
+    if (!present(1)) {
+      expected(1) = 0;
+      EXPECT_EQ(filter.output_error()(1), 0.0) << "step " << k;
+    }
+    EXPECT_MATRIX_NEAR(filter.output_error(), expected, 1e-12, 1e-12) << "step " << k;
+    largest = std::max(largest, expected.cwiseAbs().maxCoeff());
+    plant.advance();
+  }
+  EXPECT_GT(largest, 1e-3);
+
+  const Eigen::Vector2d accepted = filter.output_error();
+  auto s = plant.sample();
+  s.y(0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(filter.update(s), UpdateStatus::nonfinite_input);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(filter.output_error(), accepted));
+  s = plant.sample();
+  s.y.setConstant(std::numeric_limits<double>::max());
+  s.Psi.setConstant(std::numeric_limits<double>::max());
+  EXPECT_EQ(filter.update(s), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(filter.output_error(), accepted));
+  s = plant.sample();
+  s.Psi.setConstant(1e150);
+  EXPECT_EQ(filter.update(s), UpdateStatus::indefinite_covariance);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(filter.output_error(), accepted));
+  filter.reset(satellite::initial_state_estimate<double>(), satellite::initial_parameter_estimate<double>());
+  EXPECT_TRUE(filter.output_error() == Eigen::Vector2d::Zero());
 }
 
 TEST(AugmentedKalman, BadCovariancesNameTheArgument) {

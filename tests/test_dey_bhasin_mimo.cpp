@@ -389,6 +389,56 @@ TEST(DeyBhasinMissing, NonFiniteOutputRejectedOnlyOnAPresentChannel) {
   EXPECT_EQ(dynamic.step(), 0);
 }
 
+// output_error(): the a-priori error z_t − φ_tᵀ p̂_{t−1} that RLS (22) corrects
+// with, equal to y_t − C x̂_{t|t−1} (the state() before the update); zero in an
+// absent channel, before the first update and after a reset, and unchanged by a
+// rejected sample.
+TEST(DeyBhasinMissing, OutputErrorIsTheAPrioriPredictionError) {
+  static_assert(adaptobs::DiagnosableObserver<Observer> && adaptobs::DiagnosableObserver<DynamicObserver>);
+  auto observer = mimo::make_observer();
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  const auto C = db::canonical_output_matrix<double>(3, 2);
+  EXPECT_TRUE(observer.output_error() == Eigen::Vector2d::Zero());
+  double largest_posterior_gap = 0;
+  for (Index t = 0; t < 60; ++t) {
+    const Mask present(true, t % 5 != 3);
+    auto sample = plant.sample();
+    if (!present(1)) sample.y(1) = std::numeric_limits<double>::quiet_NaN();
+    const Eigen::Matrix<double, 6, 1> before = observer.state();
+    const Vector15 p_before = observer.parameters();
+    ASSERT_EQ(observer.update(sample, present), UpdateStatus::accepted) << "step " << t;
+    const Eigen::Vector2d& e = observer.output_error();
+    EXPECT_NEAR(e(0), sample.y(0) - (C * before)(0), 1e-12 * (1 + std::abs(sample.y(0)))) << "step " << t;
+    if (present(1)) {
+      EXPECT_NEAR(e(1), sample.y(1) - (C * before)(1), 1e-12 * (1 + std::abs(sample.y(1)))) << "step " << t;
+    } else {
+      EXPECT_EQ(e(1), 0.0) << "step " << t;
+    }
+    // The same as z_t − φ_tᵀ p̂_{t−1} (absent entries of z are 0), not the a-posteriori error.
+    Eigen::Vector2d prior = observer.measurement() - observer.regressor().transpose() * p_before;
+    Eigen::Vector2d posterior = observer.measurement() - observer.regressor().transpose() * observer.parameters();
+    if (!present(1)) prior(1) = posterior(1) = 0;
+    EXPECT_MATRIX_NEAR(e, prior, 1e-12, 1e-12) << "step " << t;
+    largest_posterior_gap = std::max(largest_posterior_gap, (e - posterior).cwiseAbs().maxCoeff());
+    plant.advance();
+  }
+  EXPECT_GT(largest_posterior_gap, 1e-3);
+
+  const Eigen::Vector2d accepted = observer.output_error();
+  auto bad = plant.sample();
+  bad.y(1) = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(observer.update(bad, Mask(false, true)), UpdateStatus::nonfinite_input);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
+  const Observer::Sample huge{Eigen::Vector2d::Constant(std::numeric_limits<double>::max()),
+                              Eigen::Vector2d::Constant(std::numeric_limits<double>::max())};
+  EXPECT_EQ(observer.update(huge), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
+  ASSERT_EQ(observer.update(plant.sample(), Mask(false, false)), UpdateStatus::accepted);
+  EXPECT_TRUE(observer.output_error() == Eigen::Vector2d::Zero());
+  observer.reset(mimo::x_hat0(), true_p(observer));
+  EXPECT_TRUE(observer.output_error() == Eigen::Vector2d::Zero());
+}
+
 // "Sufficiently rich" here: every input channel needs two sinusoids at frequencies
 // the other channel does not use. Rank of Σ φ_tφ_tᵀ over the stationary part of a run.
 template <class Input>
@@ -561,6 +611,7 @@ TEST(DeyBhasin, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
   EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.current_state(), fixed.current_state(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.output_error(), fixed.output_error(), 1e-12, 1e-12);
 }
 
 TEST(DeyBhasin, ResetRestartsExactly) {

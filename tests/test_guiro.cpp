@@ -435,6 +435,70 @@ TEST(Guiro, PermanentlyMaskedChannelEqualsTheObserverWithoutIt) {
   EXPECT_MATRIX_NEAR(masked.parameters(), single.parameters(), 1e-12, 1e-12);
 }
 
+// output_error(): the innovation y_k − C z⁻_k that corrects the prediction
+// (not the a-posteriori C z_k − y_k of the θ̂ update, computed in the same
+// workspace after it); zero in an absent channel, before the first update and
+// after a reset, and unchanged by a rejected sample.
+TEST(Guiro, OutputErrorIsTheInnovationOfThePrediction) {
+  using Dims2 = adaptobs::Dimensions<double, 3, 1, 2, 2>;
+  RandomMatrices random(12);
+  const Eigen::Matrix3d a = 0.3 * random.uniform<Eigen::Matrix3d>();
+  const Eigen::Vector3d b = random.uniform<Eigen::Vector3d>();
+  const auto c = random.uniform<Eigen::Matrix<double, 2, 3>>();
+  const Eigen::Matrix<double, 3, 2> k = 0.3 * random.uniform<Eigen::Matrix<double, 3, 2>>();
+  const Eigen::Matrix2d gamma = 0.2 * random.uniform<Eigen::Matrix2d>();
+  adaptobs::GuiroObserver observer(adaptobs::DiscreteLtiModel<Dims2>(a, b, c), k, gamma,
+                                   Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval());
+  static_assert(adaptobs::DiagnosableObserver<decltype(observer)>);
+  static_assert(adaptobs::DiagnosableObserver<PaperObserver<float>>);
+  EXPECT_TRUE(observer.output_error() == Eigen::Vector2d::Zero());
+  double largest_posterior_gap = 0;
+  for (Index step = 0; step < 30; ++step) {
+    const adaptobs::OutputMask<Dims2> present(true, step % 4 != 1);
+    adaptobs::DiscreteSample<Dims2> s{random.uniform<Eigen::Matrix<double, 1, 1>>(), random.uniform<Eigen::Vector2d>(),
+                                      random.uniform<Eigen::Matrix<double, 3, 2>>()};
+    if (!present(1)) s.y(1) = std::numeric_limits<double>::quiet_NaN();
+    const Eigen::Vector3d predicted = observer.state();
+    ASSERT_EQ(observer.update(s, present), UpdateStatus::accepted);
+    Eigen::Vector2d expected = s.y - c * predicted;
+    if (!present(1)) expected(1) = 0;
+    EXPECT_MATRIX_NEAR(observer.output_error(), expected, 1e-12, 1e-12) << "step " << step;
+    if (!present(1)) {
+      EXPECT_EQ(observer.output_error()(1), 0.0);
+    }
+    const double gap = std::abs(observer.output_error()(0) - (s.y(0) - (c * observer.corrected_state())(0)));
+    largest_posterior_gap = std::max(largest_posterior_gap, gap);
+  }
+  EXPECT_GT(largest_posterior_gap, 1e-3);
+
+  observer.reset(Eigen::Vector3d::Zero(), Eigen::Vector2d::Zero());
+  EXPECT_TRUE(observer.output_error() == Eigen::Vector2d::Zero());
+
+  // The paper's uncorrected z₀ (no correction at k = 0) still reports y₀ − C z₀.
+  auto paper = make_observer<double>({.correct_initial_estimate = false});
+  auto plant = g::make_plant<double>();
+  const Eigen::Vector2d z0 = paper.state();
+  ASSERT_EQ(paper.update(plant.sample()), UpdateStatus::accepted);
+  EXPECT_TRUE(paper.corrected_state() == z0);
+  EXPECT_NEAR(paper.output_error()(0), plant.sample().y(0) - (Paper{}.C * z0)(0), 1e-14);
+  EXPECT_NE(paper.output_error()(0), 0.0);
+  for (Index k = 1; k < 10; ++k) {
+    plant.advance();
+    ASSERT_EQ(paper.update(plant.sample()), UpdateStatus::accepted);
+  }
+  plant.advance();
+  const auto accepted = paper.output_error();
+  auto bad = plant.sample();
+  bad.y(0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(paper.update(bad), UpdateStatus::nonfinite_input);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(paper.output_error(), accepted));
+  bad = plant.sample();
+  bad.Psi.setConstant(std::numeric_limits<double>::max());
+  bad.y.setConstant(-std::numeric_limits<double>::max());
+  EXPECT_EQ(paper.update(bad), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(paper.output_error(), accepted));
+}
+
 TEST(Guiro, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
   using DynDims = adaptobs::DynamicDimensions<double>;
   const auto fixed_model = g::model<double>();
@@ -454,6 +518,7 @@ TEST(Guiro, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
   }
   EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.corrected_state(), fixed.corrected_state(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.output_error(), fixed.output_error(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
 }
 

@@ -200,6 +200,46 @@ TEST(TakagiSugeno, UpdateIsEquation65) {
   EXPECT_TRUE(observer.premises_in_sectors());
 }
 
+// output_error(): ε_k = D_k(y_k − C x̂_k) of the last accepted update, from the
+// x̂_k that update started from; unchanged by a rejected sample, zero in an
+// absent channel, before the first update and after a reset.
+TEST(TakagiSugeno, OutputErrorIsTheOutputErrorOfTheLastAcceptedUpdate) {
+  static_assert(adaptobs::DiagnosableObserver<decltype(make_observer<double>())>);
+  auto observer = make_observer<double>();
+  auto plant = wwtp::make_plant<double>(0.1);
+  EXPECT_TRUE(observer.output_error() == wwtp::Vector1<double>::Zero());
+  double largest = 0;
+  for (Index k = 0; k < 20; ++k) {
+    const Eigen::Vector2d before = observer.state();
+    const auto sample = plant.sample();
+    ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
+    const wwtp::Vector1<double> expected = sample.y - observer.model().C() * before;
+    EXPECT_MATRIX_NEAR(observer.output_error(), expected, 1e-12, 1e-12) << "step " << k;
+    largest = std::max(largest, expected.cwiseAbs().maxCoeff());
+    plant.advance();
+  }
+  EXPECT_GT(largest, 1e-3);  // x̂_0 is off the plant: the check is not 0 = 0
+
+  const wwtp::Vector1<double> accepted = observer.output_error();
+  auto bad = plant.sample();
+  bad.y(0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(observer.update(bad), UpdateStatus::nonfinite_input);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
+  bad = plant.sample();
+  bad.u.setConstant(std::numeric_limits<double>::max());
+  bad.y.setConstant(std::numeric_limits<double>::max());
+  EXPECT_EQ(observer.update(bad), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
+
+  using Mask = adaptobs::OutputMask<wwtp::Dims<double>>;
+  ASSERT_EQ(observer.update(plant.sample(), Mask(false)), UpdateStatus::accepted);
+  EXPECT_EQ(observer.output_error()(0), 0.0);
+  ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+  EXPECT_NE(observer.output_error()(0), 0.0);
+  observer.reset(wwtp::initial_state_estimate<double>(), wwtp::initial_parameter_estimate<double>());
+  EXPECT_TRUE(observer.output_error() == wwtp::Vector1<double>::Zero());
+}
+
 // The weights use ẑ and θ̂ clipped to their sectors; the unclipped ẑ stays visible.
 TEST(TakagiSugeno, WeightsAtEstimatedPremisesAreClippedToTheSectors) {
   const Eigen::Vector2d far_x(100, 0.01);  // ẑ2 = 100/0.41 ≫ 14.63
@@ -535,6 +575,7 @@ TEST(TakagiSugeno, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
   EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.weights(), fixed.weights(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.output_error(), fixed.output_error(), 1e-12, 1e-12);
   EXPECT_NAMES((void)dynamic.update({Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1)}), "'sample.u'");
 
   // A premise function returning 3 values for nz = 2 is refused before the weights read them.

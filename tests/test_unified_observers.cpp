@@ -339,6 +339,7 @@ TEST(ZhangContinuous, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
   EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.omega(), fixed.omega(), 1e-12, 1e-12);
+  EXPECT_MATRIX_NEAR(dynamic.output_error(), fixed.output_error(), 1e-12, 1e-12);
 }
 
 TEST(ZhangContinuous, SinglePrecisionConverges) {
@@ -420,6 +421,64 @@ TEST(UnifiedFormulation, NonFiniteSamplesAreRejectedAndChangeNothing) {
     auto filter = kalman_bucy_filter<double>(1.0);
     auto plant = siso::make_plant<double>();
     check_rejections(filter, plant);
+  }
+}
+
+// output_error(): ε(t_k) = y_k − C(t_k) η̂(t_k) at the estimate integrated to
+// the sample time (the initial one at the first sample); zero before the first
+// update and after a reset, unchanged by a rejected sample.
+template <class Observer, class Plant>
+void check_output_error(Observer& observer, Plant& plant) {
+  static_assert(adaptobs::DiagnosableObserver<Observer>);
+  using Output = typename Observer::Output;
+  EXPECT_TRUE(observer.output_error() == Output::Zero());
+  double largest = 0;
+  for (int k = 0; k <= 50; ++k) {
+    if (k > 0) plant.advance();
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    const auto system = plant.model().at(plant.time());
+    const Output expected = plant.sample().y - system.C * observer.state();
+    EXPECT_MATRIX_NEAR(observer.output_error(), expected, 1e-12, 1e-12) << "k = " << k;
+    largest = std::max(largest, expected.cwiseAbs().maxCoeff());
+  }
+  EXPECT_GT(largest, 1e-3);
+  plant.advance();
+  const Output accepted = observer.output_error();
+  auto bad = plant.sample();
+  bad.y(0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(observer.update(bad), UpdateStatus::nonfinite_input);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
+  bad = plant.sample();
+  bad.t = observer.time();
+  EXPECT_EQ(observer.update(bad), UpdateStatus::nonincreasing_time);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
+  bad = plant.sample();
+  bad.y.setConstant(std::numeric_limits<double>::max());
+  bad.midpoint->y.setConstant(-std::numeric_limits<double>::max());
+  EXPECT_EQ(observer.update(bad), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
+  observer.reset(Observer::State::Zero(), Observer::Parameters::Zero());
+  EXPECT_TRUE(observer.output_error() == Output::Zero());
+}
+
+TEST(UnifiedFormulation, OutputErrorIsTheOutputErrorAtTheSampleTime) {
+  {
+    SCOPED_TRACE("Bastin-Gevers");
+    auto observer = bastin_gevers_observer<double>();
+    auto plant = siso::make_plant<double>();
+    check_output_error(observer, plant);
+  }
+  {
+    SCOPED_TRACE("Zhang, LTV model");
+    auto observer = zhang_observer<double>(50.0);
+    auto plant = periodic::make_plant<double>();
+    check_output_error(observer, plant);
+  }
+  {
+    SCOPED_TRACE("Kalman-Bucy");
+    auto filter = kalman_bucy_filter<double>(1.0);
+    auto plant = siso::make_plant<double>();
+    check_output_error(filter, plant);
   }
 }
 

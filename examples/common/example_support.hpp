@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -25,27 +26,38 @@
 
 namespace adaptobs::examples {
 
-/// `--key value` options with defaults; `--help` prints them.
+/// `--key value` options with defaults, and switches: an option whose default
+/// is "off" is turned on by `--key` alone. `--help` prints them.
 class Arguments {
  public:
   Arguments(int argc, char** argv, std::string_view program, std::map<std::string, std::string> defaults)
       : program_(program), values_(std::move(defaults)) {
     values_.try_emplace("out", ".");
+    for (const auto& [k, v] : values_)
+      if (v == "off") switches_.insert(k);
     for (int i = 1; i < argc; ++i) {
       const std::string key = argv[i];
       if (key == "--help" || key == "-h") {
         std::cout << "usage: " << program_;
-        for (const auto& [k, v] : values_) std::cout << " [--" << k << " " << (v.empty() ? "VALUE" : v) << "]";
+        for (const auto& [k, v] : values_)
+          std::cout << " [--" << k << (switches_.contains(k) ? "" : " " + (v.empty() ? std::string("VALUE") : v)) << "]";
         std::cout << '\n';
         std::exit(0);
       }
-      if (key.rfind("--", 0) != 0 || i + 1 >= argc || !values_.contains(key.substr(2)))
+      const std::string name = key.size() > 2 ? key.substr(2) : "";
+      if (key.rfind("--", 0) == 0 && switches_.contains(name)) {
+        values_[name] = "on";
+        continue;
+      }
+      if (key.rfind("--", 0) != 0 || i + 1 >= argc || !values_.contains(name))
         fail("unknown or incomplete option '" + key + "'");
-      values_[key.substr(2)] = argv[++i];
+      values_[name] = argv[++i];
     }
   }
 
   [[nodiscard]] std::string text(const std::string& key) const { return values_.at(key); }
+  /// A switch given on the command line.
+  [[nodiscard]] bool on(const std::string& key) const { return values_.at(key) == "on"; }
   [[nodiscard]] double number(const std::string& key) const {
     try {
       return std::stod(values_.at(key));
@@ -66,6 +78,7 @@ class Arguments {
   }
   std::string program_;
   std::map<std::string, std::string> values_;
+  std::set<std::string> switches_;
 };
 
 /// The defaults plus the lost-measurement flags: `--drop P` (each output sample

@@ -53,6 +53,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
   using Scalar = typename Dims::Scalar;
   using State = typename Dims::State;
   using Parameters = typename Dims::Parameters;
+  using Output = typename Dims::Output;
   using Sample = DiscreteSample<Dims>;
   using Covariances = AugmentedKalmanCovariances<Dims>;
   static constexpr int na = Covariances::na;
@@ -84,6 +85,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     w_.r_masked.setZero(s.ny, s.ny);
     w_.c_masked.setZero(s.ny, s.nx);
     w_.innovation.setZero(s.ny);
+    innovation_.setZero(s.ny);
     w_.x.setZero(s.nx);
     w_.theta.setZero(s.np);
     w_.llt.compute(cov_.R);
@@ -107,6 +109,11 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
   [[nodiscard]] Sizes sizes() const noexcept { return model_.sizes(); }
   [[nodiscard]] const State& state() const noexcept { return x_; }
   [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  /// Output error \f$\varepsilon_k = y_k - C_k\hat x_{k|k-1}\f$ of the last accepted
+  /// update, absent channels zero (0 before the first): the Kalman innovation
+  /// \f$y_k - H_k\hat\xi_{k|k-1}\f$ of the correction (before it), which fault detectors
+  /// test (diagnostics/chi_square_test.hpp).
+  [[nodiscard]] const Output& output_error() const noexcept { return innovation_; }
   /// Covariance of the augmented estimate [x̂; θ̂].
   [[nodiscard]] const AugmentedMatrix& covariance() const noexcept { return p_; }
   [[nodiscard]] Index step() const noexcept { return step_; }
@@ -117,6 +124,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     x_ = x0;
     theta_ = theta0;
     p_ = cov_.P0;
+    innovation_.setZero();
     step_ = start_step;
   }
 
@@ -186,6 +194,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     detail::commit(x_, w.x);
     detail::commit(theta_, w.theta);
     detail::commit(p_, w.scratch);
+    detail::commit(innovation_, w.innovation);
     ++step_;
     return UpdateStatus::accepted;
   }
@@ -207,6 +216,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
   Parameters theta_;
   Covariances cov_;
   AugmentedMatrix p_;
+  Output innovation_;
   Index step_ = 0;
   Workspace w_;
 };

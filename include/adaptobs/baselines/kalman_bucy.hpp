@@ -80,6 +80,7 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     w_.pct.setZero(n, s.ny);
     w_.gain.setZero(n, s.ny);
     w_.epsilon.setZero(s.ny);
+    output_error_.setZero(s.ny);
     eta_ = eta0;
     theta_ = theta0;
     set_initial(eta0, theta0);
@@ -99,6 +100,10 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
         name, [this](InternalState& candidate) { return symmetrize_covariance(candidate); });
     if (status != UpdateStatus::accepted) return status;
     refresh_estimates();
+    // ε(t_k) at the integrated estimate (w_.epsilon holds the last RK4 stage's).
+    decltype(auto) sys = model_.at(sample.t);
+    output_error_ = sample.y;
+    output_error_.noalias() -= sys.C * eta_;
     return status;
   }
 
@@ -144,6 +149,14 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
   [[nodiscard]] const State& state() const noexcept { return eta_; }
   [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
   [[nodiscard]] Scalar time() const noexcept { return integrator_.time(); }
+  /// Output error \f$\varepsilon(t_k) = y_k - C(t_k)\hat\eta(t_k) = y_k - C_e\hat\chi(t_k)\f$ of the
+  /// last accepted sample (0 before the first): the innovation \f$y - C_e\hat\chi\f$ that
+  /// drives the filter (file comment) at the estimate integrated to \f$t_k\f$ — at the
+  /// first sample, the initial estimate. Fault detectors test it
+  /// (diagnostics/chi_square_test.hpp). As for the unified observers, it is a
+  /// prediction error only with `SignalReconstruction::hold` for y; with `linear`
+  /// or `quadratic` \f$y_k\f$ has already acted on \f$\hat\chi(t_k)\f$.
+  [[nodiscard]] const Output& output_error() const noexcept { return output_error_; }
   /// Covariance P of \f$[\hat x; \hat\theta]\f$.
   [[nodiscard]] AugmentedMatrix covariance() const {
     const Index n = sizes_.nx + sizes_.np;
@@ -167,6 +180,7 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     constexpr std::string_view who = "AugmentedKalmanBucyFilter::reset";
     detail::require_initial_estimates(eta0, sizes_.nx, theta0, sizes_.np, who, "eta0", "theta0");
     set_initial(eta0, theta0);
+    output_error_.setZero();
     integrator_.restart();
   }
 
@@ -214,6 +228,7 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
   Eigen::LLT<typename Dims::OutputMatrixSquare> llt_;
   State eta_;
   Parameters theta_;
+  Output output_error_;  // ε(t_k) of the last accepted sample
   mutable Workspace w_;
 };
 

@@ -40,6 +40,16 @@ concept PartialOutputObserver =
       { o.sizes() } -> std::same_as<Sizes>;
     };
 
+/// An observer that exposes what a fault detector tests: `output_error()`, the
+/// output error \f$\varepsilon_k = y_k - \hat y_k\f$ of its last accepted update
+/// (the innovation, from the prediction the update corrected; zero before the
+/// first update and in absent channels). Detectors that test it:
+/// diagnostics/chi_square_test.hpp.
+template <class O>
+concept DiagnosableObserver = Observer<O> && requires(const O& co) {
+  { co.output_error() } -> std::convertible_to<const typename O::Dims::Output&>;
+};
+
 /// `update` with the output channels whose entry of `sample.y` is finite, the
 /// others treated as absent: a sensor glitch (NaN or Inf in y) becomes a partial
 /// update, or the time update when no entry is finite, instead of a rejected

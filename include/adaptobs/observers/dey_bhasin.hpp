@@ -123,6 +123,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     last_.setZero(s.ny + s.nu);
     phi_.setZero(s.np, s.ny);
     z_.setZero(s.ny);
+    prediction_error_.setZero(s.ny);
     work_.resize(filters_);
     restart_filters();
   }
@@ -175,6 +176,15 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   [[nodiscard]] const Regressor& regressor() const noexcept { return phi_; }
   /// \f$z_t = y_t - CF^t\hat x_0\f$ (16) of the last sample (0 in the entries of absent channels).
   [[nodiscard]] const Output& measurement() const noexcept { return z_; }
+  /// Output error of the last accepted update: the a-priori prediction error of
+  /// the regression (16), \f$\varepsilon_t = z_t - \varphi_t^T\hat p_{t-1}\f$, which
+  /// the RLS law (22) corrects \f$\hat p_{t-1}\to\hat p_t\f$ with (not the a-posteriori
+  /// \f$z_t - \varphi_t^T\hat p_t\f$). Since \f$\varphi_t^T = CS_t\f$ it is
+  /// \f$y_t - C\hat x_{t|t-1}\f$, \f$\hat x_{t|t-1} = S_t\hat p_{t-1} + F^t\hat x_0\f$ the
+  /// `state()` before the update: the innovation, which fault detectors test
+  /// (diagnostics/chi_square_test.hpp). Absent channels zero; 0 before the
+  /// first update; at t = 0 (\f$\varphi_0 = 0\f$) it is \f$z_0\f$.
+  [[nodiscard]] const Output& output_error() const noexcept { return prediction_error_; }
   /// \f$S_tp + F^t\hat x_0\f$ for any p at the last sample t: the state (12) of the model
   /// with parameters p (with \f$\hat x_0 = x_0\f$ and the true p it is \f$x_t\f$).
   [[nodiscard]] State state_with(const Parameters& p) const {
@@ -190,6 +200,16 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   [[nodiscard]] Index step() const noexcept { return step_; }
   [[nodiscard]] Sizes sizes() const noexcept { return filters_.sizes(); }
   [[nodiscard]] const State& initial_state() const noexcept { return x0_; }
+
+  /// Restarts the adaptation law's gain at its initial value (Γ₀, or \f$k_0I\f$
+  /// for covariance resetting), keeping \f$\hat p\f$, the filters and t: the
+  /// resetting of eq. (23) on demand. After a detected parameter change
+  /// (diagnostics/cusum.hpp) the law then weighs the new data as it weighed the
+  /// first, instead of the small gain that a long history of old data left it with.
+  void restart_adaptation() {
+    const Parameters p = law_.parameters();
+    law_.restart(p);
+  }
 
   /// Restarts from \f$\hat x_0\f$ and \f$\hat p_0\f$ at t = 0: filters cleared, law restarted.
   void reset(const State& x0, const Parameters& p0) {
@@ -211,6 +231,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     State free;
     Regressor phi;
     Output z;
+    Output error;  // z_t − φ_tᵀ p̂_{t−1}
     Output y;  // ȳ_t: y_t with its absent entries predicted
     State x;
     State next;
@@ -220,6 +241,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
       free.setZero(s.nx);
       phi.setZero(s.np, s.ny);
       z.setZero(s.ny);
+      error.setZero(s.ny);
       y.setZero(s.ny);
       x.setZero(s.nx);
       next.setZero(s.nx);
@@ -251,6 +273,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     last_.setZero();
     phi_.setZero();
     z_.setZero();
+    prediction_error_.setZero();
     current_free_ = x0_;
     state_ = x0_;
     next_state_ = x0_;
@@ -297,12 +320,16 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     /// (13) \f$\hat x_t = S_t\hat p_t + F^t\hat x_0\f$, and the prediction of \f$x_{t+1}\f$ (7)
     /// from \f$\bar y_t\f$: \f$y_t\f$, its absent entries replaced by those of \f$C\hat x_t\f$.
     filters_.state(w.bank, *p, w.free, w.x);
+    // The a-priori error z_t − φ_tᵀ p̂_{t−1} of (22) (p̂_{t−1}: the law's estimate until it commits).
+    w.error = w.z;
+    w.error.noalias() -= detail::product(w.phi.transpose(), law_.parameters());
     w.y = y;
     if (present)
       for (Index i = 0; i < q; ++i)
         if (!(*present)(i)) {
           w.y(i) = w.x(i);
           w.z(i) = 0;
+          w.error(i) = 0;
         }
     filters_.predict(w.x, *p, w.y, u, w.next);
     if (!detail::all_finite(w.x, w.next, w.bank, w.phi)) return UpdateStatus::nonfinite_result;
@@ -312,6 +339,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     detail::commit(current_free_, w.free);
     detail::commit(phi_, w.phi);
     detail::commit(z_, w.z);
+    detail::commit(prediction_error_, w.error);
     detail::commit(state_, w.x);
     detail::commit(next_state_, w.next);
     last_.head(q) = w.y;
@@ -328,6 +356,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   State current_free_;                       // F^t x̂_0
   Regressor phi_;                            // φ_t
   Output z_;                                 // z_t
+  Output prediction_error_;                  // z_t − φ_tᵀ p̂_{t−1}
   State state_;                              // x̂_t (13)
   State next_state_;                         // x̂_{t+1|t}
   Index step_ = 0;

@@ -106,6 +106,7 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
   using Scalar = typename Dims::Scalar;
   using State = typename Dims::State;
   using Parameters = typename Dims::Parameters;
+  using Output = typename Dims::Output;
   using GainMatrix = typename Dims::GainMatrix;                     ///< K, n × m
   using ParameterGain = typename Dims::template Matrix<Dims::np, Dims::ny>;  ///< Γ, p × m
   using Sample = DiscreteSample<Dims>;
@@ -128,6 +129,7 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     detail::require_finite(parameter_gain_, who, "Gamma");
     detail::require_initial_estimates(z_, s.nx, theta_, s.np, who, "z0", "theta0");
     corrected_ = z_;
+    innovation_.setZero(s.ny);
     work_.resize(s);
   }
 
@@ -157,6 +159,12 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
   [[nodiscard]] const State& corrected_state() const noexcept { return corrected_; }
   /// Parameter estimate \f$\hat\theta_k\f$.
   [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  /// Output error \f$\varepsilon_k = y_k - Cz^-_k\f$ of the last accepted update,
+  /// absent channels zero (0 before the first): the innovation that eq. (2),
+  /// second line, corrects \f$z^-_k\f$ with (also when the paper's uncorrected
+  /// \f$z_0\f$ skips that correction), not the a-posteriori error \f$Cz_k - y_k\f$ of
+  /// the θ̂ update. Fault detectors test it (diagnostics/chi_square_test.hpp).
+  [[nodiscard]] const Output& output_error() const noexcept { return innovation_; }
   /// Number k of accepted samples since construction or the last reset.
   [[nodiscard]] Index step() const noexcept { return step_; }
   [[nodiscard]] const Model& model() const noexcept { return model_; }
@@ -170,6 +178,7 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     detail::require(start_step >= 0, who, "start_step", "must be non-negative");
     z_ = z0;
     corrected_ = z0;
+    innovation_.setZero();
     theta_ = theta0;
     step_ = start_step;
     started_ = false;
@@ -190,11 +199,13 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
 
  private:
   struct Workspace {
-    typename Dims::Output residual;  // y_k − C z^-_k, then C z_k − y_k
+    Output innovation;               // y_k − C z^-_k
+    Output residual;                 // C z_k − y_k
     State corrected;                 // z_k
     State predicted;                 // z^-_{k+1}
     Parameters theta;                // θ̂_{k+1}
     void resize(const Sizes& s) {
+      innovation.setZero(s.ny);
       residual.setZero(s.ny);
       corrected.setZero(s.nx);
       predicted.setZero(s.nx);
@@ -215,11 +226,11 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
 
     /// Eq. (2), second line: \f$z_k = z^-_k - K(Cz^-_k - y_k)\f$ (skipped for the
     /// paper's uncorrected \f$z_0\f$).
-    w.residual = sample.y;
-    w.residual.noalias() -= system.C * z_;  // innovation y_k − C z⁻_k
-    detail::zero_absent_rows<Dims>(w.residual, present);
+    w.innovation = sample.y;
+    w.innovation.noalias() -= system.C * z_;  // innovation y_k − C z⁻_k
+    detail::zero_absent_rows<Dims>(w.innovation, present);
     w.corrected = z_;
-    if (started_ || options_.correct_initial_estimate) w.corrected.noalias() += gain_ * w.residual;
+    if (started_ || options_.correct_initial_estimate) w.corrected.noalias() += gain_ * w.innovation;
     w.residual.noalias() = system.C * w.corrected;
     w.residual -= sample.y;  // a-posteriori output error C z_k − y_k
     detail::zero_absent_rows<Dims>(w.residual, present);
@@ -238,6 +249,7 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     detail::commit(z_, w.predicted);
     detail::commit(corrected_, w.corrected);
     detail::commit(theta_, w.theta);
+    detail::commit(innovation_, w.innovation);
     started_ = true;
     ++step_;
     return UpdateStatus::accepted;
@@ -257,6 +269,7 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
   ParameterGain parameter_gain_;
   State z_;          // z^-_k
   State corrected_;  // z_{k−1}
+  Output innovation_;  // y_{k−1} − C z^-_{k−1}
   Parameters theta_;
   GuiroOptions options_;
   Index step_ = 0;

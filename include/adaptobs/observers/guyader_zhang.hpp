@@ -77,6 +77,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   using Parameters = typename Dims::Parameters;
   using GainMatrix = typename Dims::GainMatrix;
   using RegressorMatrix = typename Dims::RegressorMatrix;
+  using Output = typename Dims::Output;
   using Sample = DiscreteSample<Dims>;
 
   /// \param K output-injection gain making \f$A_k - KC_k\f$ exponentially stable (assumption 1);
@@ -100,6 +101,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
 
     upsilon_.setZero(s.nx, s.np);
     last_c_upsilon_.setZero(s.ny, s.np);
+    last_innovation_.setZero(s.ny);
     work_.resize(s);
     if constexpr (Model::time_invariant) update_closed_loop();
   }
@@ -125,6 +127,10 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   [[nodiscard]] const State& state() const noexcept { return x_; }
   /// Parameter estimate \f$\hat\theta_k\f$.
   [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  /// Output error \f$\varepsilon_k = y_k - C_k\hat x_k\f$ of the last accepted
+  /// update, absent channels zero (0 before the first): the innovation of
+  /// eq. (2b)–(2c), which fault detectors test (diagnostics/chi_square_test.hpp).
+  [[nodiscard]] const Output& output_error() const noexcept { return last_innovation_; }
   /// Filtered regressor \f$\Upsilon_k\f$ (eq. (2a)).
   [[nodiscard]] const RegressorMatrix& upsilon() const noexcept { return upsilon_; }
   /// Number k of accepted samples since construction or the last reset.
@@ -142,6 +148,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     theta_ = theta0;
     upsilon_.setZero();
     last_c_upsilon_.setZero();
+    last_innovation_.setZero();
     last_mu_ = Scalar(0);
     step_ = start_step;
     if (excitation_) excitation_->reset();
@@ -251,6 +258,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     detail::commit(theta_, w.theta);
     detail::commit(upsilon_, w.upsilon);
     detail::commit(last_c_upsilon_, w.c_upsilon);
+    detail::commit(last_innovation_, w.innovation);
     last_mu_ = mu_k;
     if (excitation_) excitation_->add(last_c_upsilon_, last_mu_);
     ++step_;
@@ -280,6 +288,7 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
   RegressorMatrix upsilon_;
   typename Dims::StateMatrix closed_loop_;  // A − K C, cached for a time-invariant model
   typename Dims::OutputRegressor last_c_upsilon_;
+  Output last_innovation_;
   Scalar last_mu_ = Scalar(0);
   Index step_ = 0;
   bool normalized_step_;

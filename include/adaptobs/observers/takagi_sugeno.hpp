@@ -65,6 +65,7 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
   using Scalar = typename Dims::Scalar;
   using State = typename Dims::State;
   using Parameters = typename Dims::Parameters;
+  using Output = typename Dims::Output;
   using Sample = InputOutputSample<Dims>;
   using Gains = TakagiSugenoGains<Dims>;
   using PremiseVector = typename Model::PremiseVector;
@@ -81,6 +82,7 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     set_gains(gains);
     weights_.setZero(model_.vertex_count());
     premises_.setZero(model_.premise_count());
+    last_output_error_.setZero(s.ny);
     work_.resize(s, model_);
   }
 
@@ -105,6 +107,11 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
   /// State estimate \f$\hat x_k\f$ and parameter estimate \f$\hat\theta_k\f$.
   [[nodiscard]] const State& state() const noexcept { return x_; }
   [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
+  /// Output error \f$\varepsilon_k = D_k(y_k - C\hat x_k)\f$ of the last accepted
+  /// update, absent channels zero (0 before the first): the output error that
+  /// drives both \f$L_i\f$ and \f$K_{y,i}\f$ in eq. (65) (and (21)), which fault
+  /// detectors test (diagnostics/chi_square_test.hpp).
+  [[nodiscard]] const Output& output_error() const noexcept { return last_output_error_; }
   /// Weights \f$\hat h_i\f$ used by the last accepted update (zero before the first).
   [[nodiscard]] const Weights& weights() const noexcept { return weights_; }
   /// Premise variables \f$\hat z_k\f$ of the last accepted update, before clipping.
@@ -128,6 +135,7 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     theta_ = theta0;
     weights_.setZero();
     premises_.setZero();
+    last_output_error_.setZero();
     in_sectors_ = true;
     step_ = start_step;
   }
@@ -242,6 +250,7 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     detail::commit(theta_, w.theta);
     detail::commit(weights_, w.h);
     detail::commit(premises_, w.z);
+    last_output_error_ = w.v.tail(ny);  // a copy: v is a segment of the workspace
     ++step_;
     return UpdateStatus::accepted;
   }
@@ -279,6 +288,7 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
   Parameters theta_;
   Weights weights_;
   PremiseVector premises_;
+  Output last_output_error_;
   bool in_sectors_ = true;
   Index step_ = 0;
   // A run-time number of vertices keeps its workspace even with fixed sizes.

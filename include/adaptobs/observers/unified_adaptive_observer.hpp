@@ -132,6 +132,7 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     detail::require(options.excitation_window >= 0, who, "options.excitation_window", "must be non-negative");
     if (options.excitation_window > 0) excitation_.emplace(options.excitation_window, s.np);
     work_.resize(s, r_);
+    output_error_.setZero(s.ny);
     refresh_time_invariant_system();
     // The algorithm's own convergence conditions (form of C_o, stability, SPR, ...).
     const TransformedSystem<Dims>& so0 = system_at(Scalar(0));
@@ -155,6 +156,9 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     if (status != UpdateStatus::accepted) return status;
     refresh_estimates();
     if (stepping && excitation_) excitation_->add(work_.R);
+    // ε(t_k) at the integrated estimate (work_.epsilon holds the last RK4 stage's).
+    output_error_ = sample.y;
+    output_error_.noalias() -= system_at(sample.t).Co * transformed_state();
     return status;
   }
 
@@ -210,6 +214,15 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
   [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
   /// Time of the last accepted sample.
   [[nodiscard]] Scalar time() const noexcept { return integrator_.time(); }
+  /// Output error \f$\varepsilon(t_k) = y_k - C_o(t_k)\hat x(t_k) = y_k - C\hat\eta(t_k)\f$ of
+  /// the last accepted sample (0 before the first): the \f$\varepsilon\f$ of the update law
+  /// \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$ (file comment) at the estimate integrated to
+  /// \f$t_k\f$ — at the first sample, the initial estimate. Fault detectors test it
+  /// (diagnostics/chi_square_test.hpp). The integration to \f$t_k\f$ uses y reconstructed
+  /// between the samples: with `SignalReconstruction::hold` it uses \f$y\f$ up to
+  /// \f$t_{k-1}\f$ only, so \f$\varepsilon(t_k)\f$ is a prediction error (an innovation); with
+  /// `linear` or `quadratic` \f$y_k\f$ has already acted on \f$\hat x(t_k)\f$ over the interval.
+  [[nodiscard]] const Output& output_error() const noexcept { return output_error_; }
   /// \f$\hat x\f$ in the coordinates of system (2).
   [[nodiscard]] auto transformed_state() const { return detail::segment<Dims::nx>(internal_, 0, sizes_.nx); }
   /// Ξ of eq. (3a).
@@ -269,6 +282,7 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     constexpr std::string_view who = "UnifiedAdaptiveObserver::reset";
     detail::require_initial_estimates(eta0, sizes_.nx, theta0, sizes_.np, who, "eta0", "theta0");
     set_initial(eta0, theta0);
+    output_error_.setZero();
     integrator_.restart();
     if (excitation_) excitation_->reset();
   }
@@ -339,6 +353,7 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
   SampledIntegrator<Dims, InternalState> integrator_;
   State eta_;
   Parameters theta_;
+  Output output_error_;  // ε(t_k) of the last accepted sample
   TransformedSystem<Dims> so_;  // cached for a time-invariant model
   FilterMatrix f_;
   std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;

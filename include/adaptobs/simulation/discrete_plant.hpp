@@ -67,6 +67,14 @@ class DiscreteLinearPlant : public SizedBy<typename Model::Dims> {
   [[nodiscard]] double time() const noexcept { return static_cast<double>(k_) * static_cast<double>(period_); }
   [[nodiscard]] const Model& model() const noexcept { return model_; }
 
+  /// Sets \f$\theta\f$ from this step on, e.g. to inject a fault; the current
+  /// sample is unchanged (θ_k enters x_{k+1}, not y_k).
+  void set_parameters(const Parameters& theta) {
+    detail::require_shape(theta, theta_.rows(), 1, "DiscreteLinearPlant::set_parameters", "theta");
+    detail::require_finite(theta, "DiscreteLinearPlant::set_parameters", "theta");
+    theta_ = theta;
+  }
+
   /// Moves to step k + 1.
   void advance() {
     const auto& system = model_.at(k_);

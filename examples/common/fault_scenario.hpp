@@ -1,0 +1,128 @@
+#pragma once
+// Fault scenarios shared by the fault examples, tests and benchmarks: the
+// fault-free record a monitor is designed from, and one monitored run, for any
+// simulation given as
+//
+//   simulate(seed, faulty, steps, visit)
+//
+// which runs `steps` samples of a plant (its noise from `seed`, with the
+// scenario's fault when `faulty`) through an observer and calls
+// `visit(k, observer, plant, sample)` after each accepted update with the
+// sample measured at step k.
+
+#include "common/example_support.hpp"
+
+#include <adaptobs/diagnostics/fault_monitor.hpp>
+#include <adaptobs/simulation/detection_evaluation.hpp>
+#include <adaptobs/simulation/series_table.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace adaptobs::examples {
+
+/// Which test of a `FaultMonitor` a scenario scores.
+enum class Detector { cusum, chi_square };
+
+/// Fault-free runs of seeds 1 to `seeds`, recorded from sample `first` on.
+template <int NY, int NP, class Simulate>
+FaultFreeRecord<double, NY, NP> record_fault_free(const Simulate& simulate, int seeds, Index steps, Index first) {
+  FaultFreeRecord<double, NY, NP> record;
+  for (int s = 1; s <= seeds; ++s) {
+    record.new_run();
+    simulate(static_cast<std::uint64_t>(s), false, steps, [&](Index k, const auto& observer, const auto&, const auto&) {
+      if (k >= first) record.add(observer);
+    });
+  }
+  return record;
+}
+
+/// The alarms of one test of a monitor designed by `design`, watching from
+/// sample `first` on, times in units of `period` per sample.
+template <int NY, int NP, class Simulate>
+MonitoredRun monitored_run(const Simulate& simulate, const FaultMonitorDesign<double, NY, NP>& design, Detector which,
+                           std::uint64_t seed, bool faulty, Index steps, Index first, double period) {
+  FaultMonitor monitor(design);
+  MonitoredRun run{.start = static_cast<double>(first) * period, .end = static_cast<double>(steps) * period, .alarms = {}};
+  simulate(seed, faulty, steps, [&](Index k, const auto& observer, const auto&, const auto&) {
+    if (k < first || !accepted(monitor.observe(observer))) return;
+    const double t = static_cast<double>(k) * period;
+    if (which == Detector::cusum && monitor.cusum().alarm()) run.alarms.push_back({t, monitor.cusum().isolated()});
+    if (which == Detector::chi_square && monitor.chi_square().alarm()) run.alarms.push_back({t, -1});
+  });
+  return run;
+}
+
+/// Runs `seeds` seeds (from 1000, beyond any design's) of a fault and of its
+/// fault-free twin, for each test, and prints the summaries as `name = value`
+/// lines: the CUSUM's unprefixed, the χ² test's prefixed `chi_square_`.
+/// `run(which, seed, faulty)` is one monitored run.
+template <class Run>
+void print_evaluation(const Run& run, const FaultDescription& fault, Index seeds, unsigned threads,
+                      double designed_false_alarm_rate) {
+  double fault_free_time = 0;
+  for (const Detector which : {Detector::cusum, Detector::chi_square}) {
+    const auto summary = evaluate_detection(
+        [&](std::uint64_t seed, bool faulty) { return run(which, seed, faulty); }, fault, 1000, seeds, threads);
+    const std::string prefix = which == Detector::cusum ? "" : "chi_square_";
+    print_value(prefix + "detection_rate", summary.detection_rate);
+    print_value(prefix + "mean_detection_delay", summary.mean_detection_delay);
+    print_value(prefix + "p95_detection_delay", summary.p95_detection_delay);
+    if (which == Detector::cusum) print_value("isolation_rate", summary.isolation_rate);
+    print_value(prefix + "quiet_before_fault_rate", summary.quiet_before_fault_rate);
+    print_value(prefix + "false_alarms", double(summary.false_alarms));
+    print_value(prefix + "false_alarm_rate", summary.false_alarm_rate);
+    fault_free_time = summary.fault_free_time;
+  }
+  print_value("seeds", double(seeds));
+  print_value("fault_free_time", fault_free_time);
+  print_value("designed_false_alarm_rate", designed_false_alarm_rate);
+}
+
+/// Prints a monitor's design.
+template <int NY, int NP>
+void print_design(const FaultMonitorDesign<double, NY, NP>& design) {
+  print_value("cusum_scale", design.cusum.scale);
+  print_value("cusum_drift", design.cusum.drift);
+  print_value("cusum_threshold", design.cusum.threshold);
+  print_value("cusum_stride", double(design.cusum_options.stride));
+  print_value("cusum_lag_correlation", design.cusum.lag_correlation);
+  print_value("output_error_covariance", design.output_error_covariance);
+  print_value("chi_square_window", double(design.window));
+  print_value("chi_square_false_alarm_probability", design.false_alarm_probability);
+  print_value("chi_square_scale", design.chi_square_options.scale);
+  print_value("chi_square_degrees_of_freedom", design.chi_square_options.degrees_of_freedom);
+}
+
+/// The fault examples' columns of a monitor after one sample (`watching`: the
+/// sample was fed to it): statistic_cusum, threshold, alarm, isolated (1-based,
+/// 0 for none), statistic_chi_square, threshold_chi_square, alarm_chi_square.
+template <int NY, int NP>
+void add_monitor_columns(SeriesTable& row, const FaultMonitor<double, NY, NP>& monitor, bool watching) {
+  const auto& cusum = monitor.cusum();
+  const auto& chi_square = monitor.chi_square();
+  const bool alarm = watching && cusum.alarm();
+  row.add("statistic_cusum", watching ? (alarm ? cusum.alarm_statistic() : cusum.statistic()) : 0.0)
+      .add("threshold", cusum.threshold())
+      .add("alarm", alarm ? 1.0 : 0.0)
+      .add("isolated", alarm ? double(cusum.isolated() + 1) : 0.0)
+      .add("statistic_chi_square", watching ? chi_square.statistic() : 0.0)
+      .add("threshold_chi_square", chi_square.threshold())
+      .add("alarm_chi_square", watching && chi_square.alarm() ? 1.0 : 0.0);
+}
+
+/// Gnuplot panels of the CUSUM and χ² columns (after the example's own panels).
+inline constexpr const char* monitor_panels = R"(
+set title 'CUSUM on the normalized estimates: largest sum, threshold and alarms'
+set logscale y
+plot csv using 't':(column('statistic_cusum') > 0 ? column('statistic_cusum') : NaN) with lines title 'statistic', \
+     csv using 't':'threshold' with lines dt 2 lc 'red' title 'threshold', \
+     csv using 't':(column('alarm') > 0 ? column('statistic_cusum') : NaN) with points pt 7 ps 1.5 lc 'red' title 'alarm'
+unset logscale y
+set title 'chi-square test on the output errors: window sum and threshold'
+plot csv using 't':'statistic_chi_square' with lines title 'statistic', \
+     csv using 't':'threshold_chi_square' with lines dt 2 lc 'red' title 'threshold', \
+     csv using 't':(column('alarm_chi_square') > 0 ? column('threshold_chi_square') : NaN) with points pt 7 ps 1.5 lc 'red' title 'alarm'
+)";
+
+}  // namespace adaptobs::examples

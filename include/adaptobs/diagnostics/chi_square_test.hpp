@@ -1,0 +1,144 @@
+#pragma once
+/// \file
+/// Windowed χ² test on an observer's output errors, its threshold set from a
+/// false-alarm probability per window.
+///
+/// The output errors \f$\varepsilon_k\f$ (`DiagnosableObserver::output_error`)
+/// of a consistent observer are, once its estimates have converged, close to
+/// zero-mean Gaussian with a covariance S. Over consecutive, disjoint windows of
+/// W samples the test sums
+/// \f[ T = \sum_{k \in \text{window}} \varepsilon_k^T S^{-1}\varepsilon_k, \f]
+/// which is \f$\chi^2_{W n_y}\f$ when the errors are white, and alarms when
+/// \f$T > \chi^2_{W n_y}(1-\alpha)\f$, the upper α quantile. Disjoint windows make
+/// successive decisions independent, so the false alarms arrive every
+/// \f$W/\alpha\f$ samples on average.
+///
+/// S is given: the innovation covariance \f$CPC^T + R\f$ of a Kalman design,
+/// or the sample covariance of fault-free output errors (`sample_covariance`,
+/// diagnostics/calibration.hpp).
+///
+/// **Correlated errors.** The output errors of a gain that is not the Kalman
+/// gain, or of an observer whose \f$\hat\theta\f$ wanders, are correlated from
+/// step to step. T is then still a quadratic form in Gaussian variables, a
+/// weighted sum of \f$\chi^2_1\f$ terms, but no longer \f$\chi^2_{Wn_y}\f$: its
+/// variance differs from twice its mean, and far in the tail the difference
+/// decides the false-alarm rate. `ChiSquareOptions` then takes the
+/// two-moment match \f$T \approx c\,\chi^2_\nu\f$ with \f$c = \mathrm{Var}\,T/(2\,\mathrm{E}\,T)\f$
+/// and \f$\nu = 2(\mathrm{E}\,T)^2/\mathrm{Var}\,T\f$ (Satterthwaite 1946; Box 1954),
+/// which `design_fault_monitor` (diagnostics/fault_monitor.hpp) measures on
+/// fault-free windows; the threshold becomes \f$c\,\chi^2_\nu(1-\alpha)\f$.
+///
+/// The test sees a change in the plant only while the observer has not yet
+/// adapted to it: an adaptive observer absorbs a parameter change into
+/// \f$\hat\theta\f$ and its output errors become white again. Pair it with a
+/// CUSUM on \f$\hat\theta\f$ (diagnostics/cusum.hpp), which keeps seeing the
+/// change, to isolate the parameter.
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+#include <adaptobs/diagnostics/chi_square_distribution.hpp>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <cmath>
+#include <string_view>
+
+namespace adaptobs {
+
+/// The distribution T is compared with: \f$c\,\chi^2_\nu\f$ (file comment,
+/// "Correlated errors"). The defaults, c = 1 and ν = W n_y, are exact for white errors.
+struct ChiSquareOptions {
+  double scale = 1;               ///< c > 0
+  double degrees_of_freedom = 0;  ///< ν > 0; 0 means W n_y
+};
+
+template <typename Scalar, int NY = Eigen::Dynamic>
+class ChiSquareTest {
+ public:
+  using Vector = Eigen::Matrix<Scalar, NY, 1>;
+  using Matrix = Eigen::Matrix<Scalar, NY, NY>;
+
+  /// \param covariance S, symmetric positive definite; \param window W ≥ 1
+  /// samples per decision; \param false_alarm_probability α in (0, 1) per window.
+  ChiSquareTest(const Matrix& covariance, Index window, Scalar false_alarm_probability, ChiSquareOptions options = {})
+      : window_(window), false_alarm_probability_(false_alarm_probability) {
+    constexpr std::string_view who = "ChiSquareTest";
+    detail::require_square(covariance, who, "covariance");
+    detail::require(covariance.rows() >= 1, who, "covariance", "must be at least 1x1");
+    detail::require_finite(covariance, who, "covariance");
+    detail::require_positive_definite(covariance, who, "covariance");
+    detail::require(window >= 1, who, "window", "must be at least 1");
+    detail::require(false_alarm_probability > Scalar(0) && false_alarm_probability < Scalar(1), who,
+                    "false_alarm_probability", "must lie in (0, 1)");
+    detail::require_positive(options.scale, who, "options.scale");
+    detail::require(options.degrees_of_freedom >= 0 && std::isfinite(options.degrees_of_freedom), who,
+                    "options.degrees_of_freedom", "must be non-negative and finite (0: window × outputs)");
+    const Index ny = covariance.rows();
+    information_ = covariance.llt().solve(Matrix::Identity(ny, ny));
+    information_ = Scalar(0.5) * (information_ + information_.transpose()).eval();
+    const double dof = options.degrees_of_freedom > 0 ? options.degrees_of_freedom : static_cast<double>(window * ny);
+    threshold_ = static_cast<Scalar>(options.scale * chi_square_upper_quantile(dof, static_cast<double>(false_alarm_probability)));
+    weighted_.setZero(ny);
+  }
+
+  /// Takes the output error of one sample. Returns `nonfinite_input`, with the
+  /// test unchanged, for a NaN or Inf in it; a wrong size is a `ConfigurationError`.
+  [[nodiscard]] UpdateStatus update(const Vector& output_error) {
+    if constexpr (NY == Eigen::Dynamic)
+      detail::require_shape(output_error, information_.rows(), 1, "ChiSquareTest::update", "output_error");
+    if (!output_error.allFinite()) return UpdateStatus::nonfinite_input;
+    weighted_.noalias() = information_ * output_error;
+    const Scalar term = output_error.dot(weighted_);
+    if (!std::isfinite(term)) return UpdateStatus::nonfinite_input;
+    sum_ += term;
+    alarm_ = false;
+    if (++filled_ == window_) {
+      decision_ = sum_;
+      alarm_ = sum_ > threshold_;
+      if (alarm_) ++alarms_;
+      ++decisions_;
+      sum_ = 0;
+      filled_ = 0;
+    }
+    return UpdateStatus::accepted;
+  }
+
+  /// The window completed by the last sample raised an alarm.
+  [[nodiscard]] bool alarm() const noexcept { return alarm_; }
+  /// The sum over the window in progress (0 right after a decision).
+  [[nodiscard]] Scalar statistic() const noexcept { return sum_; }
+  /// The sum of the last completed window.
+  [[nodiscard]] Scalar decision_statistic() const noexcept { return decision_; }
+  [[nodiscard]] Scalar threshold() const noexcept { return threshold_; }
+  [[nodiscard]] Index window() const noexcept { return window_; }
+  [[nodiscard]] Index decisions() const noexcept { return decisions_; }
+  [[nodiscard]] Index alarm_count() const noexcept { return alarms_; }
+  /// Designed mean number of samples between false alarms, W/α.
+  [[nodiscard]] Scalar mean_samples_between_false_alarms() const noexcept {
+    return static_cast<Scalar>(window_) / false_alarm_probability_;
+  }
+
+  /// Back to the state after construction.
+  void reset() {
+    sum_ = decision_ = 0;
+    filled_ = decisions_ = alarms_ = 0;
+    alarm_ = false;
+  }
+
+ private:
+  Index window_;
+  Scalar false_alarm_probability_;
+  Matrix information_;
+  Vector weighted_;
+  Scalar threshold_ = 0;
+  Scalar sum_ = 0;
+  Scalar decision_ = 0;
+  Index filled_ = 0;
+  Index decisions_ = 0;
+  Index alarms_ = 0;
+  bool alarm_ = false;
+};
+
+}  // namespace adaptobs

@@ -1,0 +1,142 @@
+#pragma once
+/// \file
+/// A fault monitor for any `DiagnosableObserver`: a CUSUM on its parameter
+/// estimates, which detects and isolates a parameter change, and a χ² test on
+/// its output errors, which sees the change while the observer adapts to it;
+/// both designed from fault-free runs for one mean time between false alarms.
+///
+/// Typical use, in the loop after each accepted update:
+/// \code
+/// adaptobs::FaultMonitor monitor(design);           // design_fault_monitor(...)
+/// if (accepted(observer.update(sample))) (void)monitor.observe(observer);
+/// if (monitor.cusum().alarm()) isolate(monitor.cusum().isolated());
+/// \endcode
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/observer.hpp>
+#include <adaptobs/diagnostics/calibration.hpp>
+#include <adaptobs/diagnostics/chi_square_test.hpp>
+#include <adaptobs/diagnostics/cusum.hpp>
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace adaptobs {
+
+/// What an observer's fault-free runs showed: per run, its parameter
+/// estimates and output errors after each accepted update, from the moment
+/// monitoring would start (once the estimates have converged).
+template <typename Scalar, int NY, int NP>
+struct FaultFreeRecord {
+  std::vector<std::vector<Eigen::Matrix<Scalar, NP, 1>>> parameters;
+  std::vector<std::vector<Eigen::Matrix<Scalar, NY, 1>>> output_errors;
+
+  /// Starts the record of a new run.
+  void new_run() {
+    parameters.emplace_back();
+    output_errors.emplace_back();
+  }
+  /// Appends the observer's estimates after an accepted update to the current run.
+  template <DiagnosableObserver O>
+  void add(const O& observer) {
+    if (parameters.empty()) new_run();
+    parameters.back().push_back(observer.parameters());
+    output_errors.back().push_back(observer.output_error());
+  }
+};
+
+/// The design of a `FaultMonitor`.
+template <typename Scalar, int NY, int NP>
+struct FaultMonitorDesign {
+  Eigen::Matrix<Scalar, NP, 1> nominal;     ///< healthy parameters the CUSUM measures deviations from
+  CusumCalibration<Scalar, NP> cusum;       ///< scales and threshold, with what the runs showed
+  CusumOptions cusum_options;               ///< its stride
+  Eigen::Matrix<Scalar, NY, NY> output_error_covariance;  ///< S of the χ² test
+  Index window = 1;                         ///< samples per χ² decision
+  Scalar false_alarm_probability = 0;       ///< per χ² window
+  ChiSquareOptions chi_square_options;      ///< its two-moment correction
+  Index chi_square_windows = 0;             ///< fault-free windows the correction was measured on
+};
+
+/// Designs both tests from fault-free runs for false alarms every
+/// `mean_samples_between_false_alarms` samples on average, each:
+/// - the CUSUM on \f$\hat\theta\f$ by `calibrate_cusum` with drift ν (in scales)
+///   and `stride`, whose refusals it passes on;
+/// - the χ² test on windows of `window` samples, with S the sample covariance
+///   of the recorded output errors, α = window / mean_samples_between_false_alarms,
+///   and the two-moment correction (chi_square_test.hpp, "Correlated errors")
+///   from the mean and variance of T over the disjoint windows of the runs
+///   (refused with fewer than 50 windows, naming 'record').
+template <typename Scalar, int NY, int NP>
+[[nodiscard]] FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor(const FaultFreeRecord<Scalar, NY, NP>& record,
+                                                                      const Eigen::Matrix<Scalar, NP, 1>& nominal,
+                                                                      Scalar drift, Scalar mean_samples_between_false_alarms,
+                                                                      Index stride, Index window) {
+  constexpr std::string_view who = "design_fault_monitor";
+  detail::require_positive(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms");
+  detail::require(window >= 1 && Scalar(window) < mean_samples_between_false_alarms, who, "window",
+                  "must be at least 1 and shorter than mean_samples_between_false_alarms");
+  detail::require(stride >= 1, who, "stride", "must be at least 1");
+  FaultMonitorDesign<Scalar, NY, NP> design;
+  design.nominal = nominal;
+  design.cusum = calibrate_cusum(record.parameters, nominal, drift,
+                                 mean_samples_between_false_alarms / static_cast<Scalar>(stride), stride);
+  design.cusum_options.stride = stride;
+  design.output_error_covariance = sample_covariance(record.output_errors);
+  design.window = window;
+  design.false_alarm_probability = static_cast<Scalar>(window) / mean_samples_between_false_alarms;
+
+  // Mean and variance of the window sums T without a fault.
+  const ChiSquareTest<Scalar, NY> uncorrected(design.output_error_covariance, window, Scalar(0.5));
+  double sum = 0, squares = 0;
+  Index windows = 0;
+  for (const auto& run : record.output_errors) {
+    ChiSquareTest<Scalar, NY> test = uncorrected;
+    for (const auto& e : run) {
+      const Index decided = test.decisions();
+      if (!accepted(test.update(e)) || test.decisions() == decided) continue;
+      const double t = static_cast<double>(test.decision_statistic());
+      sum += t;
+      squares += t * t;
+      ++windows;
+    }
+  }
+  detail::require(windows >= 50, who, "record", "must span at least 50 windows of the χ² test");
+  const double mean = sum / static_cast<double>(windows);
+  const double variance = (squares - sum * mean) / static_cast<double>(windows - 1);
+  detail::require(variance > 0, who, "record", "must have output errors that vary");
+  design.chi_square_options = {.scale = variance / (2 * mean), .degrees_of_freedom = 2 * mean * mean / variance};
+  design.chi_square_windows = windows;
+  return design;
+}
+
+template <typename Scalar, int NY, int NP>
+class FaultMonitor {
+ public:
+  explicit FaultMonitor(const FaultMonitorDesign<Scalar, NY, NP>& design)
+      : cusum_(design.nominal, design.cusum.scale, design.cusum.drift, design.cusum.threshold, design.cusum_options),
+        chi_square_(design.output_error_covariance, design.window, design.false_alarm_probability,
+                    design.chi_square_options) {}
+
+  /// Feeds the observer's estimates after an accepted update to both tests.
+  /// Returns `nonfinite_input`, with both tests unchanged, when either would reject them.
+  template <DiagnosableObserver O>
+  [[nodiscard]] UpdateStatus observe(const O& observer) {
+    if (!observer.parameters().allFinite() || !observer.output_error().allFinite()) return UpdateStatus::nonfinite_input;
+    const UpdateStatus chi = chi_square_.update(observer.output_error());
+    if (!accepted(chi)) return chi;  // an overflowing weighted error: the CUSUM has not moved either
+    return cusum_.update(observer.parameters());
+  }
+
+  [[nodiscard]] const CusumDetector<Scalar, NP>& cusum() const noexcept { return cusum_; }
+  [[nodiscard]] CusumDetector<Scalar, NP>& cusum() noexcept { return cusum_; }
+  [[nodiscard]] const ChiSquareTest<Scalar, NY>& chi_square() const noexcept { return chi_square_; }
+  [[nodiscard]] ChiSquareTest<Scalar, NY>& chi_square() noexcept { return chi_square_; }
+
+ private:
+  CusumDetector<Scalar, NP> cusum_;
+  ChiSquareTest<Scalar, NY> chi_square_;
+};
+
+}  // namespace adaptobs

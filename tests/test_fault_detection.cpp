@@ -1,0 +1,579 @@
+// Fault detection: the χ² quantile and Siegmund's run length against known
+// values, the CUSUM and χ² tests against their designed false-alarm rates on
+// independent normal draws and on the satellite's Guyader–Zhang observer, the
+// thruster fault of paper 000 §4 over 1000 seeds, and bad input.
+
+#include <adaptobs/core/observer.hpp>
+#include <adaptobs/diagnostics/calibration.hpp>
+#include <adaptobs/diagnostics/chi_square_test.hpp>
+#include <adaptobs/diagnostics/cusum.hpp>
+#include <adaptobs/diagnostics/fault_monitor.hpp>
+#include <adaptobs/simulation/detection_evaluation.hpp>
+
+#include "models/dey_bhasin.hpp"
+#include "models/satellite_fault.hpp"
+#include "models/wwtp_fault.hpp"
+#include "support/eigen_testing.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <stdexcept>
+#include <utility>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace satellite = adaptobs::examples::satellite;
+namespace wwtp = adaptobs::examples::wwtp;
+using adaptobs::Index;
+using adaptobs::testing::configuration_error_of;
+
+bool names(const std::string& message, const std::string& argument) {
+  return message.find("'" + argument + "'") != std::string::npos;
+}
+
+// ---------------------------------------------------------------- χ² quantile
+
+TEST(ChiSquareDistribution, QuantilesMatchTables) {
+  // Standard table values (upper 5 % and 1 % points).
+  EXPECT_NEAR(adaptobs::chi_square_upper_quantile(1, 0.05), 3.841458820694124, 1e-10);
+  EXPECT_NEAR(adaptobs::chi_square_upper_quantile(10, 0.05), 18.307038053275146, 1e-9);
+  EXPECT_NEAR(adaptobs::chi_square_upper_quantile(100, 0.01), 135.80672317102676, 1e-8);
+  // Two degrees of freedom: the tail is exp(−x/2), so the quantile is −2 ln p,
+  // on both sides of the series/continued-fraction switch (x/2 = a + 1 = 2).
+  for (double p : {0.9, 0.5, 0.1, 1e-10, 1e-200})
+    EXPECT_NEAR(adaptobs::chi_square_upper_quantile(2, p), -2 * std::log(p), 1e-10 * (1 - 2 * std::log(p))) << p;
+  EXPECT_NEAR(adaptobs::chi_square_upper_tail(2, 3.0), std::exp(-1.5), 1e-14);
+  EXPECT_NEAR(adaptobs::chi_square_upper_tail(2, 7.0), std::exp(-3.5), 1e-14);
+}
+
+TEST(ChiSquareDistribution, RefusesBadArguments) {
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(3, 0.0); }), "p"));
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(3, 1.0); }), "p"));
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(0, 0.5); }),
+                    "degrees_of_freedom"));
+}
+
+// ---------------------------------------------------------------- CUSUM design
+
+TEST(CusumDesign, SiegmundMatchesPublishedRunLengths) {
+  // One-sided CUSUM with drift 0.5 on N(0, 1): the exact in-control run
+  // lengths are about 336 (h = 4) and 930 (h = 5), the two-sided ones half
+  // (Montgomery, Introduction to Statistical Quality Control, table of ARLs).
+  EXPECT_NEAR(adaptobs::cusum_mean_run_length(0.5, 4.0), 336, 0.02 * 336);
+  EXPECT_NEAR(adaptobs::cusum_mean_run_length(0.5, 5.0), 930, 0.02 * 930);
+  // Out of control by one standard deviation (Δ = 0.5): about 8.4 (h = 4) and 10.4 (h = 5).
+  EXPECT_NEAR(adaptobs::cusum_mean_run_length(0.5, 4.0, 1.0), 8.4, 0.05 * 8.4);
+  EXPECT_NEAR(adaptobs::cusum_mean_run_length(0.5, 5.0, 1.0), 10.4, 0.05 * 10.4);
+  // The threshold inverts the run length, shared among 2 × components sums.
+  const double h = adaptobs::cusum_threshold(0.5, 1000.0, 3);
+  EXPECT_NEAR(adaptobs::cusum_mean_run_length(0.5, h), 6000, 1e-6);
+}
+
+// Mean spacing of the alarms of a CUSUM fed independent N(shift, 1) draws in every component.
+double measured_spacing(double drift, double threshold, int components, double shift, Index values,
+                        std::uint64_t seed) {
+  const Eigen::VectorXd nominal = Eigen::VectorXd::Zero(components);
+  adaptobs::CusumDetector<double> detector(nominal, Eigen::VectorXd::Ones(components), drift, threshold);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(shift, 1.0);
+  Eigen::VectorXd v(components);
+  for (Index k = 0; k < values; ++k) {
+    for (int i = 0; i < components; ++i) v(i) = normal(rng);
+    (void)detector.update(v);
+  }
+  return static_cast<double>(values) / static_cast<double>(detector.alarm_count());
+}
+
+TEST(CusumDetector, FalseAlarmsAtTheDesignedRateOnIndependentDraws) {
+  // Two components, four sums: one false alarm every 200 values by design.
+  const double h = adaptobs::cusum_threshold(0.5, 200.0, 2);
+  const double spacing = measured_spacing(0.5, h, 2, 0.0, 400000, 11);  // about 2000 alarms
+  EXPECT_GT(spacing, 0.85 * 200);
+  EXPECT_LT(spacing, 1.15 * 200);
+}
+
+TEST(CusumDetector, DetectionDelayMatchesSiegmund) {
+  // A shift of 1.5 standard deviations in one component: every alarm is a
+  // detection, spaced by the out-of-control run length.
+  const double h = 5.0;
+  const double spacing = measured_spacing(0.5, h, 1, 1.5, 200000, 12);
+  const double expected = adaptobs::cusum_mean_run_length(0.5, h, 1.5);  // about 6.1
+  EXPECT_NEAR(spacing, expected, 0.1 * expected);
+}
+
+TEST(CusumDetector, IsolatesTheComponentThatMoved) {
+  const Eigen::Vector3d nominal(1, 2, 3), scale(0.1, 0.1, 0.2);
+  adaptobs::CusumDetector<double, 3> detector(nominal, scale, 0.5, 4.0);
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0, 1);
+  for (int k = 0; k < 50; ++k) {
+    Eigen::Vector3d v = nominal + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)).cwiseProduct(scale);
+    (void)detector.update(v);
+  }
+  ASSERT_EQ(detector.alarm_count(), 0);
+  // Component 2 drops by 3 scales: the lower sum of component 2 alarms.
+  Index alarms_at = -1;
+  for (int k = 0; k < 20 && alarms_at < 0; ++k) {
+    Eigen::Vector3d v = nominal + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)).cwiseProduct(scale);
+    v(2) -= 3 * scale(2);
+    ASSERT_TRUE(adaptobs::accepted(detector.update(v)));
+    if (detector.alarm()) alarms_at = k;
+  }
+  ASSERT_GE(alarms_at, 0);
+  EXPECT_LE(alarms_at, 4);  // (h + ν)/(3 − ν) ≈ 1.8 values on average
+  EXPECT_EQ(detector.isolated(), 2);
+  EXPECT_EQ(detector.direction(), -1);
+  EXPECT_EQ(detector.statistic(), 0.0);  // the sums restart after an alarm
+  // Re-anchored on the new value, the detector is quiet again.
+  detector.rearm(Eigen::Vector3d(1, 2, 3 - 3 * scale(2)));
+  for (int k = 0; k < 50; ++k) {
+    Eigen::Vector3d v = detector.nominal() + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)).cwiseProduct(scale);
+    (void)detector.update(v);
+  }
+  EXPECT_EQ(detector.alarm_count(), 1);
+}
+
+TEST(CusumDetector, StrideAndHoldOff) {
+  // A constant deviation of 2 scales with ν = 0.5 adds 1.5 per evaluation: h = 4
+  // is crossed at the third evaluation. With stride 3 that is the 7th value.
+  adaptobs::CusumDetector<double, 1> detector(Eigen::Matrix<double, 1, 1>(0.0), Eigen::Matrix<double, 1, 1>(1.0), 0.5,
+                                              4.0, {.stride = 3, .hold_off = 2});
+  const Eigen::Matrix<double, 1, 1> v(2.0);
+  std::vector<int> alarms;
+  for (int k = 0; k < 40; ++k) {
+    (void)detector.update(v);
+    if (detector.alarm()) alarms.push_back(k);
+  }
+  // Evaluations at values 0, 3, 6, ...; alarm at the 3rd (value 6), two skipped
+  // (9, 12), three more (15, 18, 21), and so on.
+  EXPECT_EQ(alarms, (std::vector<int>{6, 21, 36}));
+  EXPECT_EQ(detector.isolated(), 0);
+  EXPECT_EQ(detector.direction(), 1);
+}
+
+TEST(CusumDetector, ReanchorsAfterTheHoldOff) {
+  // The same constant deviation: alarm at the 3rd evaluation, two held off,
+  // then the value becomes the nominal and the sums stay at zero.
+  adaptobs::CusumDetector<double, 1> detector(Eigen::Matrix<double, 1, 1>(0.0), Eigen::Matrix<double, 1, 1>(1.0), 0.5,
+                                              4.0, {.stride = 1, .hold_off = 2, .reanchor = true});
+  for (int k = 0; k < 30; ++k) (void)detector.update(Eigen::Matrix<double, 1, 1>(2.0));
+  EXPECT_EQ(detector.alarm_count(), 1);
+  EXPECT_EQ(detector.nominal()(0), 2.0);
+  // A second change, of −2 from the new nominal, is detected at the 3rd value.
+  int at = -1;
+  for (int k = 0; k < 10 && at < 0; ++k) {
+    (void)detector.update(Eigen::Matrix<double, 1, 1>(0.0));
+    if (detector.alarm()) at = k;
+  }
+  EXPECT_EQ(at, 2);
+  EXPECT_EQ(detector.direction(), -1);
+}
+
+TEST(CusumDetector, RejectsNonFiniteValuesUnchanged) {
+  const Eigen::Vector2d nominal(0, 0), scale(1, 1);
+  adaptobs::CusumDetector<double, 2> detector(nominal, scale, 0.5, 3.0, {.stride = 2});
+  adaptobs::CusumDetector<double, 2> twin = detector;
+  const std::vector<Eigen::Vector2d> values{{1.2, -0.3}, {2.0, 0.1}, {1.7, -1.9}, {2.4, 0.0}, {1.9, 0.2}};
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const auto& v : values) {
+    EXPECT_EQ(detector.update(Eigen::Vector2d(std::nan(""), 0)), adaptobs::UpdateStatus::nonfinite_input);
+    EXPECT_EQ(detector.update(Eigen::Vector2d(0, inf)), adaptobs::UpdateStatus::nonfinite_input);
+    ASSERT_TRUE(adaptobs::accepted(detector.update(v)));
+    ASSERT_TRUE(adaptobs::accepted(twin.update(v)));
+    EXPECT_TRUE(adaptobs::testing::bitwise_equal(detector.upper(), twin.upper()));
+    EXPECT_TRUE(adaptobs::testing::bitwise_equal(detector.lower(), twin.lower()));
+    EXPECT_EQ(detector.alarm(), twin.alarm());
+  }
+  EXPECT_EQ(detector.alarm_count(), twin.alarm_count());
+  EXPECT_GE(twin.alarm_count(), 1);
+}
+
+TEST(CusumDetector, BadConfigurationNamesTheArgument) {
+  const Eigen::Vector2d nominal(1, 1), scale(1, 1);
+  using Detector = adaptobs::CusumDetector<double, 2>;
+  EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, Eigen::Vector2d(1, 0), 0.5, 3.0); }), "scale"));
+  EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, scale, 0.0, 3.0); }), "drift"));
+  EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, scale, 0.5, -1.0); }), "threshold"));
+  EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, scale, 0.5, 3.0, {.stride = 0}); }),
+                    "options.stride"));
+  EXPECT_TRUE(names(configuration_error_of([&] { Detector(Eigen::Vector2d(1, NAN), scale, 0.5, 3.0); }), "nominal"));
+  EXPECT_TRUE(names(configuration_error_of([&] {
+                      adaptobs::CusumDetector<double>(Eigen::VectorXd::Zero(2), Eigen::VectorXd::Ones(3), 0.5, 3.0);
+                    }),
+                    "scale"));
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::cusum_threshold(0.5, -1.0); }), "mean_evaluations"));
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::cusum_threshold(0.5, 1.0); }), "mean_evaluations"));
+}
+
+TEST(CusumCalibration, RefusesCorrelatedValuesNamingTheStride) {
+  // A slow random walk around the nominal value: successive values are nearly
+  // equal, so a stride of 1 breaks the independence the threshold assumes.
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal(0, 1);
+  std::vector<std::vector<Eigen::Matrix<double, 1, 1>>> runs(1);
+  double x = 0;
+  for (int k = 0; k < 60000; ++k) {
+    x = 0.99 * x + 0.1 * normal(rng);
+    runs[0].push_back(Eigen::Matrix<double, 1, 1>(x));
+  }
+  const Eigen::Matrix<double, 1, 1> nominal(0.0);
+  const std::string message =
+      configuration_error_of([&] { (void)adaptobs::calibrate_cusum(runs, nominal, 0.5, 100.0, 1); });
+  EXPECT_TRUE(names(message, "stride")) << message;
+  // Every 500th value is nearly independent (0.99^500 < 0.01): accepted.
+  const auto design = adaptobs::calibrate_cusum(runs, nominal, 0.5, 5.0, 500, {.min_expected_alarms_to_check = 1e9});
+  EXPECT_LT(design.lag_correlation, 0.2);
+  EXPECT_TRUE(names(configuration_error_of([&] { (void)adaptobs::calibrate_cusum(runs, nominal, 0.5, 5.0, 100); }),
+                    "stride"));
+}
+
+// ---------------------------------------------------------------- χ² test
+
+TEST(ChiSquareTest, FalseAlarmsAtTheDesignedRateOnCorrelatedChannels) {
+  // White Gaussian errors with a non-diagonal covariance S = LLᵀ: the test must
+  // weigh them by S⁻¹ to reach its designed 5 % per window.
+  Eigen::Matrix2d L;
+  L << 0.02, 0.0, 0.015, 0.005;
+  const Eigen::Matrix2d S = L * L.transpose();
+  adaptobs::ChiSquareTest<double, 2> test(S, 10, 0.05);
+  EXPECT_NEAR(test.threshold(), adaptobs::chi_square_upper_quantile(20, 0.05), 1e-12);
+  EXPECT_EQ(test.mean_samples_between_false_alarms(), 200.0);
+  std::mt19937_64 rng(21);
+  std::normal_distribution<double> normal(0, 1);
+  for (int k = 0; k < 200000; ++k) ASSERT_TRUE(adaptobs::accepted(test.update(L * Eigen::Vector2d(normal(rng), normal(rng)))));
+  ASSERT_EQ(test.decisions(), 20000);
+  const double rate = static_cast<double>(test.alarm_count()) / 20000.0;  // 1000 expected, σ ≈ 31
+  EXPECT_NEAR(rate, 0.05, 0.006);
+}
+
+TEST(ChiSquareTest, RejectsNonFiniteErrorsUnchangedAndNamesBadArguments) {
+  adaptobs::ChiSquareTest<double, 2> test(Eigen::Matrix2d::Identity(), 3, 0.1);
+  ASSERT_TRUE(adaptobs::accepted(test.update(Eigen::Vector2d(1, 2))));
+  const double before = test.statistic();
+  EXPECT_EQ(test.update(Eigen::Vector2d(NAN, 0)), adaptobs::UpdateStatus::nonfinite_input);
+  EXPECT_EQ(test.update(Eigen::Vector2d(1e200, 0)), adaptobs::UpdateStatus::nonfinite_input);  // overflows
+  EXPECT_EQ(test.statistic(), before);
+  ASSERT_TRUE(adaptobs::accepted(test.update(Eigen::Vector2d(0, 1))));
+  ASSERT_TRUE(adaptobs::accepted(test.update(Eigen::Vector2d(3, 0))));
+  EXPECT_EQ(test.decisions(), 1);  // the two rejected samples did not count
+  EXPECT_EQ(test.decision_statistic(), 15.0);
+
+  using Test = adaptobs::ChiSquareTest<double, 2>;
+  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+  for (double p : {0.0, 1.0, -0.5})
+    EXPECT_TRUE(names(configuration_error_of([&] { Test(I, 5, p); }), "false_alarm_probability"));
+  EXPECT_TRUE(names(configuration_error_of([&] { Test(I, 0, 0.1); }), "window"));
+  EXPECT_TRUE(names(configuration_error_of([&] { Test(Eigen::Matrix2d(Eigen::Vector2d(1, -1).asDiagonal()), 5, 0.1); }),
+                    "covariance"));
+}
+
+TEST(ChiSquareTest, TwoMomentCorrectionRestoresTheRateOnCorrelatedErrors) {
+  // Unit-variance AR(1) errors with correlation 0.6 from step to step: the window
+  // sums have the right mean but about twice the variance of χ²₂₀, so the plain
+  // threshold at α = 0.5 % alarms several times too often. The correction
+  // measured on fault-free windows brings the rate back.
+  auto errors = [](std::uint64_t seed, int n) {
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<double> normal(0, 1);
+    std::vector<Eigen::Matrix<double, 1, 1>> e;
+    double x = normal(rng);
+    for (int k = 0; k < n; ++k) {
+      x = 0.6 * x + 0.8 * normal(rng);
+      e.push_back(Eigen::Matrix<double, 1, 1>(x));
+    }
+    return e;
+  };
+  adaptobs::FaultFreeRecord<double, 1, 1> record;
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> normal(0, 1);
+  for (std::uint64_t s = 0; s < 4; ++s) {
+    record.new_run();
+    record.output_errors.back() = errors(100 + s, 50000);
+    for (int k = 0; k < 50000; ++k) record.parameters.back().push_back(Eigen::Matrix<double, 1, 1>(normal(rng)));
+  }
+  const auto design =
+      adaptobs::design_fault_monitor(record, Eigen::Matrix<double, 1, 1>(0.0), 1.0, 4000.0, Index{1}, Index{20});
+  EXPECT_EQ(design.chi_square_windows, 10000);
+  // Var of a window sum of squared AR(1) terms: 2 Σ_{i,j} ρ^{2|i−j|} ≈ 2·20·(1 + ρ²)/(1 − ρ²) = 85, mean 20.
+  EXPECT_NEAR(design.chi_square_options.scale, 85.0 / 40, 0.25);
+  EXPECT_NEAR(design.chi_square_options.degrees_of_freedom, 2 * 400 / 85.0, 1.0);
+  adaptobs::ChiSquareTest<double, 1> plain(design.output_error_covariance, 20, design.false_alarm_probability);
+  adaptobs::ChiSquareTest<double, 1> corrected(design.output_error_covariance, 20, design.false_alarm_probability,
+                                               design.chi_square_options);
+  for (const auto& e : errors(7, 800000)) {
+    (void)plain.update(e);
+    (void)corrected.update(e);
+  }
+  const double expected = 40000 * design.false_alarm_probability;  // 200 alarms
+  EXPECT_GT(plain.alarm_count(), 3 * expected);
+  EXPECT_GT(corrected.alarm_count(), 0.5 * expected);
+  EXPECT_LT(corrected.alarm_count(), 2.0 * expected);
+  std::cout << "plain " << plain.alarm_count() << " corrected " << corrected.alarm_count() << " expected " << expected
+            << "\n";
+}
+
+// ---------------------------------------------------------------- satellite, paper 000 §4
+
+// Both detectors designed once for the calibration tests: a mean time between
+// false alarms of 200 s, so that the verification runs see hundreds of alarms.
+const satellite::MonitorDesign& short_design() {
+  static const satellite::MonitorDesign design = satellite::design_monitor(200.0);
+  return design;
+}
+
+TEST(SatelliteFaultDetection, GuyaderZhangOutputErrorIsItsInnovation) {
+  static_assert(adaptobs::DiagnosableObserver<decltype(satellite::make_observer())>);
+  auto plant = satellite::make_plant<double>(0.01, 4);
+  auto observer = satellite::make_observer();
+  EXPECT_EQ(observer.output_error(), Eigen::Vector2d::Zero());
+  for (int k = 0; k < 30; ++k, plant.advance()) {
+    const Eigen::Vector2d expected = plant.sample().y - satellite::output_matrix<double>() * observer.state();
+    ASSERT_TRUE(adaptobs::accepted(observer.update(plant.sample())));
+    ASSERT_EQ(observer.output_error(), expected);
+  }
+  auto bad = plant.sample();
+  bad.y(0) = NAN;
+  const Eigen::Vector2d before = observer.output_error();
+  EXPECT_FALSE(adaptobs::accepted(observer.update(bad)));
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), before));
+  const adaptobs::OutputMask<satellite::Dims<double>> second_only(false, true);
+  ASSERT_TRUE(adaptobs::accepted(observer.update(bad, second_only)));
+  EXPECT_EQ(observer.output_error()(0), 0.0);
+  EXPECT_NE(observer.output_error()(1), 0.0);
+}
+
+// Alarms per unit time of `run(seed)` (a fault-free run) over seeds 101, 102, ...
+// (the designs use seeds 1 to 20), and their count.
+template <class Run>
+std::pair<double, Index> fault_free_rate(const Run& run, int seeds) {
+  Index alarms = 0;
+  double time = 0;
+  for (int s = 0; s < seeds; ++s) {
+    const adaptobs::MonitoredRun r = run(101 + static_cast<std::uint64_t>(s));
+    alarms += static_cast<Index>(r.alarms.size());
+    time += r.end - r.start;
+  }
+  return {static_cast<double>(alarms) / time, alarms};
+}
+
+std::pair<double, Index> satellite_fault_free_rate(adaptobs::examples::Detector which) {
+  return fault_free_rate(
+      [&](std::uint64_t seed) { return satellite::monitored_run(short_design(), which, {}, seed, false, 3100); }, 20);
+}
+
+TEST(SatelliteFaultDetection, CusumFalseAlarmRateMatchesDesign) {
+  const auto& design = short_design();
+  // Values one pulse period apart are close to independent, as the design requires.
+  EXPECT_LT(design.cusum.lag_correlation, 0.1);
+  const auto [rate, alarms] = satellite_fault_free_rate(adaptobs::examples::Detector::cusum);
+  std::cout << "cusum: " << alarms << " false alarms, one every " << 1 / rate << " s (designed 200 s)\n";
+  EXPECT_GE(alarms, 200);
+  EXPECT_GE(rate, 0.5 / 200) << "alarms " << alarms;
+  EXPECT_LE(rate, 2.0 / 200) << "alarms " << alarms;
+}
+
+TEST(SatelliteFaultDetection, ChiSquareFalseAlarmRateMatchesDesign) {
+  const auto& design = short_design();
+  // The output errors of the paper's gain: about 0.0112 rad or distance units per channel.
+  EXPECT_NEAR(std::sqrt(design.output_error_covariance(0, 0)), 0.0112, 0.001);
+  const auto [rate, alarms] = satellite_fault_free_rate(adaptobs::examples::Detector::chi_square);
+  std::cout << "chi-square: " << alarms << " false alarms, one every " << 1 / rate << " s (designed 200 s)\n";
+  EXPECT_GE(alarms, 200);
+  EXPECT_GE(rate, 0.5 / 200) << "alarms " << alarms;
+  EXPECT_LE(rate, 2.0 / 200) << "alarms " << alarms;
+}
+
+// The default fault: the tangential thruster loses 40 % at t = 150 s. Designed
+// mean time between false alarms 10^5 s, 1000 seeds, each beside its fault-free twin.
+adaptobs::DetectionSummary default_fault_summary(const satellite::ThrusterFault& fault, Index seeds) {
+  static const satellite::MonitorDesign design = satellite::design_monitor(1e5);
+  auto scenario = [&](std::uint64_t seed, bool faulty) {
+    return satellite::monitored_run(design, adaptobs::examples::Detector::cusum, fault, seed, faulty, fault.time + fault.ramp + 100);
+  };
+  return adaptobs::evaluate_detection(scenario, {.time = fault.time, .parameter = fault.parameter}, 1000, seeds, 2);
+}
+
+TEST(SatelliteFaultDetection, DefaultFaultDetectedAndIsolatedOver1000Seeds) {
+  const auto summary = default_fault_summary({}, 1000);
+  EXPECT_GE(summary.detection_rate, 0.99);
+  EXPECT_LE(summary.mean_detection_delay, 20.0);
+  EXPECT_GE(summary.isolation_rate, 0.95);
+  EXPECT_GE(summary.quiet_before_fault_rate, 0.99);
+  // The fault-free twins: 10^5 s of monitoring, about one false alarm by design.
+  EXPECT_LE(summary.false_alarms, 6);
+  RecordProperty("mean_detection_delay", std::to_string(summary.mean_detection_delay));
+  RecordProperty("p95_detection_delay", std::to_string(summary.p95_detection_delay));
+  std::cout << "detection_rate " << summary.detection_rate << " mean_delay " << summary.mean_detection_delay
+            << " p95_delay " << summary.p95_detection_delay << " isolation " << summary.isolation_rate << " quiet "
+            << summary.quiet_before_fault_rate << " false_alarms " << summary.false_alarms << " in "
+            << summary.fault_free_time << " s\n";
+}
+
+TEST(SatelliteFaultDetection, FiftySecondDriftDetected) {
+  const auto summary = default_fault_summary({.ramp = 50}, 500);
+  EXPECT_GE(summary.detection_rate, 0.95);
+  EXPECT_GE(summary.isolation_rate, 0.95);
+  // The ramp has reached 1/5 of its size (6 scales) 10 s in: detected within it.
+  EXPECT_LE(summary.mean_detection_delay, 50.0);
+  std::cout << "drift: detection_rate " << summary.detection_rate << " mean_delay " << summary.mean_detection_delay
+            << " p95_delay " << summary.p95_detection_delay << " isolation " << summary.isolation_rate << "\n";
+}
+
+// ---------------------------------------------------------------- waste water plant, paper 004 §6
+
+const wwtp::MonitorDesign& wwtp_short_design() {
+  static const wwtp::MonitorDesign design = wwtp::design_monitor(2000.0);  // samples
+  return design;
+}
+
+TEST(WwtpFaultDetection, FalseAlarmRatesMatchDesign) {
+  static_assert(adaptobs::DiagnosableObserver<adaptobs::TakagiSugenoObserver<wwtp::Model<double>>>);
+  const auto& design = wwtp_short_design();
+  EXPECT_LT(design.cusum.lag_correlation, 0.1);
+  for (const auto which : {adaptobs::examples::Detector::cusum, adaptobs::examples::Detector::chi_square}) {
+    // 25 runs of 20000 monitored samples: 250 false alarms by design.
+    const auto [rate, alarms] = fault_free_rate(
+        [&](std::uint64_t seed) { return wwtp::monitored_run(design, which, {}, seed, false, 20300); }, 25);
+    std::cout << (which == adaptobs::examples::Detector::cusum ? "cusum: " : "chi-square: ") << alarms
+              << " false alarms, one every " << 1 / rate << " samples (designed 2000)\n";
+    EXPECT_GE(alarms, 200);
+    EXPECT_GE(rate, 0.5 / 2000);
+    EXPECT_LE(rate, 2.0 / 2000);
+  }
+}
+
+TEST(WwtpFaultDetection, DefaultFaultDetectedOver1000Seeds) {
+  // θ from 0 to 0.15 at sample 400; false alarms every 10^5 samples by design.
+  static const wwtp::MonitorDesign design = wwtp::design_monitor(1e5);
+  const wwtp::GrowthFault fault;
+  auto scenario = [&](std::uint64_t seed, bool faulty) {
+    return wwtp::monitored_run(design, adaptobs::examples::Detector::cusum, fault, seed, faulty, 600);
+  };
+  const auto summary = adaptobs::evaluate_detection(scenario, {.time = 400, .parameter = 0}, 1000, 1000, 2);
+  EXPECT_GE(summary.detection_rate, 0.95);
+  EXPECT_GE(summary.isolation_rate, 0.95);
+  EXPECT_GE(summary.quiet_before_fault_rate, 0.99);
+  EXPECT_LE(summary.mean_detection_delay, 100.0);  // within one dilution period
+  std::cout << "wwtp: detection_rate " << summary.detection_rate << " mean_delay " << summary.mean_detection_delay
+            << " p95_delay " << summary.p95_detection_delay << " quiet " << summary.quiet_before_fault_rate
+            << " false_alarms " << summary.false_alarms << " in " << summary.fault_free_time << " samples\n";
+}
+
+// ---------------------------------------------------------------- re-arming an RLS-type observer
+
+// Dey–Bhasin SISO plant of paper 003 §5 with plain RLS (Γ₀ = 10⁴ I): at t = 300
+// the input gain drops by 40 % (B → 0.6 B). A CUSUM on p̂ alarms; with
+// `restart_adaptation` at the alarm the law converges to the new B at its
+// initial speed, without it RLS's gain has shrunk like 1/t and it crawls.
+// Returns the samples from the change until every estimate is within 1 % of
+// its new value for good (−1: not within `horizon`), and the alarm time.
+std::pair<Index, Index> samples_to_reconverge(bool restart_at_alarm, Index horizon) {
+  namespace siso = adaptobs::examples::dey_bhasin::siso;
+  using Observer = adaptobs::DeyBhasinObserver<double, 2, 1, 1, adaptobs::RecursiveLeastSquares>;
+  Observer observer(siso::f(), siso::x0(), siso::a_hat0(), siso::B_hat0(),
+                    {.gamma0 = 1e4 * Eigen::Matrix4d::Identity(), .R = Eigen::Matrix<double, 1, 1>::Identity()});
+  const Index change = 300;
+  // The plant in its observer canonical form, x⁺ = A x + B u, y = x₁, simulated by hand.
+  const Eigen::Matrix2d A = adaptobs::block_companion_matrix<1>(siso::a());
+  const Eigen::Vector2d new_B = 0.6 * siso::B();
+  Eigen::Vector2d x = siso::x0();
+  // p̂ = (â, B̂) against its value before the change, in scales of 1 % of each
+  // entry: noise-free data, so the scale is the change worth detecting.
+  Eigen::Vector4d nominal;
+  nominal << siso::a(), siso::B();
+  adaptobs::CusumDetector<double, 4> cusum(nominal, 0.01 * nominal.cwiseAbs(), 0.5, 5.0);
+  Index alarm_at = -1, within_since = -1;
+  for (Index k = 0; k < change + horizon; ++k) {
+    const double t = static_cast<double>(k);
+    const Eigen::Matrix<double, 1, 1> u(std::sin(0.2 * t) + std::sin(0.9 * t));
+    EXPECT_TRUE(adaptobs::accepted(observer.update(Observer::Sample{u, Eigen::Matrix<double, 1, 1>(x(0))})));
+    x = A * x + (k < change ? siso::B() : new_B) * u;
+    Eigen::Vector4d p;
+    p << observer.a_hat(), observer.B_hat();
+    if (k >= 200 && alarm_at < 0) {
+      (void)cusum.update(p);
+      if (cusum.alarm()) {
+        alarm_at = k;
+        if (restart_at_alarm) observer.restart_adaptation();
+      }
+    }
+    if (k >= change) {
+      const bool within = (observer.B_hat() - new_B).cwiseAbs().maxCoeff() <= 0.01 * new_B.cwiseAbs().minCoeff() &&
+                          (observer.a_hat() - siso::a()).cwiseAbs().maxCoeff() <= 0.01 * siso::a().cwiseAbs().minCoeff();
+      if (!within) within_since = -1;
+      else if (within_since < 0) within_since = k;
+    }
+  }
+  return {within_since < 0 ? -1 : within_since - change, alarm_at};
+}
+
+TEST(RearmAfterAlarm, RlsConvergesToTheNewValueAfterARestart) {
+  const auto [with_restart, alarm] = samples_to_reconverge(true, 2000);
+  const auto [without_restart, alarm_too] = samples_to_reconverge(false, 2000);
+  std::cout << "alarm " << alarm - 300 << " samples after the change; within 1 % after " << with_restart
+            << " samples with the restart, " << without_restart << " without\n";
+  ASSERT_GE(alarm, 300);
+  EXPECT_LE(alarm - 300, 15);  // 9 samples measured
+  EXPECT_EQ(alarm, alarm_too);
+  // Measured: within 1 % 14 samples after the change with the restart; without
+  // it, RLS has not got there 2000 samples later.
+  ASSERT_GE(with_restart, 0);
+  EXPECT_LE(with_restart, 30);
+  EXPECT_EQ(without_restart, -1);
+}
+
+TEST(DetectionEvaluation, SameSummaryOnOneAndTwoThreads) {
+  // A scenario whose alarms depend on the seed only: the summary must not depend
+  // on which thread ran which seed.
+  auto scenario = [](std::uint64_t seed, bool faulty) {
+    adaptobs::MonitoredRun run{.start = 0, .end = 100, .alarms = {}};
+    std::mt19937_64 rng(seed * 2 + (faulty ? 1 : 0));
+    std::uniform_real_distribution<double> time(0, 100);
+    const int n = static_cast<int>(rng() % 3);
+    for (int i = 0; i < n; ++i) run.alarms.push_back({time(rng), static_cast<Index>(rng() % 2)});
+    std::sort(run.alarms.begin(), run.alarms.end(), [](auto& a, auto& b) { return a.time < b.time; });
+    return run;
+  };
+  const adaptobs::FaultDescription fault{.time = 50, .parameter = 1};
+  const auto one = adaptobs::evaluate_detection(scenario, fault, 7, 300, 1);
+  const auto two = adaptobs::evaluate_detection(scenario, fault, 7, 300, 2);
+  EXPECT_EQ(one.delays, two.delays);
+  EXPECT_EQ(one.false_alarms, two.false_alarms);
+  EXPECT_EQ(one.isolation_rate, two.isolation_rate);
+  // Checked by hand from the runs.
+  Index detected = 0, quiet = 0, isolated = 0, false_alarms = 0;
+  for (std::uint64_t s = 7; s < 307; ++s) {
+    const auto f = scenario(s, true);
+    bool early = false, found = false;
+    for (const auto& a : f.alarms) {
+      if (a.time < 50) early = true;
+      else if (!found) {
+        found = true;
+        ++detected;
+        isolated += a.isolated == 1;
+      }
+    }
+    quiet += !early;
+    false_alarms += static_cast<Index>(scenario(s, false).alarms.size());
+  }
+  EXPECT_EQ(one.detection_rate, static_cast<double>(detected) / 300);
+  EXPECT_EQ(one.quiet_before_fault_rate, static_cast<double>(quiet) / 300);
+  EXPECT_EQ(one.isolation_rate, static_cast<double>(isolated) / static_cast<double>(detected));
+  EXPECT_EQ(one.false_alarms, false_alarms);
+  EXPECT_DOUBLE_EQ(one.false_alarm_rate, static_cast<double>(false_alarms) / (300 * 100.0));
+  // A scenario that throws: the exception reaches the caller.
+  auto failing = [](std::uint64_t seed, bool) -> adaptobs::MonitoredRun {
+    if (seed == 20) throw std::runtime_error("seed 20");
+    return {};
+  };
+  EXPECT_THROW((void)adaptobs::evaluate_detection(failing, fault, 1, 40, 2), std::runtime_error);
+}
+
+}  // namespace
