@@ -1,5 +1,5 @@
-// Fault detection at the satellite's sizes (paper 000 §4): the CUSUM on θ̂ and
-// the χ² test on the output errors, each alone and with the Guyader–Zhang
+// Fault detection at the satellite's sizes (paper 000 §4): the CUSUM and the
+// GLR on θ̂ and the χ² test on the output errors, each alone and with the Guyader–Zhang
 // update they watch (BM_GuyaderZhang_Satellite, same binary, is the update
 // alone); and the Monte-Carlo evaluator's throughput on 1 and 2 threads.
 
@@ -44,19 +44,24 @@ const Recording& recording() {
   return r;
 }
 
+// Times `detector.update(values[i])` over the recorded values, one per iteration.
+template <class Detector, class Values>
+void time_replay(benchmark::State& state, Detector& detector, const Values& values) {
+  std::size_t i = 0;
+  for (auto _ : state) {
+    auto status = detector.update(values[i]);
+    benchmark::DoNotOptimize(status);
+    i = i + 1 == values.size() ? 0 : i + 1;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 // The CUSUM alone; range(0) is the stride (1: every value reaches the sums).
 void BM_Cusum_Satellite(benchmark::State& state) {
   const auto& d = design();
   adaptobs::CusumDetector<double, 2> cusum(d.nominal, d.cusum.scale, d.cusum.drift, d.cusum.threshold,
                                            {.stride = state.range(0)});
-  const auto& values = recording().parameters;
-  std::size_t i = 0;
-  for (auto _ : state) {
-    auto status = cusum.update(values[i]);
-    benchmark::DoNotOptimize(status);
-    i = i + 1 == values.size() ? 0 : i + 1;
-  }
-  state.SetItemsProcessed(state.iterations());
+  time_replay(state, cusum, recording().parameters);
 }
 BENCHMARK(BM_Cusum_Satellite)->Arg(1)->Arg(100);
 
@@ -64,23 +69,26 @@ void BM_ChiSquare_Satellite(benchmark::State& state) {
   const auto& d = design();
   adaptobs::ChiSquareTest<double, 2> test(d.output_error_covariance, d.window, d.false_alarm_probability,
                                           d.chi_square_options);
-  const auto& errors = recording().output_errors;
-  std::size_t i = 0;
-  for (auto _ : state) {
-    auto status = test.update(errors[i]);
-    benchmark::DoNotOptimize(status);
-    i = i + 1 == errors.size() ? 0 : i + 1;
-  }
-  state.SetItemsProcessed(state.iterations());
+  time_replay(state, test, recording().output_errors);
 }
 BENCHMARK(BM_ChiSquare_Satellite);
 
-// One Guyader–Zhang update followed by both tests on its estimates (CUSUM stride 1).
+void BM_Glr_Satellite(benchmark::State& state) {
+  const auto& d = design();
+  adaptobs::GlrDetector<double, 2> glr(d.nominal, d.cusum.scale, d.glr_window, d.glr_threshold,
+                                       {.stride = state.range(0)});
+  time_replay(state, glr, recording().parameters);
+}
+BENCHMARK(BM_Glr_Satellite)->Arg(1)->Arg(100);
+
+// One Guyader–Zhang update followed by the monitor's three tests on its
+// estimates; range(0) is the stride of the CUSUM and the GLR (100 as designed,
+// 1 to evaluate them at every sample).
 void BM_GuyaderZhang_Satellite_Monitored(benchmark::State& state) {
   auto observer = satellite::make_observer();
-  auto every_value = design();
-  every_value.cusum_options.stride = 1;
-  adaptobs::FaultMonitor monitor(every_value);
+  auto strided = design();
+  strided.cusum_options.stride = state.range(0);
+  adaptobs::FaultMonitor monitor(strided);
   auto ring = adaptobs::bench::satellite_ring();
   for (auto _ : state) {
     auto status = observer.update(ring.next());
@@ -91,7 +99,7 @@ void BM_GuyaderZhang_Satellite_Monitored(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_GuyaderZhang_Satellite_Monitored);
+BENCHMARK(BM_GuyaderZhang_Satellite_Monitored)->Arg(100)->Arg(1);
 
 // Seeds per second of the evaluator on the default fault (each seed: the faulty
 // run and its twin, 250 s of satellite), range(0) threads.

@@ -8,6 +8,7 @@
 #include <adaptobs/diagnostics/chi_square_test.hpp>
 #include <adaptobs/diagnostics/cusum.hpp>
 #include <adaptobs/diagnostics/fault_monitor.hpp>
+#include <adaptobs/diagnostics/glr.hpp>
 #include <adaptobs/simulation/detection_evaluation.hpp>
 
 #include "models/dey_bhasin.hpp"
@@ -95,8 +96,33 @@ TEST(CusumDetector, FalseAlarmsAtTheDesignedRateOnIndependentDraws) {
   // Two components, four sums: one false alarm every 200 values by design.
   const double h = adaptobs::cusum_threshold(0.5, 200.0, 2);
   const double spacing = measured_spacing(0.5, h, 2, 0.0, 400000, 11);  // about 2000 alarms
+  std::cout << "a false alarm every " << spacing << " values (designed 200)\n";
   EXPECT_GT(spacing, 0.85 * 200);
   EXPECT_LT(spacing, 1.15 * 200);
+}
+
+TEST(Detectors, FloatMatchesDouble) {
+  // The same draws through float and double detectors: the alarms coincide
+  // except where a sum lands within float rounding of the threshold.
+  const double h = adaptobs::cusum_threshold(0.5, 100.0, 1);
+  adaptobs::CusumDetector<double, 1> cusum_d(Eigen::Matrix<double, 1, 1>(0.0), Eigen::Matrix<double, 1, 1>(1.0), 0.5, h);
+  adaptobs::CusumDetector<float, 1> cusum_f(Eigen::Matrix<float, 1, 1>(0.0f), Eigen::Matrix<float, 1, 1>(1.0f), 0.5f,
+                                            static_cast<float>(h));
+  adaptobs::ChiSquareTest<double, 2> chi_d(Eigen::Matrix2d::Identity(), 10, 0.05);
+  adaptobs::ChiSquareTest<float, 2> chi_f(Eigen::Matrix2f::Identity(), 10, 0.05f);
+  EXPECT_NEAR(chi_f.threshold(), chi_d.threshold(), 1e-5 * chi_d.threshold());
+  std::mt19937_64 rng(31);
+  std::normal_distribution<double> normal(0, 1);
+  for (int k = 0; k < 100000; ++k) {
+    const Eigen::Vector2d e(normal(rng), normal(rng));
+    (void)cusum_d.update(e.head<1>());
+    (void)cusum_f.update(e.head<1>().cast<float>());
+    (void)chi_d.update(e);
+    (void)chi_f.update(e.cast<float>());
+  }
+  EXPECT_GT(cusum_d.alarm_count(), 800);  // about 1000 by design
+  EXPECT_NEAR(double(cusum_f.alarm_count()), double(cusum_d.alarm_count()), 3);
+  EXPECT_NEAR(double(chi_f.alarm_count()), double(chi_d.alarm_count()), 3);
 }
 
 TEST(CusumDetector, DetectionDelayMatchesSiegmund) {
@@ -104,7 +130,8 @@ TEST(CusumDetector, DetectionDelayMatchesSiegmund) {
   // detection, spaced by the out-of-control run length.
   const double h = 5.0;
   const double spacing = measured_spacing(0.5, h, 1, 1.5, 200000, 12);
-  const double expected = adaptobs::cusum_mean_run_length(0.5, h, 1.5);  // about 6.1
+  const double expected = adaptobs::cusum_mean_run_length(0.5, h, 1.5);  // 5.67
+  std::cout << "delay " << spacing << " values, Siegmund " << expected << "\n";
   EXPECT_NEAR(spacing, expected, 0.1 * expected);
 }
 
@@ -210,6 +237,55 @@ TEST(CusumDetector, BadConfigurationNamesTheArgument) {
                     "scale"));
   EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::cusum_threshold(0.5, -1.0); }), "mean_evaluations"));
   EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::cusum_threshold(0.5, 1.0); }), "mean_evaluations"));
+}
+
+// ---------------------------------------------------------------- windowed GLR
+
+TEST(GlrDetector, FalseAlarmsAtTheDesignedRateOnIndependentDraws) {
+  const double h = adaptobs::glr_threshold(10, 200.0, 2);
+  adaptobs::GlrDetector<double> glr(Eigen::VectorXd::Zero(2), Eigen::VectorXd::Ones(2), 10, h);
+  std::mt19937_64 rng(41);
+  std::normal_distribution<double> normal(0, 1);
+  Eigen::VectorXd v(2);
+  const Index values = 400000;  // about 2000 alarms
+  for (Index k = 0; k < values; ++k) {
+    v << normal(rng), normal(rng);
+    (void)glr.update(v);
+  }
+  const double spacing = static_cast<double>(values) / static_cast<double>(glr.alarm_count());
+  std::cout << "glr: a false alarm every " << spacing << " values (designed 200), h = " << h << "\n";
+  EXPECT_GT(spacing, 0.8 * 200);
+  EXPECT_LT(spacing, 1.25 * 200);
+}
+
+TEST(GlrDetector, StatisticIsTheBestWindowAndIsolates) {
+  // Values 0, 0, 3, 3 in component 1 and 0 in component 0, window 3: the best
+  // window is the last two values, (3 + 3)² / (2·2) = 9 (the last three: 36/6 = 6).
+  adaptobs::GlrDetector<double, 2> glr(Eigen::Vector2d::Zero(), Eigen::Vector2d(1, 0.5), 3, 100.0);
+  for (double x : {0.0, 0.0, 1.5, 1.5}) ASSERT_TRUE(adaptobs::accepted(glr.update(Eigen::Vector2d(0, x))));
+  EXPECT_DOUBLE_EQ(glr.statistics()(1), 9.0);
+  EXPECT_DOUBLE_EQ(glr.statistics()(0), 0.0);
+  // A drop in component 0 beyond the threshold: named, with its sign, and the window cleared.
+  adaptobs::GlrDetector<double, 2> small(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), 3, 8.0);
+  (void)small.update(Eigen::Vector2d(-3, 0.5));
+  EXPECT_FALSE(small.alarm());  // 9/2 = 4.5
+  (void)small.update(Eigen::Vector2d(-3, 0.5));
+  ASSERT_TRUE(small.alarm());  // 36/4 = 9 > 8
+  EXPECT_EQ(small.isolated(), 0);
+  EXPECT_EQ(small.direction(), -1);
+  EXPECT_EQ(small.statistic(), 0.0);
+  // Non-finite values are rejected with the detector unchanged; bad settings are named.
+  EXPECT_EQ(small.update(Eigen::Vector2d(NAN, 0)), adaptobs::UpdateStatus::nonfinite_input);
+  EXPECT_EQ(small.alarm_count(), 1);
+  EXPECT_TRUE(names(configuration_error_of([] {
+                      adaptobs::GlrDetector<double, 2>(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), 0, 8.0);
+                    }),
+                    "window"));
+  EXPECT_TRUE(names(configuration_error_of([] {
+                      adaptobs::GlrDetector<double, 2>(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), 3, 0.0);
+                    }),
+                    "threshold"));
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::glr_threshold(10, 1e9); }), "mean_evaluations"));
 }
 
 TEST(CusumCalibration, RefusesCorrelatedValuesNamingTheStride) {
@@ -379,6 +455,14 @@ TEST(SatelliteFaultDetection, CusumFalseAlarmRateMatchesDesign) {
   EXPECT_LE(rate, 2.0 / 200) << "alarms " << alarms;
 }
 
+TEST(SatelliteFaultDetection, GlrFalseAlarmRateMatchesDesign) {
+  const auto [rate, alarms] = satellite_fault_free_rate(adaptobs::examples::Detector::glr);
+  std::cout << "glr: " << alarms << " false alarms, one every " << 1 / rate << " s (designed 200 s)\n";
+  EXPECT_GE(alarms, 200);
+  EXPECT_GE(rate, 0.5 / 200) << "alarms " << alarms;
+  EXPECT_LE(rate, 2.0 / 200) << "alarms " << alarms;
+}
+
 TEST(SatelliteFaultDetection, ChiSquareFalseAlarmRateMatchesDesign) {
   const auto& design = short_design();
   // The output errors of the paper's gain: about 0.0112 rad or distance units per channel.
@@ -392,10 +476,11 @@ TEST(SatelliteFaultDetection, ChiSquareFalseAlarmRateMatchesDesign) {
 
 // The default fault: the tangential thruster loses 40 % at t = 150 s. Designed
 // mean time between false alarms 10^5 s, 1000 seeds, each beside its fault-free twin.
-adaptobs::DetectionSummary default_fault_summary(const satellite::ThrusterFault& fault, Index seeds) {
+adaptobs::DetectionSummary default_fault_summary(const satellite::ThrusterFault& fault, Index seeds,
+                                                 adaptobs::examples::Detector which = adaptobs::examples::Detector::cusum) {
   static const satellite::MonitorDesign design = satellite::design_monitor(1e5);
   auto scenario = [&](std::uint64_t seed, bool faulty) {
-    return satellite::monitored_run(design, adaptobs::examples::Detector::cusum, fault, seed, faulty, fault.time + fault.ramp + 100);
+    return satellite::monitored_run(design, which, fault, seed, faulty, fault.time + fault.ramp + 100);
   };
   return adaptobs::evaluate_detection(scenario, {.time = fault.time, .parameter = fault.parameter}, 1000, seeds, 2);
 }
@@ -414,6 +499,17 @@ TEST(SatelliteFaultDetection, DefaultFaultDetectedAndIsolatedOver1000Seeds) {
             << " p95_delay " << summary.p95_detection_delay << " isolation " << summary.isolation_rate << " quiet "
             << summary.quiet_before_fault_rate << " false_alarms " << summary.false_alarms << " in "
             << summary.fault_free_time << " s\n";
+}
+
+TEST(SatelliteFaultDetection, DefaultFaultDetectedAndIsolatedByTheGlr) {
+  const auto summary = default_fault_summary({}, 1000, adaptobs::examples::Detector::glr);
+  EXPECT_GE(summary.detection_rate, 0.99);
+  EXPECT_LE(summary.mean_detection_delay, 20.0);
+  EXPECT_GE(summary.isolation_rate, 0.95);
+  EXPECT_GE(summary.quiet_before_fault_rate, 0.99);
+  std::cout << "glr: detection_rate " << summary.detection_rate << " mean_delay " << summary.mean_detection_delay
+            << " isolation " << summary.isolation_rate << " quiet " << summary.quiet_before_fault_rate
+            << " false_alarms " << summary.false_alarms << "\n";
 }
 
 TEST(SatelliteFaultDetection, FiftySecondDriftDetected) {

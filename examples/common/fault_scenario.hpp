@@ -22,7 +22,7 @@
 namespace adaptobs::examples {
 
 /// Which test of a `FaultMonitor` a scenario scores.
-enum class Detector { cusum, chi_square };
+enum class Detector { cusum, glr, chi_square };
 
 /// Fault-free runs of seeds 1 to `seeds`, recorded from sample `first` on.
 template <int NY, int NP, class Simulate>
@@ -48,6 +48,7 @@ MonitoredRun monitored_run(const Simulate& simulate, const FaultMonitorDesign<do
     if (k < first || !accepted(monitor.observe(observer))) return;
     const double t = static_cast<double>(k) * period;
     if (which == Detector::cusum && monitor.cusum().alarm()) run.alarms.push_back({t, monitor.cusum().isolated()});
+    if (which == Detector::glr && monitor.glr().alarm()) run.alarms.push_back({t, monitor.glr().isolated()});
     if (which == Detector::chi_square && monitor.chi_square().alarm()) run.alarms.push_back({t, -1});
   });
   return run;
@@ -55,20 +56,20 @@ MonitoredRun monitored_run(const Simulate& simulate, const FaultMonitorDesign<do
 
 /// Runs `seeds` seeds (from 1000, beyond any design's) of a fault and of its
 /// fault-free twin, for each test, and prints the summaries as `name = value`
-/// lines: the CUSUM's unprefixed, the χ² test's prefixed `chi_square_`.
+/// lines: the CUSUM's unprefixed, the GLR's prefixed `glr_`, the χ² test's `chi_square_`.
 /// `run(which, seed, faulty)` is one monitored run.
 template <class Run>
 void print_evaluation(const Run& run, const FaultDescription& fault, Index seeds, unsigned threads,
                       double designed_false_alarm_rate) {
   double fault_free_time = 0;
-  for (const Detector which : {Detector::cusum, Detector::chi_square}) {
+  for (const Detector which : {Detector::cusum, Detector::glr, Detector::chi_square}) {
     const auto summary = evaluate_detection(
         [&](std::uint64_t seed, bool faulty) { return run(which, seed, faulty); }, fault, 1000, seeds, threads);
-    const std::string prefix = which == Detector::cusum ? "" : "chi_square_";
+    const std::string prefix = which == Detector::cusum ? "" : which == Detector::glr ? "glr_" : "chi_square_";
     print_value(prefix + "detection_rate", summary.detection_rate);
     print_value(prefix + "mean_detection_delay", summary.mean_detection_delay);
     print_value(prefix + "p95_detection_delay", summary.p95_detection_delay);
-    if (which == Detector::cusum) print_value("isolation_rate", summary.isolation_rate);
+    if (which != Detector::chi_square) print_value(prefix + "isolation_rate", summary.isolation_rate);
     print_value(prefix + "quiet_before_fault_rate", summary.quiet_before_fault_rate);
     print_value(prefix + "false_alarms", double(summary.false_alarms));
     print_value(prefix + "false_alarm_rate", summary.false_alarm_rate);
@@ -79,6 +80,16 @@ void print_evaluation(const Run& run, const FaultDescription& fault, Index seeds
   print_value("designed_false_alarm_rate", designed_false_alarm_rate);
 }
 
+/// The monitor of a single watched run: after an alarm its CUSUM holds off for
+/// 3 evaluations, while θ̂ settles on the new value, then re-anchors there and
+/// watches for the next change.
+template <int NY, int NP>
+FaultMonitor<double, NY, NP> rearming_monitor(FaultMonitorDesign<double, NY, NP> design) {
+  design.cusum_options.hold_off = 3;
+  design.cusum_options.reanchor = true;
+  return FaultMonitor<double, NY, NP>(design);
+}
+
 /// Prints a monitor's design.
 template <int NY, int NP>
 void print_design(const FaultMonitorDesign<double, NY, NP>& design) {
@@ -87,6 +98,8 @@ void print_design(const FaultMonitorDesign<double, NY, NP>& design) {
   print_value("cusum_threshold", design.cusum.threshold);
   print_value("cusum_stride", double(design.cusum_options.stride));
   print_value("cusum_lag_correlation", design.cusum.lag_correlation);
+  print_value("glr_window", double(design.glr_window));
+  print_value("glr_threshold", design.glr_threshold);
   print_value("output_error_covariance", design.output_error_covariance);
   print_value("chi_square_window", double(design.window));
   print_value("chi_square_false_alarm_probability", design.false_alarm_probability);
@@ -96,7 +109,8 @@ void print_design(const FaultMonitorDesign<double, NY, NP>& design) {
 
 /// The fault examples' columns of a monitor after one sample (`watching`: the
 /// sample was fed to it): statistic_cusum, threshold, alarm, isolated (1-based,
-/// 0 for none), statistic_chi_square, threshold_chi_square, alarm_chi_square.
+/// 0 for none), statistic_glr, threshold_glr, alarm_glr, statistic_chi_square,
+/// threshold_chi_square, alarm_chi_square.
 template <int NY, int NP>
 void add_monitor_columns(SeriesTable& row, const FaultMonitor<double, NY, NP>& monitor, bool watching) {
   const auto& cusum = monitor.cusum();
@@ -106,6 +120,9 @@ void add_monitor_columns(SeriesTable& row, const FaultMonitor<double, NY, NP>& m
       .add("threshold", cusum.threshold())
       .add("alarm", alarm ? 1.0 : 0.0)
       .add("isolated", alarm ? double(cusum.isolated() + 1) : 0.0)
+      .add("statistic_glr", watching ? (monitor.glr().alarm() ? monitor.glr().alarm_statistic() : monitor.glr().statistic()) : 0.0)
+      .add("threshold_glr", monitor.glr().threshold())
+      .add("alarm_glr", watching && monitor.glr().alarm() ? 1.0 : 0.0)
       .add("statistic_chi_square", watching ? chi_square.statistic() : 0.0)
       .add("threshold_chi_square", chi_square.threshold())
       .add("alarm_chi_square", watching && chi_square.alarm() ? 1.0 : 0.0);
@@ -113,12 +130,17 @@ void add_monitor_columns(SeriesTable& row, const FaultMonitor<double, NY, NP>& m
 
 /// Gnuplot panels of the CUSUM and χ² columns (after the example's own panels).
 inline constexpr const char* monitor_panels = R"(
-set title 'CUSUM on the normalized estimates: largest sum, threshold and alarms'
+set title 'CUSUM and windowed GLR on the normalized estimates: largest statistic, threshold and alarms'
 set logscale y
-plot csv using 't':(column('statistic_cusum') > 0 ? column('statistic_cusum') : NaN) with lines title 'statistic', \
-     csv using 't':'threshold' with lines dt 2 lc 'red' title 'threshold', \
-     csv using 't':(column('alarm') > 0 ? column('statistic_cusum') : NaN) with points pt 7 ps 1.5 lc 'red' title 'alarm'
+set yrange [0.01:*]
+plot csv using 't':(column('statistic_cusum') > 0 ? column('statistic_cusum') : NaN) with lines title 'CUSUM', \
+     csv using 't':'threshold' with lines dt 2 lc 'red' title 'CUSUM threshold', \
+     csv using 't':(column('alarm') > 0 ? column('statistic_cusum') : NaN) with points pt 7 ps 1.5 lc 'red' title 'CUSUM alarm', \
+     csv using 't':(column('statistic_glr') > 0 ? column('statistic_glr') : NaN) with lines title 'GLR', \
+     csv using 't':'threshold_glr' with lines dt 3 lc 'blue' title 'GLR threshold', \
+     csv using 't':(column('alarm_glr') > 0 ? column('statistic_glr') : NaN) with points pt 9 ps 1.5 lc 'blue' title 'GLR alarm'
 unset logscale y
+set autoscale y
 set title 'chi-square test on the output errors: window sum and threshold'
 plot csv using 't':'statistic_chi_square' with lines title 'statistic', \
      csv using 't':'threshold_chi_square' with lines dt 2 lc 'red' title 'threshold', \

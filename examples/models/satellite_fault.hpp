@@ -71,7 +71,7 @@ struct Simulation {
 
 using MonitorDesign = FaultMonitorDesign<double, 2, 2>;
 
-/// Both tests designed for a mean time between false alarms of
+/// The three tests designed for a mean time between false alarms of
 /// `mean_time_between_false_alarms` seconds each, from fault-free runs of
 /// seeds 1 to `seeds`, `seconds` long, with CUSUM drift ν = `drift` scales.
 inline MonitorDesign design_monitor(double mean_time_between_false_alarms, double drift = 1.0, int seeds = 20,

@@ -67,7 +67,7 @@ struct Simulation {
 
 using MonitorDesign = FaultMonitorDesign<double, 1, 1>;
 
-/// Both tests designed for false alarms every `mean_samples_between_false_alarms`
+/// The three tests designed for false alarms every `mean_samples_between_false_alarms`
 /// samples each, from fault-free runs of seeds 1 to `seeds`, `steps` long.
 inline MonitorDesign design_monitor(double mean_samples_between_false_alarms, double drift = 1.0, int seeds = 20,
                                     Index steps = 10300) {

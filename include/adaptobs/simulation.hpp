@@ -4,6 +4,7 @@
 /// series table with its CSV output (brings in <fstream>, <random> and <charconv>).
 
 #include <adaptobs/simulation/continuous_plant.hpp>
+#include <adaptobs/simulation/detection_evaluation.hpp>
 #include <adaptobs/simulation/discrete_nonlinear_plant.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 #include <adaptobs/simulation/joint_integration.hpp>

@@ -129,7 +129,12 @@ class CusumDetector {
     if constexpr (N == Eigen::Dynamic) detail::require_shape(value, nominal_.size(), 1, "CusumDetector::update", "value");
     if (!value.allFinite()) return UpdateStatus::nonfinite_input;
     alarm_ = false;
-    if (count_++ % options_.stride != 0) return UpdateStatus::accepted;
+    // Every stride-th value is evaluated: a countdown, not a division per value.
+    if (skip_ > 0) {
+      --skip_;
+      return UpdateStatus::accepted;
+    }
+    skip_ = options_.stride - 1;
     if (holding_ > 0) {
       --holding_;
       return UpdateStatus::accepted;
@@ -139,30 +144,25 @@ class CusumDetector {
       reanchor_pending_ = false;
       return UpdateStatus::accepted;
     }
+    // The sums, then their largest; which one it is matters only for an alarm,
+    // and is looked up then (branches on every sum would mispredict at random).
     Scalar largest = 0;
-    Index largest_at = 0;
-    int sign = 0;
     for (Index i = 0; i < nominal_.size(); ++i) {
       const Scalar z = (value(i) - nominal_(i)) * inverse_scale_(i);
       upper_(i) = std::max(Scalar(0), upper_(i) + z - drift_);
       lower_(i) = std::max(Scalar(0), lower_(i) - z - drift_);
-      if (upper_(i) > largest) {
-        largest = upper_(i);
-        largest_at = i;
-        sign = 1;
-      }
-      if (lower_(i) > largest) {
-        largest = lower_(i);
-        largest_at = i;
-        sign = -1;
-      }
+      largest = std::max(largest, std::max(upper_(i), lower_(i)));
     }
     if (largest > threshold_) {
       alarm_ = true;
       ++alarms_;
       alarm_statistic_ = largest;
-      isolated_ = largest_at;
-      direction_ = sign;
+      for (Index i = 0; i < nominal_.size(); ++i)
+        if (upper_(i) == largest || lower_(i) == largest) {
+          isolated_ = i;
+          direction_ = upper_(i) == largest ? 1 : -1;
+          break;
+        }
       upper_.setZero();
       lower_.setZero();
       holding_ = options_.hold_off;
@@ -206,7 +206,7 @@ class CusumDetector {
   void restart() {
     upper_.setZero();
     lower_.setZero();
-    count_ = 0;
+    skip_ = 0;
     holding_ = 0;
     reanchor_pending_ = false;
     alarm_ = false;
@@ -219,7 +219,7 @@ class CusumDetector {
   CusumOptions options_;
   Vector upper_;
   Vector lower_;
-  Index count_ = 0;
+  Index skip_ = 0;  // values still to pass over before the next evaluation
   Index holding_ = 0;
   Index alarms_ = 0;
   Index isolated_ = 0;

@@ -1,9 +1,10 @@
 #pragma once
 /// \file
-/// A fault monitor for any `DiagnosableObserver`: a CUSUM on its parameter
-/// estimates, which detects and isolates a parameter change, and a χ² test on
-/// its output errors, which sees the change while the observer adapts to it;
-/// both designed from fault-free runs for one mean time between false alarms.
+/// A fault monitor for any `DiagnosableObserver`: a CUSUM and a windowed GLR on
+/// its parameter estimates, which detect and isolate a parameter change (the
+/// CUSUM tuned to a size of change, the GLR to none), and a χ² test on its
+/// output errors, which sees the change while the observer adapts to it; all
+/// designed from fault-free runs for one mean time between false alarms each.
 ///
 /// Typical use, in the loop after each accepted update:
 /// \code
@@ -17,6 +18,7 @@
 #include <adaptobs/diagnostics/calibration.hpp>
 #include <adaptobs/diagnostics/chi_square_test.hpp>
 #include <adaptobs/diagnostics/cusum.hpp>
+#include <adaptobs/diagnostics/glr.hpp>
 
 #include <Eigen/Core>
 
@@ -51,7 +53,9 @@ template <typename Scalar, int NY, int NP>
 struct FaultMonitorDesign {
   Eigen::Matrix<Scalar, NP, 1> nominal;     ///< healthy parameters the CUSUM measures deviations from
   CusumCalibration<Scalar, NP> cusum;       ///< scales and threshold, with what the runs showed
-  CusumOptions cusum_options;               ///< its stride
+  CusumOptions cusum_options;               ///< its stride (the GLR's too)
+  Index glr_window = 10;                    ///< evaluations the GLR searches for the change's start
+  Scalar glr_threshold = 0;                 ///< by `glr_threshold`, on the CUSUM's scales
   Eigen::Matrix<Scalar, NY, NY> output_error_covariance;  ///< S of the χ² test
   Index window = 1;                         ///< samples per χ² decision
   Scalar false_alarm_probability = 0;       ///< per χ² window
@@ -67,12 +71,15 @@ struct FaultMonitorDesign {
 ///   of the recorded output errors, α = window / mean_samples_between_false_alarms,
 ///   and the two-moment correction (chi_square_test.hpp, "Correlated errors")
 ///   from the mean and variance of T over the disjoint windows of the runs
-///   (refused with fewer than 50 windows, naming 'record').
+///   (refused with fewer than 50 windows, naming 'record');
+/// - the GLR on \f$\hat\theta\f$ with the CUSUM's scales and stride, window
+///   `glr_window` evaluations, threshold from `glr_threshold`.
 template <typename Scalar, int NY, int NP>
 [[nodiscard]] FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor(const FaultFreeRecord<Scalar, NY, NP>& record,
                                                                       const Eigen::Matrix<Scalar, NP, 1>& nominal,
                                                                       Scalar drift, Scalar mean_samples_between_false_alarms,
-                                                                      Index stride, Index window) {
+                                                                      Index stride, Index window,
+                                                                      Index glr_window = 10) {
   constexpr std::string_view who = "design_fault_monitor";
   detail::require_positive(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms");
   detail::require(window >= 1 && Scalar(window) < mean_samples_between_false_alarms, who, "window",
@@ -83,6 +90,9 @@ template <typename Scalar, int NY, int NP>
   design.cusum = calibrate_cusum(record.parameters, nominal, drift,
                                  mean_samples_between_false_alarms / static_cast<Scalar>(stride), stride);
   design.cusum_options.stride = stride;
+  design.glr_window = glr_window;
+  design.glr_threshold = static_cast<Scalar>(glr_threshold(
+      glr_window, static_cast<double>(mean_samples_between_false_alarms) / static_cast<double>(stride), nominal.size()));
   design.output_error_covariance = sample_covariance(record.output_errors);
   design.window = window;
   design.false_alarm_probability = static_cast<Scalar>(window) / mean_samples_between_false_alarms;
@@ -116,26 +126,31 @@ class FaultMonitor {
  public:
   explicit FaultMonitor(const FaultMonitorDesign<Scalar, NY, NP>& design)
       : cusum_(design.nominal, design.cusum.scale, design.cusum.drift, design.cusum.threshold, design.cusum_options),
+        glr_(design.nominal, design.cusum.scale, design.glr_window, design.glr_threshold, design.cusum_options),
         chi_square_(design.output_error_covariance, design.window, design.false_alarm_probability,
                     design.chi_square_options) {}
 
-  /// Feeds the observer's estimates after an accepted update to both tests.
-  /// Returns `nonfinite_input`, with both tests unchanged, when either would reject them.
+  /// Feeds the observer's estimates after an accepted update to the three tests.
+  /// Returns `nonfinite_input`, with every test unchanged, when one would reject them.
   template <DiagnosableObserver O>
   [[nodiscard]] UpdateStatus observe(const O& observer) {
     if (!observer.parameters().allFinite() || !observer.output_error().allFinite()) return UpdateStatus::nonfinite_input;
     const UpdateStatus chi = chi_square_.update(observer.output_error());
-    if (!accepted(chi)) return chi;  // an overflowing weighted error: the CUSUM has not moved either
+    if (!accepted(chi)) return chi;  // an overflowing weighted error: the others have not moved either
+    (void)glr_.update(observer.parameters());  // finite, hence accepted, as by the CUSUM
     return cusum_.update(observer.parameters());
   }
 
   [[nodiscard]] const CusumDetector<Scalar, NP>& cusum() const noexcept { return cusum_; }
   [[nodiscard]] CusumDetector<Scalar, NP>& cusum() noexcept { return cusum_; }
+  [[nodiscard]] const GlrDetector<Scalar, NP>& glr() const noexcept { return glr_; }
+  [[nodiscard]] GlrDetector<Scalar, NP>& glr() noexcept { return glr_; }
   [[nodiscard]] const ChiSquareTest<Scalar, NY>& chi_square() const noexcept { return chi_square_; }
   [[nodiscard]] ChiSquareTest<Scalar, NY>& chi_square() noexcept { return chi_square_; }
 
  private:
   CusumDetector<Scalar, NP> cusum_;
+  GlrDetector<Scalar, NP> glr_;
   ChiSquareTest<Scalar, NY> chi_square_;
 };
 
