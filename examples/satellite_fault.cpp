@@ -94,6 +94,7 @@ int main(int argc, char** argv) {
             .add("theta", fault.parameters_at(t))
             .add("thetahat", observer.parameters());
         adaptobs::examples::add_monitor_columns(table, monitor, watching);
+        return true;
       });
   print_value("first_alarm_time", first_alarm);
   print_value("detection_delay", first_alarm >= 0 ? first_alarm - fault.time : -1.0);

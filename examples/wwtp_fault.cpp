@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
                                 .add("theta", Eigen::Matrix<double, 1, 1>(fault.theta_at(k)))
                                 .add("thetahat", observer.parameters());
                             adaptobs::examples::add_monitor_columns(table, monitor, watching);
+                            return true;
                           });
   print_value("first_alarm_time", first_alarm);
   print_value("detection_delay", first_alarm >= 0 ? first_alarm - double(fault.step) : -1.0);

@@ -8,7 +8,7 @@
 // which runs `steps` samples of a plant (its noise from `seed`, with the
 // scenario's fault when `faulty`) through an observer and calls
 // `visit(k, observer, plant, sample)` after each accepted update with the
-// sample measured at step k.
+// sample measured at step k; the run stops early when `visit` returns false.
 
 #include "common/example_support.hpp"
 
@@ -32,24 +32,37 @@ FaultFreeRecord<double, NY, NP> record_fault_free(const Simulate& simulate, int 
     record.new_run();
     simulate(static_cast<std::uint64_t>(s), false, steps, [&](Index k, const auto& observer, const auto&, const auto&) {
       if (k >= first) record.add(observer);
+      return true;
     });
   }
   return record;
 }
 
 /// The alarms of one test of a monitor designed by `design`, watching from
-/// sample `first` on, times in units of `period` per sample.
+/// sample `first` on, times in units of `period` per sample. A faulty run stops
+/// at its first alarm after `fault_time`, all the evaluation scores of it.
 template <int NY, int NP, class Simulate>
 MonitoredRun monitored_run(const Simulate& simulate, const FaultMonitorDesign<double, NY, NP>& design, Detector which,
-                           std::uint64_t seed, bool faulty, Index steps, Index first, double period) {
+                           std::uint64_t seed, bool faulty, Index steps, Index first, double period, double fault_time) {
   FaultMonitor monitor(design);
   MonitoredRun run{.start = static_cast<double>(first) * period, .end = static_cast<double>(steps) * period, .alarms = {}};
   simulate(seed, faulty, steps, [&](Index k, const auto& observer, const auto&, const auto&) {
-    if (k < first || !accepted(monitor.observe(observer))) return;
+    if (k < first || !accepted(monitor.observe(observer))) return true;
     const double t = static_cast<double>(k) * period;
-    if (which == Detector::cusum && monitor.cusum().alarm()) run.alarms.push_back({t, monitor.cusum().isolated()});
-    if (which == Detector::glr && monitor.glr().alarm()) run.alarms.push_back({t, monitor.glr().isolated()});
-    if (which == Detector::chi_square && monitor.chi_square().alarm()) run.alarms.push_back({t, -1});
+    bool alarm = false;
+    if (which == Detector::cusum && monitor.cusum().alarm()) {
+      run.alarms.push_back({t, monitor.cusum().isolated()});
+      alarm = true;
+    }
+    if (which == Detector::glr && monitor.glr().alarm()) {
+      run.alarms.push_back({t, monitor.glr().isolated()});
+      alarm = true;
+    }
+    if (which == Detector::chi_square && monitor.chi_square().alarm()) {
+      run.alarms.push_back({t, -1});
+      alarm = true;
+    }
+    return !(faulty && alarm && t > fault_time);
   });
   return run;
 }
@@ -98,6 +111,10 @@ void print_design(const FaultMonitorDesign<double, NY, NP>& design) {
   print_value("cusum_threshold", design.cusum.threshold);
   print_value("cusum_stride", double(design.cusum_options.stride));
   print_value("cusum_lag_correlation", design.cusum.lag_correlation);
+  print_value("cusum_long_run_excess", design.cusum.long_run_excess);
+  print_value("cusum_bias", design.cusum.bias);
+  print_value("cusum_checked_alarms_of_50", double(design.cusum.checked_alarms));
+  print_value("glr_checked_alarms_of_50", double(design.glr_checked_alarms));
   print_value("glr_window", double(design.glr_window));
   print_value("glr_threshold", design.glr_threshold);
   print_value("output_error_covariance", design.output_error_covariance);

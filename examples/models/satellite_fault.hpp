@@ -9,8 +9,8 @@
 /// fault). The default is the tangential thruster losing 40 % of its efficiency
 /// at t = 150 s: \f$\theta_2\f$ from 1.5 to 0.9.
 ///
-/// Both detectors start at `monitor_from` = 100 s, once the estimates have
-/// converged from the paper's initial guess (0.5, 0.5). The CUSUM sees
+/// The tests start at `monitor_from` = 100 s, once the estimates have
+/// converged from the paper's initial guess (0.5, 0.5). The CUSUM and GLR see
 /// \f$\hat\theta\f$ every 10 s, one period of the thrust pulses: the estimate
 /// moves only while a pulse excites it, so values one period apart are nearly
 /// independent (lag-one autocorrelation 0.01 on fault-free runs), as the
@@ -64,7 +64,7 @@ struct Simulation {
     auto observer = make_observer();
     for (Index k = 0; k < steps; ++k, plant.advance()) {
       if (faulty) plant.set_parameters(fault.parameters_at(static_cast<double>(k) * sampling_period));
-      if (accepted(observer.update(plant.sample()))) visit(k, observer, plant, plant.sample());
+      if (accepted(observer.update(plant.sample())) && !visit(k, observer, plant, plant.sample())) return;
     }
   }
 };
@@ -86,7 +86,8 @@ inline MonitorDesign design_monitor(double mean_time_between_false_alarms, doubl
 inline MonitoredRun monitored_run(const MonitorDesign& design, Detector which, const ThrusterFault& fault,
                                   std::uint64_t seed, bool faulty, double seconds) {
   const auto steps = static_cast<Index>(std::llround(seconds / sampling_period));
-  return examples::monitored_run(Simulation{fault}, design, which, seed, faulty, steps, monitor_from, sampling_period);
+  return examples::monitored_run(Simulation{fault}, design, which, seed, faulty, steps, monitor_from, sampling_period,
+                                 fault.time);
 }
 
 }  // namespace adaptobs::examples::satellite

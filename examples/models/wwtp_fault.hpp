@@ -9,7 +9,7 @@
 /// Gaussian noise of standard deviation 0.01 (about 0.25 % of its level), so
 /// that the estimates wander and the alarms have a false-alarm rate to design.
 /// Monitoring starts at sample 300, once θ̂ has converged from θ̂₀ = 0. The
-/// CUSUM sees θ̂ once per period of the dilution rate (100 samples), over which
+/// CUSUM and GLR see θ̂ once per period of the dilution rate (100 samples), over which
 /// it decorrelates (lag-one autocorrelation 0.01 on fault-free runs, 0.10 at
 /// 50 samples).
 
@@ -60,7 +60,7 @@ struct Simulation {
     for (Index k = 0; k < steps; ++k, plant.advance()) {
       auto sample = plant.sample();
       sample.y(0) += measurement_noise(rng);
-      if (accepted(observer.update(sample))) visit(k, observer, plant, sample);
+      if (accepted(observer.update(sample)) && !visit(k, observer, plant, sample)) return;
     }
   }
 };
@@ -78,7 +78,8 @@ inline MonitorDesign design_monitor(double mean_samples_between_false_alarms, do
 
 inline MonitoredRun monitored_run(const MonitorDesign& design, Detector which, const GrowthFault& fault,
                                   std::uint64_t seed, bool faulty, Index steps) {
-  return examples::monitored_run(Simulation{fault}, design, which, seed, faulty, steps, monitor_from, sampling_period);
+  return examples::monitored_run(Simulation{fault}, design, which, seed, faulty, steps, monitor_from, sampling_period,
+                                 static_cast<double>(fault.step));
 }
 
 }  // namespace adaptobs::examples::wwtp

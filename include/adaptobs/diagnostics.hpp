@@ -2,7 +2,7 @@
 /// \file
 /// Umbrella header of fault detection on the estimates: the χ² test on output
 /// errors, the CUSUM and windowed GLR on parameter estimates, their design from fault-free runs,
-/// and the monitor that runs both on any `DiagnosableObserver`. The Monte-Carlo
+/// and the monitor that runs the three on any `DiagnosableObserver`. The Monte-Carlo
 /// evaluator of a detector is in <adaptobs/simulation.hpp>.
 
 #include <adaptobs/diagnostics/calibration.hpp>

@@ -80,7 +80,6 @@ class ChiSquareTest {
     information_ = Scalar(0.5) * (information_ + information_.transpose()).eval();
     const double dof = options.degrees_of_freedom > 0 ? options.degrees_of_freedom : static_cast<double>(window * ny);
     threshold_ = static_cast<Scalar>(options.scale * chi_square_upper_quantile(dof, static_cast<double>(false_alarm_probability)));
-    weighted_.setZero(ny);
   }
 
   /// Takes the output error of one sample. Returns `nonfinite_input`, with the
@@ -89,8 +88,9 @@ class ChiSquareTest {
     if constexpr (NY == Eigen::Dynamic)
       detail::require_shape(output_error, information_.rows(), 1, "ChiSquareTest::update", "output_error");
     if (!output_error.allFinite()) return UpdateStatus::nonfinite_input;
-    weighted_.noalias() = information_ * output_error;
-    const Scalar term = output_error.dot(weighted_);
+    // εᵀS⁻¹ε column by column: no temporary, whatever the sizes.
+    Scalar term = 0;
+    for (Index j = 0; j < information_.cols(); ++j) term += output_error(j) * information_.col(j).dot(output_error);
     if (!std::isfinite(term)) return UpdateStatus::nonfinite_input;
     sum_ += term;
     alarm_ = false;
@@ -131,7 +131,6 @@ class ChiSquareTest {
   Index window_;
   Scalar false_alarm_probability_;
   Matrix information_;
-  Vector weighted_;
   Scalar threshold_ = 0;
   Scalar sum_ = 0;
   Scalar decision_ = 0;

@@ -35,7 +35,9 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/core/detail/bisection.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/diagnostics/sequential_test.hpp>
 
 #include <Eigen/Core>
 
@@ -44,8 +46,10 @@
 
 namespace adaptobs {
 
-/// Siegmund's overshoot correction \f$\rho = -\zeta(1/2)/\sqrt{2\pi} \approx 0.583\f$,
-/// doubled: a standard normal sum crosses a barrier b on average 1.166 beyond it.
+/// Siegmund's correction for the CUSUM's two barriers: \f$2\rho\f$ with
+/// \f$\rho = -\zeta(1/2)/\sqrt{2\pi} \approx 0.583\f$, the mean overshoot of a standard
+/// normal random walk over a barrier, once for the threshold h and once for the
+/// reflecting barrier at 0.
 inline constexpr double siegmund_overshoot = 1.166;
 
 /// Mean number of independent \f$N(\mu, 1)\f$ increments before a one-sided
@@ -74,159 +78,62 @@ inline constexpr double siegmund_overshoot = 1.166;
   // The run length at h = 0 is the least any threshold achieves.
   detail::require(per_sum > cusum_mean_run_length(drift, 0.0), who, "mean_evaluations",
                   "is shorter than the run length at threshold 0: lower the drift");
-  double low = 0, high = 1;
-  while (cusum_mean_run_length(drift, high) < per_sum) {
-    low = high;
-    high *= 2;
-  }
-  while (high - low > 1e-12 * high) {
-    const double mid = 0.5 * (low + high);
-    (cusum_mean_run_length(drift, mid) < per_sum ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
+  return detail::boundary_by_bisection([&](double h) { return cusum_mean_run_length(drift, h) < per_sum; });
 }
 
-/// Settings of a `CusumDetector`.
-struct CusumOptions {
-  Index stride = 1;    ///< feed every stride-th value to the sums (file comment, "Threshold")
-  Index hold_off = 0;  ///< evaluations ignored after an alarm before the sums run again
-  /// At the first evaluation after the hold-off, take the value seen as the new
-  /// nominal: after a confirmed change the detector then watches for the next
-  /// one around the new operating point (give the estimate the hold-off to settle).
-  bool reanchor = false;
-};
+/// Settings of a `CusumDetector`: stride, hold-off and re-anchoring.
+using CusumOptions = SequentialTestOptions;
 
 template <typename Scalar, int N = Eigen::Dynamic>
-class CusumDetector {
+class CusumDetector : public detail::SequentialTest<CusumDetector<Scalar, N>, Scalar, N> {
+  using Base = detail::SequentialTest<CusumDetector<Scalar, N>, Scalar, N>;
+  friend Base;
+
  public:
-  using Vector = Eigen::Matrix<Scalar, N, 1>;
+  using Vector = typename Base::Vector;
 
   /// \param nominal healthy value \f$v^{nom}\f$; \param scale positive per-component
   /// scales s (e.g. from `calibrate_cusum`); \param drift ν > 0; \param threshold h > 0.
-  CusumDetector(Vector nominal, Vector scale, Scalar drift, Scalar threshold, CusumOptions options = {})
-      : nominal_(std::move(nominal)), inverse_scale_(scale.size()), drift_(drift), threshold_(threshold),
-        options_(options) {
-    constexpr std::string_view who = "CusumDetector";
-    const Index n = nominal_.size();
-    detail::require(n >= 1, who, "nominal", "must have at least one component");
-    detail::require_finite(nominal_, who, "nominal");
-    detail::require_shape(scale, n, 1, who, "scale");
-    detail::require(((scale.array() > Scalar(0)) && scale.array().isFinite()).all(), who, "scale",
-                    "must be positive and finite");
-    detail::require_positive(drift, who, "drift");
-    detail::require_positive(threshold, who, "threshold");
-    detail::require(options.stride >= 1, who, "options.stride", "must be at least 1");
-    detail::require(options.hold_off >= 0, who, "options.hold_off", "must be non-negative");
-    inverse_scale_ = scale.cwiseInverse();
-    upper_.setZero(n);
-    lower_.setZero(n);
+  CusumDetector(Vector nominal, const Vector& scale, Scalar drift, Scalar threshold, CusumOptions options = {})
+      : Base("CusumDetector", std::move(nominal), scale, threshold, options), drift_(drift) {
+    detail::require_positive(drift, "CusumDetector", "drift");
+    upper_.setZero(this->components());
+    lower_.setZero(this->components());
   }
 
-  /// Takes the next value. Returns `nonfinite_input`, with the detector
-  /// unchanged, for a NaN or Inf in it; a value of the wrong size is a
-  /// `ConfigurationError` (dynamic sizes).
-  [[nodiscard]] UpdateStatus update(const Vector& value) {
-    if constexpr (N == Eigen::Dynamic) detail::require_shape(value, nominal_.size(), 1, "CusumDetector::update", "value");
-    if (!value.allFinite()) return UpdateStatus::nonfinite_input;
-    alarm_ = false;
-    // Every stride-th value is evaluated: a countdown, not a division per value.
-    if (skip_ > 0) {
-      --skip_;
-      return UpdateStatus::accepted;
-    }
-    skip_ = options_.stride - 1;
-    if (holding_ > 0) {
-      --holding_;
-      return UpdateStatus::accepted;
-    }
-    if (reanchor_pending_) {
-      nominal_ = value;
-      reanchor_pending_ = false;
-      return UpdateStatus::accepted;
-    }
-    // The sums, then their largest; which one it is matters only for an alarm,
-    // and is looked up then (branches on every sum would mispredict at random).
-    Scalar largest = 0;
-    for (Index i = 0; i < nominal_.size(); ++i) {
-      const Scalar z = (value(i) - nominal_(i)) * inverse_scale_(i);
-      upper_(i) = std::max(Scalar(0), upper_(i) + z - drift_);
-      lower_(i) = std::max(Scalar(0), lower_(i) - z - drift_);
-      largest = std::max(largest, std::max(upper_(i), lower_(i)));
-    }
-    if (largest > threshold_) {
-      alarm_ = true;
-      ++alarms_;
-      alarm_statistic_ = largest;
-      for (Index i = 0; i < nominal_.size(); ++i)
-        if (upper_(i) == largest || lower_(i) == largest) {
-          isolated_ = i;
-          direction_ = upper_(i) == largest ? 1 : -1;
-          break;
-        }
-      upper_.setZero();
-      lower_.setZero();
-      holding_ = options_.hold_off;
-      reanchor_pending_ = options_.reanchor;
-    }
-    return UpdateStatus::accepted;
-  }
-
-  /// An alarm was raised by the last accepted value.
-  [[nodiscard]] bool alarm() const noexcept { return alarm_; }
-  /// Component (0-based) named by the last alarm, and the sign of its change.
-  [[nodiscard]] Index isolated() const noexcept { return isolated_; }
-  [[nodiscard]] int direction() const noexcept { return direction_; }
-  /// The sum that raised the last alarm.
-  [[nodiscard]] Scalar alarm_statistic() const noexcept { return alarm_statistic_; }
-  [[nodiscard]] Index alarm_count() const noexcept { return alarms_; }
   /// The sums \f$g^+_i, g^-_i\f$ after the last value (zero right after an alarm).
   [[nodiscard]] const Vector& upper() const noexcept { return upper_; }
   [[nodiscard]] const Vector& lower() const noexcept { return lower_; }
   /// \f$\max_i \max(g^+_i, g^-_i)\f$.
   [[nodiscard]] Scalar statistic() const { return std::max(upper_.maxCoeff(), lower_.maxCoeff()); }
-  [[nodiscard]] Scalar threshold() const noexcept { return threshold_; }
-  [[nodiscard]] const Vector& nominal() const noexcept { return nominal_; }
-
-  /// Re-anchors on a new nominal value (after a confirmed change) and restarts
-  /// the sums, the stride and the hold-off; the alarm count is kept.
-  void rearm(const Vector& nominal) {
-    detail::require_shape(nominal, nominal_.size(), 1, "CusumDetector::rearm", "nominal");
-    detail::require_finite(nominal, "CusumDetector::rearm", "nominal");
-    nominal_ = nominal;
-    restart();
-  }
-
-  /// Back to the state after construction, alarm count included.
-  void reset() {
-    restart();
-    alarms_ = 0;
-  }
 
  private:
-  void restart() {
-    upper_.setZero();
-    lower_.setZero();
-    skip_ = 0;
-    holding_ = 0;
-    reanchor_pending_ = false;
-    alarm_ = false;
+  Scalar evaluate(const Vector& z, Index& component, int& sign) {
+    // The sums, then their largest; which one it is matters only for an alarm,
+    // and is looked up then (branches on every sum would mispredict at random).
+    Scalar largest = 0;
+    for (Index i = 0; i < z.size(); ++i) {
+      upper_(i) = std::max(Scalar(0), upper_(i) + z(i) - drift_);
+      lower_(i) = std::max(Scalar(0), lower_(i) - z(i) - drift_);
+      largest = std::max(largest, std::max(upper_(i), lower_(i)));
+    }
+    for (Index i = 0; i < z.size(); ++i)
+      if (upper_(i) == largest || lower_(i) == largest) {
+        component = i;
+        sign = upper_(i) == largest ? 1 : -1;
+        break;
+      }
+    return largest;
   }
 
-  Vector nominal_;
-  Vector inverse_scale_;
+  void clear_statistics() {
+    upper_.setZero();
+    lower_.setZero();
+  }
+
   Scalar drift_;
-  Scalar threshold_;
-  CusumOptions options_;
   Vector upper_;
   Vector lower_;
-  Index skip_ = 0;  // values still to pass over before the next evaluation
-  Index holding_ = 0;
-  Index alarms_ = 0;
-  Index isolated_ = 0;
-  int direction_ = 0;
-  Scalar alarm_statistic_ = 0;
-  bool alarm_ = false;
-  bool reanchor_pending_ = false;
 };
 
 }  // namespace adaptobs

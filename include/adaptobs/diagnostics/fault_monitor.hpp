@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include <sstream>
 #include <vector>
 
 namespace adaptobs {
@@ -56,6 +57,7 @@ struct FaultMonitorDesign {
   CusumOptions cusum_options;               ///< its stride (the GLR's too)
   Index glr_window = 10;                    ///< evaluations the GLR searches for the change's start
   Scalar glr_threshold = 0;                 ///< by `glr_threshold`, on the CUSUM's scales
+  Index glr_checked_alarms = 0;             ///< alarms on the record of a GLR designed for about 50 there
   Eigen::Matrix<Scalar, NY, NY> output_error_covariance;  ///< S of the χ² test
   Index window = 1;                         ///< samples per χ² decision
   Scalar false_alarm_probability = 0;       ///< per χ² window
@@ -63,7 +65,7 @@ struct FaultMonitorDesign {
   Index chi_square_windows = 0;             ///< fault-free windows the correction was measured on
 };
 
-/// Designs both tests from fault-free runs for false alarms every
+/// Designs the three tests from fault-free runs for false alarms every
 /// `mean_samples_between_false_alarms` samples on average, each:
 /// - the CUSUM on \f$\hat\theta\f$ by `calibrate_cusum` with drift ν (in scales)
 ///   and `stride`, whose refusals it passes on;
@@ -71,9 +73,15 @@ struct FaultMonitorDesign {
 ///   of the recorded output errors, α = window / mean_samples_between_false_alarms,
 ///   and the two-moment correction (chi_square_test.hpp, "Correlated errors")
 ///   from the mean and variance of T over the disjoint windows of the runs
-///   (refused with fewer than 50 windows, naming 'record');
+///   (refused with fewer than 200 windows, naming 'record': the variance of T,
+///   hence ν, would carry more than about 10 % of error);
 /// - the GLR on \f$\hat\theta\f$ with the CUSUM's scales and stride, window
-///   `glr_window` evaluations, threshold from `glr_threshold`.
+///   `glr_window` evaluations, threshold from `glr_threshold`, checked like the
+///   CUSUM: a GLR designed for about 50 false alarms on the record must raise
+///   between 25 and 100 there (refused otherwise, naming 'record').
+///
+/// Each test is designed for the rate asked for: a caller that acts on any of
+/// the three alarms gets up to three times as many.
 template <typename Scalar, int NY, int NP>
 [[nodiscard]] FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor(const FaultFreeRecord<Scalar, NY, NP>& record,
                                                                       const Eigen::Matrix<Scalar, NP, 1>& nominal,
@@ -85,14 +93,32 @@ template <typename Scalar, int NY, int NP>
   detail::require(window >= 1 && Scalar(window) < mean_samples_between_false_alarms, who, "window",
                   "must be at least 1 and shorter than mean_samples_between_false_alarms");
   detail::require(stride >= 1, who, "stride", "must be at least 1");
+  const double evaluations_between = static_cast<double>(mean_samples_between_false_alarms) / static_cast<double>(stride);
+  detail::require(evaluations_between >= 2 && evaluations_between <= 1e5, who, "mean_samples_between_false_alarms",
+                  "must lie between 2 and 1e5 strides (the GLR's threshold is simulated over 50 times as many)");
   FaultMonitorDesign<Scalar, NY, NP> design;
   design.nominal = nominal;
   design.cusum = calibrate_cusum(record.parameters, nominal, drift,
                                  mean_samples_between_false_alarms / static_cast<Scalar>(stride), stride);
   design.cusum_options.stride = stride;
   design.glr_window = glr_window;
-  design.glr_threshold = static_cast<Scalar>(glr_threshold(
-      glr_window, static_cast<double>(mean_samples_between_false_alarms) / static_cast<double>(stride), nominal.size()));
+  design.glr_threshold = static_cast<Scalar>(glr_threshold(glr_window, evaluations_between, nominal.size()));
+  {
+    const double checked = static_cast<double>(design.cusum.evaluations) / 50;
+    GlrDetector<Scalar, NP> glr(nominal, design.cusum.scale, glr_window,
+                                static_cast<Scalar>(glr_threshold(glr_window, checked, nominal.size())), {.stride = stride});
+    for (const auto& run : record.parameters) {
+      glr.rearm(nominal);
+      for (const auto& v : run) (void)glr.update(v);
+    }
+    design.glr_checked_alarms = glr.alarm_count();
+    if (design.glr_checked_alarms < 25 || design.glr_checked_alarms > 100) {
+      std::ostringstream os;
+      os << "gives " << design.glr_checked_alarms << " false alarms to a GLR designed for 50 on it: the normalized "
+         << "estimates are too far from independent normal draws";
+      detail::fail_argument(who, "record", os.str());
+    }
+  }
   design.output_error_covariance = sample_covariance(record.output_errors);
   design.window = window;
   design.false_alarm_probability = static_cast<Scalar>(window) / mean_samples_between_false_alarms;
@@ -112,7 +138,7 @@ template <typename Scalar, int NY, int NP>
       ++windows;
     }
   }
-  detail::require(windows >= 50, who, "record", "must span at least 50 windows of the χ² test");
+  detail::require(windows >= 200, who, "record", "must span at least 200 windows of the χ² test");
   const double mean = sum / static_cast<double>(windows);
   const double variance = (squares - sum * mean) / static_cast<double>(windows - 1);
   detail::require(variance > 0, who, "record", "must have output errors that vary");

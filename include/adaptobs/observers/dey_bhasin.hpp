@@ -206,6 +206,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   /// resetting of eq. (23) on demand. After a detected parameter change
   /// (diagnostics/cusum.hpp) the law then weighs the new data as it weighed the
   /// first, instead of the small gain that a long history of old data left it with.
+  /// The law's own counters (e.g. the resets of `CovarianceResettingRls`) restart too.
   void restart_adaptation() {
     const Parameters p = law_.parameters();
     law_.restart(p);

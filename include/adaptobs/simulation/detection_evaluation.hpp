@@ -35,7 +35,8 @@ struct Alarm {
   Index isolated = -1;
 };
 
-/// The alarms of one run, monitored over [start, end].
+/// The alarms of one run, monitored over [start, end] (in any order: the
+/// evaluator sorts them by time).
 struct MonitoredRun {
   double start = 0;
   double end = 0;
@@ -44,6 +45,8 @@ struct MonitoredRun {
 
 /// The fault a scenario injects: from `time` on (a step, or the start of a
 /// drift), on parameter `parameter` (0-based; −1 when isolation is not scored).
+/// An alarm at `time` itself cannot come from the fault (a change of θ_k shows
+/// in the samples after k): detections are alarms strictly after it.
 struct FaultDescription {
   double time = 0;
   Index parameter = -1;
@@ -52,11 +55,12 @@ struct FaultDescription {
 /// Outcome over all seeds.
 struct DetectionSummary {
   Index seeds = 0;
-  double detection_rate = 0;         ///< faulty runs with an alarm at or after the fault
+  double detection_rate = 0;         ///< faulty runs with an alarm after the fault
   double mean_detection_delay = std::numeric_limits<double>::quiet_NaN(); ///< from the fault to the first alarm after it
   double p95_detection_delay = std::numeric_limits<double>::quiet_NaN(); ///< nearest-rank 95th percentile of the delays
-  double isolation_rate = 0;         ///< detections whose first alarm names the faulty parameter
-  double quiet_before_fault_rate = 0;  ///< faulty runs without an alarm before the fault
+  /// Detections whose first alarm names the faulty parameter (NaN when not scored).
+  double isolation_rate = std::numeric_limits<double>::quiet_NaN();
+  double quiet_before_fault_rate = 0;  ///< faulty runs without an alarm up to the fault's time
   Index false_alarms = 0;            ///< alarms of the fault-free twins
   double fault_free_time = 0;        ///< their monitored time
   double false_alarm_rate = 0;       ///< false_alarms / fault_free_time
@@ -101,8 +105,9 @@ template <class Scenario>
   DetectionSummary summary;
   summary.seeds = seeds;
   Index detected = 0, isolated = 0, quiet = 0;
-  for (const MonitoredRun& run : faulty) {
-    const auto after = std::find_if(run.alarms.begin(), run.alarms.end(), [&](const Alarm& a) { return a.time >= fault.time; });
+  for (MonitoredRun& run : faulty) {
+    std::stable_sort(run.alarms.begin(), run.alarms.end(), [](const Alarm& a, const Alarm& b) { return a.time < b.time; });
+    const auto after = std::find_if(run.alarms.begin(), run.alarms.end(), [&](const Alarm& a) { return a.time > fault.time; });
     if (after == run.alarms.begin()) ++quiet;
     if (after == run.alarms.end()) continue;
     ++detected;
@@ -117,7 +122,7 @@ template <class Scenario>
   summary.detection_rate = static_cast<double>(detected) / n;
   summary.quiet_before_fault_rate = static_cast<double>(quiet) / n;
   if (detected > 0) {
-    summary.isolation_rate = static_cast<double>(isolated) / static_cast<double>(detected);
+    if (fault.parameter >= 0) summary.isolation_rate = static_cast<double>(isolated) / static_cast<double>(detected);
     std::vector<double> sorted = summary.delays;
     std::sort(sorted.begin(), sorted.end());
     double total = 0;
