@@ -49,19 +49,13 @@ MonitoredRun monitored_run(const Simulate& simulate, const FaultMonitorDesign<do
   simulate(seed, faulty, steps, [&](Index k, const auto& observer, const auto&, const auto&) {
     if (k < first || !accepted(monitor.observe(observer))) return true;
     const double t = static_cast<double>(k) * period;
-    bool alarm = false;
-    if (which == Detector::cusum && monitor.cusum().alarm()) {
-      run.alarms.push_back({t, monitor.cusum().isolated()});
-      alarm = true;
-    }
-    if (which == Detector::glr && monitor.glr().alarm()) {
-      run.alarms.push_back({t, monitor.glr().isolated()});
-      alarm = true;
-    }
-    if (which == Detector::chi_square && monitor.chi_square().alarm()) {
-      run.alarms.push_back({t, -1});
-      alarm = true;
-    }
+    const bool alarm = which == Detector::cusum ? monitor.cusum().alarm()
+                       : which == Detector::glr ? monitor.glr().alarm()
+                                                : monitor.chi_square().alarm();
+    if (alarm)
+      run.alarms.push_back({t, which == Detector::cusum ? monitor.cusum().isolated()
+                               : which == Detector::glr ? monitor.glr().isolated()
+                                                        : Index{-1}});
     return !(faulty && alarm && t > fault_time);
   });
   return run;
