@@ -11,6 +11,7 @@
 
 #include "models/satellite.hpp"
 #include "support/eigen_testing.hpp"
+#include "support/observer_contract.hpp"
 
 #include <gtest/gtest.h>
 
@@ -407,79 +408,45 @@ TEST(GuyaderZhang, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
   EXPECT_MATRIX_NEAR(dynamic.upsilon(), fixed.upsilon(), 1e-12, 1e-12);
 }
 
-TEST(GuyaderZhang, ResetRestartsExactly) {
-  auto observer = make_satellite_observer<double>({.excitation_window = 50});
-  auto fresh = make_satellite_observer<double>({.excitation_window = 50});
-  auto plant = satellite::make_plant<double>();
-  for (Index k = 0; k < 300; ++k) {
-    (void)observer.update(plant.sample());
-    plant.advance();
+// The observer contract (support/observer_contract.hpp) on the satellite, in
+// float and double: the plant's first 40 samples, everything a user can read.
+template <typename S>
+struct GuyaderZhangContract {
+  using Observer = decltype(make_satellite_observer<S>());
+  using Sample = typename Observer::Sample;
+  static constexpr const char* name = std::is_same_v<S, float> ? "float" : "double";
+  static Observer make() { return make_satellite_observer<S>({.excitation_window = 20}); }
+  static std::vector<Sample> samples() {
+    auto plant = satellite::make_plant<S>();
+    std::vector<Sample> run;
+    for (int k = 0; k < 40; ++k, plant.advance()) run.push_back(plant.sample());
+    return run;
   }
-  observer.reset(satellite::initial_state_estimate<double>(), satellite::initial_parameter_estimate<double>());
-  auto replay = satellite::make_plant<double>();
-  for (Index k = 0; k < 300; ++k) {
-    (void)observer.update(replay.sample());
-    (void)fresh.update(replay.sample());
-    replay.advance();
+  static auto readings(const Observer& o) {
+    return std::make_tuple(o.state(), o.parameters(), o.upsilon(), o.step(), o.assumption2_norm(),
+                           o.excitation_level());
   }
-  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.state(), fresh.state()));
-  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.parameters(), fresh.parameters()));
-  EXPECT_EQ(observer.excitation_level(), fresh.excitation_level());
-}
-
-// Everything a user can read from the observer, to check that a rejected
-// sample changes none of it.
-template <class O>
-struct Snapshot {
-  explicit Snapshot(const O& o)
-      : x(o.state()), theta(o.parameters()), upsilon(o.upsilon()), step(o.step()),
-        assumption2(o.assumption2_norm()), excitation(o.excitation_level()) {}
-  bool operator==(const Snapshot& other) const {
-    using adaptobs::testing::bitwise_equal;
-    return bitwise_equal(x, other.x) && bitwise_equal(theta, other.theta) && bitwise_equal(upsilon, other.upsilon) &&
-           step == other.step && std::memcmp(&assumption2, &other.assumption2, sizeof(assumption2)) == 0 &&
-           excitation == other.excitation;
+  static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y, &Sample::Psi};
+  static Sample overflowing(Sample s) {
+    s.y.setConstant(std::numeric_limits<S>::max());
+    s.Psi.setConstant(std::numeric_limits<S>::max());
+    return s;
   }
-  typename O::State x;
-  typename O::Parameters theta;
-  typename O::RegressorMatrix upsilon;
-  Index step;
-  typename O::Scalar assumption2;
-  std::optional<typename O::Scalar> excitation;
+  // (2b)–(2c): the innovation y_k − C x̂_k of the prediction the update corrects.
+  static typename Observer::Output expected_output_error(const Observer& before, const Observer&, const Sample& s) {
+    return s.y - satellite::output_matrix<S>() * before.state();
+  }
 };
 
-TYPED_TEST(GuyaderZhangTyped, NonFiniteSamplesAreRejectedAndChangeNothing) {
-  using S = TypeParam;
-  auto observer = make_satellite_observer<S>({.excitation_window = 20});
-  auto plant = satellite::make_plant<S>();
-  for (Index k = 0; k < 100; ++k) {
-    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
-    plant.advance();
-  }
-  const Snapshot before(observer);
-  const S nan = std::numeric_limits<S>::quiet_NaN();
-  const S inf = std::numeric_limits<S>::infinity();
-  for (S bad : {nan, inf, -inf}) {
-    auto s = plant.sample();
-    s.y(1) = bad;
-    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
-    s = plant.sample();
-    s.u(0) = bad;
-    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
-    s = plant.sample();
-    s.Psi(2, 1) = bad;
-    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
-  }
-  // Finite but enormous output: the step would overflow.
-  auto huge = plant.sample();
-  huge.y.setConstant(std::numeric_limits<S>::max());
-  huge.Psi.setConstant(std::numeric_limits<S>::max());
-  EXPECT_EQ(observer.update(huge), UpdateStatus::nonfinite_result);
-  EXPECT_TRUE(Snapshot(observer) == before);
-  // And the observer carries on from where it was.
-  EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
-  EXPECT_EQ(observer.step(), before.step + 1);
-}
+using GuyaderZhangContracts = ::testing::Types<GuyaderZhangContract<float>, GuyaderZhangContract<double>>;
+
+}  // namespace
+
+namespace adaptobs::testing {
+INSTANTIATE_TYPED_TEST_SUITE_P(GuyaderZhang, ObserverContract, GuyaderZhangContracts, ContractName);
+}  // namespace adaptobs::testing
+
+namespace {
 
 using adaptobs::testing::configuration_error_of;
 

@@ -12,11 +12,11 @@
 
 #include "models/wwtp.hpp"
 #include "support/eigen_testing.hpp"
+#include "support/observer_contract.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <numbers>
 #include <random>
@@ -198,46 +198,6 @@ TEST(TakagiSugeno, UpdateIsEquation65) {
   EXPECT_MATRIX_NEAR(observer.weights(), h, 0, 0);
   EXPECT_MATRIX_NEAR(observer.premises(), z, 0, 0);
   EXPECT_TRUE(observer.premises_in_sectors());
-}
-
-// output_error(): ε_k = D_k(y_k − C x̂_k) of the last accepted update, from the
-// x̂_k that update started from; unchanged by a rejected sample, zero in an
-// absent channel, before the first update and after a reset.
-TEST(TakagiSugeno, OutputErrorIsTheOutputErrorOfTheLastAcceptedUpdate) {
-  static_assert(adaptobs::DiagnosableObserver<decltype(make_observer<double>())>);
-  auto observer = make_observer<double>();
-  auto plant = wwtp::make_plant<double>(0.1);
-  EXPECT_TRUE(observer.output_error() == wwtp::Vector1<double>::Zero());
-  double largest = 0;
-  for (Index k = 0; k < 20; ++k) {
-    const Eigen::Vector2d before = observer.state();
-    const auto sample = plant.sample();
-    ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
-    const wwtp::Vector1<double> expected = sample.y - observer.model().C() * before;
-    EXPECT_MATRIX_NEAR(observer.output_error(), expected, 1e-12, 1e-12) << "step " << k;
-    largest = std::max(largest, expected.cwiseAbs().maxCoeff());
-    plant.advance();
-  }
-  EXPECT_GT(largest, 1e-3);  // x̂_0 is off the plant: the check is not 0 = 0
-
-  const wwtp::Vector1<double> accepted = observer.output_error();
-  auto bad = plant.sample();
-  bad.y(0) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(observer.update(bad), UpdateStatus::nonfinite_input);
-  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
-  bad = plant.sample();
-  bad.u.setConstant(std::numeric_limits<double>::max());
-  bad.y.setConstant(std::numeric_limits<double>::max());
-  EXPECT_EQ(observer.update(bad), UpdateStatus::nonfinite_result);
-  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
-
-  using Mask = adaptobs::OutputMask<wwtp::Dims<double>>;
-  ASSERT_EQ(observer.update(plant.sample(), Mask(false)), UpdateStatus::accepted);
-  EXPECT_EQ(observer.output_error()(0), 0.0);
-  ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
-  EXPECT_NE(observer.output_error()(0), 0.0);
-  observer.reset(wwtp::initial_state_estimate<double>(), wwtp::initial_parameter_estimate<double>());
-  EXPECT_TRUE(observer.output_error() == wwtp::Vector1<double>::Zero());
 }
 
 // The weights use ẑ and θ̂ clipped to their sectors; the unclipped ẑ stays visible.
@@ -437,54 +397,54 @@ TEST(TakagiSugeno, RunsInTheSimulationRunnerWithTheNonlinearPlant) {
 
 // --- Bad input and bad configuration ------------------------------------------
 
-template <class O>
-struct Snapshot {
-  explicit Snapshot(const O& o)
-      : x(o.state()), theta(o.parameters()), h(o.weights()), z(o.premises()), in(o.premises_in_sectors()),
-        step(o.step()) {}
-  bool operator==(const Snapshot& other) const {
-    using adaptobs::testing::bitwise_equal;
-    return bitwise_equal(x, other.x) && bitwise_equal(theta, other.theta) && bitwise_equal(h, other.h) &&
-           bitwise_equal(z, other.z) && in == other.in && step == other.step;
+// The observer contract (support/observer_contract.hpp) on the waste water
+// plant with the printed gains, in float and double.
+template <typename S>
+struct TakagiSugenoContract {
+  using Observer = decltype(make_observer<S>());
+  using Sample = typename Observer::Sample;
+  static constexpr const char* name = std::is_same_v<S, float> ? "float" : "double";
+  static Observer make() { return make_observer<S>(); }
+  static std::vector<Sample> samples() {
+    auto plant = wwtp::make_plant<S>(S(0.1));
+    std::vector<Sample> run;
+    for (int k = 0; k < 40; ++k, plant.advance()) run.push_back(plant.sample());
+    return run;
   }
-  typename O::State x;
-  typename O::Parameters theta;
-  typename O::Weights h;
-  typename O::PremiseVector z;
-  bool in;
-  Index step;
+  static auto readings(const Observer& o) {
+    return std::make_tuple(o.state(), o.parameters(), o.weights(), o.premises(), o.premises_in_sectors(), o.step());
+  }
+  static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y};
+  // Finite but enormous input and output: the step overflows (B_i u = 2u).
+  static Sample overflowing(Sample s) {
+    s.u.setConstant(std::numeric_limits<S>::max());
+    s.y.setConstant(std::numeric_limits<S>::max());
+    return s;
+  }
+  // ε_k = y_k − C x̂_k, from the x̂_k the update started from.
+  static typename Observer::Output expected_output_error(const Observer& before, const Observer&, const Sample& s) {
+    return s.y - before.model().C() * before.state();
+  }
 };
+using TakagiSugenoContracts = ::testing::Types<TakagiSugenoContract<float>, TakagiSugenoContract<double>>;
 
-TYPED_TEST(TakagiSugenoTyped, NonFiniteSamplesAndPremisesAreRejectedAndChangeNothing) {
+}  // namespace
+
+namespace adaptobs::testing {
+INSTANTIATE_TYPED_TEST_SUITE_P(TakagiSugeno, ObserverContract, TakagiSugenoContracts, ContractName);
+}  // namespace adaptobs::testing
+
+namespace {
+
+// A NaN premise variable: ẑ2 = x̂1/(x̂2 + b) = 0/0 at x̂ = (0, −b), from finite samples.
+TYPED_TEST(TakagiSugenoTyped, NonFinitePremisesAreRejectedAndChangeNothing) {
   using S = TypeParam;
   auto observer = make_observer<S>();
-  auto plant = wwtp::make_plant<S>(S(0.1));
-  for (Index k = 0; k < 50; ++k) {
-    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
-    plant.advance();
-  }
-  const Snapshot before(observer);
-  for (S bad : {std::numeric_limits<S>::quiet_NaN(), std::numeric_limits<S>::infinity(), -std::numeric_limits<S>::infinity()}) {
-    auto s = plant.sample();
-    s.y(0) = bad;
-    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
-    s = plant.sample();
-    s.u(0) = bad;
-    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
-  }
-  // Finite but enormous input and output: the step overflows (B_i u = 2u).
-  auto huge = plant.sample();
-  huge.u.setConstant(std::numeric_limits<S>::max());
-  huge.y.setConstant(std::numeric_limits<S>::max());
-  EXPECT_EQ(observer.update(huge), UpdateStatus::nonfinite_result);
-  EXPECT_TRUE(Snapshot(observer) == before);
-  EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
-
-  // A NaN premise variable: ẑ2 = x̂1/(x̂2 + b) = 0/0 at x̂ = (0, −b).
   observer.reset(Eigen::Matrix<S, 2, 1>(S(0), -S(wwtp::b)), wwtp::Vector1<S>(S(0)));
-  const Snapshot at_reset(observer);
+  const auto at_reset = TakagiSugenoContract<S>::readings(observer);
+  auto plant = wwtp::make_plant<S>(S(0.1));
   EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::nonfinite_input);
-  EXPECT_TRUE(Snapshot(observer) == at_reset);
+  EXPECT_TRUE(adaptobs::testing::same_bits(TakagiSugenoContract<S>::readings(observer), at_reset));
 }
 
 using adaptobs::testing::configuration_error_of;

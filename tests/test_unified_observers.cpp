@@ -22,13 +22,13 @@
 #include "models/periodic_mimo.hpp"
 #include "models/siso_third_order.hpp"
 #include "support/eigen_testing.hpp"
+#include "support/observer_contract.hpp"
 #include "unified_fixtures.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -357,140 +357,84 @@ TEST(ZhangContinuous, SinglePrecisionConverges) {
 // ---------------------------------------------------------------------------
 // Bad input and bad configuration.
 
-template <class O>
-struct Snapshot {
-  explicit Snapshot(const O& o) : internal(o.internal_state()), eta(o.state()), theta(o.parameters()), t(o.time()) {}
-  bool operator==(const Snapshot& other) const {
-    using adaptobs::testing::bitwise_equal;
-    return bitwise_equal(internal, other.internal) && bitwise_equal(eta, other.eta) &&
-           bitwise_equal(theta, other.theta) && std::memcmp(&t, &other.t, sizeof(t)) == 0;
+// The observer contract (support/observer_contract.hpp) for each algorithm and
+// the Kalman–Bucy baseline, on its example's plant: 30 samples with midpoints.
+template <class Design>
+struct UnifiedContract {
+  using Observer = decltype(Design::observer());
+  using Sample = typename Observer::Sample;
+  using Scalar = typename Observer::Scalar;
+  static constexpr const char* name = Design::name;
+  static Observer make() { return Design::observer(); }
+  static std::vector<Sample> samples() {
+    auto plant = Design::plant();
+    std::vector<Sample> run;
+    for (int k = 0; k < 30; ++k, plant.advance()) run.push_back(plant.sample());
+    return run;
   }
-  typename O::InternalState internal;
-  typename O::State eta;
-  typename O::Parameters theta;
-  typename O::Scalar t;
+  static auto readings(const Observer& o) {
+    return std::make_tuple(o.internal_state(), o.state(), o.parameters(), o.time());
+  }
+  static constexpr auto poisonable = std::tuple{&Sample::t, &Sample::u, &Sample::y};
+  static std::vector<Sample> more_poisoned(const Sample& valid) {
+    std::vector<Sample> out;
+    for (const Scalar bad : {std::numeric_limits<Scalar>::quiet_NaN(), std::numeric_limits<Scalar>::infinity()}) {
+      out.push_back(valid);
+      out.back().midpoint->u(0) = bad;
+      out.push_back(valid);
+      out.back().midpoint->y(0) = -bad;
+    }
+    return out;
+  }
+  static Sample overflowing(Sample s) {
+    s.y.setConstant(std::numeric_limits<Scalar>::max());
+    s.midpoint->y.setConstant(-std::numeric_limits<Scalar>::max());
+    return s;
+  }
+  // ε(t_k) = y_k − C(t_k) η̂(t_k), at the estimate integrated to the sample time.
+  static typename Observer::Output expected_output_error(const Observer&, const Observer& after, const Sample& s) {
+    return s.y - Design::plant().model().at(s.t).C * after.state();
+  }
 };
 
-template <class Observer, class Plant>
-void check_rejections(Observer& observer, Plant& plant) {
-  ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
-  for (int k = 0; k < 50; ++k) {
-    plant.advance();
-    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
-  }
-  plant.advance();
-  const Snapshot before(observer);
-  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  for (double bad : {nan, inf, -inf}) {
-    auto s = plant.sample();
-    s.y(0) = bad;
-    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
-    s = plant.sample();
-    s.u(0) = bad;
-    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
-    s = plant.sample();
-    s.midpoint->y(0) = bad;
-    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
-    s = plant.sample();
-    s.t = bad;
-    EXPECT_EQ(observer.update(s), UpdateStatus::nonfinite_input);
-  }
-  auto stale = plant.sample();
-  stale.t = observer.time();
-  EXPECT_EQ(observer.update(stale), UpdateStatus::nonincreasing_time);
-  auto huge = plant.sample();
-  huge.y.setConstant(std::numeric_limits<double>::max());
-  huge.midpoint->y.setConstant(-std::numeric_limits<double>::max());
-  EXPECT_EQ(observer.update(huge), UpdateStatus::nonfinite_result);
-  EXPECT_TRUE(Snapshot(observer) == before);
-  EXPECT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
-}
+struct BastinGeversDesign {
+  static constexpr const char* name = "BastinGevers";
+  static auto observer() { return bastin_gevers_observer<double>(); }
+  static auto plant() { return siso::make_plant<double>(); }
+};
+struct MarinoTomeiDesign {
+  static constexpr const char* name = "MarinoTomei";
+  static auto observer() { return marino_tomei_observer<double>(); }
+  static auto plant() { return siso::make_plant<double>(); }
+};
+struct BesanconDesign {
+  static constexpr const char* name = "Besancon";
+  static auto observer() { return besancon_observer<double>(); }
+  static auto plant() { return periodic::make_plant<double>(); }
+};
+struct ZhangDesign {
+  static constexpr const char* name = "Zhang";
+  static auto observer() { return zhang_observer<double>(50.0); }
+  static auto plant() { return periodic::make_plant<double>(); }
+};
+struct KalmanBucyDesign {
+  static constexpr const char* name = "KalmanBucy";
+  static auto observer() { return kalman_bucy_filter<double>(1.0); }
+  static auto plant() { return siso::make_plant<double>(); }
+};
+using UnifiedContracts =
+    ::testing::Types<UnifiedContract<BastinGeversDesign>, UnifiedContract<MarinoTomeiDesign>,
+                     UnifiedContract<BesanconDesign>, UnifiedContract<ZhangDesign>, UnifiedContract<KalmanBucyDesign>>;
 
-TEST(UnifiedFormulation, NonFiniteSamplesAreRejectedAndChangeNothing) {
-  {
-    auto observer = bastin_gevers_observer<double>();
-    auto plant = siso::make_plant<double>();
-    check_rejections(observer, plant);
-  }
-  {
-    auto observer = zhang_observer<double>(50.0);
-    auto plant = periodic::make_plant<double>();
-    check_rejections(observer, plant);
-  }
-  {
-    auto filter = kalman_bucy_filter<double>(1.0);
-    auto plant = siso::make_plant<double>();
-    check_rejections(filter, plant);
-  }
-}
+}  // namespace
 
-// output_error(): ε(t_k) = y_k − C(t_k) η̂(t_k) at the estimate integrated to
-// the sample time (the initial one at the first sample); zero before the first
-// update and after a reset, unchanged by a rejected sample.
-template <class Observer, class Plant>
-void check_output_error(Observer& observer, Plant& plant) {
-  static_assert(adaptobs::DiagnosableObserver<Observer>);
-  using Output = typename Observer::Output;
-  EXPECT_TRUE(observer.output_error() == Output::Zero());
-  double largest = 0;
-  for (int k = 0; k <= 50; ++k) {
-    if (k > 0) plant.advance();
-    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
-    const auto system = plant.model().at(plant.time());
-    const Output expected = plant.sample().y - system.C * observer.state();
-    EXPECT_MATRIX_NEAR(observer.output_error(), expected, 1e-12, 1e-12) << "k = " << k;
-    largest = std::max(largest, expected.cwiseAbs().maxCoeff());
-  }
-  EXPECT_GT(largest, 1e-3);
-  plant.advance();
-  const Output accepted = observer.output_error();
-  auto bad = plant.sample();
-  bad.y(0) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(observer.update(bad), UpdateStatus::nonfinite_input);
-  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
-  bad = plant.sample();
-  bad.t = observer.time();
-  EXPECT_EQ(observer.update(bad), UpdateStatus::nonincreasing_time);
-  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
-  bad = plant.sample();
-  bad.y.setConstant(std::numeric_limits<double>::max());
-  bad.midpoint->y.setConstant(-std::numeric_limits<double>::max());
-  EXPECT_EQ(observer.update(bad), UpdateStatus::nonfinite_result);
-  EXPECT_TRUE(adaptobs::testing::bitwise_equal(observer.output_error(), accepted));
-  observer.reset(Observer::State::Zero(), Observer::Parameters::Zero());
-  EXPECT_TRUE(observer.output_error() == Output::Zero());
-}
+namespace adaptobs::testing {
+INSTANTIATE_TYPED_TEST_SUITE_P(UnifiedFormulation, ObserverContract, UnifiedContracts, ContractName);
+}  // namespace adaptobs::testing
 
-TEST(UnifiedFormulation, OutputErrorIsTheOutputErrorAtTheSampleTime) {
-  {
-    SCOPED_TRACE("Bastin-Gevers");
-    auto observer = bastin_gevers_observer<double>();
-    auto plant = siso::make_plant<double>();
-    check_output_error(observer, plant);
-  }
-  {
-    SCOPED_TRACE("Zhang, LTV model");
-    auto observer = zhang_observer<double>(50.0);
-    auto plant = periodic::make_plant<double>();
-    check_output_error(observer, plant);
-  }
-  {
-    SCOPED_TRACE("Kalman-Bucy");
-    auto filter = kalman_bucy_filter<double>(1.0);
-    auto plant = siso::make_plant<double>();
-    check_output_error(filter, plant);
-  }
-}
+namespace {
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const adaptobs::ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
 #define EXPECT_NAMES(expression, argument) \
   EXPECT_NE(configuration_error_of([&] { (void)(expression); }).find(argument), std::string::npos) \

@@ -98,10 +98,13 @@ class SampledIntegrator {
   [[nodiscard]] Scalar time() const noexcept { return previous_.t; }
   [[nodiscard]] const SamplingOptions& options() const noexcept { return options_; }
   /// Forgets the previous sample and a learned step limit: the next sample
-  /// starts the integration anew, as after construction.
+  /// starts the integration anew, and `time()` reads 0, as after construction.
   void restart() noexcept {
     started_ = false;
     learned_step_ = 0;
+    previous_.t = Scalar(0);
+    previous_.u.setZero();
+    previous_.y.setZero();
   }
   /// Forgets the previous sample only: the next sample sets a new time origin,
   /// and the step limit stays what it was.

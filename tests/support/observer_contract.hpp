@@ -1,0 +1,267 @@
+#pragma once
+// The contract every observer and baseline keeps, written once against the
+// concepts of core/observer.hpp and instantiated per observer with a factory:
+//
+//   struct GuyaderZhangContract {
+//     using Observer = ...;                            // the type under test
+//     static constexpr const char* name = "double";    // the instance's name
+//     static Observer make();                          // at its initial estimates
+//     static std::vector<typename Observer::Sample> samples();  // a valid run, at least 20
+//     static auto readings(const Observer&);           // everything a user can read, a std::tuple
+//     static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y, ...};
+//     static Sample overflowing(Sample);               // finite, but the step overflows
+//     static Output expected_output_error(const Observer& before, const Observer& after,
+//                                         const Sample&);  // what output_error() must read
+//     // Optional: bad samples the member pointers cannot reach (an optional midpoint).
+//     static std::vector<Sample> more_poisoned(const Sample&);
+//   };
+//   INSTANTIATE_TYPED_TEST_SUITE_P(GuyaderZhang, ObserverContract, Types, ContractName);
+//
+// with `Types` a ::testing::Types of factories, each with a `name` for CTest.
+//
+// The promises checked (README, "Bad input"; core/observer.hpp):
+// - the `Observer` and `DiagnosableObserver` concepts;
+// - a NaN, +Inf or −Inf in any entry of any field listed in `poisonable` (or in
+//   `more_poisoned`) is rejected with `nonfinite_input`, and every reading stays
+//   the same bit for bit; so is a continuous-time sample not after the last
+//   accepted one, with `nonincreasing_time`;
+// - a finite sample whose step would overflow is rejected with
+//   `nonfinite_result`, every reading unchanged;
+// - after a rejection the run carries on as if the sample had never come;
+// - `reset(x0, θ0)` after a run equals a fresh construction at (x0, θ0), bit
+//   for bit, on the same samples;
+// - `output_error()` is zero before the first update and after a reset, is the
+//   factory's formula after each accepted update, and is zero in an absent channel.
+
+#include "support/eigen_testing.hpp"
+
+#include <adaptobs/core/observer.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace adaptobs::testing {
+
+// ------------------------------------------------------------ bitwise sameness
+
+template <class T>
+bool same_bits(const T& a, const T& b);
+
+namespace contract_detail {
+
+template <class T>
+struct IsOptional : std::false_type {};
+template <class T>
+struct IsOptional<std::optional<T>> : std::true_type {};
+
+template <class T>
+struct IsVector : std::false_type {};
+template <class T, class A>
+struct IsVector<std::vector<T, A>> : std::true_type {};
+
+template <class T>
+struct IsTuple : std::false_type {};
+template <class... T>
+struct IsTuple<std::tuple<T...>> : std::true_type {};
+
+}  // namespace contract_detail
+
+/// Equality of every bit of a reading: Eigen matrices entry by entry, floating
+/// point values by their representation (so NaN equals the same NaN and 0 is not
+/// −0), optionals, vectors and tuples member by member, anything else by ==.
+template <class T>
+bool same_bits(const T& a, const T& b) {
+  if constexpr (std::is_base_of_v<Eigen::MatrixBase<T>, T>) {
+    return bitwise_equal(a, b);
+  } else if constexpr (std::is_floating_point_v<T>) {
+    return std::memcmp(&a, &b, sizeof(T)) == 0;
+  } else if constexpr (contract_detail::IsOptional<T>::value) {
+    return a.has_value() == b.has_value() && (!a || same_bits(*a, *b));
+  } else if constexpr (contract_detail::IsVector<T>::value) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (!same_bits(a[i], b[i])) return false;
+    return true;
+  } else if constexpr (contract_detail::IsTuple<T>::value) {
+    return std::apply([&](const auto&... x) { return std::apply([&](const auto&... y) { return (same_bits(x, y) && ...); }, b); },
+                      a);
+  } else {
+    return a == b;
+  }
+}
+
+// ------------------------------------------------------------ the contract
+
+template <class Factory>
+class ObserverContract : public ::testing::Test {
+ protected:
+  using Observer = typename Factory::Observer;
+  using Sample = typename Observer::Sample;
+  using Scalar = typename Observer::Scalar;
+
+  /// Every reading of the factory, and the output error.
+  static auto readings(const Observer& o) {
+    return std::tuple_cat(Factory::readings(o), std::make_tuple(typename Observer::Dims::Output(o.output_error())));
+  }
+
+  /// The observer after the first `count` samples of the run, all accepted.
+  static Observer after(const std::vector<Sample>& run, std::size_t count) {
+    Observer o = Factory::make();
+    for (std::size_t k = 0; k < count; ++k) EXPECT_EQ(o.update(run[k]), UpdateStatus::accepted) << "k = " << k;
+    return o;
+  }
+
+  /// One copy of `valid` per entry of each poisonable field and per bad value.
+  static std::vector<Sample> poisoned(const Sample& valid) {
+    std::vector<Sample> out;
+    const Scalar bad[] = {std::numeric_limits<Scalar>::quiet_NaN(), std::numeric_limits<Scalar>::infinity(),
+                          -std::numeric_limits<Scalar>::infinity()};
+    std::apply(
+        [&](auto... field) {
+          (
+              [&](auto member) {
+                using Field = std::remove_cvref_t<decltype(valid.*member)>;
+                if constexpr (std::is_floating_point_v<Field>) {
+                  for (const Scalar b : bad) {
+                    out.push_back(valid);
+                    out.back().*member = b;
+                  }
+                } else {
+                  for (Index i = 0; i < (valid.*member).size(); ++i)
+                    for (const Scalar b : bad) {
+                      out.push_back(valid);
+                      (out.back().*member).data()[i] = b;
+                    }
+                }
+              }(field),
+              ...);
+        },
+        Factory::poisonable);
+    if constexpr (requires { Factory::more_poisoned(valid); })
+      for (auto& sample : Factory::more_poisoned(valid)) out.push_back(std::move(sample));
+    return out;
+  }
+};
+
+TYPED_TEST_SUITE_P(ObserverContract);
+
+TYPED_TEST_P(ObserverContract, SatisfiesTheObserverConcept) {
+  using O = typename TestFixture::Observer;
+  static_assert(Observer<O>);
+  static_assert(std::is_copy_constructible_v<O> && std::is_move_constructible_v<O>);
+  const auto run = TypeParam::samples();
+  ASSERT_GE(run.size(), 20u);
+  O observer = TypeParam::make();
+  for (const auto& sample : run) ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
+  // The run moved the estimates, or the checks below could not see a change.
+  EXPECT_FALSE(same_bits(TestFixture::readings(observer), TestFixture::readings(TypeParam::make())));
+}
+
+TYPED_TEST_P(ObserverContract, NonFiniteSamplesAreRejectedAndChangeNothing) {
+  const auto run = TypeParam::samples();
+  const std::size_t half = run.size() / 2;
+  auto observer = TestFixture::after(run, half);
+  const auto before = TestFixture::readings(observer);
+  const auto bad = TestFixture::poisoned(run[half]);
+  ASSERT_FALSE(bad.empty());
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    EXPECT_EQ(observer.update(bad[i]), UpdateStatus::nonfinite_input) << "poisoned sample " << i;
+    ASSERT_TRUE(same_bits(TestFixture::readings(observer), before)) << "poisoned sample " << i;
+  }
+  // A continuous-time sample not after the last accepted one.
+  if constexpr (requires { run[half].t; }) {
+    auto stale = run[half];
+    stale.t = run[half - 1].t;
+    EXPECT_EQ(observer.update(stale), UpdateStatus::nonincreasing_time);
+    ASSERT_TRUE(same_bits(TestFixture::readings(observer), before));
+  }
+  // The run carries on as if the bad samples had never come.
+  auto reference = TestFixture::after(run, half);
+  for (std::size_t k = half; k < run.size(); ++k) {
+    ASSERT_EQ(observer.update(run[k]), UpdateStatus::accepted);
+    (void)reference.update(run[k]);
+  }
+  EXPECT_TRUE(same_bits(TestFixture::readings(observer), TestFixture::readings(reference)));
+}
+
+TYPED_TEST_P(ObserverContract, AnOverflowingStepIsRejectedAndChangesNothing) {
+  const auto run = TypeParam::samples();
+  const std::size_t half = run.size() / 2;
+  auto observer = TestFixture::after(run, half);
+  const auto before = TestFixture::readings(observer);
+  EXPECT_EQ(observer.update(TypeParam::overflowing(run[half])), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(same_bits(TestFixture::readings(observer), before));
+  EXPECT_EQ(observer.update(run[half]), UpdateStatus::accepted);
+}
+
+TYPED_TEST_P(ObserverContract, ResetEqualsAFreshConstruction) {
+  const auto run = TypeParam::samples();
+  const auto fresh = TypeParam::make();
+  auto observer = TestFixture::after(run, run.size());
+  observer.reset(fresh.state(), fresh.parameters());
+  EXPECT_TRUE(same_bits(TestFixture::readings(observer), TestFixture::readings(fresh)));
+  auto reference = fresh;
+  for (const auto& sample : run) {
+    ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
+    ASSERT_EQ(reference.update(sample), UpdateStatus::accepted);
+  }
+  EXPECT_TRUE(same_bits(TestFixture::readings(observer), TestFixture::readings(reference)));
+}
+
+TYPED_TEST_P(ObserverContract, OutputErrorIsTheErrorOfTheLastAcceptedUpdate) {
+  using O = typename TestFixture::Observer;
+  static_assert(DiagnosableObserver<O>);
+  {
+    using Output = typename O::Dims::Output;
+    // The factory's formula may round differently (another coordinate system, another order).
+    const double tolerance = std::max(1e-12, 100.0 * std::numeric_limits<typename O::Scalar>::epsilon());
+    const auto run = TypeParam::samples();
+    O observer = TypeParam::make();
+    EXPECT_TRUE(observer.output_error().isZero(0));
+    double largest = 0;
+    for (std::size_t k = 0; k < run.size(); ++k) {
+      const O before = observer;
+      ASSERT_EQ(observer.update(run[k]), UpdateStatus::accepted);
+      const Output expected = TypeParam::expected_output_error(before, observer, run[k]);
+      EXPECT_MATRIX_NEAR(observer.output_error(), expected, tolerance, tolerance) << "k = " << k;
+      largest = std::max(largest, static_cast<double>(expected.cwiseAbs().maxCoeff()));
+    }
+    // Errors the formula could get wrong: not all zero.
+    EXPECT_GT(largest, 1e-6);
+    if constexpr (PartialOutputObserver<O>) {
+      const Index ny = observer.sizes().ny;
+      OutputMask<typename O::Dims> present = OutputMask<typename O::Dims>::Constant(ny, true);
+      present(0) = false;
+      ASSERT_EQ(observer.update(run.back(), present), UpdateStatus::accepted);
+      EXPECT_EQ(observer.output_error()(0), 0);
+      if (ny >= 2) {
+        EXPECT_NE(observer.output_error()(1), 0);
+      }
+    }
+    observer.reset(observer.state(), observer.parameters());
+    EXPECT_TRUE(observer.output_error().isZero(0));
+  }
+}
+
+/// Names each instance by its factory's `name` ("GuyaderZhang/ObserverContract/float.…").
+struct ContractName {
+  template <class Factory>
+  static std::string GetName(int) {
+    return Factory::name;
+  }
+};
+
+REGISTER_TYPED_TEST_SUITE_P(ObserverContract, SatisfiesTheObserverConcept, NonFiniteSamplesAreRejectedAndChangeNothing,
+                            AnOverflowingStepIsRejectedAndChangesNothing, ResetEqualsAFreshConstruction,
+                            OutputErrorIsTheErrorOfTheLastAcceptedUpdate);
+
+}  // namespace adaptobs::testing
