@@ -14,6 +14,7 @@
 
 #include "models/dey_bhasin.hpp"
 #include "support/eigen_testing.hpp"
+#include "support/observer_contract.hpp"
 
 #include <gtest/gtest.h>
 
@@ -237,4 +238,49 @@ TEST(DeyBhasinSiso, WorksWithTheNormalizedGradientLaw) {
   EXPECT_LT(previous, 1e-3 * initial);
 }
 
+// The observer contract (support/observer_contract.hpp) on the SISO example:
+// the proposed observer (covariance resetting) and the Suzuki et al. baseline
+// (exponential forgetting).
+template <class Design>
+struct DeyBhasinSisoContract {
+  using Observer = decltype(Design::observer());
+  using Sample = typename Observer::Sample;
+  static constexpr const char* name = Design::name;
+  static Observer make() { return Design::observer(); }
+  static std::vector<Sample> samples() {
+    auto plant = siso::make_plant();
+    std::vector<Sample> run;
+    for (int t = 0; t < 40; ++t, plant.advance()) run.push_back({plant.sample().u, plant.sample().y});
+    return run;
+  }
+  static auto readings(const Observer& o) {
+    return std::make_tuple(o.state(), o.current_state(), o.parameters(), o.regressor(), o.measurement(),
+                           o.filter_bank(), o.law().covariance(), o.step());
+  }
+  static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y};
+  static Sample overflowing(Sample s) {
+    s.u.setConstant(std::numeric_limits<double>::max());
+    s.y.setConstant(std::numeric_limits<double>::max());
+    return s;
+  }
+  static typename Observer::Output expected_output_error(const Observer& before, const Observer&, const Sample& s) {
+    return s.y - db::canonical_output_matrix<double>(siso::order, 1) * before.state();
+  }
+};
+struct ResettingDesign {
+  static constexpr const char* name = "CovarianceResetting";
+  static auto observer() { return siso::make_observer(); }
+};
+struct SuzukiDesign {
+  static constexpr const char* name = "Suzuki";
+  static auto observer() { return siso::make_suzuki(); }
+};
+using DeyBhasinSisoContracts =
+    ::testing::Types<DeyBhasinSisoContract<ResettingDesign>, DeyBhasinSisoContract<SuzukiDesign>>;
+
 }  // namespace
+
+namespace adaptobs::testing {
+INSTANTIATE_TYPED_TEST_SUITE_P(DeyBhasinSiso, ObserverContract, DeyBhasinSisoContracts, ContractName);
+}  // namespace adaptobs::testing
+

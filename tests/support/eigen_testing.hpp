@@ -122,3 +122,13 @@ std::string configuration_error_of(F&& f) {
 }
 
 }  // namespace adaptobs::testing
+
+/// Expects `expression` to throw a `ConfigurationError` whose message names
+/// `argument` as the library quotes it: EXPECT_CONFIGURATION_ERROR_NAMES(f(0), "mu")
+/// looks for 'mu'.
+#define EXPECT_CONFIGURATION_ERROR_NAMES(expression, argument)                                            \
+  do {                                                                                                    \
+    const std::string adaptobs_message_ =                                                                 \
+        ::adaptobs::testing::configuration_error_of([&] { (void)(expression); });                          \
+    EXPECT_NE(adaptobs_message_.find("'" + std::string(argument) + "'"), std::string::npos) << adaptobs_message_; \
+  } while (0)
