@@ -126,10 +126,7 @@ struct AugmentedKalmanContract {
   static constexpr const char* name = "double";
   static Observer make() { return make_filter(); }
   static std::vector<Sample> samples() {
-    auto plant = satellite::make_plant<double>();
-    std::vector<Sample> run;
-    for (int k = 0; k < 40; ++k, plant.advance()) run.push_back(plant.sample());
-    return run;
+    return adaptobs::testing::first_samples<Sample>(satellite::make_plant<double>(), 40);
   }
   static auto readings(const Observer& f) {
     return std::make_tuple(f.state(), f.parameters(), f.covariance(), f.step());

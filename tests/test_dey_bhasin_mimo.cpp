@@ -610,10 +610,8 @@ struct DeyBhasinContract {
   static constexpr const char* name = "double";
   static Observer make() { return mimo::make_observer(); }
   static std::vector<Sample> samples() {
-    auto plant = mimo::make_plant(mimo::RichInput{});
-    std::vector<Sample> run;
-    for (int t = 0; t < 40; ++t, plant.advance()) run.push_back({plant.sample().u, plant.sample().y});
-    return run;
+    return adaptobs::testing::first_samples<Sample>(mimo::make_plant(mimo::RichInput{}), 40,
+                                                    [](const auto& s) { return Sample{s.u, s.y}; });
   }
   static auto readings(const Observer& o) {
     return std::make_tuple(o.state(), o.current_state(), o.parameters(), o.regressor(), o.measurement(),

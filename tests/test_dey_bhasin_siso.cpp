@@ -248,10 +248,8 @@ struct DeyBhasinSisoContract {
   static constexpr const char* name = Design::name;
   static Observer make() { return Design::observer(); }
   static std::vector<Sample> samples() {
-    auto plant = siso::make_plant();
-    std::vector<Sample> run;
-    for (int t = 0; t < 40; ++t, plant.advance()) run.push_back({plant.sample().u, plant.sample().y});
-    return run;
+    return adaptobs::testing::first_samples<Sample>(siso::make_plant(), 40,
+                                                    [](const auto& s) { return Sample{s.u, s.y}; });
   }
   static auto readings(const Observer& o) {
     return std::make_tuple(o.state(), o.current_state(), o.parameters(), o.regressor(), o.measurement(),

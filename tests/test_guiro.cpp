@@ -477,13 +477,10 @@ template <typename S>
 struct GuiroContract {
   using Observer = PaperObserver<S>;
   using Sample = typename Observer::Sample;
-  static constexpr const char* name = std::is_same_v<S, float> ? "float" : "double";
+  static constexpr const char* name = adaptobs::testing::scalar_name<S>;
   static Observer make() { return make_observer<S>(); }
   static std::vector<Sample> samples() {
-    auto plant = g::make_plant<S>();
-    std::vector<Sample> run;
-    for (int k = 0; k < 20; ++k, plant.advance()) run.push_back(plant.sample());
-    return run;
+    return adaptobs::testing::first_samples<Sample>(g::make_plant<S>(), 20);
   }
   static auto readings(const Observer& o) {
     return std::make_tuple(o.state(), o.corrected_state(), o.parameters(), o.step());

@@ -414,13 +414,10 @@ template <typename S>
 struct GuyaderZhangContract {
   using Observer = decltype(make_satellite_observer<S>());
   using Sample = typename Observer::Sample;
-  static constexpr const char* name = std::is_same_v<S, float> ? "float" : "double";
+  static constexpr const char* name = adaptobs::testing::scalar_name<S>;
   static Observer make() { return make_satellite_observer<S>({.excitation_window = 20}); }
   static std::vector<Sample> samples() {
-    auto plant = satellite::make_plant<S>();
-    std::vector<Sample> run;
-    for (int k = 0; k < 40; ++k, plant.advance()) run.push_back(plant.sample());
-    return run;
+    return adaptobs::testing::first_samples<Sample>(satellite::make_plant<S>(), 40);
   }
   static auto readings(const Observer& o) {
     return std::make_tuple(o.state(), o.parameters(), o.upsilon(), o.step(), o.assumption2_norm(),

@@ -403,13 +403,10 @@ template <typename S>
 struct TakagiSugenoContract {
   using Observer = decltype(make_observer<S>());
   using Sample = typename Observer::Sample;
-  static constexpr const char* name = std::is_same_v<S, float> ? "float" : "double";
+  static constexpr const char* name = adaptobs::testing::scalar_name<S>;
   static Observer make() { return make_observer<S>(); }
   static std::vector<Sample> samples() {
-    auto plant = wwtp::make_plant<S>(S(0.1));
-    std::vector<Sample> run;
-    for (int k = 0; k < 40; ++k, plant.advance()) run.push_back(plant.sample());
-    return run;
+    return adaptobs::testing::first_samples<Sample>(wwtp::make_plant<S>(S(0.1)), 40);
   }
   static auto readings(const Observer& o) {
     return std::make_tuple(o.state(), o.parameters(), o.weights(), o.premises(), o.premises_in_sectors(), o.step());

@@ -367,10 +367,7 @@ struct UnifiedContract {
   static constexpr const char* name = Design::name;
   static Observer make() { return Design::observer(); }
   static std::vector<Sample> samples() {
-    auto plant = Design::plant();
-    std::vector<Sample> run;
-    for (int k = 0; k < 30; ++k, plant.advance()) run.push_back(plant.sample());
-    return run;
+    return adaptobs::testing::first_samples<Sample>(Design::plant(), 30);
   }
   static auto readings(const Observer& o) {
     return std::make_tuple(o.internal_state(), o.state(), o.parameters(), o.time());

@@ -92,12 +92,31 @@ bool same_bits(const T& a, const T& b) {
       if (!same_bits(a[i], b[i])) return false;
     return true;
   } else if constexpr (contract_detail::IsTuple<T>::value) {
-    return std::apply([&](const auto&... x) { return std::apply([&](const auto&... y) { return (same_bits(x, y) && ...); }, b); },
-                      a);
+    return std::apply(
+        [&](const auto&... x) { return std::apply([&](const auto&... y) { return (same_bits(x, y) && ...); }, b); }, a);
   } else {
     return a == b;
   }
 }
+
+// ------------------------------------------------------------ factory helpers
+
+/// The first `count` samples of a plant's run, converted to the observer's
+/// sample type by `convert` (by default the plant's sample as it is).
+template <class Sample, class Plant, class Convert>
+std::vector<Sample> first_samples(Plant plant, int count, Convert convert) {
+  std::vector<Sample> run;
+  for (int k = 0; k < count; ++k, plant.advance()) run.push_back(convert(plant.sample()));
+  return run;
+}
+template <class Sample, class Plant>
+std::vector<Sample> first_samples(Plant plant, int count) {
+  return first_samples<Sample>(std::move(plant), count, [](const Sample& s) { return s; });
+}
+
+/// "float" or "double": an instance name for a factory templated on its scalar.
+template <class S>
+inline constexpr const char* scalar_name = std::is_same_v<S, float> ? "float" : "double";
 
 // ------------------------------------------------------------ the contract
 
