@@ -50,6 +50,10 @@ configure "$root/build/test" -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release
   -DADAPTOBS_WARNINGS_AS_ERRORS=ON -DADAPTOBS_BUILD_BENCHMARKS=OFF
 cmake --build "$root/build/test" -j "$jobs"
 ctest --test-dir "$root/build/test" --output-on-failure -j "$jobs"
+# The reference manual, when doxygen is installed: any Doxygen warning fails the run.
+if command -v doxygen > /dev/null; then
+  cmake --build "$root/build/test" --target docs
+fi
 echo "-- g++ build and tests: $((SECONDS - start)) s"
 
 if ((sanitize)); then

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Umbrella header of simulation: plants, the closed-loop runner and the
-/// series table with its CSV output (brings in <fstream>, <random> and <charconv>).
+/// series table with its CSV output (brings in `<fstream>`, `<random>` and `<charconv>`).
 
 #include <adaptobs/simulation/continuous_plant.hpp>
 #include <adaptobs/simulation/detection_evaluation.hpp>

@@ -49,8 +49,10 @@ class GlrDetector : public detail::SequentialTest<GlrDetector<Scalar, N>, Scalar
  public:
   using Vector = typename Base::Vector;
 
-  /// \param nominal, \param scale as for `CusumDetector`; \param window M ≥ 1
-  /// evaluations searched for the change's start; \param threshold h > 0;
+  /// \param nominal healthy value, as for `CusumDetector`;
+  /// \param scale positive per-component scales, as for `CusumDetector`;
+  /// \param window M ≥ 1 evaluations searched for the change's start;
+  /// \param threshold h > 0;
   /// \param options stride, hold-off and re-anchoring as for the CUSUM.
   GlrDetector(Vector nominal, const Vector& scale, Index window, Scalar threshold, SequentialTestOptions options = {})
       : Base("GlrDetector", std::move(nominal), scale, threshold, options), window_(window) {
