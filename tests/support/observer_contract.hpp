@@ -19,7 +19,7 @@
 //
 // with `Types` a ::testing::Types of factories, each with a `name` for CTest.
 //
-// The promises checked (README, "Bad input"; core/observer.hpp):
+// The promises checked (core/observer.hpp and core/status.hpp state them):
 // - the `Observer` and `DiagnosableObserver` concepts;
 // - a NaN, +Inf or −Inf in any entry of any field listed in `poisonable` (or in
 //   `more_poisoned`) is rejected with `nonfinite_input`, and every reading stays
