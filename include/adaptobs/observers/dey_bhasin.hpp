@@ -27,40 +27,14 @@
 /// = F\hat x_t + (I_r\otimes y_t)(\hat a_t - f) + \hat B_tu_t\f$; the paper's \f$\hat x_t\f$
 /// of (13), which also uses \f$y_t\f$, is `current_state()`.
 ///
-/// Theorem 5 as printed bounds \f$\|\tilde p_t\|\f$ by
-/// \f$\|\tilde p_0\| + k_0\beta_\varphi\beta_W\sum_{i\ge0}\|CF^{i+1}\tilde x_0\|\f$, but its step
-/// (26) uses \f$\|(I + \Gamma\varphi R^{-1}\varphi^T)^{-1}\|_2 \le 1\f$, false for this
-/// non-symmetric matrix (Γ = diag(1, 100), φ = [1 1]ᵀ, R = 1 give 1.394). The
-/// weighted norm \f$N_t = \|\tilde p_t\|_{\Gamma_t^{-1}}\f$ repairs the proof: it
-/// obeys \f$N_t \le N_{t-1} + \|R^{-1/2}CF^t\tilde x_0\|\f$ and a reset to \f$k_0I\f$
-/// does not increase it, hence the tighter bound
-/// \f[ \|\tilde p_t\| \le \|\tilde p_0\| + \sqrt{k_0}\sum_{i\ge1}\|R^{-1/2}CF^i\tilde x_0\|. \f]
-/// Tests check both bounds.
+/// Theorem 5 as printed rests on a false norm bound; the weighted norm
+/// \f$\|\tilde p_t\|_{\Gamma_t^{-1}}\f$ repairs it, with a tighter bound (both tested):
+/// docs/readings/dey_bhasin.md.
 ///
-/// **Missing and partial outputs.** A sample carries the channels P of a mask;
-/// the others are absent. Two things use \f$y_t\f$, and each gets what it can:
-/// - the regression (16) keeps its present rows, \f$z_{t,P} = \varphi_{t,P}^Tp + (CF^t\tilde x_0)_P\f$,
-///   and the law takes its step on them alone (`AdaptationLaw`, "Partial
-///   measurements"; for RLS, the block \f$R_{PP}\f$);
-/// - the filters (8)–(9) and the prediction (7) need all of \f$y_t\f$: an absent entry
-///   is replaced by that of \f$\hat y_t = C\hat x_t\f$, with \f$\hat x_t = S_t\hat p_t + F^t\hat x_0\f$ (13),
-///   which does not depend on the absent entries (\f$S_t\f$ holds data up to t − 1).
-///
-/// What the substitution costs. With \f$\bar y_t\f$ the sequence fed to the filters
-/// and \f$\bar S_t\f$ the filters it produces, \f$e_t = x_t - \bar S_tp - F^tx_0\f$ obeys, from (7),
-/// \f[ e_{t+1} = Fe_t + (I_r\otimes(y_t - \bar y_t))(a - f),\qquad e_0 = 0, \f]
-/// so (12) becomes \f$z_t = \bar\varphi_t^Tp + CF^t\tilde x_0 + Ce_t\f$: each replaced
-/// entry adds a perturbation of the same kind as the initial-state term, started
-/// at the gap and decaying as \f$F^{t-1-i}\f$. After finitely many gaps the
-/// perturbation still vanishes, and theorems 5–6 hold as stated (the bound of
-/// theorem 5 gains one such sum per gap). When gaps recur for ever (random
-/// drops), it stays bounded by \f$\sup_i\|y_i - \hat y_i\|\,\|a - f\|\sum_k\|CF^k\|\f$, and
-/// \f$\hat p_t\f$ converges to a neighbourhood that shrinks with the prediction errors
-/// at the gaps — small once \f$\hat p, \hat x\f$ are close, but no theorem of the paper
-/// covers it. With no channel present, \f$\hat p_t = \hat p_{t-1}\f$ (the law is not
-/// called: there is no data, and forgetting would inflate Γ for nothing), \f$\hat x_t\f$
-/// is the prediction \f$\hat x_{t|t-1}\f$, the filters run on \f$\hat y_t = C\hat x_t\f$ and t
-/// advances.
+/// **Missing and partial outputs.** The regression (16) keeps its present rows;
+/// the filters run on \f$C\hat x_t\f$ in absent entries, a vanishing perturbation
+/// after finitely many gaps (derivation: docs/readings/dey_bhasin.md). With no
+/// channel present the law is not called: \f$\hat p_t = \hat p_{t-1}\f$.
 
 #include <adaptobs/adaptation/adaptation_law.hpp>
 #include <adaptobs/adaptation/covariance_resetting.hpp>

@@ -18,14 +18,8 @@
 /// (eq. (4)–(5)); gains come from `design_guiro_gains`, and
 /// `check_guiro_convergence` checks proposition 2.2.
 ///
-/// Readings of the paper:
-///  - θ̂ is updated with \f$Cz_k - y_k\f$ of the previous sample and the
-///    propagation over \f$[kT, (k+1)T]\f$ uses \f$\hat\theta_k\f$, not
-///    \f$\hat\theta_{k+1}\f$: this is what eq. (2) states and what makes its
-///    error matrix U (§2.2, §3) come out as printed, with \f$-\Gamma C\f$ and 1
-///    in its last block row.
-///  - The introduction's \f$C = (1\ 0 \dots 0)\f$ with the lower-shift A of
-///    §3 is not observable; the example's \f$C = [0\ 1]\f$ is the one used.
+/// Readings of the paper (θ̂ updated with the previous a-posteriori error, the
+/// example's C): docs/readings/guiro.md.
 ///
 /// **Sample convention.** Like the library's other observers, `update`
 /// consumes the sample of step k, \f$(u_k, y_k, \Psi_k)\f$ (a `DiscreteSample`
@@ -38,45 +32,12 @@
 /// starts from an uncorrected \f$z_0\f$; `GuiroOptions::correct_initial_estimate
 /// = false` replays that exactly.
 ///
-/// **Missing and partial outputs.** A sample that carries only the channels of
-/// a mask \f$D_k = \mathrm{diag}(\text{present})\f$ measures \f$D_ky_k = D_kCx(t_k)\f$, the
-/// system of eq. (1) with output matrix \f$\bar C_k = D_kC\f$. Eq. (2) with \f$\bar C_k\f$
-/// zeroes the absent entries of both output errors: \f$z_k = z^-_k - KD_k(Cz^-_k - y_k)\f$,
-/// \f$\hat\theta_{k+1} = \hat\theta_k - \Gamma D_k(Cz_k - y_k)\f$. With no channel present this
-/// is the time update \f$z_k = z^-_k\f$, \f$\hat\theta_{k+1} = \hat\theta_k\f$,
-/// \f$z^-_{k+1} = Ez_k + \Psi_k\hat\theta_k + B_du_k\f$, and the step counter advances, so an LTV
-/// model stays in phase. The errors \f$v = (z - x, \hat\theta - \theta)\f$ then obey
-/// \f$v_{k+1} = U_kv_k\f$ with \f$U_k\f$ built from \f$\bar C_k\f$: at a gap
-/// \f$\begin{bmatrix}E & EH_k\\ 0 & I\end{bmatrix}\f$, the open-loop propagation, in which θ̃
-/// is held and drives the state error. Proposition 2.1 speaks of one fixed U;
-/// with gaps the sequence of error matrices switches, and convergence asks that
-/// the products over the run contract — the corrected samples between gaps must
-/// outweigh the growth across them, which nothing in the paper bounds.
-///
-/// **Irregular sample times.** For samples at \f$t_0 < t_1 < \dots\f$ with intervals
-/// \f$T_k = t_{k+1} - t_k\f$, the exact sampled system is LTV:
-/// \f$x_{k+1} = E_kx_k + \Psi_k\theta + B_{d,k}u_k\f$ with \f$E_k = e^{AT_k}\f$ and
-/// \f$\Psi_k = E_kH_k\f$ over \f$[t_k, t_{k+1}]\f$ (a `RegressorIntegral` of period \f$T_k\f$ gives
-/// \f$E_k\f$ as `transition()` and \f$\Psi_k\f$). Give the observer a `DiscreteLtvModel` serving
-/// \f$(E_k, B_{d,k}, C)\f$ at step k and the sample of step k its \f$\Psi_k\f$. Both need
-/// \f$t_{k+1}\f$: in a real-time loop, consume sample k when sample k + 1 arrives —
-/// the update then returns \f$z^-_{k+1}\f$, the prediction for the instant at hand,
-/// so nothing is lost by the wait. The errors obey
-/// \f[ v_{k+1} = U_kv_k,\qquad U_k = \begin{bmatrix}(I - K_{k+1}C)E_k & (I - K_{k+1}C)E_kH_k
-///     \\ -\Gamma_kC & I\end{bmatrix}, \f]
-/// where \f$K_{k+1}\f$ is the correction applied at \f$t_{k+1}\f$ and \f$\Gamma_k\f$ the
-/// parameter gain applied at \f$t_k\f$. To give every interval the spectrum the
-/// design places, design \f$(K^{(k)}, \Gamma^{(k)})\f$ = `design_guiro_gains(E_k, C, H_k, poles)`
-/// per interval and, before consuming sample k, call
-/// `set_gains(K^{(k-1)}, \Gamma^{(k)})` (\f$K^{(0)}\f$ at k = 0): the correction of the interval that ends at
-/// \f$t_k\f$ and the parameter gain of the one that starts there. What is then
-/// covered: each \f$U_k\f$ has the placed spectrum; what is not: a product of
-/// matrices with stable spectra need not contract (a switched system), so
-/// proposition 2.1's argument, which perturbs one fixed U, does not carry over.
-/// A common quadratic Lyapunov function of the \f$U_k\f$ for the range of intervals
-/// would; on the paper's example with intervals jittered ±30 %, the scheduled
-/// gains reach |θ̂ − 5| < 1e-8 within 40 samples, and gains designed once for the
-/// nominal T still converge, more slowly (tests/test_guiro.cpp).
+/// **Missing and partial outputs.** An absent channel zeroes its rows of C in
+/// both output errors; none present is the open-loop prediction with θ̂ held
+/// (`update(sample, present)`). **Irregular sample times.** The sampled system is
+/// LTV: serve \f$(E_k, B_{d,k}, C)\f$ from a `DiscreteLtvModel`, \f$\Psi_k\f$ with each
+/// sample, and schedule the gains with `set_gains`. The derivations, and what
+/// proposition 2.1 no longer covers: docs/readings/guiro.md.
 
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>

@@ -25,19 +25,10 @@
 /// - \f$K_\theta\f$ enters as printed in (21): \f$\hat\theta_{k+1} = (I - K_\theta)\hat\theta_k + \dots\f$,
 ///   a leakage that biases θ̂ toward 0 by a term of order \f$K_\theta/K_{y}\f$ (Remark 3).
 ///
-/// **Missing and partial outputs.** A sample that carries only the channels of a
-/// mask \f$D_k = \mathrm{diag}(\text{present})\f$ runs the same step with the output
-/// error \f$D_k(y_k - C\hat x_k)\f$: an absent channel corrects neither x̂ (through
-/// \f$L_i\f$) nor θ̂ (through \f$K_{y,i}\f$). The premises \f$\hat z_k = z(\hat x_k, u_k, \hat\theta_k)\f$
-/// use the estimates, not y, so the weights are those of the full step. With no
-/// channel present this is the time update
-/// \f$\hat x_{k+1} = \sum_i\hat h_i(A_i\hat x_k + B_iu_k)\f$, \f$\hat\theta_{k+1} = (I - K_\theta)\hat\theta_k\f$
-/// (the leakage of (21) acts per step, measured or not). What the LMIs of
-/// theorems 1–2 certify is a decrease of \f$V = e^TPe\f$ under
-/// \f$\sum_i h_i(A_i - L_iC)\f$; under \f$\sum_i h_i(A_i - L_iD_kC)\f$ they certify nothing, and
-/// V may grow on a gap (by at most \f$\max_i\|P^{1/2}A_iP^{-1/2}\|_2^2\f$ per step): the
-/// estimates converge when the corrected steps outweigh the gaps — a dwell-time
-/// condition that the observer does not check.
+/// **Missing and partial outputs.** The step runs with the output error
+/// \f$D_k(y_k - C\hat x_k)\f$, \f$D_k = \mathrm{diag}(\text{present})\f$; the weights are those of
+/// the full step. The LMIs certify nothing across a gap: a dwell-time condition
+/// the observer does not check (derivation: docs/readings/takagi_sugeno.md).
 
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
