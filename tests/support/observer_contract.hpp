@@ -24,7 +24,8 @@
 // - a NaN, +Inf or −Inf in any entry of any field listed in `poisonable` (or in
 //   `more_poisoned`) is rejected with `nonfinite_input`, and every reading stays
 //   the same bit for bit; so is a continuous-time sample not after the last
-//   accepted one, with `nonincreasing_time`;
+//   accepted one, with `nonincreasing_time`; with a mask, a NaN in an absent
+//   channel is never read (`update_finite_outputs` finds that mask);
 // - a finite sample whose step would overflow is rejected with
 //   `nonfinite_result`, every reading unchanged;
 // - after a rejection the run carries on as if the sample had never come;
@@ -202,6 +203,25 @@ TYPED_TEST_P(ObserverContract, NonFiniteSamplesAreRejectedAndChangeNothing) {
     stale.t = run[half - 1].t;
     EXPECT_EQ(observer.update(stale), UpdateStatus::nonincreasing_time);
     ASSERT_TRUE(same_bits(TestFixture::readings(observer), before));
+  }
+  // With a mask, a bad entry of an absent channel is never read: the step equals
+  // that of the clean sample under the same mask, and update_finite_outputs
+  // finds that mask itself.
+  if constexpr (PartialOutputObserver<typename TestFixture::Observer>) {
+    using Mask = OutputMask<typename TestFixture::Observer::Dims>;
+    const Index ny = observer.sizes().ny;
+    Mask without_first = Mask::Constant(ny, true);
+    without_first(0) = false;
+    auto glitch = run[half];
+    glitch.y(0) = std::numeric_limits<typename TestFixture::Scalar>::quiet_NaN();
+    EXPECT_EQ(observer.update(glitch, Mask::Constant(ny, true)), UpdateStatus::nonfinite_input);
+    ASSERT_TRUE(same_bits(TestFixture::readings(observer), before));
+    auto masked = observer, clean = observer, finite = observer;
+    EXPECT_EQ(masked.update(glitch, without_first), UpdateStatus::accepted);
+    EXPECT_EQ(clean.update(run[half], without_first), UpdateStatus::accepted);
+    EXPECT_EQ(update_finite_outputs(finite, glitch), UpdateStatus::accepted);
+    EXPECT_TRUE(same_bits(TestFixture::readings(masked), TestFixture::readings(clean)));
+    EXPECT_TRUE(same_bits(TestFixture::readings(finite), TestFixture::readings(clean)));
   }
   // The run carries on as if the bad samples had never come.
   auto reference = TestFixture::after(run, half);
