@@ -390,7 +390,8 @@ struct UnifiedContract {
   }
   // ε(t_k) = y_k − C(t_k) η̂(t_k), at the estimate integrated to the sample time.
   static typename Observer::Output expected_output_error(const Observer&, const Observer& after, const Sample& s) {
-    return s.y - Design::plant().model().at(s.t).C * after.state();
+    static const auto model = Design::plant().model();  // the plant's, independent of the observer's
+    return s.y - model.at(s.t).C * after.state();
   }
 };
 

@@ -65,11 +65,6 @@ template <class T>
 struct IsOptional<std::optional<T>> : std::true_type {};
 
 template <class T>
-struct IsVector : std::false_type {};
-template <class T, class A>
-struct IsVector<std::vector<T, A>> : std::true_type {};
-
-template <class T>
 struct IsTuple : std::false_type {};
 template <class... T>
 struct IsTuple<std::tuple<T...>> : std::true_type {};
@@ -78,7 +73,7 @@ struct IsTuple<std::tuple<T...>> : std::true_type {};
 
 /// Equality of every bit of a reading: Eigen matrices entry by entry, floating
 /// point values by their representation (so NaN equals the same NaN and 0 is not
-/// −0), optionals, vectors and tuples member by member, anything else by ==.
+/// −0), optionals and tuples member by member, anything else by ==.
 template <class T>
 bool same_bits(const T& a, const T& b) {
   if constexpr (std::is_base_of_v<Eigen::MatrixBase<T>, T>) {
@@ -87,11 +82,6 @@ bool same_bits(const T& a, const T& b) {
     return std::memcmp(&a, &b, sizeof(T)) == 0;
   } else if constexpr (contract_detail::IsOptional<T>::value) {
     return a.has_value() == b.has_value() && (!a || same_bits(*a, *b));
-  } else if constexpr (contract_detail::IsVector<T>::value) {
-    if (a.size() != b.size()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i)
-      if (!same_bits(a[i], b[i])) return false;
-    return true;
   } else if constexpr (contract_detail::IsTuple<T>::value) {
     return std::apply(
         [&](const auto&... x) { return std::apply([&](const auto&... y) { return (same_bits(x, y) && ...); }, b); }, a);
