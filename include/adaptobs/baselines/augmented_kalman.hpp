@@ -50,10 +50,8 @@ template <DiscreteModel Model>
 class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
  public:
   using Dims = typename Model::Dims;
-  using Scalar = typename Dims::Scalar;
-  using State = typename Dims::State;
-  using Parameters = typename Dims::Parameters;
-  using Output = typename Dims::Output;
+  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
+      typename SizedBy<Dims>::Output;
   using Sample = DiscreteSample<Dims>;
   using Covariances = AugmentedKalmanCovariances<Dims>;
   static constexpr int na = Covariances::na;

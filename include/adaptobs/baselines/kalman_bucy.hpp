@@ -40,11 +40,8 @@ template <ContinuousModel Model>
 class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
  public:
   using Dims = typename Model::Dims;
-  using Scalar = typename Dims::Scalar;
-  using State = typename Dims::State;
-  using Parameters = typename Dims::Parameters;
-  using Input = typename Dims::Input;
-  using Output = typename Dims::Output;
+  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
+      typename SizedBy<Dims>::Input, typename SizedBy<Dims>::Output;
   using Sample = ContinuousSample<Dims>;
   /// P0, Q (spectral density of the noise on [x; θ]) and R (on y).
   using Covariances = AugmentedKalmanCovariances<Dims>;

@@ -106,7 +106,13 @@ concept StateSpace = requires {
 template <StateSpace D>
 using OutputMask = Eigen::Array<bool, D::ny, 1>;
 
-/// Base of model and observer types: re-exports the sizes of its `Dimensions`.
+/// Base of model, observer and plant types: re-exports the sizes and the
+/// vector and matrix types of its `Dimensions`, so that every such type `T`
+/// answers `T::nx`, `T::State`, `T::GainMatrix` and the rest alike.
+///
+/// Inside a class template these are members of a dependent base, which
+/// unqualified names do not find: a class brings the ones its body uses into
+/// scope with one declaration, `using typename SizedBy<Dims>::State, ...;`.
 template <StateSpace D>
 struct SizedBy {
   using Dims = D;
@@ -115,6 +121,18 @@ struct SizedBy {
   static constexpr int nu = D::nu;
   static constexpr int ny = D::ny;
   static constexpr int np = D::np;
+  using State = typename D::State;
+  using Input = typename D::Input;
+  using Output = typename D::Output;
+  using Parameters = typename D::Parameters;
+  using StateMatrix = typename D::StateMatrix;
+  using InputMatrix = typename D::InputMatrix;
+  using OutputMatrix = typename D::OutputMatrix;
+  using RegressorMatrix = typename D::RegressorMatrix;
+  using GainMatrix = typename D::GainMatrix;
+  using OutputMatrixSquare = typename D::OutputMatrixSquare;
+  using OutputRegressor = typename D::OutputRegressor;
+  using ParameterMatrix = typename D::ParameterMatrix;
 };
 
 }  // namespace adaptobs

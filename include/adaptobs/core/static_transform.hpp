@@ -95,9 +95,7 @@ bool is_leading_identity(const Eigen::MatrixBase<DC>& co) {
 template <StateSpace D>
 class StaticTransform : public SizedBy<D> {
  public:
-  using Scalar = typename D::Scalar;
-  using StateMatrix = typename D::StateMatrix;
-  using GainMatrix = typename D::GainMatrix;
+  using typename SizedBy<D>::Scalar, typename SizedBy<D>::StateMatrix, typename SizedBy<D>::GainMatrix;
 
   /// \param T invertible coordinate change \f$x = T\eta\f$; \param K output injection (n × m).
   StaticTransform(StateMatrix T, GainMatrix K) : t_(std::move(T)), k_(std::move(K)) {

@@ -210,13 +210,9 @@ template <StateSpace D, int NZ, class F>
 template <StateSpace D, int NZ, class PremiseFn>
 class TakagiSugenoModel : public SizedBy<D> {
  public:
-  using Scalar = typename D::Scalar;
-  using State = typename D::State;
-  using Input = typename D::Input;
-  using Parameters = typename D::Parameters;
-  using StateMatrix = typename D::StateMatrix;
-  using InputMatrix = typename D::InputMatrix;
-  using OutputMatrix = typename D::OutputMatrix;
+  using typename SizedBy<D>::Scalar, typename SizedBy<D>::State, typename SizedBy<D>::Input,
+      typename SizedBy<D>::Parameters, typename SizedBy<D>::StateMatrix, typename SizedBy<D>::InputMatrix,
+      typename SizedBy<D>::OutputMatrix;
   static constexpr int nz = NZ;
   static constexpr int vertices_at_compile_time = takagi_sugeno_vertex_count(NZ, D::np);
   using PremiseVector = Eigen::Matrix<Scalar, NZ, 1>;

@@ -38,10 +38,8 @@ namespace adaptobs {
 template <StateSpace D>
 class RiccatiDifferentialEquation : public SizedBy<D> {
  public:
-  using Scalar = typename D::Scalar;
-  using StateMatrix = typename D::StateMatrix;
+  using typename SizedBy<D>::Scalar, typename SizedBy<D>::StateMatrix, typename SizedBy<D>::GainMatrix;
   using OutputCovariance = typename D::OutputMatrixSquare;
-  using GainMatrix = typename D::GainMatrix;
 
   /// \param P0 initial P (positive definite), \param Q ≥ 0, \param R > 0.
   RiccatiDifferentialEquation(StateMatrix P0, StateMatrix Q, OutputCovariance R)

@@ -25,10 +25,8 @@ namespace adaptobs {
 template <StateSpace D>
 class KalmanGainRecursion : public SizedBy<D> {
  public:
-  using Scalar = typename D::Scalar;
-  using StateMatrix = typename D::StateMatrix;
+  using typename SizedBy<D>::Scalar, typename SizedBy<D>::StateMatrix, typename SizedBy<D>::GainMatrix;
   using OutputCovariance = typename D::OutputMatrixSquare;
-  using GainMatrix = typename D::GainMatrix;
 
   /// \param P0 initial covariance (positive definite), \param Q state noise
   /// covariance (positive semidefinite), \param R output noise covariance (positive definite).

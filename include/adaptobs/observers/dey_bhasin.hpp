@@ -62,12 +62,8 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   using Filters = CanonicalFormFilters<S, R, Q, M>;
   using Dims = typename Filters::Dims;
   using Scalar = S;
-  using State = typename Dims::State;
-  using Input = typename Dims::Input;
-  using Output = typename Dims::Output;
-  using Parameters = typename Dims::Parameters;
-  using StateMatrix = typename Dims::StateMatrix;
-  using InputMatrix = typename Dims::InputMatrix;
+  using typename SizedBy<Dims>::State, typename SizedBy<Dims>::Input, typename SizedBy<Dims>::Output,
+      typename SizedBy<Dims>::Parameters, typename SizedBy<Dims>::StateMatrix, typename SizedBy<Dims>::InputMatrix;
   using Coefficients = typename Filters::Coefficients;
   using Regressor = typename Filters::Regressor;
   using Bank = typename Filters::Bank;

@@ -64,11 +64,8 @@ template <DiscreteModel Model>
 class GuiroObserver : public SizedBy<typename Model::Dims> {
  public:
   using Dims = typename Model::Dims;
-  using Scalar = typename Dims::Scalar;
-  using State = typename Dims::State;
-  using Parameters = typename Dims::Parameters;
-  using Output = typename Dims::Output;
-  using GainMatrix = typename Dims::GainMatrix;                     ///< K, n × m
+  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
+      typename SizedBy<Dims>::Output, typename SizedBy<Dims>::GainMatrix;
   using ParameterGain = typename Dims::template Matrix<Dims::np, Dims::ny>;  ///< Γ, p × m
   using Sample = DiscreteSample<Dims>;
 

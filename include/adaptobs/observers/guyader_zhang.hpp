@@ -72,12 +72,8 @@ template <DiscreteModel Model>
 class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
  public:
   using Dims = typename Model::Dims;
-  using Scalar = typename Dims::Scalar;
-  using State = typename Dims::State;
-  using Parameters = typename Dims::Parameters;
-  using GainMatrix = typename Dims::GainMatrix;
-  using RegressorMatrix = typename Dims::RegressorMatrix;
-  using Output = typename Dims::Output;
+  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
+      typename SizedBy<Dims>::GainMatrix, typename SizedBy<Dims>::RegressorMatrix, typename SizedBy<Dims>::Output;
   using Sample = DiscreteSample<Dims>;
 
   /// \param K output-injection gain making \f$A_k - KC_k\f$ exponentially stable (assumption 1);

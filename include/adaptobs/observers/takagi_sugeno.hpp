@@ -53,10 +53,8 @@ template <class Model>
 class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
  public:
   using Dims = typename Model::Dims;
-  using Scalar = typename Dims::Scalar;
-  using State = typename Dims::State;
-  using Parameters = typename Dims::Parameters;
-  using Output = typename Dims::Output;
+  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
+      typename SizedBy<Dims>::Output;
   using Sample = InputOutputSample<Dims>;
   using Gains = TakagiSugenoGains<Dims>;
   using PremiseVector = typename Model::PremiseVector;

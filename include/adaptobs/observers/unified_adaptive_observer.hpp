@@ -92,13 +92,9 @@ template <ContinuousModel Model, UnifiedAlgorithm<typename Model::Dims> Algorith
 class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
  public:
   using Dims = typename Model::Dims;
-  using Scalar = typename Dims::Scalar;
-  using State = typename Dims::State;
-  using Parameters = typename Dims::Parameters;
-  using Input = typename Dims::Input;
-  using Output = typename Dims::Output;
-  using RegressorMatrix = typename Dims::RegressorMatrix;
-  using GainMatrix = typename Dims::GainMatrix;
+  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
+      typename SizedBy<Dims>::Input, typename SizedBy<Dims>::Output, typename SizedBy<Dims>::RegressorMatrix,
+      typename SizedBy<Dims>::GainMatrix;
   using Sample = ContinuousSample<Dims>;
   static constexpr int nr = Algorithm::filter_rows;
   using FilterState = Eigen::Matrix<Scalar, nr, Dims::np>;  ///< Ξ

@@ -35,11 +35,8 @@ template <ContinuousModel Model, class InputFn>
 class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
  public:
   using Dims = typename Model::Dims;
-  using Scalar = typename Dims::Scalar;
-  using State = typename Dims::State;
-  using Parameters = typename Dims::Parameters;
-  using Input = typename Dims::Input;
-  using Output = typename Dims::Output;
+  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
+      typename SizedBy<Dims>::Input, typename SizedBy<Dims>::Output;
   using Sample = ContinuousSample<Dims>;
 
   ContinuousLinearPlant(Model model, State eta0, Parameters theta, InputFn input,

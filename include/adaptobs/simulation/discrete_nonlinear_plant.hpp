@@ -22,9 +22,7 @@ template <StateSpace D, class TransitionFn, class InputFn, class ParameterFn>
            std::invocable<InputFn&, Index> && std::invocable<const ParameterFn&, Index>
 class DiscreteNonlinearPlant : public SizedBy<D> {
  public:
-  using Scalar = typename D::Scalar;
-  using State = typename D::State;
-  using Parameters = typename D::Parameters;
+  using typename SizedBy<D>::Scalar, typename SizedBy<D>::State, typename SizedBy<D>::Parameters;
   using Sample = InputOutputSample<D>;
 
   DiscreteNonlinearPlant(TransitionFn transition, typename D::OutputMatrix C, State x0, InputFn input,

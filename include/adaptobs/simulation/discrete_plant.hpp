@@ -33,9 +33,7 @@ template <DiscreteModel Model, class InputFn, class RegressorFn>
 class DiscreteLinearPlant : public SizedBy<typename Model::Dims> {
  public:
   using Dims = typename Model::Dims;
-  using Scalar = typename Dims::Scalar;
-  using State = typename Dims::State;
-  using Parameters = typename Dims::Parameters;
+  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters;
   using Sample = DiscreteSample<Dims>;
 
   DiscreteLinearPlant(Model model, State x0, Parameters theta, InputFn input, RegressorFn regressor,
