@@ -59,11 +59,13 @@ echo "-- g++ build and tests: $((SECONDS - start)) s"
 if ((sanitize)); then
   echo "== clang++ AddressSanitizer + UndefinedBehaviorSanitizer build"
   # -O0 with line tables: the cheapest instrumented build whose reports still
-  # name file and line. Eigen's own assertions stay on (no NDEBUG).
+  # name file and line (test_long_runs alone at -O1, see tests/CMakeLists.txt).
+  # Eigen's own assertions stay on (no NDEBUG). One translation unit per test
+  # executable: clang compiles a family's shared templates once.
   configure "$root/build/sanitize" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_CXX_FLAGS_DEBUG="-O0 -gline-tables-only" \
     -DADAPTOBS_SANITIZE=ON -DADAPTOBS_WARNINGS_AS_ERRORS=ON -DADAPTOBS_BUILD_BENCHMARKS=ON \
-    -DADAPTOBS_VERIFY_HEADERS=OFF
+    -DADAPTOBS_VERIFY_HEADERS=OFF -DADAPTOBS_UNITY_TESTS=ON
   cmake --build "$root/build/sanitize" -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$root/build/sanitize" --output-on-failure -j "$jobs"

@@ -39,15 +39,7 @@ Vector poly(std::initializer_list<double> c) {
   return p;
 }
 
-template <class F>
-std::string configuration_error_of(F&& f) {
-  try {
-    f();
-  } catch (const adaptobs::ConfigurationError& e) {
-    return e.what();
-  }
-  return "<no exception>";
-}
+using adaptobs::testing::configuration_error_of;
 
 // A realization of N/D (D monic of degree n, N of n coefficients) through a
 // random similarity of the observer canonical form.

@@ -14,11 +14,11 @@ namespace {
 using adaptobs::SampledIntegrator;
 using adaptobs::SamplingOptions;
 using adaptobs::UpdateStatus;
-using Dims = adaptobs::Dimensions<double, 1, 1, 1, 1>;
+using DecayDims = adaptobs::Dimensions<double, 1, 1, 1, 1>;
 using State = Eigen::Matrix<double, 1, 1>;
-using Sample = adaptobs::ContinuousSample<Dims>;
+using Sample = adaptobs::ContinuousSample<DecayDims>;
 
-Sample at(double t) { return Sample{t, Dims::Input::Zero(), Dims::Output::Zero()}; }
+Sample at(double t) { return Sample{t, DecayDims::Input::Zero(), DecayDims::Output::Zero()}; }
 
 constexpr double lambda = 50;
 
@@ -29,7 +29,7 @@ double rk4_decay(double interval, int steps) {
 
 struct Decay {
   int* evaluations;
-  void operator()(const State& x, State& dxdt, double, const Dims::Input&, const Dims::Output&) const {
+  void operator()(const State& x, State& dxdt, double, const DecayDims::Input&, const DecayDims::Output&) const {
     ++*evaluations;
     dxdt = -lambda * x;
   }
@@ -51,10 +51,10 @@ class SampledIntegration : public ::testing::Test {
     return status;
   }
   void make(SamplingOptions options) {
-    integrator = SampledIntegrator<Dims, State>(State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, options, "test");
+    integrator = SampledIntegrator<DecayDims, State>(State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, options, "test");
   }
 
-  SampledIntegrator<Dims, State> integrator{State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, SamplingOptions{.substeps = 2},
+  SampledIntegrator<DecayDims, State> integrator{State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, SamplingOptions{.substeps = 2},
                                             "test"};
   State x = State::Constant(1.0);
   int evaluations = 0, steps = 0;
@@ -131,7 +131,7 @@ TEST_F(SampledIntegration, AValidatorCanRejectTheStepAndNothingIsCommitted) {
 TEST_F(SampledIntegration, BadStepOptionsNameTheArgument) {
   const auto message = [](SamplingOptions options) -> std::string {
     try {
-      SampledIntegrator<Dims, State>(State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, options, "test");
+      SampledIntegrator<DecayDims, State>(State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, options, "test");
     } catch (const adaptobs::ConfigurationError& e) {
       return e.what();
     }

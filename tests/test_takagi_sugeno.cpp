@@ -30,14 +30,14 @@ using adaptobs::UpdateStatus;
 namespace wwtp = adaptobs::examples::wwtp;
 
 template <typename S>
-auto make_observer(adaptobs::TakagiSugenoGains<wwtp::Dims<S>> gains = wwtp::paper_gains<S>(),
+auto make_wwtp_observer(adaptobs::TakagiSugenoGains<wwtp::Dims<S>> gains = wwtp::paper_gains<S>(),
                    Eigen::Matrix<S, 2, 1> x0 = wwtp::initial_state_estimate<S>(),
                    wwtp::Vector1<S> theta0 = wwtp::initial_parameter_estimate<S>()) {
   return adaptobs::TakagiSugenoObserver(wwtp::model<S>(), gains, x0, theta0);
 }
 
-static_assert(adaptobs::Observer<decltype(make_observer<double>())>);
-static_assert(adaptobs::Observer<decltype(make_observer<float>())>);
+static_assert(adaptobs::Observer<decltype(make_wwtp_observer<double>())>);
+static_assert(adaptobs::Observer<decltype(make_wwtp_observer<float>())>);
 
 template <typename S>
 class TakagiSugenoTyped : public ::testing::Test {};
@@ -161,7 +161,7 @@ TYPED_TEST(TakagiSugenoTyped, ObserverStartedAtTheTruthStaysOnIt) {
   using S = TypeParam;
   const S theta = S(0.1);
   auto plant = wwtp::make_plant<S>(theta);
-  auto observer = make_observer<S>(wwtp::paper_gains<S>(), wwtp::initial_state<S>(), wwtp::Vector1<S>(theta));
+  auto observer = make_wwtp_observer<S>(wwtp::paper_gains<S>(), wwtp::initial_state<S>(), wwtp::Vector1<S>(theta));
   double worst = 0;
   for (Index k = 0; k < 1000; ++k) {
     ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
@@ -204,7 +204,7 @@ TEST(TakagiSugeno, UpdateIsEquation65) {
 TEST(TakagiSugeno, WeightsAtEstimatedPremisesAreClippedToTheSectors) {
   const Eigen::Vector2d far_x(100, 0.01);  // ẑ2 = 100/0.41 ≫ 14.63
   const wwtp::Vector1<double> far_theta(0.5);
-  auto observer = make_observer<double>(wwtp::paper_gains<double>(), far_x, far_theta);
+  auto observer = make_wwtp_observer<double>(wwtp::paper_gains<double>(), far_x, far_theta);
   const adaptobs::InputOutputSample<wwtp::Dims<double>> sample{wwtp::Vector1<double>(0.7), wwtp::Vector1<double>(4)};
   ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
   EXPECT_FALSE(observer.premises_in_sectors());
@@ -250,7 +250,7 @@ Criterion run(Observer& observer, Plant& plant, Index from, Index to, Present pr
 TEST(TakagiSugeno, PaperGainsMeetTheCriterionAroundTheNominalDilutionRate) {
   for (double theta : {-0.1, 0.0, 0.1}) {
     auto plant = wwtp::make_plant<double>(theta);
-    auto observer = make_observer<double>();
+    auto observer = make_wwtp_observer<double>();
     const Criterion c = run(observer, plant, 300, 400);
     EXPECT_TRUE(c.plant_in_sector) << "theta " << theta;
     EXPECT_LT(c.worst_parameter_error, 0.01) << "theta " << theta;
@@ -265,7 +265,7 @@ TEST(TakagiSugenoMissing, PaperGainsMeetTheCriterionWithOneSampleInFiveLost) {
   std::bernoulli_distribution lost(0.2);
   for (double theta : {-0.1, 0.0, 0.1}) {
     auto plant = wwtp::make_plant<double>(theta);
-    auto observer = make_observer<double>();
+    auto observer = make_wwtp_observer<double>();
     const Criterion c = run(observer, plant, 400, 500, [&](Index) { return !lost(generator); });
     EXPECT_TRUE(c.plant_in_sector) << "theta " << theta;
     EXPECT_LT(c.worst_parameter_error, 0.01) << "theta " << theta;
@@ -277,10 +277,10 @@ TEST(TakagiSugenoMissing, PaperGainsMeetTheCriterionWithOneSampleInFiveLost) {
 // y_k = C x̂_k, bit for bit (the leakage of (21) included); every channel present
 // is the plain update.
 TEST(TakagiSugenoMissing, NoChannelIsTheStepWithoutOutputErrorAndAllChannelsThePlainStep) {
-  static_assert(adaptobs::PartialOutputObserver<decltype(make_observer<double>())>);
+  static_assert(adaptobs::PartialOutputObserver<decltype(make_wwtp_observer<double>())>);
   auto gains = wwtp::paper_gains<double>();
   gains.K_theta = wwtp::Vector1<double>::Constant(0.02);
-  auto masked = make_observer<double>(gains), reference = make_observer<double>(gains);
+  auto masked = make_wwtp_observer<double>(gains), reference = make_wwtp_observer<double>(gains);
   auto plant = wwtp::make_plant<double>(0.1);
   using Mask = adaptobs::OutputMask<wwtp::Dims<double>>;
   for (Index k = 0; k < 300; ++k) {
@@ -315,7 +315,7 @@ TEST(TakagiSugeno, PaperGainsConvergeAcrossTheRangeAtMatchedDilutionRates) {
   } cases[] = {{-0.25, {0.15, 0.03, 100}}, {0.25, {0.275, 0.05, 100}}};
   for (const auto& c : cases) {
     auto plant = wwtp::make_plant<double>(c.theta, wwtp::initial_state<double>(), c.input);
-    auto observer = make_observer<double>();
+    auto observer = make_wwtp_observer<double>();
     const Criterion r = run(observer, plant, 300, 400);
     EXPECT_TRUE(r.plant_in_sector) << "theta " << c.theta;
     EXPECT_LT(r.worst_parameter_error, 0.01) << "theta " << c.theta;
@@ -329,7 +329,7 @@ TEST(TakagiSugeno, PaperGainsConvergeAcrossTheRangeAtMatchedDilutionRates) {
 TEST(TakagiSugeno, PaperGainsMissTheCriterionAtTheEndsOfTheRangeAtTheNominalDilutionRate) {
   {
     auto plant = wwtp::make_plant<double>(0.2);
-    auto observer = make_observer<double>();
+    auto observer = make_wwtp_observer<double>();
     const Criterion at300 = run(observer, plant, 300, 300);
     EXPECT_TRUE(at300.plant_in_sector);
     EXPECT_GT(at300.worst_state_error, 1e-3);
@@ -339,7 +339,7 @@ TEST(TakagiSugeno, PaperGainsMissTheCriterionAtTheEndsOfTheRangeAtTheNominalDilu
   }
   {
     auto plant = wwtp::make_plant<double>(-0.2);
-    auto observer = make_observer<double>();
+    auto observer = make_wwtp_observer<double>();
     bool left_sectors = false;
     for (Index k = 0; k < 300; ++k) {
       ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
@@ -355,10 +355,10 @@ TEST(TakagiSugeno, PaperGainsMissTheCriterionAtTheEndsOfTheRangeAtTheNominalDilu
 // --- Observer (21): time-varying parameters ----------------------------------
 
 TEST(TakagiSugeno, LeakageGainAddsMinusKthetaThetaAndZeroLeakageIsEquation65) {
-  auto plain = make_observer<double>();
+  auto plain = make_wwtp_observer<double>();
   auto gains = wwtp::paper_gains<double>();
   gains.K_theta = wwtp::Vector1<double>(0.0);
-  auto zero_leak = make_observer<double>(gains);
+  auto zero_leak = make_wwtp_observer<double>(gains);
   gains.K_theta = wwtp::Vector1<double>(0.02);
   EXPECT_FALSE(plain.has_leakage());
   EXPECT_TRUE(zero_leak.has_leakage());
@@ -384,8 +384,8 @@ TEST(TakagiSugeno, LeakageGainAddsMinusKthetaThetaAndZeroLeakageIsEquation65) {
 
 TEST(TakagiSugeno, RunsInTheSimulationRunnerWithTheNonlinearPlant) {
   auto plant = wwtp::make_plant<double>(0.1);
-  auto paper = make_observer<double>();
-  auto truth = make_observer<double>(wwtp::paper_gains<double>(), wwtp::initial_state<double>(), wwtp::Vector1<double>(0.1));
+  auto paper = make_wwtp_observer<double>();
+  auto truth = make_wwtp_observer<double>(wwtp::paper_gains<double>(), wwtp::initial_state<double>(), wwtp::Vector1<double>(0.1));
   adaptobs::SeriesTable table;
   const auto report = adaptobs::simulate(plant, 50, table, adaptobs::track(paper), adaptobs::track(truth, "truth"));
   EXPECT_EQ(report.rejected[0] + report.rejected[1], 0);
@@ -401,10 +401,10 @@ TEST(TakagiSugeno, RunsInTheSimulationRunnerWithTheNonlinearPlant) {
 // plant with the printed gains, in float and double.
 template <typename S>
 struct TakagiSugenoContract {
-  using Observer = decltype(make_observer<S>());
+  using Observer = decltype(make_wwtp_observer<S>());
   using Sample = typename Observer::Sample;
   static constexpr const char* name = adaptobs::testing::scalar_name<S>;
-  static Observer make() { return make_observer<S>(); }
+  static Observer make() { return make_wwtp_observer<S>(); }
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(wwtp::make_plant<S>(S(0.1)), 40);
   }
@@ -436,7 +436,7 @@ namespace {
 // A NaN premise variable: ẑ2 = x̂1/(x̂2 + b) = 0/0 at x̂ = (0, −b), from finite samples.
 TYPED_TEST(TakagiSugenoTyped, NonFinitePremisesAreRejectedAndChangeNothing) {
   using S = TypeParam;
-  auto observer = make_observer<S>();
+  auto observer = make_wwtp_observer<S>();
   observer.reset(Eigen::Matrix<S, 2, 1>(S(0), -S(wwtp::b)), wwtp::Vector1<S>(S(0)));
   const auto at_reset = TakagiSugenoContract<S>::readings(observer);
   auto plant = wwtp::make_plant<S>(S(0.1));
@@ -516,7 +516,7 @@ TEST(TakagiSugeno, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
   fixed_with_leak.K_theta = wwtp::Vector1<double>(1e-3);
   adaptobs::TakagiSugenoObserver dynamic(model, gains, Eigen::VectorXd(wwtp::initial_state_estimate<double>()),
                                          Eigen::VectorXd(wwtp::initial_parameter_estimate<double>()));
-  auto fixed = make_observer<double>(fixed_with_leak);
+  auto fixed = make_wwtp_observer<double>(fixed_with_leak);
   auto plant = wwtp::make_plant<double>(0.05);
   for (Index k = 0; k < 500; ++k) {
     const auto& s = plant.sample();
