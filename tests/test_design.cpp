@@ -7,6 +7,8 @@
 #include <adaptobs/design/stability.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 
+#include <Eigen/Cholesky>
+
 #include "support/eigen_testing.hpp"
 
 #include <Eigen/QR>

@@ -12,6 +12,8 @@
 #include <adaptobs/observers/guyader_zhang.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 
+#include <Eigen/Cholesky>
+
 #include "models/satellite.hpp"
 #include "support/eigen_testing.hpp"
 

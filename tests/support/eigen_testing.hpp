@@ -28,11 +28,12 @@ struct Tolerance {
   static constexpr S converged = std::is_same_v<S, float> ? S(1e-3) : S(1e-9);
 };
 
-/// |a − b| ≤ abs_tol + rel_tol·|b| entrywise; prints both matrices on failure.
-template <class DA, class DB>
-::testing::AssertionResult matrices_near(const char* a_expr, const char* b_expr, const char* /*abs_expr*/,
-                                         const char* /*rel_expr*/, const Eigen::MatrixBase<DA>& a,
-                                         const Eigen::MatrixBase<DB>& b, double abs_tol, double rel_tol) {
+/// |a − b| ≤ abs_tol + rel_tol·|b| entrywise, in double; prints both matrices on
+/// failure. One function for every comparison: the template below only converts
+/// its arguments, so each test instantiates the comparison and Eigen's printing once.
+inline ::testing::AssertionResult dense_matrices_near(const char* a_expr, const char* b_expr,
+                                                      const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+                                                      double abs_tol, double rel_tol) {
   if (a.rows() != b.rows() || a.cols() != b.cols()) {
     return ::testing::AssertionFailure() << a_expr << " is " << a.rows() << "x" << a.cols() << " but " << b_expr
                                          << " is " << b.rows() << "x" << b.cols();
@@ -42,10 +43,8 @@ template <class DA, class DB>
   bool ok = true;
   for (Eigen::Index j = 0; j < a.cols(); ++j) {
     for (Eigen::Index i = 0; i < a.rows(); ++i) {
-      const double x = static_cast<double>(a(i, j));
-      const double y = static_cast<double>(b(i, j));
-      const double allowed = abs_tol + rel_tol * std::abs(y);
-      const double err = std::abs(x - y);
+      const double allowed = abs_tol + rel_tol * std::abs(b(i, j));
+      const double err = std::abs(a(i, j) - b(i, j));
       if (!(err <= allowed)) {
         ok = false;
         if (!(err <= worst)) { worst = err; wi = i; wj = j; }
@@ -59,6 +58,13 @@ template <class DA, class DB>
      << "); worst at (" << wi << "," << wj << "): " << a(wi, wj) << " vs " << b(wi, wj) << "\n"
      << a_expr << " =\n" << a << "\n" << b_expr << " =\n" << b;
   return ::testing::AssertionFailure() << os.str();
+}
+
+template <class DA, class DB>
+::testing::AssertionResult matrices_near(const char* a_expr, const char* b_expr, const char* /*abs_expr*/,
+                                         const char* /*rel_expr*/, const Eigen::MatrixBase<DA>& a,
+                                         const Eigen::MatrixBase<DB>& b, double abs_tol, double rel_tol) {
+  return dense_matrices_near(a_expr, b_expr, a.template cast<double>(), b.template cast<double>(), abs_tol, rel_tol);
 }
 
 #define EXPECT_MATRIX_NEAR(a, b, abs_tol, rel_tol) \

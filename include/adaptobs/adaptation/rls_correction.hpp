@@ -13,9 +13,9 @@
 /// stored covariance is symmetric to the last bit.
 
 #include <adaptobs/adaptation/adaptation_law.hpp>
+#include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/detail/products.hpp>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <limits>
@@ -40,7 +40,7 @@ class RlsCorrection {
   using Covariance = typename Types::Covariance;
   using MeasurementWeight = typename Types::MeasurementWeight;
 
-  RlsCorrection(Index np, Index nz) : llt_(nz) {
+  RlsCorrection(Index np, Index nz) : cholesky_(nz) {
     gain_.setZero(np, nz);
     innovation_weight_.setZero(nz, nz);
     innovation_.setZero(nz);
@@ -57,17 +57,16 @@ class RlsCorrection {
     gain_.noalias() = product(gamma, phi);
     innovation_weight_ = weight;
     innovation_weight_.noalias() += product(phi.transpose(), gain_);
-    llt_.compute(innovation_weight_);
-    if (llt_.info() != Eigen::Success) {
+    if (!cholesky_.compute(innovation_weight_)) {
       p_out.setConstant(std::numeric_limits<S>::quiet_NaN());
       gamma_out.setConstant(std::numeric_limits<S>::quiet_NaN());
       return false;
     }
     // U = Γφ L⁻ᵀ (in place), then L⁻¹(z − φᵀp).
-    llt_.matrixU().template solveInPlace<Eigen::OnTheRight>(gain_);
+    cholesky_.solve_lower_transposed_on_the_right(gain_);
     innovation_ = z;
     innovation_.noalias() -= phi.transpose() * p;
-    llt_.matrixL().solveInPlace(innovation_);
+    cholesky_.solve_lower_in_place(innovation_);
     p_out = p;
     p_out.noalias() += gain_ * innovation_;
     gamma_out = gamma;
@@ -83,7 +82,7 @@ class RlsCorrection {
  private:
   typename Types::Gain gain_;
   MeasurementWeight innovation_weight_;
-  Eigen::LLT<MeasurementWeight> llt_;
+  CholeskyFactor<MeasurementWeight> cholesky_;
   Measurement innovation_;
 };
 

@@ -21,15 +21,15 @@
 /// present rows of C and the present block of R. No channel present leaves
 /// only the prediction.
 
+#include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
-#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/status.hpp>
-#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <utility>
@@ -86,7 +86,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     innovation_.setZero(s.ny);
     w_.x.setZero(s.nx);
     w_.theta.setZero(s.np);
-    w_.llt.compute(cov_.R);
+    w_.cholesky = detail::CholeskyFactor<typename Dims::OutputMatrixSquare>(s.ny);
   }
 
   /// Correction with \f$y_k\f$, then prediction to step k + 1 with \f$(A_k, B_k, \Psi_k, u_k)\f$.
@@ -154,9 +154,9 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     w.pht.noalias() = p_.leftCols(nx) * c.transpose();
     w.s = r;
     w.s.noalias() += c * w.pht.topRows(nx);
-    w.llt.compute(w.s);
-    if (w.llt.info() != Eigen::Success) return UpdateStatus::nonfinite_result;
-    w.gain.transpose() = w.llt.solve(w.pht.transpose());
+    if (!w.cholesky.compute(w.s)) return UpdateStatus::nonfinite_result;
+    w.gain = w.pht;
+    w.cholesky.solve_on_the_right_in_place(w.gain);  // L = P Hᵀ S⁻¹
     w.innovation = sample.y;
     w.innovation.noalias() -= c * x_;
     detail::zero_absent_rows<Dims>(w.innovation, present);
@@ -203,7 +203,7 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     Eigen::Matrix<Scalar, na, Dims::ny> pht, gain;
     typename Dims::OutputMatrixSquare s, r_masked;
     typename Dims::OutputMatrix c_masked;
-    Eigen::LLT<typename Dims::OutputMatrixSquare> llt;
+    detail::CholeskyFactor<typename Dims::OutputMatrixSquare> cholesky;
     typename Dims::Output innovation;
     State x;
     Parameters theta;

@@ -19,16 +19,16 @@
 /// and a sample whose step would leave P not positive definite is rejected.
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
-#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
-#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/detail/cholesky.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/detail/products.hpp>
-#include <adaptobs/core/sampled_integration.hpp>
 #include <adaptobs/core/detail/segments.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/sampled_integration.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <string_view>
@@ -71,7 +71,7 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     detail::require_positive_semidefinite(cov_.Q, name, "covariances.Q");
     detail::require_shape(cov_.R, s.ny, s.ny, name, "covariances.R");
     detail::require_positive_definite(cov_.R, name, "covariances.R");
-    llt_.compute(cov_.R);
+    (void)r_factor_.compute(cov_.R);  // positive definite: checked above
     w_.ae.setZero(n, n);
     w_.factor.setZero(n, n);
     w_.pct.setZero(n, s.ny);
@@ -119,7 +119,8 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     w.ae.topRightCorner(nx, np) = model_.regressor(t, u, y);
     // L = P C_eᵀ R⁻¹ with C_e = [C 0].
     w.pct.noalias() = P.leftCols(nx) * sys.C.transpose();
-    w.gain.transpose() = llt_.solve(w.pct.transpose());
+    w.gain = w.pct;
+    r_factor_.solve_on_the_right_in_place(w.gain);
     w.epsilon = y;
     w.epsilon.noalias() -= sys.C * x;
     dx.noalias() = sys.A * x;
@@ -222,7 +223,7 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
   Covariances cov_;
   InternalState internal_;
   SampledIntegrator<Dims, InternalState> integrator_;
-  Eigen::LLT<typename Dims::OutputMatrixSquare> llt_;
+  detail::CholeskyFactor<typename Dims::OutputMatrixSquare> r_factor_;  // of R
   State eta_;
   Parameters theta_;
   Output output_error_;  // ε(t_k) of the last accepted sample

@@ -12,6 +12,7 @@
 /// Gaussian elimination with partial pivoting, Cholesky), and compile in a
 /// fraction of that time.
 
+#include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -154,28 +155,16 @@ struct LuFactorization {
 /// \f$A = LL^T\f$ for a symmetric positive definite A (lower triangle read).
 template <typename Scalar>
 struct CholeskyFactorization {
-  DynamicMatrix<Scalar> l;
+  CholeskyFactor<DynamicMatrix<Scalar>> factor;
   bool positive_definite;  ///< false when a pivot is not positive and finite: then the factor must not be solved with
 
-  explicit CholeskyFactorization(DynamicMatrix<Scalar> a) : l(std::move(a)), positive_definite(cholesky_in_place(l)) {}
+  explicit CholeskyFactorization(const DynamicMatrix<Scalar>& a) : positive_definite(factor.compute(a)) {}
 
   /// \f$A^{-1}b\f$ by forward and back substitution.
   [[nodiscard]] DynamicMatrix<Scalar> solve(DynamicMatrix<Scalar> x) const {
-    const Index n = l.rows();
-    eigen_assert(positive_definite && x.rows() == n && "CholeskyFactorization::solve: no factor or wrong row count");
-    for (Index j = 0; j < x.cols(); ++j) {
-      Scalar* xj = x.data() + j * n;
-      for (Index k = 0; k < n; ++k) {  // L z = b
-        const Scalar* lk = l.data() + k * n;
-        xj[k] /= lk[k];
-        for (Index i = k + 1; i < n; ++i) xj[i] -= lk[i] * xj[k];
-      }
-      for (Index k = n - 1; k >= 0; --k) {  // Lᵀ x = z: row k of Lᵀ is column k of L
-        const Scalar* lk = l.data() + k * n;
-        for (Index i = k + 1; i < n; ++i) xj[k] -= lk[i] * xj[i];
-        xj[k] /= lk[k];
-      }
-    }
+    eigen_assert(positive_definite && x.rows() == factor.factor().rows() &&
+                 "CholeskyFactorization::solve: no factor or wrong row count");
+    factor.solve_in_place(x);
     return x;
   }
 };

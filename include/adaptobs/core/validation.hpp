@@ -7,6 +7,7 @@
 /// the offending argument, e.g. `GuyaderZhangObserver: argument 'mu' must be
 /// positive (got -1)`.
 
+#include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 
@@ -109,32 +110,6 @@ void require_symmetric(const Eigen::MatrixBase<Derived>& m, std::string_view who
   const Scalar scale = m.cwiseAbs().maxCoeff();
   const Scalar tol = Scalar(100) * std::numeric_limits<Scalar>::epsilon() * (scale > Scalar(0) ? scale : Scalar(1));
   if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= tol)) fail_argument(who, argument, "must be symmetric");
-}
-
-/// Cholesky factorization of the symmetric matrix held in `a` (lower triangle
-/// read), in place, column by column (left-looking). Returns false at the first
-/// pivot that is not positive and finite (NaN included), leaving `a` partly
-/// overwritten; true means `a` was positive definite and its lower triangle now
-/// holds L. Plain loops and no storage: cheap to compile, and for the small
-/// matrices of an update faster than Eigen's blocked `LLT` (350 against 400 ns
-/// for the satellite's augmented Kalman update), with the caller's workspace.
-template <class Derived>
-[[nodiscard]] bool cholesky_in_place(Eigen::MatrixBase<Derived>& a) {
-  using Scalar = typename Derived::Scalar;
-  const Index n = a.rows();
-  for (Index j = 0; j < n; ++j) {
-    Scalar pivot = a(j, j);
-    for (Index k = 0; k < j; ++k) pivot -= a(j, k) * a(j, k);
-    if (!(pivot > Scalar(0)) || !std::isfinite(pivot)) return false;
-    const Scalar root = std::sqrt(pivot);
-    a(j, j) = root;
-    for (Index i = j + 1; i < n; ++i) {
-      Scalar v = a(i, j);
-      for (Index k = 0; k < j; ++k) v -= a(i, k) * a(j, k);
-      a(i, j) = v / root;
-    }
-  }
-  return true;
 }
 
 /// True when the symmetric `m` (lower triangle read) is positive definite: `cholesky_in_place` on a copy.

@@ -20,11 +20,11 @@
 /// is crossed in as many steps as its stiffness needs, whatever the caller asks.
 
 #include <adaptobs/core/continuous_model.hpp>
+#include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/validation.hpp>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -49,7 +49,7 @@ class RiccatiDifferentialEquation : public SizedBy<D> {
     detail::require_shape(q_, p_.rows(), p_.rows(), who, "Q");
     detail::require_positive_semidefinite(q_, who, "Q");
     detail::require_positive_definite(r_, who, "R");
-    llt_.compute(r_);
+    (void)r_factor_.compute(r_);  // positive definite: checked above
     cp_.setZero(r_.rows(), p_.rows());
     r_inv_cp_.setZero(r_.rows(), p_.rows());
     gain_.setZero(p_.rows(), r_.rows());
@@ -95,7 +95,8 @@ class RiccatiDifferentialEquation : public SizedBy<D> {
   void derivative(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C, const StateMatrix& p,
                   StateMatrix& dp) const {
     cp_.noalias() = C * p;
-    r_inv_cp_ = llt_.solve(cp_);
+    r_inv_cp_ = cp_;
+    r_factor_.solve_in_place(r_inv_cp_);
     dp = q_;
     dp.noalias() += A * p;
     dp.noalias() += p * A.transpose();
@@ -106,7 +107,8 @@ class RiccatiDifferentialEquation : public SizedBy<D> {
   template <class DC>
   const GainMatrix& gain(const Eigen::MatrixBase<DC>& C) {
     cp_.noalias() = C * p_;
-    gain_.transpose() = llt_.solve(cp_);
+    gain_ = cp_.transpose();
+    r_factor_.solve_on_the_right_in_place(gain_);  // K = P Cᵀ R⁻¹
     return gain_;
   }
 
@@ -116,7 +118,7 @@ class RiccatiDifferentialEquation : public SizedBy<D> {
   StateMatrix p_;
   StateMatrix q_;
   OutputCovariance r_;
-  Eigen::LLT<OutputCovariance> llt_;
+  detail::CholeskyFactor<OutputCovariance> r_factor_;  // of R
   RungeKutta4<StateMatrix> rk4_;
   mutable typename D::OutputMatrix cp_, r_inv_cp_;
   GainMatrix gain_;

@@ -11,11 +11,11 @@
 /// The covariance is propagated in this Joseph-like form, a sum of positive
 /// semidefinite terms, so it stays symmetric positive definite in floating point.
 
+#include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/validation.hpp>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 namespace adaptobs {
@@ -45,7 +45,7 @@ class KalmanGainRecursion : public SizedBy<D> {
     cp_.setZero(r_.rows(), p_.rows());
     cpa_.setZero(r_.rows(), p_.rows());
     gain_r_.setZero(p_.rows(), r_.rows());
-    llt_.compute(r_);
+    s_factor_ = detail::CholeskyFactor<OutputCovariance>(r_.rows());
   }
 
   /// Gain \f$K_k\f$ for the matrices of step k; advances the covariance to \f$P_{k+1}\f$.
@@ -55,9 +55,10 @@ class KalmanGainRecursion : public SizedBy<D> {
     cp_.noalias() = C * p_;
     s_ = r_;
     s_.noalias() += cp_ * C.transpose();
-    llt_.compute(s_);
+    (void)s_factor_.compute(s_);  // R + CPCᵀ with R positive definite
     cpa_.noalias() = cp_ * A.transpose();
-    gain_.transpose() = llt_.solve(cpa_);
+    gain_ = cpa_.transpose();
+    s_factor_.solve_on_the_right_in_place(gain_);  // K = A P Cᵀ S⁻¹
     closed_loop_ = A;
     closed_loop_.noalias() -= gain_ * C;
     next_ = q_;
@@ -79,7 +80,7 @@ class KalmanGainRecursion : public SizedBy<D> {
   GainMatrix gain_;
   // Workspace, sized once so that a step allocates nothing.
   OutputCovariance s_;
-  Eigen::LLT<OutputCovariance> llt_;
+  detail::CholeskyFactor<OutputCovariance> s_factor_;
   StateMatrix closed_loop_;
   StateMatrix next_;
   StateMatrix scratch_;

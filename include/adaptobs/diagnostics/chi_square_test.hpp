@@ -34,12 +34,12 @@
 /// CUSUM on \f$\hat\theta\f$ (diagnostics/cusum.hpp), which keeps seeing the
 /// change, to isolate the parameter.
 
+#include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/diagnostics/chi_square_distribution.hpp>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <cmath>
@@ -76,7 +76,10 @@ class ChiSquareTest {
     detail::require(options.degrees_of_freedom >= 0 && std::isfinite(options.degrees_of_freedom), who,
                     "options.degrees_of_freedom", "must be non-negative and finite (0: window × outputs)");
     const Index ny = covariance.rows();
-    information_ = covariance.llt().solve(Matrix::Identity(ny, ny));
+    detail::CholeskyFactor<Matrix> factor;
+    (void)factor.compute(covariance);  // positive definite: checked above
+    information_ = Matrix::Identity(ny, ny);
+    factor.solve_in_place(information_);
     information_ = Scalar(0.5) * (information_ + information_.transpose()).eval();
     const double dof = options.degrees_of_freedom > 0 ? options.degrees_of_freedom : static_cast<double>(window * ny);
     threshold_ = static_cast<Scalar>(options.scale * chi_square_upper_quantile(dof, static_cast<double>(false_alarm_probability)));
