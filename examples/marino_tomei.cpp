@@ -14,7 +14,6 @@
 #include "common/example_support.hpp"
 #include "models/unified_designs.hpp"
 
-namespace siso = adaptobs::examples::siso;
 namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
 
@@ -24,10 +23,7 @@ int main(int argc, char** argv) {
   auto observer = designs::marino_tomei_observer<double>();
   const auto& algorithm = observer.algorithm();
   const auto so = observer.transformed_system(0.0);
-  print_value("T", algorithm.static_transform.T());
-  print_value("K", algorithm.static_transform.K());
-  print_value("A_o", so.Ao);
-  print_value("c_o", so.Co);
+  adaptobs::examples::print_coordinates(observer);
   print_value("gamma", algorithm.gamma);
   print_value("F", algorithm.dynamic_transform.filter_matrix(so.Ao));
   print_value("G", algorithm.dynamic_transform.G());
@@ -36,15 +32,8 @@ int main(int argc, char** argv) {
   const auto spr = designs::spr_report(so.Ao - algorithm.k * so.Co, algorithm.gamma, so.Co);
   adaptobs::examples::print_spr_report(spr);
 
-  auto plant = siso::make_plant<double>(
-      {.output_noise = args.number("noise"), .seed = static_cast<std::uint64_t>(args.number("seed"))});
-  adaptobs::SeriesTable table;
-  adaptobs::examples::run_continuous(plant, args.number("seconds"), 0.01, 10, table, adaptobs::track(observer));
-  adaptobs::examples::print_final_errors(plant, observer);
-
-  adaptobs::examples::write_outputs(
-      table, args.out_dir(), "marino_tomei",
-      adaptobs::examples::estimates_and_errors_figure(
-          "Marino-Tomei adaptive observer (paper 001, Algorithm 2) on a third-order SISO plant", "2 and -1", 2, 3));
+  adaptobs::examples::run_siso_example(
+      observer, args, "marino_tomei",
+      "Marino-Tomei adaptive observer (paper 001, Algorithm 2) on a third-order SISO plant");
   return 0;
 }

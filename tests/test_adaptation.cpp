@@ -73,10 +73,7 @@ Stream random_stream(std::uint64_t seed, Index steps, const Vector4& p, double s
   return s;
 }
 
-template <typename S>
-class RlsTyped : public ::testing::Test {};
-using Scalars = ::testing::Types<float, double>;
-TYPED_TEST_SUITE(RlsTyped, Scalars);
+ADAPTOBS_TYPED_SUITE_IN_BOTH_PRECISIONS(RlsTyped);
 
 // (21) is the inverse form (19) Γ_t⁻¹ = Γ_{t−1}⁻¹ + φR⁻¹φᵀ, (22) equals (20), and Γ is symmetric to the last bit.
 TYPED_TEST(RlsTyped, RecursionMatchesInverseForm19AndUpdate20) {

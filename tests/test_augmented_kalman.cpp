@@ -123,19 +123,12 @@ auto filter_after_50_samples() {
 struct AugmentedKalmanContract {
   using Observer = decltype(make_filter());
   using Sample = Observer::Sample;
-  static constexpr const char* name = "double";
   static Observer make() { return make_filter(); }
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(satellite::make_plant<double>(), 40);
   }
   static auto readings(const Observer& f) {
     return std::make_tuple(f.state(), f.parameters(), f.covariance(), f.step());
-  }
-  static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y, &Sample::Psi};
-  static Sample overflowing(Sample s) {
-    s.y.setConstant(std::numeric_limits<double>::max());
-    s.Psi.setConstant(std::numeric_limits<double>::max());
-    return s;
   }
   // The innovation y_k − C x̂_{k|k−1} of the correction.
   static Observer::Output expected_output_error(const Observer& before, const Observer&, const Sample& s) {
@@ -145,10 +138,7 @@ struct AugmentedKalmanContract {
 
 }  // namespace
 
-namespace adaptobs::testing {
-INSTANTIATE_TYPED_TEST_SUITE_P(AugmentedKalman, ObserverContract, ::testing::Types<AugmentedKalmanContract>,
-                               ContractName);
-}  // namespace adaptobs::testing
+ADAPTOBS_OBSERVER_CONTRACT(AugmentedKalman, AugmentedKalmanContract);
 
 namespace {
 

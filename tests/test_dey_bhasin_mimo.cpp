@@ -546,7 +546,6 @@ TEST(DeyBhasin, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
 struct DeyBhasinContract {
   using Observer = ::Observer;
   using Sample = Observer::Sample;
-  static constexpr const char* name = "double";
   static Observer make() { return mimo::make_observer(); }
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(mimo::make_plant(mimo::RichInput{}), 40,
@@ -556,11 +555,6 @@ struct DeyBhasinContract {
     return std::make_tuple(o.state(), o.current_state(), o.parameters(), o.regressor(), o.measurement(),
                            o.filter_bank(), o.law().covariance(), o.law().reset_count(), o.step());
   }
-  static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y};
-  static Sample overflowing(Sample) {
-    return {Eigen::Vector2d::Constant(std::numeric_limits<double>::max()),
-            Eigen::Vector2d::Constant(std::numeric_limits<double>::max())};
-  }
   static Observer::Output expected_output_error(const Observer& before, const Observer&, const Sample& s) {
     return s.y - db::canonical_output_matrix<double>(3, 2) * before.state();
   }
@@ -568,9 +562,7 @@ struct DeyBhasinContract {
 
 }  // namespace
 
-namespace adaptobs::testing {
-INSTANTIATE_TYPED_TEST_SUITE_P(DeyBhasin, ObserverContract, ::testing::Types<DeyBhasinContract>, ContractName);
-}  // namespace adaptobs::testing
+ADAPTOBS_OBSERVER_CONTRACT(DeyBhasin, DeyBhasinContract);
 
 namespace {
 

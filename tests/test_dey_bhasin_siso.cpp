@@ -124,10 +124,7 @@ struct TwoSines {
   }
 };
 
-template <typename S>
-class DeyBhasinSisoTyped : public ::testing::Test {};
-using Scalars = ::testing::Types<float, double>;
-TYPED_TEST_SUITE(DeyBhasinSisoTyped, Scalars);
+ADAPTOBS_TYPED_SUITE_IN_BOTH_PRECISIONS(DeyBhasinSisoTyped);
 
 // In single precision k0/kmin must stay well inside 1/ε: k0 = 100, kmin = 0.01.
 TYPED_TEST(DeyBhasinSisoTyped, RichInputConvergesInBothPrecisions) {
@@ -183,12 +180,6 @@ struct DeyBhasinSisoContract {
     return std::make_tuple(o.state(), o.current_state(), o.parameters(), o.regressor(), o.measurement(),
                            o.filter_bank(), o.law().covariance(), o.step());
   }
-  static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y};
-  static Sample overflowing(Sample s) {
-    s.u.setConstant(std::numeric_limits<double>::max());
-    s.y.setConstant(std::numeric_limits<double>::max());
-    return s;
-  }
   static typename Observer::Output expected_output_error(const Observer& before, const Observer&, const Sample& s) {
     return s.y - db::canonical_output_matrix<double>(siso::order, 1) * before.state();
   }
@@ -201,12 +192,8 @@ struct SuzukiDesign {
   static constexpr const char* name = "Suzuki";
   static auto observer() { return siso::make_suzuki(); }
 };
-using DeyBhasinSisoContracts =
-    ::testing::Types<DeyBhasinSisoContract<ResettingDesign>, DeyBhasinSisoContract<SuzukiDesign>>;
 
 }  // namespace
 
-namespace adaptobs::testing {
-INSTANTIATE_TYPED_TEST_SUITE_P(DeyBhasinSiso, ObserverContract, DeyBhasinSisoContracts, ContractName);
-}  // namespace adaptobs::testing
+ADAPTOBS_OBSERVER_CONTRACT(DeyBhasinSiso, DeyBhasinSisoContract<ResettingDesign>, DeyBhasinSisoContract<SuzukiDesign>);
 

@@ -206,10 +206,7 @@ TEST(Guiro, ErrorsFollowEquation4) {
   EXPECT_LT(v.norm(), 1e-3 * first.norm());
 }
 
-template <typename S>
-class GuiroTyped : public ::testing::Test {};
-using Scalars = ::testing::Types<float, double>;
-TYPED_TEST_SUITE(GuiroTyped, Scalars);
+ADAPTOBS_TYPED_SUITE_IN_BOTH_PRECISIONS(GuiroTyped);
 
 TYPED_TEST(GuiroTyped, PaperExampleConverges) {
   using S = TypeParam;
@@ -477,7 +474,6 @@ template <typename S>
 struct GuiroContract {
   using Observer = PaperObserver<S>;
   using Sample = typename Observer::Sample;
-  static constexpr const char* name = adaptobs::testing::scalar_name<S>;
   static Observer make() { return make_observer<S>(); }
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(g::make_plant<S>(), 20);
@@ -485,24 +481,15 @@ struct GuiroContract {
   static auto readings(const Observer& o) {
     return std::make_tuple(o.state(), o.corrected_state(), o.parameters(), o.step());
   }
-  static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y, &Sample::Psi};
-  static Sample overflowing(Sample s) {
-    s.Psi.setConstant(std::numeric_limits<S>::max());
-    s.y.setConstant(-std::numeric_limits<S>::max());
-    return s;
-  }
   // The innovation y_k − C z⁻_k of the prediction the update corrects.
   static typename Observer::Output expected_output_error(const Observer& before, const Observer&, const Sample& s) {
     return s.y - g::output_matrix<S>() * before.state();
   }
 };
-using GuiroContracts = ::testing::Types<GuiroContract<float>, GuiroContract<double>>;
 
 }  // namespace
 
-namespace adaptobs::testing {
-INSTANTIATE_TYPED_TEST_SUITE_P(Guiro, ObserverContract, GuiroContracts, ContractName);
-}  // namespace adaptobs::testing
+ADAPTOBS_OBSERVER_CONTRACT(Guiro, GuiroContract<float>, GuiroContract<double>);
 
 namespace {
 

@@ -23,17 +23,14 @@
 
 namespace {
 
+namespace g = adaptobs::examples::guiro;
 using adaptobs::ConditionVerdict;
 using adaptobs::Index;
-using adaptobs::testing::RandomMatrices;
-using Eigen::MatrixXd;
-using Eigen::VectorXd;
-namespace g = adaptobs::examples::guiro;
-
 using adaptobs::testing::configuration_error_of;
-
+using adaptobs::testing::RandomMatrices;
 using adaptobs::testing::guiro::Paper;
 using adaptobs::testing::guiro::paper_gains;
+using Eigen::MatrixXd;
 
 Eigen::Matrix3d error_matrix(const Eigen::Vector2d& K, double gamma, const Eigen::Vector2d& Hbar) {
   const Paper paper;

@@ -70,10 +70,7 @@ double decay_rate(const std::vector<double>& errors, double floor) {
   return adaptobs::testing::fit_geometric_rate(decaying);
 }
 
-template <typename S>
-class GuyaderZhangTyped : public ::testing::Test {};
-using Scalars = ::testing::Types<float, double>;
-TYPED_TEST_SUITE(GuyaderZhangTyped, Scalars);
+ADAPTOBS_TYPED_SUITE_IN_BOTH_PRECISIONS(GuyaderZhangTyped);
 
 // Theorem 1 on the satellite of §4 without noise: x̃ and θ̃ vanish exponentially.
 TYPED_TEST(GuyaderZhangTyped, Theorem1SatelliteNoiseFreeConvergesGeometrically) {
@@ -414,7 +411,6 @@ template <typename S>
 struct GuyaderZhangContract {
   using Observer = decltype(make_satellite_observer<S>());
   using Sample = typename Observer::Sample;
-  static constexpr const char* name = adaptobs::testing::scalar_name<S>;
   static Observer make() { return make_satellite_observer<S>({.excitation_window = 20}); }
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(satellite::make_plant<S>(), 40);
@@ -423,25 +419,16 @@ struct GuyaderZhangContract {
     return std::make_tuple(o.state(), o.parameters(), o.upsilon(), o.step(), o.assumption2_norm(),
                            o.excitation_level());
   }
-  static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y, &Sample::Psi};
-  static Sample overflowing(Sample s) {
-    s.y.setConstant(std::numeric_limits<S>::max());
-    s.Psi.setConstant(std::numeric_limits<S>::max());
-    return s;
-  }
   // (2b)–(2c): the innovation y_k − C x̂_k of the prediction the update corrects.
   static typename Observer::Output expected_output_error(const Observer& before, const Observer&, const Sample& s) {
     return s.y - satellite::output_matrix<S>() * before.state();
   }
 };
 
-using GuyaderZhangContracts = ::testing::Types<GuyaderZhangContract<float>, GuyaderZhangContract<double>>;
 
 }  // namespace
 
-namespace adaptobs::testing {
-INSTANTIATE_TYPED_TEST_SUITE_P(GuyaderZhang, ObserverContract, GuyaderZhangContracts, ContractName);
-}  // namespace adaptobs::testing
+ADAPTOBS_OBSERVER_CONTRACT(GuyaderZhang, GuyaderZhangContract<float>, GuyaderZhangContract<double>);
 
 namespace {
 

@@ -36,13 +36,12 @@ auto make_wwtp_observer(adaptobs::TakagiSugenoGains<wwtp::Dims<S>> gains = wwtp:
   return adaptobs::TakagiSugenoObserver(wwtp::model<S>(), gains, x0, theta0);
 }
 
+static_assert(adaptobs::TakagiSugenoSystem<wwtp::Model<double>>);
+static_assert(!adaptobs::TakagiSugenoSystem<adaptobs::DiscreteLtiModel<adaptobs::Dimensions<double, 2, 1, 1, 1>>>);
 static_assert(adaptobs::Observer<decltype(make_wwtp_observer<double>())>);
 static_assert(adaptobs::Observer<decltype(make_wwtp_observer<float>())>);
 
-template <typename S>
-class TakagiSugenoTyped : public ::testing::Test {};
-using Scalars = ::testing::Types<float, double>;
-TYPED_TEST_SUITE(TakagiSugenoTyped, Scalars);
+ADAPTOBS_TYPED_SUITE_IN_BOTH_PRECISIONS(TakagiSugenoTyped);
 
 // --- Sector weights, eq. (9)–(11) and Remark 1 ---------------------------------
 
@@ -403,7 +402,6 @@ template <typename S>
 struct TakagiSugenoContract {
   using Observer = decltype(make_wwtp_observer<S>());
   using Sample = typename Observer::Sample;
-  static constexpr const char* name = adaptobs::testing::scalar_name<S>;
   static Observer make() { return make_wwtp_observer<S>(); }
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(wwtp::make_plant<S>(S(0.1)), 40);
@@ -411,25 +409,15 @@ struct TakagiSugenoContract {
   static auto readings(const Observer& o) {
     return std::make_tuple(o.state(), o.parameters(), o.weights(), o.premises(), o.premises_in_sectors(), o.step());
   }
-  static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y};
-  // Finite but enormous input and output: the step overflows (B_i u = 2u).
-  static Sample overflowing(Sample s) {
-    s.u.setConstant(std::numeric_limits<S>::max());
-    s.y.setConstant(std::numeric_limits<S>::max());
-    return s;
-  }
   // ε_k = y_k − C x̂_k, from the x̂_k the update started from.
   static typename Observer::Output expected_output_error(const Observer& before, const Observer&, const Sample& s) {
     return s.y - before.model().C() * before.state();
   }
 };
-using TakagiSugenoContracts = ::testing::Types<TakagiSugenoContract<float>, TakagiSugenoContract<double>>;
 
 }  // namespace
 
-namespace adaptobs::testing {
-INSTANTIATE_TYPED_TEST_SUITE_P(TakagiSugeno, ObserverContract, TakagiSugenoContracts, ContractName);
-}  // namespace adaptobs::testing
+ADAPTOBS_OBSERVER_CONTRACT(TakagiSugeno, TakagiSugenoContract<float>, TakagiSugenoContract<double>);
 
 namespace {
 

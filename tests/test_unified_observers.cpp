@@ -305,15 +305,12 @@ struct KalmanBucyDesign {
   static auto observer() { return kalman_bucy_filter<double>(1.0); }
   static auto plant() { return siso::make_plant<double>(); }
 };
-using UnifiedContracts =
-    ::testing::Types<UnifiedContract<BastinGeversDesign>, UnifiedContract<MarinoTomeiDesign>,
-                     UnifiedContract<BesanconDesign>, UnifiedContract<ZhangDesign>, UnifiedContract<KalmanBucyDesign>>;
 
 }  // namespace
 
-namespace adaptobs::testing {
-INSTANTIATE_TYPED_TEST_SUITE_P(UnifiedFormulation, ObserverContract, UnifiedContracts, ContractName);
-}  // namespace adaptobs::testing
+ADAPTOBS_OBSERVER_CONTRACT(UnifiedFormulation, UnifiedContract<BastinGeversDesign>, UnifiedContract<MarinoTomeiDesign>,
+                           UnifiedContract<BesanconDesign>, UnifiedContract<ZhangDesign>,
+                           UnifiedContract<KalmanBucyDesign>);
 
 namespace {
 

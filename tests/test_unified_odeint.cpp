@@ -34,7 +34,7 @@ struct SisoSignals {
 };
 
 // The observer's update() with samples at t_k and midpoints, one RK4 step per
-// interval h, against Odeint on observer.system(signals).
+// interval h, against Odeint on adaptobs::odeint_system(observer, signals).
 template <class Observer, class Signals>
 void compare_with_odeint(Observer observer, Signals signals, double h, double duration) {
   using Sample = typename Observer::Sample;
@@ -57,8 +57,8 @@ void compare_with_odeint(Observer observer, Signals signals, double h, double du
 
   using State = typename Observer::InternalState;
   using Stepper = odeint::runge_kutta_dopri5<State, double, State, double, odeint::vector_space_algebra>;
-  odeint::integrate_adaptive(odeint::make_controlled(1e-12, 1e-12, Stepper()), observer.system(signals), reference, 0.0,
-                             duration, 1e-3);
+  odeint::integrate_adaptive(odeint::make_controlled(1e-12, 1e-12, Stepper()),
+                             adaptobs::odeint_system(observer, signals), reference, 0.0, duration, 1e-3);
   const double scale = std::max(1.0, reference.cwiseAbs().maxCoeff());
   EXPECT_LT((observer.internal_state() - reference).cwiseAbs().maxCoeff(), 1e-8 * scale);
 }

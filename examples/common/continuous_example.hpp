@@ -14,6 +14,7 @@
 #include "models/unified_designs.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -64,6 +65,17 @@ void print_final_errors(const Plant& plant, const Observer& observer) {
   print_value("state_relative_error", (observer.state() - plant.state()).norm() / plant.state().norm());
 }
 
+/// Prints the coordinates of a SISO observer of Algorithm 1 or 2 at t = 0: the
+/// static transform (T, K) and the transformed pair \f$(A_o, c_o)\f$.
+template <class Observer>
+void print_coordinates(const Observer& observer) {
+  const auto so = observer.transformed_system(0.0);
+  print_value("T", observer.algorithm().static_transform.T());
+  print_value("K", observer.algorithm().static_transform.K());
+  print_value("A_o", so.Ao);
+  print_value("c_o", so.Co);
+}
+
 /// Prints the SPR condition of Algorithms 1 and 2: G(s), the exact test and its KYP certificate.
 inline void print_spr_report(const designs::SprReport& spr) {
   print_value("G_numerator", spr.transfer_function.numerator.transpose());
@@ -105,6 +117,19 @@ inline std::string estimates_and_errors_figure(std::string_view title, std::stri
             "     csv using 't':(" + error_norm_expression("xhat", "x", states) +
             ") with lines lw 1.5 title '|state error|'\nunset multiplot\n";
   return script;
+}
+
+/// The rest of a SISO example of Algorithm 1 or 2: the third-order plant with
+/// the command line's noise and seed, run for its seconds (h = 0.01 s, every
+/// tenth sample recorded), the final errors and the two-panel figure.
+template <class Observer>
+void run_siso_example(Observer& observer, const Arguments& args, const std::string& name, std::string_view title) {
+  auto plant = siso::make_plant<double>(
+      {.output_noise = args.number("noise"), .seed = static_cast<std::uint64_t>(args.number("seed"))});
+  SeriesTable table;
+  run_continuous(plant, args.number("seconds"), 0.01, 10, table, track(observer));
+  print_final_errors(plant, observer);
+  write_outputs(table, args.out_dir(), name, estimates_and_errors_figure(title, "2 and -1", 2, 3));
 }
 
 }  // namespace adaptobs::examples

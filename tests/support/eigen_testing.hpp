@@ -18,6 +18,9 @@
 
 namespace adaptobs::testing {
 
+/// float and double, the precisions every observer is tested in.
+using BothPrecisions = ::testing::Types<float, double>;
+
 /// Tolerances that scale with the scalar's precision.
 template <typename S>
 struct Tolerance {
@@ -138,3 +141,10 @@ std::string configuration_error_of(F&& f) {
         ::adaptobs::testing::configuration_error_of([&] { (void)(expression); });                          \
     EXPECT_NE(adaptobs_message_.find("'" + std::string(argument) + "'"), std::string::npos) << adaptobs_message_; \
   } while (0)
+
+/// A typed test suite `Suite` run in both precisions: `TYPED_TEST(Suite, Name)`
+/// then sees the scalar as `TypeParam`.
+#define ADAPTOBS_TYPED_SUITE_IN_BOTH_PRECISIONS(Suite)  \
+  template <typename S>                                  \
+  class Suite : public ::testing::Test {};               \
+  TYPED_TEST_SUITE(Suite, ::adaptobs::testing::BothPrecisions)

@@ -4,20 +4,23 @@
 //
 //   struct GuyaderZhangContract {
 //     using Observer = ...;                            // the type under test
-//     static constexpr const char* name = "double";    // the instance's name
 //     static Observer make();                          // at its initial estimates
 //     static std::vector<typename Observer::Sample> samples();  // a valid run, at least 20
 //     static auto readings(const Observer&);           // everything a user can read, a std::tuple
-//     static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y, ...};
-//     static Sample overflowing(Sample);               // finite, but the step overflows
 //     static Output expected_output_error(const Observer& before, const Observer& after,
 //                                         const Sample&);  // what output_error() must read
-//     // Optional: bad samples the member pointers cannot reach (an optional midpoint).
-//     static std::vector<Sample> more_poisoned(const Sample&);
+//     // Optional, with their defaults:
+//     static constexpr const char* name = "double";    // the instance's name: its scalar
+//     static constexpr auto poisonable = std::tuple{&Sample::u, &Sample::y, ...};  // u, y (and Ψ)
+//     static Sample overflowing(Sample);               // finite, but the step overflows:
+//                                                      // every poisonable vector at the largest value
+//     static std::vector<Sample> more_poisoned(const Sample&);  // bad samples the member pointers
+//                                                                // cannot reach (none)
 //   };
-//   INSTANTIATE_TYPED_TEST_SUITE_P(GuyaderZhang, ObserverContract, Types, ContractName);
+//   ADAPTOBS_OBSERVER_CONTRACT(GuyaderZhang, GuyaderZhangContract<float>, GuyaderZhangContract<double>);
 //
-// with `Types` a ::testing::Types of factories, each with a `name` for CTest.
+// at global scope, with the factories of one family; CTest then lists
+// `<Family>/ObserverContract/<name>.<promise>`.
 //
 // The promises checked (core/observer.hpp and core/status.hpp state them):
 // - the `Observer` and `DiagnosableObserver` concepts;
@@ -130,6 +133,28 @@ class ObserverContract : public ::testing::Test {
     return o;
   }
 
+  /// The factory's `poisonable`, by default u, y and (when the sample has one) Ψ.
+  static constexpr auto poisonable() {
+    if constexpr (requires { Factory::poisonable; })
+      return Factory::poisonable;
+    else if constexpr (requires { &Sample::Psi; })
+      return std::tuple{&Sample::u, &Sample::y, &Sample::Psi};
+    else
+      return std::tuple{&Sample::u, &Sample::y};
+  }
+
+  /// The factory's `overflowing(s)`, by default `s` with every poisonable vector at
+  /// the largest finite value.
+  static Sample overflowing(Sample s) {
+    if constexpr (requires { Factory::overflowing(s); }) {
+      return Factory::overflowing(std::move(s));
+    } else {
+      std::apply([&](auto... field) { ((s.*field).setConstant(std::numeric_limits<Scalar>::max()), ...); },
+                 poisonable());
+      return s;
+    }
+  }
+
   /// One copy of `valid` per entry of each poisonable field and per bad value.
   static std::vector<Sample> poisoned(const Sample& valid) {
     std::vector<Sample> out;
@@ -155,7 +180,7 @@ class ObserverContract : public ::testing::Test {
               }(field),
               ...);
         },
-        Factory::poisonable);
+        poisonable());
     if constexpr (requires { Factory::more_poisoned(valid); })
       for (auto& sample : Factory::more_poisoned(valid)) out.push_back(std::move(sample));
     return out;
@@ -227,7 +252,7 @@ TYPED_TEST_P(ObserverContract, AnOverflowingStepIsRejectedAndChangesNothing) {
   const std::size_t half = run.size() / 2;
   auto observer = TestFixture::after(run, half);
   const auto before = TestFixture::readings(observer);
-  EXPECT_EQ(observer.update(TypeParam::overflowing(run[half])), UpdateStatus::nonfinite_result);
+  EXPECT_EQ(observer.update(TestFixture::overflowing(run[half])), UpdateStatus::nonfinite_result);
   EXPECT_TRUE(same_bits(TestFixture::readings(observer), before));
   EXPECT_EQ(observer.update(run[half]), UpdateStatus::accepted);
 }
@@ -281,11 +306,15 @@ TYPED_TEST_P(ObserverContract, OutputErrorIsTheErrorOfTheLastAcceptedUpdate) {
   }
 }
 
-/// Names each instance by its factory's `name` ("GuyaderZhang/ObserverContract/float.…").
+/// Names each instance by its factory's `name`, by default its scalar
+/// ("GuyaderZhang/ObserverContract/float.…").
 struct ContractName {
   template <class Factory>
   static std::string GetName(int) {
-    return Factory::name;
+    if constexpr (requires { Factory::name; })
+      return Factory::name;
+    else
+      return scalar_name<typename Factory::Observer::Scalar>;
   }
 };
 
@@ -294,3 +323,11 @@ REGISTER_TYPED_TEST_SUITE_P(ObserverContract, SatisfiesTheObserverConcept, NonFi
                             OutputErrorIsTheErrorOfTheLastAcceptedUpdate);
 
 }  // namespace adaptobs::testing
+
+/// Runs the contract on the factories given, one family: at global scope.
+#define ADAPTOBS_OBSERVER_CONTRACT(Family, ...)                                                  \
+  namespace adaptobs::testing {                                                                  \
+  using Family##ContractFactories = ::testing::Types<__VA_ARGS__>;                               \
+  INSTANTIATE_TYPED_TEST_SUITE_P(Family, ObserverContract, Family##ContractFactories, ContractName); \
+  }                                                                                              \
+  static_assert(true, "")

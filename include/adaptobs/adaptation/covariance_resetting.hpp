@@ -73,17 +73,17 @@ template <class Derived>
 template <typename S, int NP, int NZ>
 class CovarianceResettingRls
     : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
-                                          typename RegressionTypes<S, NP, NZ>::Covariance> {
+                                          typename RegressionTypes<S, NP, NZ>::Covariance>,
+      public detail::RegressionLaw<CovarianceResettingRls<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
+  using Law = detail::RegressionLaw<CovarianceResettingRls, RegressionTypes<S, NP, NZ>>;
+  friend Law;
+
  public:
-  using Types = RegressionTypes<S, NP, NZ>;
-  using Scalar = S;
-  using Parameters = typename Types::Parameters;
-  using Regressor = typename Types::Regressor;
-  using Measurement = typename Types::Measurement;
-  using Covariance = typename Types::Covariance;
-  using MeasurementWeight = typename Types::MeasurementWeight;
-  using Presence = typename Types::Presence;
+  using typename Law::Scalar, typename Law::Parameters, typename Law::Regressor, typename Law::Measurement,
+      typename Law::Covariance, typename Law::MeasurementWeight;
   using Estimate = detail::LeastSquaresEstimate<Parameters, Covariance>;
+  static constexpr std::string_view name_propose = "CovarianceResettingRls::propose";
+  static constexpr std::string_view name_restart = "CovarianceResettingRls::restart";
 
   struct Options {
     Scalar k0;            ///< \f$\Gamma_0 = k_0I\f$ and the reset value, > kmin
@@ -96,24 +96,24 @@ class CovarianceResettingRls
 
   /// \param nz measurement count, read only when `NZ` is dynamic (default: the size of R).
   CovarianceResettingRls(Parameters p0, Options options, Index nz = NZ)
-      : options_(std::move(options)),
-        nz_(detail::measurement_size<NZ>(nz, options_.R)),
-        correction_(p0.rows(), nz_),
-        masked_(p0.rows(), nz_, true) {
+      : Law(p0.rows(), detail::measurement_size<NZ>(nz, options.R), true),
+        options_(std::move(options)),
+        correction_(p0.rows(), this->nz_) {
     constexpr std::string_view who = "CovarianceResettingRls";
+    nz = this->measurement_count();  // the resolved size
     detail::require_finite(p0, who, "p0");
     detail::require_positive(options_.k0, who, "k0");
     detail::require_positive(options_.kmin, who, "kmin");
     detail::require(options_.kmin < options_.k0, who, "kmin", "must be smaller than k0");
-    detail::require_shape(options_.R, nz_, nz_, who, "R");
+    detail::require_shape(options_.R, nz, nz, who, "R");
     detail::require_positive_definite(options_.R, who, "R");
     const Index np = p0.rows();
-    if (nz_ > 0) {
+    if (nz > 0) {
       // Configuration time, on a dynamic copy: one instantiation per scalar type.
       using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
       inverse_weight_bound_ = Scalar(1) / symmetric_eigenvalues(Dense(options_.R))(0);
     }
-    rounding_margin_ = Scalar(8) * Scalar(np + nz_) * std::numeric_limits<Scalar>::epsilon() * options_.k0;
+    rounding_margin_ = Scalar(8) * Scalar(np + nz) * std::numeric_limits<Scalar>::epsilon() * options_.k0;
     shifted_.setZero(np, np);
     this->assign(p0, Covariance::Zero(np, np), Covariance::Zero(np, np));
     start();
@@ -129,32 +129,14 @@ class CovarianceResettingRls
   /// The bound \f$\ell\f$: \f$\lambda_{\min}(\Gamma) \ge \ell\f$ holds for the current covariance.
   [[nodiscard]] Scalar eigenvalue_lower_bound() const noexcept { return track_[this->current_slot()].bound; }
   [[nodiscard]] const Options& options() const noexcept { return options_; }
-  [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
-
-  /// (22), then (23), with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
-  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
-    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "CovarianceResettingRls::propose");
-    return step(phi, z, options_.R);
-  }
-
-  /// (22), then (23), with the present entries of \f$z_t\f$ only; see `AdaptationLaw`,
-  /// "Partial measurements". The reset screen stays valid: with the absent
-  /// columns of φ zeroed, \f$\varphi\bar R^{-1}\varphi^T\f$ involves only \f$R_{PP}^{-1}\f$, whose
-  /// largest eigenvalue is at most \f$1/\lambda_{\min}(R)\f$ (interlacing).
-  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
-    return masked_.propose(phi, z, present, &options_.R, parameter_count(), "CovarianceResettingRls::propose",
-                           [this](const auto& f, const auto& y, const auto& r) { return step(f, y, r); });
-  }
-
-  /// Back to \f$\hat p_0\f$ and \f$\Gamma_0 = k_0I\f$, counters cleared.
-  void restart(const Parameters& p0) {
-    detail::require_shape(p0, parameter_count(), 1, "CovarianceResettingRls::restart", "p0");
-    detail::require_finite(p0, "CovarianceResettingRls::restart", "p0");
-    this->current_parameters() = p0;
-    start();
-  }
 
  private:
+  const MeasurementWeight* weight() const noexcept { return &options_.R; }
+
+  /// (22), then (23), with \f$(\varphi_t, z_t)\f$ and weight R; see `AdaptationLaw`.
+  /// Under partial measurements the reset screen stays valid: with the absent
+  /// columns of φ zeroed, \f$\varphi\bar R^{-1}\varphi^T\f$ involves only \f$R_{PP}^{-1}\f$, whose
+  /// largest eigenvalue is at most \f$1/\lambda_{\min}(R)\f$ (interlacing).
   bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
     const Tracking& current = track_[this->current_slot()];
     Tracking& track = track_[1 - this->current_slot()];
@@ -188,6 +170,12 @@ class CovarianceResettingRls
     return true;
   }
 
+  /// Back to \f$\hat p_0\f$ and \f$\Gamma_0 = k_0I\f$, counters cleared.
+  void restart_at(const Parameters& p0) {
+    this->current_parameters() = p0;
+    start();
+  }
+
   void start() {
     const Index np = parameter_count();
     this->current_covariance().setZero(np, np);
@@ -203,13 +191,11 @@ class CovarianceResettingRls
   };
 
   Options options_;
-  Index nz_;
   std::array<Tracking, 2> track_{};  // per slot of the estimate
   Scalar inverse_weight_bound_ = 0;  // λ_max(R⁻¹) = 1/λ_min(R)
   Scalar rounding_margin_ = 0;       // η
   Covariance shifted_;               // Γ̄ − kmin I, factored in place by the reset test
   detail::RlsCorrection<S, NP, NZ> correction_;
-  detail::MaskedRegression<Types> masked_;
 };
 
 }  // namespace adaptobs

@@ -58,17 +58,17 @@ namespace adaptobs {
 template <typename S, int NP, int NZ>
 class ExponentialForgettingRls
     : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
-                                          typename RegressionTypes<S, NP, NZ>::Covariance> {
+                                          typename RegressionTypes<S, NP, NZ>::Covariance>,
+      public detail::RegressionLaw<ExponentialForgettingRls<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
+  using Law = detail::RegressionLaw<ExponentialForgettingRls, RegressionTypes<S, NP, NZ>>;
+  friend Law;
+
  public:
-  using Types = RegressionTypes<S, NP, NZ>;
-  using Scalar = S;
-  using Parameters = typename Types::Parameters;
-  using Regressor = typename Types::Regressor;
-  using Measurement = typename Types::Measurement;
-  using Covariance = typename Types::Covariance;
-  using MeasurementWeight = typename Types::MeasurementWeight;
-  using Presence = typename Types::Presence;
+  using typename Law::Scalar, typename Law::Parameters, typename Law::Regressor, typename Law::Measurement,
+      typename Law::Covariance, typename Law::MeasurementWeight;
   using Estimate = detail::LeastSquaresEstimate<Parameters, Covariance>;
+  static constexpr std::string_view name_propose = "ExponentialForgettingRls::propose";
+  static constexpr std::string_view name_restart = "ExponentialForgettingRls::restart";
 
   struct Options {
     Covariance gamma0;    ///< \f$\Gamma_0\f$, symmetric positive definite
@@ -78,50 +78,32 @@ class ExponentialForgettingRls
 
   /// \param nz measurement count, read only when `NZ` is dynamic (default: the size of R).
   ExponentialForgettingRls(Parameters p0, Options options, Index nz = NZ)
-      : options_(std::move(options)),
-        nz_(detail::measurement_size<NZ>(nz, options_.R)),
-        factorization_(nz_),
-        masked_(p0.rows(), nz_, true) {
+      : Law(p0.rows(), detail::measurement_size<NZ>(nz, options.R), true),
+        options_(std::move(options)),
+        factorization_(this->nz_) {
     constexpr std::string_view who = "ExponentialForgettingRls";
-    detail::validate_least_squares(p0, options_.gamma0, options_.R, nz_, who);
+    nz = this->measurement_count();  // the resolved size
+    detail::validate_least_squares(p0, options_.gamma0, options_.R, nz, who);
     detail::require(options_.lambda > Scalar(0) && options_.lambda <= Scalar(1), who, "lambda",
                     "must lie in (0, 1]");
     weight_ = options_.lambda * options_.R;
-    gamma_phi_.setZero(p0.rows(), nz_);
-    gain_transposed_.setZero(nz_, p0.rows());
-    innovation_weight_.setZero(nz_, nz_);
-    innovation_.setZero(nz_);
+    gamma_phi_.setZero(p0.rows(), nz);
+    gain_transposed_.setZero(nz, p0.rows());
+    innovation_weight_.setZero(nz, nz);
+    innovation_.setZero(nz);
     this->assign(p0, options_.gamma0, options_.gamma0);
   }
 
   using Estimate::parameter_count;
   [[nodiscard]] const Options& options() const noexcept { return options_; }
-  [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
-
-  /// One weighted step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
-  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
-    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "ExponentialForgettingRls::propose");
-    return step(phi, z, weight_);
-  }
-
-  /// One weighted step with the present entries of \f$z_t\f$ only; see `AdaptationLaw`,
-  /// "Partial measurements". Forgetting is per call, measured or not: with no
-  /// entry present, Γ is divided by λ. (An observer may skip the call on a sample
-  /// without data; Dey–Bhasin and Suzuki do, so Γ does not grow over a gap.)
-  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
-    return masked_.propose(phi, z, present, &weight_, parameter_count(), "ExponentialForgettingRls::propose",
-                           [this](const auto& f, const auto& y, const auto& r) { return step(f, y, r); });
-  }
-
-  void restart(const Parameters& p0) {
-    detail::require_shape(p0, parameter_count(), 1, "ExponentialForgettingRls::restart", "p0");
-    detail::require_finite(p0, "ExponentialForgettingRls::restart", "p0");
-    this->current_parameters() = p0;
-    this->current_covariance() = options_.gamma0;
-  }
 
  private:
-  // The step with weight λR (or its masked form).
+  const MeasurementWeight* weight() const noexcept { return &weight_; }
+
+  /// One weighted step with \f$(\varphi_t, z_t)\f$ and weight λR (or its masked form);
+  /// see `AdaptationLaw`. Forgetting is per call, measured or not: with no entry
+  /// present, Γ is divided by λ. (An observer may skip the call on a sample without
+  /// data; Dey–Bhasin and Suzuki do, so Γ does not grow over a gap.)
   bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
     const Covariance& gamma = this->covariance();
     Parameters& next_p = this->next_parameters();
@@ -150,15 +132,18 @@ class ExponentialForgettingRls
     return detail::all_finite(next_p, next_gamma);
   }
 
+  void restart_at(const Parameters& p0) {
+    this->current_parameters() = p0;
+    this->current_covariance() = options_.gamma0;
+  }
+
   Options options_;
-  Index nz_;
   MeasurementWeight weight_;  // λR
-  typename Types::Gain gamma_phi_;                  // Γφ
+  typename Law::Types::Gain gamma_phi_;             // Γφ
   Eigen::Matrix<S, NZ, NP> gain_transposed_;        // Kᵀ
   MeasurementWeight innovation_weight_;             // M = λR + φᵀΓφ
   Eigen::LDLT<MeasurementWeight> factorization_;    // of M, which need not be positive definite
   Measurement innovation_;
-  detail::MaskedRegression<Types> masked_;
 };
 
 }  // namespace adaptobs

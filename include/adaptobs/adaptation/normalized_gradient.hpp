@@ -26,14 +26,15 @@ namespace adaptobs {
 
 /// Normalized gradient adaptation (Goodwin & Sin 1984, §3.3).
 template <typename S, int NP, int NZ>
-class NormalizedGradient {
+class NormalizedGradient : public detail::RegressionLaw<NormalizedGradient<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
+  using Law = detail::RegressionLaw<NormalizedGradient, RegressionTypes<S, NP, NZ>>;
+  friend Law;
+
  public:
-  using Types = RegressionTypes<S, NP, NZ>;
-  using Scalar = S;
-  using Parameters = typename Types::Parameters;
-  using Regressor = typename Types::Regressor;
-  using Measurement = typename Types::Measurement;
-  using Presence = typename Types::Presence;
+  using typename Law::Scalar, typename Law::Parameters, typename Law::Regressor, typename Law::Measurement,
+      typename Law::MeasurementWeight;
+  static constexpr std::string_view name_propose = "NormalizedGradient::propose";
+  static constexpr std::string_view name_restart = "NormalizedGradient::restart";
 
   struct Options {
     Scalar mu = 1;      ///< step μ ∈ (0, 2)
@@ -42,13 +43,14 @@ class NormalizedGradient {
 
   /// \param nz measurement count (only read when `NZ` is dynamic, where it is required).
   NormalizedGradient(Parameters p0, Options options, Index nz = NZ)
-      : options_(options), nz_(NZ == Eigen::Dynamic ? nz : NZ), masked_(p0.rows(), std::max<Index>(nz_, 0), false) {
+      : Law(p0.rows(), std::max<Index>(NZ == Eigen::Dynamic ? nz : NZ, 0), false), options_(options) {
     constexpr std::string_view who = "NormalizedGradient";
-    detail::require(nz_ >= 0, who, "nz", "must be given (non-negative) when the measurement size is dynamic");
+    detail::require(NZ != Eigen::Dynamic || nz >= 0, who, "nz",
+                    "must be given (non-negative) when the measurement size is dynamic");
     detail::require_finite(p0, who, "p0");
     detail::require(options_.mu > Scalar(0) && options_.mu < Scalar(2), who, "mu", "must lie in (0, 2)");
     detail::require_positive(options_.offset, who, "offset");
-    innovation_.setZero(nz_);
+    innovation_.setZero(this->measurement_count());
     p_[0] = p0;
     p_[1] = std::move(p0);
   }
@@ -57,32 +59,16 @@ class NormalizedGradient {
   [[nodiscard]] const Parameters& proposal() const noexcept { return p_[1 - current_]; }
   [[nodiscard]] const Options& options() const noexcept { return options_; }
   [[nodiscard]] Index parameter_count() const noexcept { return p_[0].rows(); }
-  [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
-
-  /// One gradient step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
-  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
-    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "NormalizedGradient::propose");
-    return step(phi, z);
-  }
-
-  /// One gradient step with the present entries of \f$z_t\f$ only (absent columns of φ
-  /// and entries of z zeroed, so they add neither to the step nor to \f$\|\varphi_t\|_F^2\f$);
-  /// see `AdaptationLaw`, "Partial measurements".
-  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
-    return masked_.propose(phi, z, present, nullptr, parameter_count(), "NormalizedGradient::propose",
-                           [this](const auto& f, const auto& y, const auto&) { return step(f, y); });
-  }
 
   void commit() noexcept { current_ = 1 - current_; }
 
-  void restart(const Parameters& p0) {
-    detail::require_shape(p0, parameter_count(), 1, "NormalizedGradient::restart", "p0");
-    detail::require_finite(p0, "NormalizedGradient::restart", "p0");
-    p_[current_] = p0;
-  }
-
  private:
-  bool step(const Regressor& phi, const Measurement& z) {
+  static const MeasurementWeight* weight() noexcept { return nullptr; }
+
+  /// One gradient step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`. Under partial
+  /// measurements the absent columns of φ and entries of z are zeroed, so they add
+  /// neither to the step nor to \f$\|\varphi_t\|_F^2\f$.
+  bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& /*unweighted*/) {
     const int next = 1 - current_;
     innovation_ = z;
     innovation_.noalias() -= phi.transpose() * p_[current_];
@@ -92,12 +78,12 @@ class NormalizedGradient {
     return detail::all_finite(p_[next]);
   }
 
+  void restart_at(const Parameters& p0) { p_[current_] = p0; }
+
   Options options_;
-  Index nz_;
   std::array<Parameters, 2> p_;
   int current_ = 0;  // slot of the current estimate; the other slot holds the proposal
   Measurement innovation_;
-  detail::MaskedRegression<Types> masked_;
 };
 
 }  // namespace adaptobs

@@ -54,17 +54,17 @@ void validate_least_squares(const P& p0, const G& gamma0, const W& weight, Index
 template <typename S, int NP, int NZ>
 class RecursiveLeastSquares
     : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
-                                          typename RegressionTypes<S, NP, NZ>::Covariance> {
+                                          typename RegressionTypes<S, NP, NZ>::Covariance>,
+      public detail::RegressionLaw<RecursiveLeastSquares<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
+  using Law = detail::RegressionLaw<RecursiveLeastSquares, RegressionTypes<S, NP, NZ>>;
+  friend Law;
+
  public:
-  using Types = RegressionTypes<S, NP, NZ>;
-  using Scalar = S;
-  using Parameters = typename Types::Parameters;
-  using Regressor = typename Types::Regressor;
-  using Measurement = typename Types::Measurement;
-  using Covariance = typename Types::Covariance;
-  using MeasurementWeight = typename Types::MeasurementWeight;
-  using Presence = typename Types::Presence;
+  using typename Law::Parameters, typename Law::Regressor, typename Law::Measurement, typename Law::Covariance,
+      typename Law::MeasurementWeight;
   using Estimate = detail::LeastSquaresEstimate<Parameters, Covariance>;
+  static constexpr std::string_view name_propose = "RecursiveLeastSquares::propose";
+  static constexpr std::string_view name_restart = "RecursiveLeastSquares::restart";
 
   struct Options {
     Covariance gamma0;    ///< \f$\Gamma_0\f$, symmetric positive definite
@@ -73,38 +73,20 @@ class RecursiveLeastSquares
 
   /// \param nz measurement count, read only when `NZ` is dynamic (default: the size of R).
   RecursiveLeastSquares(Parameters p0, Options options, Index nz = NZ)
-      : options_(std::move(options)),
-        nz_(detail::measurement_size<NZ>(nz, options_.R)),
-        correction_(p0.rows(), nz_),
-        masked_(p0.rows(), nz_, true) {
-    detail::validate_least_squares(p0, options_.gamma0, options_.R, nz_, "RecursiveLeastSquares");
+      : Law(p0.rows(), detail::measurement_size<NZ>(nz, options.R), true),
+        options_(std::move(options)),
+        correction_(p0.rows(), this->nz_) {
+    detail::validate_least_squares(p0, options_.gamma0, options_.R, this->nz_, "RecursiveLeastSquares");
     this->assign(p0, options_.gamma0, options_.gamma0);
   }
 
   using Estimate::parameter_count;
   [[nodiscard]] const Options& options() const noexcept { return options_; }
-  [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
-
-  /// (22) and (21) with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
-  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
-    detail::require_regression_sizes<Types>(phi, z, parameter_count(), nz_, "RecursiveLeastSquares::propose");
-    return step(phi, z, options_.R);
-  }
-
-  /// (22) and (21) with the present entries of \f$z_t\f$ only; see `AdaptationLaw`, "Partial measurements".
-  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
-    return masked_.propose(phi, z, present, &options_.R, parameter_count(), "RecursiveLeastSquares::propose",
-                           [this](const auto& f, const auto& y, const auto& r) { return step(f, y, r); });
-  }
-
-  void restart(const Parameters& p0) {
-    detail::require_shape(p0, parameter_count(), 1, "RecursiveLeastSquares::restart", "p0");
-    detail::require_finite(p0, "RecursiveLeastSquares::restart", "p0");
-    this->current_parameters() = p0;
-    this->current_covariance() = options_.gamma0;
-  }
 
  private:
+  const MeasurementWeight* weight() const noexcept { return &options_.R; }
+
+  /// (22) and (21) with \f$(\varphi_t, z_t)\f$ and weight R; see `AdaptationLaw`.
   bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
     if (!correction_.apply(this->covariance(), weight, phi, z, this->parameters(), S(1), this->next_parameters(),
                            this->next_covariance()))
@@ -112,10 +94,13 @@ class RecursiveLeastSquares
     return detail::all_finite(this->next_parameters(), this->next_covariance());
   }
 
+  void restart_at(const Parameters& p0) {
+    this->current_parameters() = p0;
+    this->current_covariance() = options_.gamma0;
+  }
+
   Options options_;
-  Index nz_;
   detail::RlsCorrection<S, NP, NZ> correction_;
-  detail::MaskedRegression<Types> masked_;
 };
 
 }  // namespace adaptobs

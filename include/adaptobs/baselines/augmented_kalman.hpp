@@ -47,8 +47,12 @@ struct AugmentedKalmanCovariances {
 };
 
 template <DiscreteModel Model>
-class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
+class AugmentedKalmanFilter
+    : public detail::DiscreteUpdate<AugmentedKalmanFilter<Model>, typename Model::Dims, DiscreteSample> {
+  friend detail::DiscreteUpdate<AugmentedKalmanFilter, typename Model::Dims, DiscreteSample>;
+
  public:
+  static constexpr std::string_view name_update = "AugmentedKalmanFilter::update";
   using Dims = typename Model::Dims;
   using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
       typename SizedBy<Dims>::Output;
@@ -89,22 +93,6 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
     w_.cholesky = detail::CholeskyFactor<typename Dims::OutputMatrixSquare>(s.ny);
   }
 
-  /// Correction with \f$y_k\f$, then prediction to step k + 1 with \f$(A_k, B_k, \Psi_k, u_k)\f$.
-  /// With run-time sizes, a sample of the wrong shape throws `ConfigurationError`
-  /// naming it, and the filter is left as it was. A step whose covariance would
-  /// not be positive definite is rejected (`UpdateStatus::indefinite_covariance`)
-  /// and changes nothing.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) { return step_with(sample, nullptr); }
-
-  /// The same with only the output channels in `present` measured (file comment,
-  /// "Missing and partial outputs"); absent entries of `sample.y` are ignored (they may be NaN or Inf).
-  /// All channels present is `update(sample)`, bit for bit; none is the prediction alone.
-  [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
-    return step_with(sample, detail::partial_mask<Dims>(present, model_.sizes().ny, "AugmentedKalmanFilter::update"));
-  }
-
-  /// Run-time sizes (nx, nu, ny, np).
-  [[nodiscard]] Sizes sizes() const noexcept { return model_.sizes(); }
   [[nodiscard]] const State& state() const noexcept { return x_; }
   [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
   /// Output error \f$\varepsilon_k = y_k - C_k\hat x_{k|k-1}\f$ of the last accepted
@@ -127,9 +115,11 @@ class AugmentedKalmanFilter : public SizedBy<typename Model::Dims> {
   }
 
  private:
-  // `present` is null when every channel is.
+  /// Correction with \f$y_k\f$, then prediction to step k + 1 with
+  /// \f$(A_k, B_k, \Psi_k, u_k)\f$; `present` is null when every channel is. A step
+  /// whose covariance would not be positive definite is rejected
+  /// (`UpdateStatus::indefinite_covariance`) and changes nothing.
   UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "AugmentedKalmanFilter::update");
     if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
     const auto& system = model_.at(step_);
     const Index nx = x_.rows();

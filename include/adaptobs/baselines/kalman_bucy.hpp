@@ -134,15 +134,8 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     dP.noalias() -= w.gain * w.pct.transpose();
   }
 
-  /// The right-hand side as a Boost.Odeint system `f(s, ds, t)`.
-  template <class Signals>
-  [[nodiscard]] auto system(Signals signals) const {
-    return [this, signals = std::move(signals), u = Input(Input::Zero(sizes_.nu)),
-            y = Output(Output::Zero(sizes_.ny))](const InternalState& s, InternalState& ds, Scalar t) mutable {
-      signals(t, u, y);
-      derivative(s, ds, t, u, y);
-    };
-  }
+  /// Run-time sizes (nx, nu, ny, np).
+  [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
 
   [[nodiscard]] const State& state() const noexcept { return eta_; }
   [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }

@@ -44,6 +44,7 @@
 #include <adaptobs/core/validation.hpp>
 
 #include <cmath>
+#include <concepts>
 #include <string_view>
 #include <utility>
 
@@ -225,5 +226,33 @@ class SampledIntegrator {
   typename D::Input u_;
   typename D::Output y_;
 };
+
+/// An observer that integrates a right-hand side between its samples (the
+/// unified observers, the Kalman–Bucy filter): its stacked internal state s and
+/// \f$\dot s\f$ = `derivative(s, ds, t, u, y)` with the input and output at time t.
+template <class O>
+concept ContinuousTimeObserver =
+    requires(const O& o, const typename O::InternalState& s, typename O::InternalState& ds, typename O::Scalar t,
+             const typename O::Input& u, const typename O::Output& y) {
+      { o.sizes() } -> std::same_as<Sizes>;
+      o.derivative(s, ds, t, u, y);
+    };
+
+/// The right-hand side of `observer` as a Boost.Odeint system `f(s, ds, t)`, with
+/// `signals(t, u, y)` writing the input and output at time t: to integrate the
+/// observer with any Odeint stepper, e.g. as a reference for its own
+/// integration. The system refers to `observer`, which must outlive it.
+template <ContinuousTimeObserver O, class Signals>
+[[nodiscard]] auto odeint_system(const O& observer, Signals signals) {
+  using Input = typename O::Input;
+  using Output = typename O::Output;
+  const Sizes sizes = observer.sizes();
+  return [&observer, signals = std::move(signals), u = Input(Input::Zero(sizes.nu)),
+          y = Output(Output::Zero(sizes.ny))](const typename O::InternalState& s, typename O::InternalState& ds,
+                                              typename O::Scalar t) mutable {
+    signals(t, u, y);
+    observer.derivative(s, ds, t, u, y);
+  };
+}
 
 }  // namespace adaptobs

@@ -338,6 +338,28 @@ class TakagiSugenoModel : public SizedBy<D> {
   ParameterSectors parameter_bounds_;
 };
 
+/// What a Takagi–Sugeno observer reads of its model: sizes, the vertex matrices
+/// \f$(A_i, B_i)\f$ and C, the premise variables \f$z(x, u, \theta)\f$, their weights
+/// \f$h_i(z, \theta)\f$ and the sectors of z and θ (`TakagiSugenoModel` is one).
+template <class M>
+concept TakagiSugenoSystem =
+    StateSpace<typename M::Dims> &&
+    requires(const M& m, Index i, const typename M::Dims::State& x, const typename M::Dims::Input& u,
+             const typename M::Dims::Parameters& theta, const typename M::PremiseVector& z,
+             typename M::Weights& h) {
+      { M::vertices_at_compile_time } -> std::convertible_to<int>;
+      { m.sizes() } -> std::same_as<Sizes>;
+      { m.vertex_count() } -> std::convertible_to<Index>;
+      { m.premise_count() } -> std::convertible_to<Index>;
+      m.A(i);
+      m.B(i);
+      m.C();
+      { m.premises(x, u, theta) } -> std::convertible_to<typename M::PremiseVector>;
+      m.weights(z, theta, h);
+      m.premise_bounds();
+      m.parameter_bounds();
+    };
+
 /// Builds the polytopic model of a quasi-LPV description in one call: the vertices
 /// come from `sector_vertices(matrices_at, premise_bounds, parameter_bounds)`.
 template <StateSpace D, int NZ, class F, class PremiseFn>

@@ -61,8 +61,12 @@ struct GuiroOptions {
 /// of a continuous system (see file comment); an LTV discrete model
 /// \f$(E_k, B_k, C_k)\f$ is accepted too.
 template <DiscreteModel Model>
-class GuiroObserver : public SizedBy<typename Model::Dims> {
+class GuiroObserver
+    : public detail::DiscreteUpdate<GuiroObserver<Model>, typename Model::Dims, DiscreteSample> {
+  friend detail::DiscreteUpdate<GuiroObserver, typename Model::Dims, DiscreteSample>;
+
  public:
+  static constexpr std::string_view name_update = "GuiroObserver::update";
   using Dims = typename Model::Dims;
   using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
       typename SizedBy<Dims>::Output, typename SizedBy<Dims>::GainMatrix;
@@ -90,25 +94,6 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     innovation_.setZero(s.ny);
     work_.resize(s);
   }
-
-  /// One sample: correction of \f$z^-_k\f$ with \f$y_k\f$, θ̂ update, prediction
-  /// over the period with \f$\Psi_k\f$ and \f$u_k\f$ (eq. (2)).
-  ///
-  /// Returns `nonfinite_input` for a NaN/Inf in the sample and
-  /// `nonfinite_result` when the step would produce one; in both cases the
-  /// observer is left exactly as it was.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) { return step_with(sample, nullptr); }
-
-  /// One sample with only the output channels in `present` measured (file
-  /// comment, "Missing and partial outputs"); absent entries of `sample.y` are
-  /// ignored (they may be NaN or Inf). All channels present is `update(sample)`,
-  /// bit for bit; none is the time update.
-  [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
-    return step_with(sample, detail::partial_mask<Dims>(present, model_.sizes().ny, "GuiroObserver::update"));
-  }
-
-  /// Run-time sizes (nx, nu, ny, np).
-  [[nodiscard]] Sizes sizes() const noexcept { return model_.sizes(); }
 
   /// Prediction \f$z^-_k\f$ of the state at the current step, before its output is consumed.
   [[nodiscard]] const State& state() const noexcept { return z_; }
@@ -171,9 +156,12 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     }
   };
 
-  // `present` is null when every channel is.
+  /// One sample: correction of \f$z^-_k\f$ with \f$y_k\f$, θ̂ update, prediction
+  /// over the period with \f$\Psi_k\f$ and \f$u_k\f$ (eq. (2)); `present` is null when
+  /// every channel is. Returns `nonfinite_input` for a NaN/Inf in the sample and
+  /// `nonfinite_result` when the step would produce one; in both cases the
+  /// observer is left exactly as it was.
   UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "GuiroObserver::update");
     return work_.run([&](Workspace& w) { return advance(sample, present, w); });
   }
 
@@ -212,7 +200,6 @@ class GuiroObserver : public SizedBy<typename Model::Dims> {
     ++step_;
     return UpdateStatus::accepted;
   }
-
 
   void check_system_sizes(const DiscreteSystem<Dims>& system) const {
     constexpr std::string_view who = "GuiroObserver::update";

@@ -69,8 +69,12 @@ struct GuyaderZhangOptions {
 /// from step k to k + 1. The gain \f$K_k\f$ and step size \f$\mu_k\f$ are
 /// constant unless changed with `set_gain` / `set_mu` between updates.
 template <DiscreteModel Model>
-class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
+class GuyaderZhangObserver
+    : public detail::DiscreteUpdate<GuyaderZhangObserver<Model>, typename Model::Dims, DiscreteSample> {
+  friend detail::DiscreteUpdate<GuyaderZhangObserver, typename Model::Dims, DiscreteSample>;
+
  public:
+  static constexpr std::string_view name_update = "GuyaderZhangObserver::update";
   using Dims = typename Model::Dims;
   using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
       typename SizedBy<Dims>::GainMatrix, typename SizedBy<Dims>::RegressorMatrix, typename SizedBy<Dims>::Output;
@@ -102,23 +106,6 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     if constexpr (Model::time_invariant) update_closed_loop();
   }
 
-  /// One step of eq. (2a)–(2c) with the sample \f$(u_k, y_k, \Psi_k)\f$.
-  ///
-  /// Returns `nonfinite_input` for a NaN/Inf in the sample and
-  /// `nonfinite_result` when the step would produce one; in both cases the
-  /// observer is left exactly as it was.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) { return step_with(sample, nullptr); }
-
-  /// One step with only the output channels in `present` measured (file
-  /// comment, "Missing and partial outputs"); absent entries of `sample.y` are
-  /// ignored (they may be NaN or Inf). All channels present is `update(sample)`,
-  /// bit for bit; none is the time update.
-  [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
-    return step_with(sample, detail::partial_mask<Dims>(present, model_.sizes().ny, "GuyaderZhangObserver::update"));
-  }
-
-  /// Run-time sizes (nx, nu, ny, np).
-  [[nodiscard]] Sizes sizes() const noexcept { return model_.sizes(); }
   /// State estimate \f$\hat x_k\f$.
   [[nodiscard]] const State& state() const noexcept { return x_; }
   /// Parameter estimate \f$\hat\theta_k\f$.
@@ -198,9 +185,11 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     }
   };
 
-  // `present` is null when every channel is.
+  /// One step of eq. (2a)–(2c) with the sample \f$(u_k, y_k, \Psi_k)\f$; `present` is
+  /// null when every channel is. Returns `nonfinite_input` for a NaN/Inf in the
+  /// sample and `nonfinite_result` when the step would produce one; in both cases
+  /// the observer is left exactly as it was.
   UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "GuyaderZhangObserver::update");
     return work_.run([&](Workspace& w) { return advance(sample, present, w); });
   }
 
@@ -266,7 +255,6 @@ class GuyaderZhangObserver : public SizedBy<typename Model::Dims> {
     closed_loop_ = system.A;
     closed_loop_.noalias() -= gain_ * system.C;
   }
-
 
   void check_system_sizes(const DiscreteSystem<Dims>& system) const {
     constexpr std::string_view who = "GuyaderZhangObserver::update";

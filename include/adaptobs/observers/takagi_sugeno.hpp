@@ -49,9 +49,13 @@
 
 namespace adaptobs {
 
-template <class Model>
-class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
+template <TakagiSugenoSystem Model>
+class TakagiSugenoObserver
+    : public detail::DiscreteUpdate<TakagiSugenoObserver<Model>, typename Model::Dims, InputOutputSample> {
+  friend detail::DiscreteUpdate<TakagiSugenoObserver, typename Model::Dims, InputOutputSample>;
+
  public:
+  static constexpr std::string_view name_update = "TakagiSugenoObserver::update";
   using Dims = typename Model::Dims;
   using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
       typename SizedBy<Dims>::Output;
@@ -74,24 +78,6 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     last_output_error_.setZero(s.ny);
     work_.resize(s, model_);
   }
-
-  /// One step of eq. (65) (or (21) when \f$K_\theta\f$ is set) with the sample \f$(u_k, y_k)\f$.
-  ///
-  /// Returns `nonfinite_input` for a NaN/Inf in the sample or in the premise
-  /// variables \f$\hat z_k\f$, `nonfinite_result` when the step would produce one; in
-  /// both cases the observer is left exactly as it was.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) { return step_with(sample, nullptr); }
-
-  /// The same with only the output channels in `present` measured (file comment,
-  /// "Missing and partial outputs"); absent entries of `sample.y` are ignored
-  /// (they may be NaN or Inf). All channels present is `update(sample)`, bit for
-  /// bit; none is the time update.
-  [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
-    return step_with(sample, detail::partial_mask<Dims>(present, model_.sizes().ny, "TakagiSugenoObserver::update"));
-  }
-
-  /// Run-time sizes (nx, nu, ny, np).
-  [[nodiscard]] Sizes sizes() const noexcept { return model_.sizes(); }
 
   /// State estimate \f$\hat x_k\f$ and parameter estimate \f$\hat\theta_k\f$.
   [[nodiscard]] const State& state() const noexcept { return x_; }
@@ -197,9 +183,12 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     }
   };
 
-  // `present` is null when every channel is.
+  /// One step of eq. (65) (or (21) when \f$K_\theta\f$ is set) with the sample
+  /// \f$(u_k, y_k)\f$; `present` is null when every channel is. Returns
+  /// `nonfinite_input` for a NaN/Inf in the sample or in the premise variables
+  /// \f$\hat z_k\f$, `nonfinite_result` when the step would produce one; in both
+  /// cases the observer is left exactly as it was.
   UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, model_.sizes(), "TakagiSugenoObserver::update");
     return work_.run([&](Workspace& w) { return advance(sample, present, w); });
   }
 
@@ -268,7 +257,6 @@ class TakagiSugenoObserver : public SizedBy<typename Model::Dims> {
     }
     blend += odd;
   }
-
 
   Model model_;
   Gains gains_;

@@ -31,8 +31,8 @@
 /// The estimate in the original coordinates is \f$\hat\eta = T^{-1}\hat x\f$.
 ///
 /// The whole internal state \f$s = (\hat x, \mathrm{vec}\,\Xi, \hat\theta)\f$ is one
-/// vector; `derivative(s, ds, t, u, y)` is its right-hand side and `system(signals)`
-/// wraps it in the Boost.Odeint system signature. `update(sample)` advances it to
+/// vector; `derivative(s, ds, t, u, y)` is its right-hand side, and
+/// `odeint_system(observer, signals)` wraps it in the Boost.Odeint system signature. `update(sample)` advances it to
 /// the sample's time with RK4 (`core/sampled_integration.hpp`).
 
 #include <adaptobs/adaptation/gradient_law.hpp>
@@ -193,16 +193,8 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     dx.noalias() += w.Omega * dtheta;
   }
 
-  /// The right-hand side as a Boost.Odeint system `f(s, ds, t)`, with
-  /// `signals(t, u, y)` writing the input and output at time t.
-  template <class Signals>
-  [[nodiscard]] auto system(Signals signals) const {
-    return [this, signals = std::move(signals), u = Input(Input::Zero(sizes_.nu)),
-            y = Output(Output::Zero(sizes_.ny))](const InternalState& s, InternalState& ds, Scalar t) mutable {
-      signals(t, u, y);
-      derivative(s, ds, t, u, y);
-    };
-  }
+  /// Run-time sizes (nx, nu, ny, np).
+  [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
 
   /// \f$\hat\eta = T^{-1}\hat x\f$, the state estimate in the original coordinates.
   [[nodiscard]] const State& state() const noexcept { return eta_; }
