@@ -5,7 +5,7 @@
 // the paper's sizes (n = 2, m = p = 1) and at n = 6, m = p = 3.
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
-#include <adaptobs/core/regressor_integral.hpp>
+#include <adaptobs/models/regressor_integral.hpp>
 #include <adaptobs/core/sampled_model.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
 #include <adaptobs/design/pole_placement.hpp>

@@ -2,9 +2,10 @@
 # and the layers below it.
 #
 #   core (core/detail: helpers) -> core
-#   adaptation, design,
-#   diagnostics                 -> core, and their own layer
-#   observers, baselines        -> core, adaptation, design, diagnostics, and their own layer
+#   models (paper-family models)-> core, and their own layer
+#   adaptation, diagnostics     -> core, and their own layer
+#   design                      -> core, models, and its own layer
+#   observers, baselines        -> core, models, adaptation, design, diagnostics, and their own layer
 #   simulation                  -> anything below
 #
 # Run as a script (CTest `layer_rule`): cmake -DROOT=<include/adaptobs> -P AdaptobsCheckLayers.cmake
@@ -12,12 +13,13 @@
 cmake_minimum_required(VERSION 3.20)
 
 set(allowed_core core)
+set(allowed_models core models)
 set(allowed_adaptation core adaptation)
-set(allowed_design core design)
+set(allowed_design core models design)
 set(allowed_diagnostics core diagnostics)
-set(allowed_observers core adaptation design diagnostics observers)
-set(allowed_baselines core adaptation design diagnostics baselines)
-set(allowed_simulation core adaptation design diagnostics observers baselines simulation)
+set(allowed_observers core models adaptation design diagnostics observers)
+set(allowed_baselines core models adaptation design diagnostics baselines)
+set(allowed_simulation core models adaptation design diagnostics observers baselines simulation)
 
 if(NOT ROOT)
   message(FATAL_ERROR "AdaptobsCheckLayers: pass -DROOT=<path to include/adaptobs>")
@@ -25,7 +27,7 @@ endif()
 get_filename_component(ROOT "${ROOT}" ABSOLUTE)
 set(violations "")
 set(checked 0)
-foreach(layer core adaptation design diagnostics observers baselines simulation)
+foreach(layer core models adaptation design diagnostics observers baselines simulation)
   file(GLOB_RECURSE headers "${ROOT}/${layer}/*.hpp")
   foreach(header IN LISTS headers)
     math(EXPR checked "${checked} + 1")

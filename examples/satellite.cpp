@@ -18,43 +18,35 @@
 #include "common/example_support.hpp"
 #include "models/satellite.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <iostream>
+#include <string>
 
 namespace satellite = adaptobs::examples::satellite;
 using adaptobs::examples::print_text;
 using adaptobs::examples::print_value;
 
-int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(
-      argc, argv, "satellite",
-      adaptobs::examples::with_output_loss({{"seconds", "300"}, {"seed", "2003"}, {"noise", "0.01"}}));
-  const auto seed = static_cast<std::uint64_t>(args.number("seed"));
-  adaptobs::OutputLoss loss(adaptobs::examples::output_loss_options(args, seed + 1));
-  const double seconds = args.number("seconds");
-  const auto steps = static_cast<adaptobs::Index>(std::llround(seconds / satellite::sampling_period));
+namespace {
 
-  // The discrete model comes from the continuous linearized satellite through
-  // the library's zero-order-hold routine; compare with the printed matrices.
+// The discrete model comes from the continuous linearized satellite through the
+// library's zero-order-hold routine; printed beside the paper's gain to compare
+// with its matrices.
+void print_design(const Eigen::Matrix<double, 4, 2>& gain) {
   const auto zoh = satellite::discretized<double>();
   print_value("omega", satellite::omega);
   print_value("Ts", satellite::sampling_period);
   print_value("Ad", zoh.Ad);
   print_value("H", zoh.Bd);
-
-  const Eigen::Matrix<double, 4, 2> gain = satellite::paper_gain<double>();
-  const auto model = satellite::model<double>();
   print_value("K", gain);
   print_value("mu", satellite::mu);
-  print_value("spectral_radius_A_minus_KC", adaptobs::spectral_radius(Eigen::Matrix4d(zoh.Ad - gain * model.system().C)));
+  print_value("spectral_radius_A_minus_KC",
+              adaptobs::spectral_radius(Eigen::Matrix4d(zoh.Ad - gain * satellite::model<double>().system().C)));
   print_text("thrusts", "unit square pulses of 1 s every 10 s; radial from t = 0, tangential from t = 5 s");
+}
 
-  adaptobs::GuyaderZhangObserver observer(model, gain, satellite::mu, satellite::initial_state_estimate<double>(),
-                                          satellite::initial_parameter_estimate<double>(), {.excitation_window = 100, .normalized_step = !loss.lossless()});
-
-  // Baseline: Kalman filter on [x; θ] with the true output noise level.
-  const double noise = args.number("noise");
+// Baseline: Kalman filter on [x; θ] with the true output noise level.
+auto augmented_kalman_filter(double noise) {
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
   adaptobs::AugmentedKalmanCovariances<satellite::Dims<double>> covariances;
   covariances.P0 = Matrix6::Zero();
@@ -62,40 +54,28 @@ int main(int argc, char** argv) {
   covariances.Q = Matrix6::Zero();
   covariances.Q.diagonal() << 1e-10, 1e-10, 1e-10, 1e-10, 0.0, 0.0;
   covariances.R = Eigen::Matrix2d::Identity() * std::max(noise * noise, 1e-12);
-  adaptobs::AugmentedKalmanFilter akf(model, satellite::initial_state_estimate<double>(),
-                                      satellite::initial_parameter_estimate<double>(), covariances);
+  return adaptobs::AugmentedKalmanFilter(satellite::model<double>(), satellite::initial_state_estimate<double>(),
+                                         satellite::initial_parameter_estimate<double>(), covariances);
+}
 
-  auto plant = satellite::make_plant<double>(noise, seed);
-  adaptobs::SeriesTable table;
-  const auto report = adaptobs::simulate(
-      plant, steps, table, loss,
-      [&](adaptobs::SeriesTable& row, const auto&) { row.add("assumption2", observer.assumption2_norm()); },
-      adaptobs::track(observer), adaptobs::track(akf, "akf"));
-
-  // Final estimates, and their average over the last 100 s (noise makes θ̂ wander).
+// The mean of θ̂ (columns `prefix`1 and `prefix`2) over the last `window` rows.
+Eigen::Vector2d mean_over_last_rows(const adaptobs::SeriesTable& table, const std::string& prefix, std::size_t window) {
   const std::size_t rows = table.rows();
-  const std::size_t window = std::min<std::size_t>(rows, 1000);
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero(), mean_akf = Eigen::Vector2d::Zero();
-  for (std::size_t r = rows - window; r < rows; ++r) {
-    mean += Eigen::Vector2d(table.at(r, "thetahat_1"), table.at(r, "thetahat_2"));
-    mean_akf += Eigen::Vector2d(table.at(r, "thetahat_akf_1"), table.at(r, "thetahat_akf_2"));
-  }
-  mean /= double(window);
-  mean_akf /= double(window);
-  print_value("steps", double(report.steps));
-  print_value("rejected", double(report.rejected[0] + report.rejected[1]));
-  double lost = 0;
-  for (std::size_t r = 0; r < rows; ++r) lost += table.at(r, "y_available") == 0 ? 1 : 0;
-  print_value("samples_without_output", lost);
-  print_value("theta", plant.parameters());
-  print_value("thetahat", observer.parameters());
-  print_value("thetahat_mean_last_100s", mean);
-  print_value("thetahat_akf", akf.parameters());
-  print_value("thetahat_akf_mean_last_100s", mean_akf);
-  print_value("state_error_norm", (observer.state() - plant.state()).norm());
-  print_value("excitation_level", observer.excitation_level().value_or(0.0));
-  print_value("assumption2_norm", observer.assumption2_norm());
+  window = std::min(rows, window);
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (std::size_t r = rows - window; r < rows; ++r)
+    mean += Eigen::Vector2d(table.at(r, prefix + "1"), table.at(r, prefix + "2"));
+  return mean / double(window);
+}
 
+double samples_without_output(const adaptobs::SeriesTable& table) {
+  double lost = 0;
+  for (std::size_t r = 0; r < table.rows(); ++r) lost += table.at(r, "y_available") == 0 ? 1 : 0;
+  return lost;
+}
+
+void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::Arguments& args,
+                  const adaptobs::OutputLoss& loss) {
   adaptobs::examples::write_outputs(table, args.out_dir(), "satellite",
                                     adaptobs::examples::gap_shading(table, loss.options()) + R"(
 set multiplot layout 3,1 title 'Guyader-Zhang adaptive observer, controlled satellite (paper 000, section 4)'
@@ -121,5 +101,46 @@ plot csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1 adaptive observ
      csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true', \
      csv using 't':'theta_2' with lines lc 'black' dt 3 notitle
 unset multiplot)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const adaptobs::examples::Arguments args(
+      argc, argv, "satellite",
+      adaptobs::examples::with_output_loss({{"seconds", "300"}, {"seed", "2003"}, {"noise", "0.01"}}));
+  const auto seed = static_cast<std::uint64_t>(args.number("seed"));
+  adaptobs::OutputLoss loss(adaptobs::examples::output_loss_options(args, seed + 1));
+  const auto steps = static_cast<adaptobs::Index>(std::llround(args.number("seconds") / satellite::sampling_period));
+  const double noise = args.number("noise");
+
+  const Eigen::Matrix<double, 4, 2> gain = satellite::paper_gain<double>();
+  print_design(gain);
+  adaptobs::GuyaderZhangObserver observer(satellite::model<double>(), gain, satellite::mu,
+                                          satellite::initial_state_estimate<double>(),
+                                          satellite::initial_parameter_estimate<double>(),
+                                          {.excitation_window = 100, .normalized_step = !loss.lossless()});
+  auto akf = augmented_kalman_filter(noise);
+
+  auto plant = satellite::make_plant<double>(noise, seed);
+  adaptobs::SeriesTable table;
+  const auto report = adaptobs::simulate(
+      plant, steps, table, loss,
+      [&](adaptobs::SeriesTable& row, const auto&) { row.add("assumption2", observer.assumption2_norm()); },
+      adaptobs::track(observer), adaptobs::track(akf, "akf"));
+
+  // Final estimates, and their average over the last 100 s (noise makes θ̂ wander).
+  print_value("steps", double(report.steps));
+  print_value("rejected", double(report.rejected[0] + report.rejected[1]));
+  print_value("samples_without_output", samples_without_output(table));
+  print_value("theta", plant.parameters());
+  print_value("thetahat", observer.parameters());
+  print_value("thetahat_mean_last_100s", mean_over_last_rows(table, "thetahat_", 1000));
+  print_value("thetahat_akf", akf.parameters());
+  print_value("thetahat_akf_mean_last_100s", mean_over_last_rows(table, "thetahat_akf_", 1000));
+  print_value("state_error_norm", (observer.state() - plant.state()).norm());
+  print_value("excitation_level", observer.excitation_level().value_or(0.0));
+  print_value("assumption2_norm", observer.assumption2_norm());
+  write_figure(table, args, loss);
   return 0;
 }

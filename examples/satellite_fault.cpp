@@ -28,6 +28,68 @@ using adaptobs::examples::Detector;
 using adaptobs::examples::print_text;
 using adaptobs::examples::print_value;
 
+namespace {
+
+// θ̂ with its fault-free spread (± 2 scales), above the monitor's panels.
+void write_figure(const adaptobs::SeriesTable& table, const satellite::MonitorDesign& design,
+                  const adaptobs::examples::Arguments& args) {
+  std::ostringstream band;  // θ̂ ± 2 scales: its spread without a fault
+  band.precision(10);
+  band << "s1 = " << design.cusum.scale(0) << "; s2 = " << design.cusum.scale(1) << "\n";
+  adaptobs::examples::write_outputs(table, args.out_dir(), "satellite_fault", band.str() + R"(
+set multiplot layout 3,1 title 'Thruster fault on the satellite: tests on the Guyader-Zhang estimates (paper 000, section 4)'
+set grid
+set xlabel 't (s)'
+set title 'parameter estimates, with their fault-free spread (2 scales)'
+plot csv using 't':(column('thetahat_1') - 2*s1):(column('thetahat_1') + 2*s1) with filledcurves fs transparent solid 0.3 title 'theta^1 band', \
+     csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1 estimate', \
+     csv using 't':(column('thetahat_2') - 2*s2):(column('thetahat_2') + 2*s2) with filledcurves fs transparent solid 0.3 title 'theta^2 band', \
+     csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2 estimate', \
+     csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true', \
+     csv using 't':'theta_2' with lines lc 'black' dt 3 notitle)" +
+                                        std::string(adaptobs::examples::monitor_panels) + "unset multiplot");
+}
+
+// One run, every quantity of the figure in the table (after an alarm the
+// CUSUM holds off for 30 s, then re-anchors), its alarms and the figure.
+void one_run(const satellite::MonitorDesign& design, const satellite::ThrusterFault& fault,
+             const adaptobs::examples::Arguments& args) {
+  auto monitor = adaptobs::examples::rearming_monitor(design);
+  adaptobs::SeriesTable table;
+  double first_alarm = -1;
+  adaptobs::Index isolated = -1;
+  const auto steps = static_cast<adaptobs::Index>(std::llround(args.number("seconds") / satellite::sampling_period));
+  satellite::Simulation{fault}(
+      static_cast<std::uint64_t>(args.number("seed")), true, steps,
+      [&](adaptobs::Index k, const auto& observer, const auto& plant, const auto& sample) {
+        const double t = static_cast<double>(k) * satellite::sampling_period;
+        const bool watching = k >= satellite::monitor_from && adaptobs::accepted(monitor.observe(observer));
+        if (watching && monitor.cusum().alarm() && first_alarm < 0) {
+          first_alarm = t;
+          isolated = monitor.cusum().isolated();
+        }
+        table.begin_row()
+            .add("t", t)
+            .add("u", sample.u)
+            .add("y", sample.y)
+            .add("x", plant.state())
+            .add("xhat", observer.state())
+            .add("theta", fault.parameters_at(t))
+            .add("thetahat", observer.parameters());
+        adaptobs::examples::add_monitor_columns(table, monitor, watching);
+        return true;
+      });
+  print_value("first_alarm_time", first_alarm);
+  print_value("detection_delay", first_alarm >= 0 ? first_alarm - fault.time : -1.0);
+  print_value("isolated_parameter", double(isolated + 1));
+  print_value("cusum_alarms", double(monitor.cusum().alarm_count()));
+  print_value("chi_square_alarms", double(monitor.chi_square().alarm_count()));
+
+  write_figure(table, design, args);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   const adaptobs::examples::Arguments args(argc, argv, "satellite_fault",
                                            {{"fault-param", "2"},
@@ -69,53 +131,6 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  // One run, every quantity of the figure in the table (after an alarm the
-  // CUSUM holds off for 30 s, then re-anchors).
-  auto monitor = adaptobs::examples::rearming_monitor(design);
-  adaptobs::SeriesTable table;
-  double first_alarm = -1;
-  adaptobs::Index isolated = -1;
-  const auto steps = static_cast<adaptobs::Index>(std::llround(args.number("seconds") / satellite::sampling_period));
-  satellite::Simulation{fault}(
-      static_cast<std::uint64_t>(args.number("seed")), true, steps,
-      [&](adaptobs::Index k, const auto& observer, const auto& plant, const auto& sample) {
-        const double t = static_cast<double>(k) * satellite::sampling_period;
-        const bool watching = k >= satellite::monitor_from && adaptobs::accepted(monitor.observe(observer));
-        if (watching && monitor.cusum().alarm() && first_alarm < 0) {
-          first_alarm = t;
-          isolated = monitor.cusum().isolated();
-        }
-        table.begin_row()
-            .add("t", t)
-            .add("u", sample.u)
-            .add("y", sample.y)
-            .add("x", plant.state())
-            .add("xhat", observer.state())
-            .add("theta", fault.parameters_at(t))
-            .add("thetahat", observer.parameters());
-        adaptobs::examples::add_monitor_columns(table, monitor, watching);
-        return true;
-      });
-  print_value("first_alarm_time", first_alarm);
-  print_value("detection_delay", first_alarm >= 0 ? first_alarm - fault.time : -1.0);
-  print_value("isolated_parameter", double(isolated + 1));
-  print_value("cusum_alarms", double(monitor.cusum().alarm_count()));
-  print_value("chi_square_alarms", double(monitor.chi_square().alarm_count()));
-
-  std::ostringstream band;  // θ̂ ± 2 scales: its spread without a fault
-  band.precision(10);
-  band << "s1 = " << design.cusum.scale(0) << "; s2 = " << design.cusum.scale(1) << "\n";
-  adaptobs::examples::write_outputs(table, args.out_dir(), "satellite_fault", band.str() + R"(
-set multiplot layout 3,1 title 'Thruster fault on the satellite: tests on the Guyader-Zhang estimates (paper 000, section 4)'
-set grid
-set xlabel 't (s)'
-set title 'parameter estimates, with their fault-free spread (2 scales)'
-plot csv using 't':(column('thetahat_1') - 2*s1):(column('thetahat_1') + 2*s1) with filledcurves fs transparent solid 0.3 title 'theta^1 band', \
-     csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1 estimate', \
-     csv using 't':(column('thetahat_2') - 2*s2):(column('thetahat_2') + 2*s2) with filledcurves fs transparent solid 0.3 title 'theta^2 band', \
-     csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2 estimate', \
-     csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true', \
-     csv using 't':'theta_2' with lines lc 'black' dt 3 notitle)" +
-                                        std::string(adaptobs::examples::monitor_panels) + "unset multiplot");
+  one_run(design, fault, args);
   return 0;
 }

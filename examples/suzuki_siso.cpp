@@ -38,6 +38,60 @@ namespace db = adaptobs::examples::dey_bhasin;
 using adaptobs::examples::print_text;
 using adaptobs::examples::print_value;
 
+namespace {
+
+// The system, its parameter vector p, the initial estimate and the laws' settings.
+void print_problem(const Eigen::Vector4d& p, const Eigen::Vector4d& phat0, double lambda) {
+  print_value("A", Eigen::Matrix2d(adaptobs::companion_matrix(siso::a())));
+  print_value("F", Eigen::Matrix2d(adaptobs::companion_matrix(siso::f())));
+  print_value("B", siso::B().transpose());
+  print_value("p", p.transpose());
+  print_value("phat0", phat0.transpose());
+  print_value("k0", siso::k0);
+  print_value("kmin", siso::kmin);
+  print_value("lambda", lambda);
+}
+
+// The step at which something first happened, or "none" (a negative step).
+void print_step(const std::string& name, adaptobs::Index step) {
+  if (step >= 0)
+    print_value(name, double(step));
+  else
+    print_text(name, "none");
+}
+
+void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::Arguments& args) {
+  adaptobs::examples::write_outputs(table, args.out_dir(), "suzuki_siso", R"(
+set multiplot layout 3,2 title 'Covariance resetting against exponential forgetting, SISO example (paper 003, section 5)'
+set grid
+set xlabel 't'
+set title 'Figure 4(a): normalized estimates, Suzuki et al. (forgetting, lambda = sqrt 0.5)'
+set yrange [-0.5:1.5]
+plot for [i=1:4] csv using 't':(column(sprintf('thetahat_norm_suzuki_%d', i))) with lines lw 1.5 title sprintf('theta %d', i)
+set title 'Figure 4(b): normalized estimates, covariance resetting'
+plot for [i=1:4] csv using 't':(column(sprintf('thetahat_norm_%d', i))) with lines lw 1.5 title sprintf('theta %d', i)
+set autoscale y
+set logscale y
+set format y '10^{%T}'
+set title 'Figure 5(a): 2-norm of the state estimation error, Suzuki et al.'
+plot csv using 't':'xerr_norm_suzuki' with lines lw 1.5 title '||x - xhat||'
+set title 'Figure 5(b): 2-norm of the state estimation error, covariance resetting'
+plot csv using 't':'xerr_norm' with lines lw 1.5 title '||x - xhat||'
+set title 'Why: largest covariance entry (forgetting overflows, resetting stays in [kmin, k0])'
+set yrange [1e-6:1e308]
+plot csv using 't':'gamma_max_suzuki' with lines lw 1.5 title 'forgetting', \
+     csv using 't':'gamma_max' with lines lw 1.5 title 'resetting'
+unset logscale y
+set autoscale y
+set format y '%g'
+set title 'Input and output'
+set xrange [0:300]
+plot csv using 't':'u_1' with lines title 'u', csv using 't':'y_1' with lines title 'y'
+unset multiplot)");
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   const adaptobs::examples::Arguments args(argc, argv, "suzuki_siso",
                                            {{"steps", "3000"}, {"lambda", std::to_string(siso::lambda)}});
@@ -49,14 +103,7 @@ int main(int argc, char** argv) {
   adaptobs::ExponentialForgettingRls<double, 4, 1> raw(resetting.parameters(), siso::suzuki_options(lambda));
   auto plant = siso::make_plant();
   const Eigen::Vector4d p = resetting.parameters_of(siso::a(), siso::B());
-  print_value("A", Eigen::Matrix2d(adaptobs::companion_matrix(siso::a())));
-  print_value("F", Eigen::Matrix2d(adaptobs::companion_matrix(siso::f())));
-  print_value("B", siso::B().transpose());
-  print_value("p", p.transpose());
-  print_value("phat0", resetting.parameters().transpose());
-  print_value("k0", siso::k0);
-  print_value("kmin", siso::kmin);
-  print_value("lambda", lambda);
+  print_problem(p, resetting.parameters(), lambda);
 
   adaptobs::SeriesTable table;
   adaptobs::Index covariance_nonfinite = -1, estimate_nonfinite = -1, first_rejected = -1;
@@ -104,49 +151,11 @@ int main(int argc, char** argv) {
   print_value("thetahat_norm_final", db::normalized_estimates(resetting, siso::a(), siso::B()).transpose());
   print_value("xerr_norm_final", state_error);
   print_value("suzuki_gamma_max_last_finite", last_finite_gamma);
-  if (covariance_nonfinite >= 0) {
-    print_value("suzuki_covariance_nonfinite_step", double(covariance_nonfinite));
-  } else {
-    print_text("suzuki_covariance_nonfinite_step", "none");
-  }
-  if (estimate_nonfinite >= 0) {
-    print_value("suzuki_estimates_nonfinite_step", double(estimate_nonfinite));
-  } else {
-    print_text("suzuki_estimates_nonfinite_step", "none");
-  }
-  if (first_rejected >= 0) {
-    print_value("suzuki_observer_first_rejected_step", double(first_rejected));
-  } else {
-    print_text("suzuki_observer_first_rejected_step", "none");
-  }
+  print_step("suzuki_covariance_nonfinite_step", covariance_nonfinite);
+  print_step("suzuki_estimates_nonfinite_step", estimate_nonfinite);
+  print_step("suzuki_observer_first_rejected_step", first_rejected);
   print_value("thetahat_norm_suzuki_observer_final", db::normalized_estimates(suzuki, siso::a(), siso::B()).transpose());
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "suzuki_siso", R"(
-set multiplot layout 3,2 title 'Covariance resetting against exponential forgetting, SISO example (paper 003, section 5)'
-set grid
-set xlabel 't'
-set title 'Figure 4(a): normalized estimates, Suzuki et al. (forgetting, lambda = sqrt 0.5)'
-set yrange [-0.5:1.5]
-plot for [i=1:4] csv using 't':(column(sprintf('thetahat_norm_suzuki_%d', i))) with lines lw 1.5 title sprintf('theta %d', i)
-set title 'Figure 4(b): normalized estimates, covariance resetting'
-plot for [i=1:4] csv using 't':(column(sprintf('thetahat_norm_%d', i))) with lines lw 1.5 title sprintf('theta %d', i)
-set autoscale y
-set logscale y
-set format y '10^{%T}'
-set title 'Figure 5(a): 2-norm of the state estimation error, Suzuki et al.'
-plot csv using 't':'xerr_norm_suzuki' with lines lw 1.5 title '||x - xhat||'
-set title 'Figure 5(b): 2-norm of the state estimation error, covariance resetting'
-plot csv using 't':'xerr_norm' with lines lw 1.5 title '||x - xhat||'
-set title 'Why: largest covariance entry (forgetting overflows, resetting stays in [kmin, k0])'
-set yrange [1e-6:1e308]
-plot csv using 't':'gamma_max_suzuki' with lines lw 1.5 title 'forgetting', \
-     csv using 't':'gamma_max' with lines lw 1.5 title 'resetting'
-unset logscale y
-set autoscale y
-set format y '%g'
-set title 'Input and output'
-set xrange [0:300]
-plot csv using 't':'u_1' with lines title 'u', csv using 't':'y_1' with lines title 'y'
-unset multiplot)");
+  write_figure(table, args);
   return 0;
 }

@@ -79,18 +79,9 @@ int settled_from(const adaptobs::SeriesTable& table, const std::string& suffix) 
   return first;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(
-      argc, argv, "wwtp", adaptobs::examples::with_output_loss({{"theta", "0.1"}, {"steps", "500"}, {"seed", "1"}}));
-  adaptobs::OutputLoss loss(
-      adaptobs::examples::output_loss_options(args, static_cast<std::uint64_t>(args.number("seed"))));
-  const double theta = args.number("theta");
-  const auto steps = static_cast<adaptobs::Index>(args.number("steps"));
-
-  // The eight vertices from the quasi-LPV factorization, against the printed ones.
-  const auto model = wwtp::model<double>();
+// The eight vertices from the quasi-LPV factorization, against the printed ones.
+template <class Model>
+void compare_printed_vertices(const Model& model) {
   const auto printed = wwtp::printed_vertex_matrices();
   double worst_printed = 0;
   for (adaptobs::Index i = 0; i < model.vertex_count(); ++i) {
@@ -103,19 +94,23 @@ int main(int argc, char** argv) {
   }
   print_value("B_i", Eigen::Vector2d(model.B(0)));
   print_value("max_abs_A_minus_printed", worst_printed);
+}
 
-  // The printed gains: A_i − L_i C is not Schur at four vertices, so no common
-  // Lyapunov matrix (theorem 2) can exist for them.
-  const auto paper = wwtp::paper_gains<double>();
+// The printed gains: A_i − L_i C is not Schur at four vertices, so no common
+// Lyapunov matrix (theorem 2) can exist for them.
+template <class Model, class Gains>
+void print_printed_gains(const Model& model, const Gains& paper) {
   print_gains("paper_", paper);
   Eigen::Matrix<double, 1, 8> radii;
   for (adaptobs::Index i = 0; i < 8; ++i)
     radii(i) = adaptobs::spectral_radius(Eigen::Matrix2d(model.A(i) - paper.L[std::size_t(i)] * model.C()));
   print_value("paper_spectral_radius_A_i_minus_L_i_C", radii);
+}
 
-  // LMI design (theorem 2, corollary 1) on the input sector [0.05, 0.4].
-  const auto lmi_model = wwtp::model<double>(0.05);
-  const auto design = adaptobs::synthesize_takagi_sugeno_gains(lmi_model, remark6_options());
+// LMI design (theorem 2, corollary 1) on the input sector [0.05, 0.4]; false
+// when it found no gains.
+template <class Design>
+bool print_lmi_design(const Design& design) {
   print_text("lmi", adaptobs::to_string(design.status));
   print_text("lmi_solver", design.message);
   print_value("lmi_beta", design.beta);
@@ -123,12 +118,16 @@ int main(int argc, char** argv) {
   print_value("lmi_max_eigenvalue", design.check.max_vertex_eigenvalue);
   if (!design.gains) {
     std::cerr << "wwtp: the LMI design failed: " << design.message << '\n';
-    return 1;
+    return false;
   }
   print_value("lmi_P0", design.certificate.P0);
   print_gains("lmi_", *design.gains);
+  return true;
+}
 
-  // The paper's sectors [0, 0.4]: feasible, shown with the largest-margin objective.
+// The paper's sectors [0, 0.4]: feasible, shown with the largest-margin objective.
+template <class Model>
+void print_paper_sector_design(const Model& model) {
   auto margin_options = remark6_options();
   margin_options.objective = adaptobs::TakagiSugenoObjective::maximize_margin;
   margin_options.fixed_gamma = 1e8;
@@ -136,6 +135,55 @@ int main(int argc, char** argv) {
   print_text("lmi_paper_sectors", adaptobs::to_string(paper_sectors.status));
   print_value("lmi_paper_sectors_margin", paper_sectors.margin);
   print_value("lmi_paper_sectors_solve_seconds", paper_sectors.solver.seconds);
+}
+
+void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::Arguments& args,
+                  const adaptobs::OutputLoss& loss) {
+  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp", adaptobs::examples::gap_shading(table, loss.options()) + R"(
+set multiplot layout 3,2 title 'Takagi-Sugeno adaptive observer, waste water treatment plant (paper 004, section 6)'
+set grid
+set xlabel 'k'
+set title 'Figure 1: estimation of x_1'
+plot csv using 't':'x_1' with lines lw 2 lc 'black' title 'plant', \
+     csv using 't':'xhat_1' with lines lw 1.5 title 'printed gains', \
+     csv using 't':'xhat_lmi_1' with lines lw 1.5 dt 2 title 'LMI gains'
+set title 'Figure 2: estimation of x_2'
+plot csv using 't':'x_2' with lines lw 2 lc 'black' title 'plant', \
+     csv using 't':'xhat_2' with lines lw 1.5 title 'printed gains', \
+     csv using 't':'xhat_lmi_2' with lines lw 1.5 dt 2 title 'LMI gains'
+set title 'Figure 3: estimation of theta'
+set yrange [-0.1:0.2]
+plot csv using 't':'theta_1' with lines lw 2 lc 'black' title 'true', \
+     csv using 't':'thetahat_1' with lines lw 1.5 title 'printed gains', \
+     csv using 't':'thetahat_lmi_1' with lines lw 1.5 dt 2 title 'LMI gains'
+set title 'Figure 4: input (dilution rate)'
+set yrange [0:0.4]
+plot csv using 't':'u_1' with lines lw 1.5 title 'u'
+set autoscale y
+set title 'Figure 5: weights h_i (printed-gain observer)'
+set yrange [0:1]
+plot for [i=1:8] csv using 't':(column(sprintf('h_%d', i))) with lines lw 1.5 title sprintf('h_%d', i)
+unset multiplot)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const adaptobs::examples::Arguments args(
+      argc, argv, "wwtp", adaptobs::examples::with_output_loss({{"theta", "0.1"}, {"steps", "500"}, {"seed", "1"}}));
+  adaptobs::OutputLoss loss(
+      adaptobs::examples::output_loss_options(args, static_cast<std::uint64_t>(args.number("seed"))));
+  const double theta = args.number("theta");
+  const auto steps = static_cast<adaptobs::Index>(args.number("steps"));
+
+  const auto model = wwtp::model<double>();
+  compare_printed_vertices(model);
+  const auto paper = wwtp::paper_gains<double>();
+  print_printed_gains(model, paper);
+  const auto lmi_model = wwtp::model<double>(0.05);
+  const auto design = adaptobs::synthesize_takagi_sugeno_gains(lmi_model, remark6_options());
+  if (!print_lmi_design(design)) return 1;
+  print_paper_sector_design(model);
 
   // Both observers on the same plant and input.
   auto plant = wwtp::make_plant<double>(theta);
@@ -171,30 +219,6 @@ int main(int argc, char** argv) {
   print_value("settled_from_sample", settled_from(table, ""));
   print_value("settled_from_sample_lmi", settled_from(table, "lmi"));
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp", adaptobs::examples::gap_shading(table, loss.options()) + R"(
-set multiplot layout 3,2 title 'Takagi-Sugeno adaptive observer, waste water treatment plant (paper 004, section 6)'
-set grid
-set xlabel 'k'
-set title 'Figure 1: estimation of x_1'
-plot csv using 't':'x_1' with lines lw 2 lc 'black' title 'plant', \
-     csv using 't':'xhat_1' with lines lw 1.5 title 'printed gains', \
-     csv using 't':'xhat_lmi_1' with lines lw 1.5 dt 2 title 'LMI gains'
-set title 'Figure 2: estimation of x_2'
-plot csv using 't':'x_2' with lines lw 2 lc 'black' title 'plant', \
-     csv using 't':'xhat_2' with lines lw 1.5 title 'printed gains', \
-     csv using 't':'xhat_lmi_2' with lines lw 1.5 dt 2 title 'LMI gains'
-set title 'Figure 3: estimation of theta'
-set yrange [-0.1:0.2]
-plot csv using 't':'theta_1' with lines lw 2 lc 'black' title 'true', \
-     csv using 't':'thetahat_1' with lines lw 1.5 title 'printed gains', \
-     csv using 't':'thetahat_lmi_1' with lines lw 1.5 dt 2 title 'LMI gains'
-set title 'Figure 4: input (dilution rate)'
-set yrange [0:0.4]
-plot csv using 't':'u_1' with lines lw 1.5 title 'u'
-set autoscale y
-set title 'Figure 5: weights h_i (printed-gain observer)'
-set yrange [0:1]
-plot for [i=1:8] csv using 't':(column(sprintf('h_%d', i))) with lines lw 1.5 title sprintf('h_%d', i)
-unset multiplot)");
+  write_figure(table, args, loss);
   return 0;
 }

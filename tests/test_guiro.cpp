@@ -6,7 +6,7 @@
 
 #include <adaptobs/core/discretization.hpp>
 #include <adaptobs/core/observer.hpp>
-#include <adaptobs/core/regressor_integral.hpp>
+#include <adaptobs/models/regressor_integral.hpp>
 #include <adaptobs/core/sampled_model.hpp>
 #include <adaptobs/design/guiro_convergence.hpp>
 #include <adaptobs/design/guiro_gains.hpp>

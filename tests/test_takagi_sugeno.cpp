@@ -5,7 +5,7 @@
 // bad input and bad configuration, fixed and dynamic sizes.
 
 #include <adaptobs/core/observer.hpp>
-#include <adaptobs/core/takagi_sugeno_model.hpp>
+#include <adaptobs/models/takagi_sugeno_model.hpp>
 #include <adaptobs/observers/takagi_sugeno.hpp>
 #include <adaptobs/simulation/discrete_nonlinear_plant.hpp>
 #include <adaptobs/simulation/runner.hpp>

@@ -18,7 +18,7 @@
 /// \f$i = 4j_{z_1} + 2j_{z_2} + j_\theta + 1\f$, which reproduces the printed \f$A_1, \dots, A_8\f$.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/takagi_sugeno_model.hpp>
+#include <adaptobs/models/takagi_sugeno_model.hpp>
 #include <adaptobs/observers/takagi_sugeno.hpp>
 #include <adaptobs/simulation/discrete_nonlinear_plant.hpp>
 

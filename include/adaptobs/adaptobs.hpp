@@ -19,8 +19,10 @@
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
-#include <adaptobs/core/takagi_sugeno_model.hpp>
 #include <adaptobs/core/validation.hpp>
+
+// Paper-family models.
+#include <adaptobs/models/takagi_sugeno_model.hpp>
 
 // Per-step diagnostics computed inside the updates.
 #include <adaptobs/diagnostics/excitation_monitor.hpp>

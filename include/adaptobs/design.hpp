@@ -10,14 +10,14 @@
 // Discretization and the matrix functions behind it.
 #include <adaptobs/core/discretization.hpp>
 #include <adaptobs/core/matrix_exponential.hpp>
-#include <adaptobs/core/regressor_integral.hpp>
 #include <adaptobs/core/sampled_model.hpp>
 #include <adaptobs/core/sylvester.hpp>
+#include <adaptobs/models/regressor_integral.hpp>
 
 // Gains, stability and excitation checks.
 #include <adaptobs/design/canonical_forms.hpp>
-#include <adaptobs/design/companion_matrix.hpp>
 #include <adaptobs/design/care.hpp>
+#include <adaptobs/design/companion_matrix.hpp>
 #include <adaptobs/design/dare.hpp>
 #include <adaptobs/design/guiro_convergence.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
@@ -31,5 +31,6 @@
 #include <adaptobs/design/riccati_differential.hpp>
 #include <adaptobs/design/riccati_recursion.hpp>
 #include <adaptobs/design/schur_stability.hpp>
+#include <adaptobs/design/spr_test.hpp>
 #include <adaptobs/design/stability.hpp>
 #include <adaptobs/design/takagi_sugeno_lmi.hpp>

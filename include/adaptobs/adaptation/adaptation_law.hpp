@@ -135,62 +135,6 @@ struct MaskedRegression {
   }
 };
 
-/// What the laws of this folder share, written once (CRTP): the regression
-/// types, the size-checked `propose(phi, z)`, its masked form, `restart` and
-/// the measurement count. A law `L` supplies
-/// - `L::name_propose` and `L::name_restart`, the names its error messages give;
-/// - `step(phi, z, R)`, its update into the proposal slot (R: the weight of the
-///   sample, ignored by an unweighted law);
-/// - `weight()`, the R of a complete sample (may return null for an unweighted law);
-/// - `restart_at(p0)`, its own return to the initial gain, after the checks of p0;
-/// - `parameter_count()`.
-template <class Law, class T>
-class RegressionLaw {
- public:
-  using Types = T;
-  using Scalar = typename T::Scalar;
-  using Parameters = typename T::Parameters;
-  using Regressor = typename T::Regressor;
-  using Measurement = typename T::Measurement;
-  using Covariance = typename T::Covariance;
-  using MeasurementWeight = typename T::MeasurementWeight;
-  using Presence = typename T::Presence;
-
-  [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
-
-  /// One step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
-  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
-    require_regression_sizes<T>(phi, z, law().parameter_count(), nz_, Law::name_propose);
-    const MeasurementWeight* weight = law().weight();
-    return law().step(phi, z, weight ? *weight : masked_.weight);
-  }
-
-  /// One step with the present entries of \f$z_t\f$ only; see `AdaptationLaw`, "Partial measurements".
-  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
-    return masked_.propose(phi, z, present, law().weight(), law().parameter_count(), Law::name_propose,
-                           [this](const auto& f, const auto& y, const auto& r) { return law().step(f, y, r); });
-  }
-
-  /// Back to \f$\hat p_0\f$ and the law's initial gain.
-  void restart(const Parameters& p0) {
-    require_shape(p0, law().parameter_count(), 1, Law::name_restart, "p0");
-    require_finite(p0, Law::name_restart, "p0");
-    law().restart_at(p0);
-  }
-
- protected:
-  /// \param weighted whether the law has a weight R (the masked copy then keeps \f$\bar R\f$).
-  RegressionLaw(Index np, Index nz, bool weighted) : nz_(nz), masked_(np, nz, weighted) {}
-
-  Index nz_;
-
- private:
-  Law& law() noexcept { return static_cast<Law&>(*this); }
-  const Law& law() const noexcept { return static_cast<const Law&>(*this); }
-
-  MaskedRegression<T> masked_;
-};
-
 /// The estimate \f$(\hat p, \Gamma)\f$ of a least-squares law, current and proposed,
 /// with the accessors `AdaptationLaw` asks for: a step writes the proposal,
 /// `commit` makes it current by flipping an index (no copy), so a rejected
@@ -229,6 +173,63 @@ class LeastSquaresEstimate {
 };
 
 }  // namespace detail
+
+/// Base of the adaptation laws of this folder (CRTP), not used on its own: what
+/// they share, written once — the regression types, the size-checked
+/// `propose(phi, z)`, its masked form, `restart` and the measurement count. A law
+/// `L` supplies
+/// - `L::name_propose` and `L::name_restart`, the names its error messages give;
+/// - `step(phi, z, R)`, its update into the proposal slot (R: the weight of the
+///   sample, ignored by an unweighted law);
+/// - `weight()`, the R of a complete sample (may return null for an unweighted law);
+/// - `restart_at(p0)`, its own return to the initial gain, after the checks of p0;
+/// - `parameter_count()`.
+template <class Law, class T>
+class RegressionLaw {
+ public:
+  using Types = T;
+  using Scalar = typename T::Scalar;
+  using Parameters = typename T::Parameters;
+  using Regressor = typename T::Regressor;
+  using Measurement = typename T::Measurement;
+  using Covariance = typename T::Covariance;
+  using MeasurementWeight = typename T::MeasurementWeight;
+  using Presence = typename T::Presence;
+
+  [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
+
+  /// One step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
+  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
+    detail::require_regression_sizes<T>(phi, z, law().parameter_count(), nz_, Law::name_propose);
+    const MeasurementWeight* weight = law().weight();
+    return law().step(phi, z, weight ? *weight : masked_.weight);
+  }
+
+  /// One step with the present entries of \f$z_t\f$ only; see `AdaptationLaw`, "Partial measurements".
+  [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
+    return masked_.propose(phi, z, present, law().weight(), law().parameter_count(), Law::name_propose,
+                           [this](const auto& f, const auto& y, const auto& r) { return law().step(f, y, r); });
+  }
+
+  /// Back to \f$\hat p_0\f$ and the law's initial gain.
+  void restart(const Parameters& p0) {
+    detail::require_shape(p0, law().parameter_count(), 1, Law::name_restart, "p0");
+    detail::require_finite(p0, Law::name_restart, "p0");
+    law().restart_at(p0);
+  }
+
+ protected:
+  /// \param weighted whether the law has a weight R (the masked copy then keeps \f$\bar R\f$).
+  RegressionLaw(Index np, Index nz, bool weighted) : nz_(nz), masked_(np, nz, weighted) {}
+
+  Index nz_;
+
+ private:
+  Law& law() noexcept { return static_cast<Law&>(*this); }
+  const Law& law() const noexcept { return static_cast<const Law&>(*this); }
+
+  detail::MaskedRegression<T> masked_;
+};
 
 /// A recursive estimator of p from samples \f$(\varphi_t, z_t)\f$, split into
 /// a proposal and a commit so that observers can compute a whole step before

@@ -74,8 +74,8 @@ template <typename S, int NP, int NZ>
 class CovarianceResettingRls
     : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
                                           typename RegressionTypes<S, NP, NZ>::Covariance>,
-      public detail::RegressionLaw<CovarianceResettingRls<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
-  using Law = detail::RegressionLaw<CovarianceResettingRls, RegressionTypes<S, NP, NZ>>;
+      public RegressionLaw<CovarianceResettingRls<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
+  using Law = RegressionLaw<CovarianceResettingRls, RegressionTypes<S, NP, NZ>>;
   friend Law;
 
  public:

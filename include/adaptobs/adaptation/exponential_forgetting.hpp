@@ -59,8 +59,8 @@ template <typename S, int NP, int NZ>
 class ExponentialForgettingRls
     : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
                                           typename RegressionTypes<S, NP, NZ>::Covariance>,
-      public detail::RegressionLaw<ExponentialForgettingRls<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
-  using Law = detail::RegressionLaw<ExponentialForgettingRls, RegressionTypes<S, NP, NZ>>;
+      public RegressionLaw<ExponentialForgettingRls<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
+  using Law = RegressionLaw<ExponentialForgettingRls, RegressionTypes<S, NP, NZ>>;
   friend Law;
 
  public:

@@ -26,8 +26,8 @@ namespace adaptobs {
 
 /// Normalized gradient adaptation (Goodwin & Sin 1984, §3.3).
 template <typename S, int NP, int NZ>
-class NormalizedGradient : public detail::RegressionLaw<NormalizedGradient<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
-  using Law = detail::RegressionLaw<NormalizedGradient, RegressionTypes<S, NP, NZ>>;
+class NormalizedGradient : public RegressionLaw<NormalizedGradient<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
+  using Law = RegressionLaw<NormalizedGradient, RegressionTypes<S, NP, NZ>>;
   friend Law;
 
  public:

@@ -55,8 +55,8 @@ template <typename S, int NP, int NZ>
 class RecursiveLeastSquares
     : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
                                           typename RegressionTypes<S, NP, NZ>::Covariance>,
-      public detail::RegressionLaw<RecursiveLeastSquares<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
-  using Law = detail::RegressionLaw<RecursiveLeastSquares, RegressionTypes<S, NP, NZ>>;
+      public RegressionLaw<RecursiveLeastSquares<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
+  using Law = RegressionLaw<RecursiveLeastSquares, RegressionTypes<S, NP, NZ>>;
   friend Law;
 
  public:

@@ -27,6 +27,7 @@
 #include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/discrete_update.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -48,8 +49,8 @@ struct AugmentedKalmanCovariances {
 
 template <DiscreteModel Model>
 class AugmentedKalmanFilter
-    : public detail::DiscreteUpdate<AugmentedKalmanFilter<Model>, typename Model::Dims, DiscreteSample> {
-  friend detail::DiscreteUpdate<AugmentedKalmanFilter, typename Model::Dims, DiscreteSample>;
+    : public DiscreteUpdate<AugmentedKalmanFilter<Model>, typename Model::Dims, DiscreteSample> {
+  friend DiscreteUpdate<AugmentedKalmanFilter, typename Model::Dims, DiscreteSample>;
 
  public:
   static constexpr std::string_view name_update = "AugmentedKalmanFilter::update";

@@ -16,7 +16,7 @@
 /// \f$V = e^TPe + \tilde\theta^T\Gamma^{-1}\tilde\theta\f$ has \f$\dot V = -e^TQe \le 0\f$.
 /// Conditions checked at construction: one output, constant (A, c),
 /// \f$c_o = e_1^T\f$, \f$A_{22}\f$ Hurwitz, and \f$c_o(sI - A_o + kc_o)^{-1}\gamma\f$ SPR
-/// (exact test of `positive_real.hpp`); Γ > 0 by `GradientLaw`; ξ must be
+/// (exact test of `design/spr_test.hpp`); Γ > 0 by `GradientLaw`; ξ must be
 /// persistently exciting (see `excitation_level()`).
 ///
 /// Reading: the zero first column of \f$A_o\f$ is a normalization. The bracket
@@ -30,8 +30,8 @@
 #include <adaptobs/core/detail/segments.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
-#include <adaptobs/design/positive_real.hpp>
 #include <adaptobs/design/polynomial.hpp>
+#include <adaptobs/design/spr_test.hpp>
 #include <adaptobs/observers/unified_adaptive_observer.hpp>
 
 #include <Eigen/Core>

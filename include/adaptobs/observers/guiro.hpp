@@ -42,6 +42,7 @@
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/discrete_update.hpp>
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
@@ -62,8 +63,8 @@ struct GuiroOptions {
 /// \f$(E_k, B_k, C_k)\f$ is accepted too.
 template <DiscreteModel Model>
 class GuiroObserver
-    : public detail::DiscreteUpdate<GuiroObserver<Model>, typename Model::Dims, DiscreteSample> {
-  friend detail::DiscreteUpdate<GuiroObserver, typename Model::Dims, DiscreteSample>;
+    : public DiscreteUpdate<GuiroObserver<Model>, typename Model::Dims, DiscreteSample> {
+  friend DiscreteUpdate<GuiroObserver, typename Model::Dims, DiscreteSample>;
 
  public:
   static constexpr std::string_view name_update = "GuiroObserver::update";

@@ -35,6 +35,7 @@
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/discrete_update.hpp>
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/status.hpp>
@@ -70,8 +71,8 @@ struct GuyaderZhangOptions {
 /// constant unless changed with `set_gain` / `set_mu` between updates.
 template <DiscreteModel Model>
 class GuyaderZhangObserver
-    : public detail::DiscreteUpdate<GuyaderZhangObserver<Model>, typename Model::Dims, DiscreteSample> {
-  friend detail::DiscreteUpdate<GuyaderZhangObserver, typename Model::Dims, DiscreteSample>;
+    : public DiscreteUpdate<GuyaderZhangObserver<Model>, typename Model::Dims, DiscreteSample> {
+  friend DiscreteUpdate<GuyaderZhangObserver, typename Model::Dims, DiscreteSample>;
 
  public:
   static constexpr std::string_view name_update = "GuyaderZhangObserver::update";

@@ -28,7 +28,7 @@
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/polynomial.hpp>
-#include <adaptobs/design/positive_real.hpp>
+#include <adaptobs/design/spr_test.hpp>
 #include <adaptobs/observers/unified_adaptive_observer.hpp>
 
 #include <Eigen/Core>

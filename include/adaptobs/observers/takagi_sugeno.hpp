@@ -33,9 +33,10 @@
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/discrete_update.hpp>
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/status.hpp>
-#include <adaptobs/core/takagi_sugeno_model.hpp>
+#include <adaptobs/models/takagi_sugeno_model.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -51,8 +52,8 @@ namespace adaptobs {
 
 template <TakagiSugenoSystem Model>
 class TakagiSugenoObserver
-    : public detail::DiscreteUpdate<TakagiSugenoObserver<Model>, typename Model::Dims, InputOutputSample> {
-  friend detail::DiscreteUpdate<TakagiSugenoObserver, typename Model::Dims, InputOutputSample>;
+    : public DiscreteUpdate<TakagiSugenoObserver<Model>, typename Model::Dims, InputOutputSample> {
+  friend DiscreteUpdate<TakagiSugenoObserver, typename Model::Dims, InputOutputSample>;
 
  public:
   static constexpr std::string_view name_update = "TakagiSugenoObserver::update";

@@ -31,7 +31,7 @@
 #include <adaptobs/design/lmi/dsdp.hpp>
 #include <adaptobs/design/lmi/lmi_problem.hpp>
 #include <adaptobs/design/takagi_sugeno_lmi.hpp>
-#include <adaptobs/core/takagi_sugeno_model.hpp>
+#include <adaptobs/models/takagi_sugeno_model.hpp>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>

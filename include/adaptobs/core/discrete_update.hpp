@@ -1,0 +1,52 @@
+#pragma once
+/// \file
+/// The public update of the discrete-time observers and the augmented Kalman
+/// filter, written once: the base class their `update` and `sizes()` come from.
+
+#include <adaptobs/core/detail/update_workspace.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/status.hpp>
+
+namespace adaptobs {
+
+/// Base of a discrete-time observer with a model (CRTP), not used on its own:
+/// `update(sample)`, its masked form and `sizes()`, with the run-time size
+/// checks of the sample and the mask. The observer supplies `step_with(sample,
+/// mask)` (mask null: every channel present), `model_`, and
+/// `Observer::name_update`, the name its size errors give.
+template <class Observer, StateSpace Dims, template <StateSpace> class SampleOf>
+class DiscreteUpdate : public SizedBy<Dims> {
+ public:
+  using Sample = SampleOf<Dims>;
+
+  /// One step of the observer's law with the sample (its `step_with` cites the
+  /// equations). Returns `UpdateStatus::accepted`, or the reason the sample
+  /// was rejected (`nonfinite_input` for a NaN/Inf in it, `nonfinite_result`
+  /// when the step would produce one, ...); a rejected step leaves the observer
+  /// exactly as it was. With run-time sizes, a sample of the wrong shape throws
+  /// `ConfigurationError` naming it, before anything is read.
+  [[nodiscard]] UpdateStatus update(const Sample& sample) { return checked_step(sample, nullptr); }
+
+  /// The same with only the output channels in `present` measured (the
+  /// observer's file comment, "Missing and partial outputs"); absent entries of
+  /// `sample.y` are ignored (they may be NaN or Inf). All channels present is
+  /// `update(sample)`, bit for bit; none is the time update alone.
+  [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
+    return checked_step(sample, detail::partial_mask<Dims>(present, sizes().ny, Observer::name_update));
+  }
+
+  /// Run-time sizes (nx, nu, ny, np).
+  [[nodiscard]] Sizes sizes() const noexcept { return self().model_.sizes(); }
+
+ private:
+  UpdateStatus checked_step(const Sample& sample, const OutputMask<Dims>* present) {
+    if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, sizes(), Observer::name_update);
+    return self().step_with(sample, present);
+  }
+
+  Observer& self() noexcept { return static_cast<Observer&>(*this); }
+  const Observer& self() const noexcept { return static_cast<const Observer&>(*this); }
+};
+
+}  // namespace adaptobs
