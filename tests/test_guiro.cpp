@@ -474,6 +474,7 @@ template <typename S>
 struct GuiroContract {
   using Observer = PaperObserver<S>;
   using Sample = typename Observer::Sample;
+  using InDouble = GuiroContract<double>;  // the twin of the float instance
   static Observer make() { return make_observer<S>(); }
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(g::make_plant<S>(), 20);
@@ -490,6 +491,7 @@ struct GuiroContract {
 }  // namespace
 
 ADAPTOBS_OBSERVER_CONTRACT(Guiro, GuiroContract<float>, GuiroContract<double>);
+ADAPTOBS_FLOAT_CONTRACT(Guiro, GuiroContract<float>);
 
 namespace {
 

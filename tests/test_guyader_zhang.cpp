@@ -411,6 +411,7 @@ template <typename S>
 struct GuyaderZhangContract {
   using Observer = decltype(make_satellite_observer<S>());
   using Sample = typename Observer::Sample;
+  using InDouble = GuyaderZhangContract<double>;  // the twin of the float instance
   static Observer make() { return make_satellite_observer<S>({.excitation_window = 20}); }
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(satellite::make_plant<S>(), 40);
@@ -429,6 +430,7 @@ struct GuyaderZhangContract {
 }  // namespace
 
 ADAPTOBS_OBSERVER_CONTRACT(GuyaderZhang, GuyaderZhangContract<float>, GuyaderZhangContract<double>);
+ADAPTOBS_FLOAT_CONTRACT(GuyaderZhang, GuyaderZhangContract<float>);
 
 namespace {
 

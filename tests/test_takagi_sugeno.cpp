@@ -402,6 +402,7 @@ template <typename S>
 struct TakagiSugenoContract {
   using Observer = decltype(make_wwtp_observer<S>());
   using Sample = typename Observer::Sample;
+  using InDouble = TakagiSugenoContract<double>;  // the twin of the float instance
   static Observer make() { return make_wwtp_observer<S>(); }
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(wwtp::make_plant<S>(S(0.1)), 40);
@@ -418,6 +419,7 @@ struct TakagiSugenoContract {
 }  // namespace
 
 ADAPTOBS_OBSERVER_CONTRACT(TakagiSugeno, TakagiSugenoContract<float>, TakagiSugenoContract<double>);
+ADAPTOBS_FLOAT_CONTRACT(TakagiSugeno, TakagiSugenoContract<float>);
 
 namespace {
 

@@ -36,6 +36,10 @@
 //   for bit, on the same samples;
 // - `output_error()` is zero before the first update and after a reset, is the
 //   factory's formula after each accepted update, and is zero in an absent channel.
+//
+// A float factory that names its double twin (`using InDouble = ...;`) also
+// runs `FloatFollowsDouble` (ADAPTOBS_FLOAT_CONTRACT): after the same run, every
+// reading agrees with the twin's to single precision.
 
 #include "support/eigen_testing.hpp"
 
@@ -44,6 +48,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <optional>
@@ -93,6 +98,32 @@ bool same_bits(const T& a, const T& b) {
   }
 }
 
+/// Closeness of a single-precision reading to its double-precision twin: Eigen
+/// matrices and floating-point values within `tolerance` of the double value,
+/// relative to max(1, its largest magnitude); optionals and tuples member by
+/// member; anything else (counters, flags) equal.
+template <class F, class D>
+bool close_in_precision(const F& f, const D& d, double tolerance) {
+  if constexpr (std::is_base_of_v<Eigen::MatrixBase<F>, F>) {
+    if (f.rows() != d.rows() || f.cols() != d.cols()) return false;
+    if (f.size() == 0) return true;
+    const Eigen::MatrixXd twin = d.template cast<double>();
+    const double scale = std::max(1.0, twin.cwiseAbs().maxCoeff());
+    return (f.template cast<double>() - twin).cwiseAbs().maxCoeff() <= tolerance * scale;
+  } else if constexpr (std::is_floating_point_v<F>) {
+    return std::abs(double(f) - double(d)) <= tolerance * std::max(1.0, std::abs(double(d)));
+  } else if constexpr (contract_detail::IsOptional<F>::value) {
+    return f.has_value() == d.has_value() && (!f || close_in_precision(*f, *d, tolerance));
+  } else if constexpr (contract_detail::IsTuple<F>::value) {
+    static_assert(std::tuple_size_v<F> == std::tuple_size_v<D>);
+    return [&]<std::size_t... I>(std::index_sequence<I...>) {
+      return (close_in_precision(std::get<I>(f), std::get<I>(d), tolerance) && ...);
+    }(std::make_index_sequence<std::tuple_size_v<F>>{});
+  } else {
+    return f == d;
+  }
+}
+
 // ------------------------------------------------------------ factory helpers
 
 /// The first `count` samples of a plant's run, converted to the observer's
@@ -116,7 +147,7 @@ inline constexpr const char* scalar_name = std::is_same_v<S, float> ? "float" : 
 
 template <class Factory>
 class ObserverContract : public ::testing::Test {
- protected:
+ public:
   using Observer = typename Factory::Observer;
   using Sample = typename Observer::Sample;
   using Scalar = typename Observer::Scalar;
@@ -306,6 +337,34 @@ TYPED_TEST_P(ObserverContract, OutputErrorIsTheErrorOfTheLastAcceptedUpdate) {
   }
 }
 
+// ------------------------------------------------------------ float against double
+
+/// The single-precision instance of an observer follows its double-precision
+/// twin: a float factory names its twin `InDouble` (the same observer, plant and
+/// run in double), and after the run every reading, output error included,
+/// agrees to `1e-3` relative. A float-only slip (a constant rounded to float too
+/// early, an epsilon of the wrong type) shows as a reading off by far more.
+template <class Factory>
+class FloatFollowsDouble : public ::testing::Test {};
+
+TYPED_TEST_SUITE_P(FloatFollowsDouble);
+
+TYPED_TEST_P(FloatFollowsDouble, ReadingsAfterTheRunAgreeToSinglePrecision) {
+  using Single = ObserverContract<TypeParam>;
+  using Double = ObserverContract<typename TypeParam::InDouble>;
+  static_assert(std::is_same_v<typename Single::Scalar, float> && std::is_same_v<typename Double::Scalar, double>);
+  const auto run_single = TypeParam::samples();
+  const auto run_double = TypeParam::InDouble::samples();
+  ASSERT_EQ(run_single.size(), run_double.size());
+  const auto single = Single::after(run_single, run_single.size());
+  const auto twin = Double::after(run_double, run_double.size());
+  EXPECT_TRUE(close_in_precision(Single::readings(single), Double::readings(twin), 1e-3));
+  // The run moved the readings well beyond that tolerance, or the check would be empty.
+  EXPECT_FALSE(close_in_precision(Double::readings(twin), Double::readings(TypeParam::InDouble::make()), 1e-2));
+}
+
+REGISTER_TYPED_TEST_SUITE_P(FloatFollowsDouble, ReadingsAfterTheRunAgreeToSinglePrecision);
+
 /// Names each instance by its factory's `name`, by default its scalar
 /// ("GuyaderZhang/ObserverContract/float.…").
 struct ContractName {
@@ -329,5 +388,13 @@ REGISTER_TYPED_TEST_SUITE_P(ObserverContract, SatisfiesTheObserverConcept, NonFi
   namespace adaptobs::testing {                                                                  \
   using Family##ContractFactories = ::testing::Types<__VA_ARGS__>;                               \
   INSTANTIATE_TYPED_TEST_SUITE_P(Family, ObserverContract, Family##ContractFactories, ContractName); \
+  }                                                                                              \
+  static_assert(true, "")
+
+/// Runs `FloatFollowsDouble` on the float factories given (each with `InDouble`): at global scope.
+#define ADAPTOBS_FLOAT_CONTRACT(Family, ...)                                                      \
+  namespace adaptobs::testing {                                                                  \
+  using Family##FloatFactories = ::testing::Types<__VA_ARGS__>;                                  \
+  INSTANTIATE_TYPED_TEST_SUITE_P(Family, FloatFollowsDouble, Family##FloatFactories, ContractName); \
   }                                                                                              \
   static_assert(true, "")
