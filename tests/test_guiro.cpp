@@ -475,6 +475,9 @@ struct GuiroContract {
   using Observer = PaperObserver<S>;
   using Sample = typename Observer::Sample;
   using InDouble = GuiroContract<double>;  // the twin of the float instance
+  // Measured: float and double part by 2–5e-5 after this run, more than on the
+  // other observers' runs; 3e-4 keeps a margin over that.
+  static constexpr double float_tolerance = 3e-4;
   static Observer make() { return make_observer<S>(); }
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(g::make_plant<S>(), 20);
