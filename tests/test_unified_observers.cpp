@@ -200,33 +200,6 @@ TEST(UpdateLaw, FlippedSignDivergesForEveryAlgorithm) {
 // ---------------------------------------------------------------------------
 // Sizes and scalars.
 
-TEST(ZhangContinuous, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
-  using DD = adaptobs::DynamicDimensions<double>;
-  auto fixed = zhang_observer<double>(50.0);
-  const auto dynamic_model = adaptobs::make_continuous_ltv_model<DD>(
-      [](double t) {
-        const auto s = periodic::system<double>(t);
-        return adaptobs::ContinuousSystem<DD>{s.A, s.B, s.C};
-      },
-      [](double t) { return Eigen::MatrixXd(periodic::Regressor{}.operator()<double>(t)); }, {4, 1, 2, 2});
-  auto dynamic = adaptobs::make_zhang_continuous_observer(
-      dynamic_model, Eigen::MatrixXd(periodic::zhang_gain<double>()), Eigen::MatrixXd(50.0 * Eigen::Matrix2d::Identity()),
-      Eigen::VectorXd::Zero(4), Eigen::VectorXd::Zero(2), {.sampling = quadratic()});
-  auto plant = periodic::make_plant<double>();
-  for (Index k = 0; k <= 1000; ++k) {
-    const auto& s = plant.sample();
-    adaptobs::ContinuousSample<DD> ds{s.t, s.u, s.y, std::nullopt};
-    if (s.midpoint) ds.midpoint = typename adaptobs::ContinuousSample<DD>::Midpoint{s.midpoint->u, s.midpoint->y};
-    ASSERT_EQ(fixed.update(s), UpdateStatus::accepted);
-    ASSERT_EQ(dynamic.update(ds), UpdateStatus::accepted);
-    plant.advance();
-  }
-  EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
-  EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
-  EXPECT_MATRIX_NEAR(dynamic.omega(), fixed.omega(), 1e-12, 1e-12);
-  EXPECT_MATRIX_NEAR(dynamic.output_error(), fixed.output_error(), 1e-12, 1e-12);
-}
-
 TEST(ZhangContinuous, SinglePrecisionConverges) {
   auto observer = zhang_observer<float>(50.0f);
   auto plant = periodic::make_plant<float>();
@@ -254,7 +227,7 @@ struct UnifiedContract {
   static std::vector<Sample> samples() {
     return adaptobs::testing::first_samples<Sample>(Design::plant(), 30);
   }
-  static auto readings(const Observer& o) {
+  static auto readings(const auto& o) {
     return std::make_tuple(o.internal_state(), o.state(), o.parameters(), o.time());
   }
   static constexpr auto poisonable = std::tuple{&Sample::t, &Sample::u, &Sample::y};
@@ -306,11 +279,40 @@ struct KalmanBucyDesign {
   static auto plant() { return siso::make_plant<double>(); }
 };
 
+// Zhang's observer with Eigen::Dynamic sizes, on the same model and run.
+auto zhang_dynamic_observer() {
+  using DD = adaptobs::DynamicDimensions<double>;
+  const auto model = adaptobs::make_continuous_ltv_model<DD>(
+      [](double t) {
+        const auto s = periodic::system<double>(t);
+        return adaptobs::ContinuousSystem<DD>{s.A, s.B, s.C};
+      },
+      [](double t) { return Eigen::MatrixXd(periodic::Regressor{}.operator()<double>(t)); }, {4, 1, 2, 2});
+  return adaptobs::make_zhang_continuous_observer(
+      model, Eigen::MatrixXd(periodic::zhang_gain<double>()), Eigen::MatrixXd(50.0 * Eigen::Matrix2d::Identity()),
+      Eigen::VectorXd::Zero(4), Eigen::VectorXd::Zero(2), {.sampling = quadratic()});
+}
+
+struct ZhangDynamicContract : UnifiedContract<ZhangDesign> {
+  using Observer = decltype(zhang_dynamic_observer());
+  using Sample = Observer::Sample;
+  using InFixed = UnifiedContract<ZhangDesign>;
+  static Observer make() { return zhang_dynamic_observer(); }
+  static std::vector<Sample> samples() {
+    return adaptobs::testing::first_samples<Sample>(periodic::make_plant<double>(), 30, [](const auto& s) {
+      Sample d{s.t, s.u, s.y, std::nullopt};
+      if (s.midpoint) d.midpoint = typename Sample::Midpoint{s.midpoint->u, s.midpoint->y};
+      return d;
+    });
+  }
+};
+
 }  // namespace
 
 ADAPTOBS_OBSERVER_CONTRACT(UnifiedFormulation, UnifiedContract<BastinGeversDesign>, UnifiedContract<MarinoTomeiDesign>,
                            UnifiedContract<BesanconDesign>, UnifiedContract<ZhangDesign>,
                            UnifiedContract<KalmanBucyDesign>);
+ADAPTOBS_TWIN_CONTRACT(UnifiedFormulation, DynamicFollowsFixed, ZhangDynamicContract);
 
 namespace {
 

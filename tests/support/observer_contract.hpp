@@ -38,8 +38,10 @@
 //   factory's formula after each accepted update, and is zero in an absent channel.
 //
 // A float factory that names its double twin (`using InDouble = ...;`) also
-// runs `FloatFollowsDouble` (ADAPTOBS_FLOAT_CONTRACT): after the same run, every
-// reading agrees with the twin's to 1e-4 relative (`float_tolerance` overrides).
+// runs `FloatFollowsDouble`, and a factory of `Eigen::Dynamic` sizes that names
+// its fixed-size twin (`using InFixed = ...;`) runs `DynamicFollowsFixed`
+// (ADAPTOBS_TWIN_CONTRACT): after the same run, every reading agrees with the
+// twin's, to 1e-4 and 1e-12 relative (`twin_tolerance` overrides).
 
 #include "support/eigen_testing.hpp"
 
@@ -98,8 +100,8 @@ bool same_bits(const T& a, const T& b) {
   }
 }
 
-/// Closeness of a single-precision reading to its double-precision twin: Eigen
-/// matrices and floating-point values within `tolerance` of the double value,
+/// Closeness of a reading to its twin's (float to double, dynamic to fixed
+/// sizes): Eigen matrices and floating-point values within `tolerance` of the twin's,
 /// relative to max(1, its largest magnitude); optionals and tuples member by
 /// member; anything else (counters, flags) equal.
 template <class F, class D>
@@ -337,38 +339,73 @@ TYPED_TEST_P(ObserverContract, OutputErrorIsTheErrorOfTheLastAcceptedUpdate) {
   }
 }
 
-// ------------------------------------------------------------ float against double
+// ------------------------------------------------------------ twins
+
+/// Runs a factory and its twin (the same observer, plant and run in another
+/// scalar, or with other size parameters) and expects every reading of the one,
+/// output error included, within `tolerance` of the other's, relative to
+/// max(1, the twin's largest magnitude); the factory's `twin_tolerance`
+/// overrides it. The run must have moved the twin's readings by more than 1e-2,
+/// or the comparison would be empty.
+template <class Factory, class Twin>
+void expect_readings_follow_the_twin(double tolerance) {
+  using Instance = ObserverContract<Factory>;
+  using Reference = ObserverContract<Twin>;
+  const auto run = Factory::samples();
+  const auto twin_run = Twin::samples();
+  ASSERT_EQ(run.size(), twin_run.size());
+  const auto observer = Instance::after(run, run.size());
+  const auto twin = Reference::after(twin_run, twin_run.size());
+  if constexpr (requires { Factory::twin_tolerance; }) tolerance = Factory::twin_tolerance;
+  const auto readings = Instance::readings(observer);
+  const auto twin_readings = Reference::readings(twin);
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    (
+        [&] {
+          EXPECT_TRUE(close_in_precision(std::get<I>(readings), std::get<I>(twin_readings), tolerance))
+              << "reading " << I << " of the factory's readings() (the last is output_error())";
+        }(),
+        ...);
+  }(std::make_index_sequence<std::tuple_size_v<decltype(readings)>>{});
+  EXPECT_FALSE(close_in_precision(Reference::readings(twin), Reference::readings(Twin::make()), 1e-2));
+}
 
 /// The single-precision instance of an observer follows its double-precision
-/// twin: a float factory names its twin `InDouble` (the same observer, plant and
-/// run in double), and after the run every reading, output error included,
-/// agrees to 1e-4 relative (or the factory's `float_tolerance`). The satellite
-/// and waste-water runs agree to 1e-5; a float-only slip as small as a step size
-/// 1 % off in float fails.
+/// twin: a float factory names its twin `InDouble`, and after the run every
+/// reading agrees to 1e-4 relative. The satellite and waste-water runs agree to
+/// 1e-5; a float-only slip as small as a step size 1 % off in float fails.
 template <class Factory>
 class FloatFollowsDouble : public ::testing::Test {};
 
 TYPED_TEST_SUITE_P(FloatFollowsDouble);
 
 TYPED_TEST_P(FloatFollowsDouble, ReadingsAfterTheRunAgreeToSinglePrecision) {
-  using Single = ObserverContract<TypeParam>;
-  using Double = ObserverContract<typename TypeParam::InDouble>;
-  static_assert(std::is_same_v<typename Single::Scalar, float> && std::is_same_v<typename Double::Scalar, double>);
-  const auto run_single = TypeParam::samples();
-  const auto run_double = TypeParam::InDouble::samples();
-  ASSERT_EQ(run_single.size(), run_double.size());
-  const auto single = Single::after(run_single, run_single.size());
-  const auto twin = Double::after(run_double, run_double.size());
-  double tolerance = 1e-4;
-  if constexpr (requires { TypeParam::float_tolerance; }) tolerance = TypeParam::float_tolerance;
-  EXPECT_TRUE(close_in_precision(Single::readings(single), Double::readings(twin), tolerance));
-  // The run moved the readings well beyond that tolerance, or the check would be empty.
-  EXPECT_FALSE(close_in_precision(Double::readings(twin), Double::readings(TypeParam::InDouble::make()), 1e-2));
+  static_assert(std::is_same_v<typename TypeParam::Observer::Scalar, float> &&
+                std::is_same_v<typename TypeParam::InDouble::Observer::Scalar, double>);
+  expect_readings_follow_the_twin<TypeParam, typename TypeParam::InDouble>(1e-4);
 }
 
 REGISTER_TYPED_TEST_SUITE_P(FloatFollowsDouble, ReadingsAfterTheRunAgreeToSinglePrecision);
-// Test executables whose observers have no float instance do not instantiate it.
+
+/// The `Eigen::Dynamic` instance of an observer follows its fixed-size twin: a
+/// factory of run-time sizes names its twin `InFixed`, and after the run every
+/// reading agrees to 1e-12 relative. Only the order of roundings may differ
+/// (vectorized fixed-size products against the dynamic kernels).
+template <class Factory>
+class DynamicFollowsFixed : public ::testing::Test {};
+
+TYPED_TEST_SUITE_P(DynamicFollowsFixed);
+
+TYPED_TEST_P(DynamicFollowsFixed, ReadingsAfterTheRunAgreeToRounding) {
+  static_assert(!TypeParam::Observer::Dims::is_fixed && TypeParam::InFixed::Observer::Dims::is_fixed);
+  expect_readings_follow_the_twin<TypeParam, typename TypeParam::InFixed>(1e-12);
+}
+
+REGISTER_TYPED_TEST_SUITE_P(DynamicFollowsFixed, ReadingsAfterTheRunAgreeToRounding);
+
+// A test executable whose observers have no such twin does not instantiate its suite.
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(FloatFollowsDouble);
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(DynamicFollowsFixed);
 
 /// Names each instance by its factory's `name`, by default its scalar
 /// ("GuyaderZhang/ObserverContract/float.…").
@@ -396,10 +433,11 @@ REGISTER_TYPED_TEST_SUITE_P(ObserverContract, SatisfiesTheObserverConcept, NonFi
   }                                                                                              \
   static_assert(true, "")
 
-/// Runs `FloatFollowsDouble` on the float factories given (each with `InDouble`): at global scope.
-#define ADAPTOBS_FLOAT_CONTRACT(Family, ...)                                                      \
+/// Runs a twin suite, `FloatFollowsDouble` or `DynamicFollowsFixed`, on the
+/// factories given (each naming its twin): at global scope.
+#define ADAPTOBS_TWIN_CONTRACT(Family, Suite, ...)                                                \
   namespace adaptobs::testing {                                                                  \
-  using Family##FloatFactories = ::testing::Types<__VA_ARGS__>;                                  \
-  INSTANTIATE_TYPED_TEST_SUITE_P(Family, FloatFollowsDouble, Family##FloatFactories, ContractName); \
+  using Family##Suite##Factories = ::testing::Types<__VA_ARGS__>;                                \
+  INSTANTIATE_TYPED_TEST_SUITE_P(Family, Suite, Family##Suite##Factories, ContractName);         \
   }                                                                                              \
   static_assert(true, "")
