@@ -1,8 +1,8 @@
 #pragma once
 // Counts heap allocations: operator new and the C allocation functions that
-// Eigen uses. Only the test executable `test_no_allocation` links
-// allocation_counter.cpp (with the --wrap link options it needs); each observer
-// adds its own no_allocation_<observer>.cpp there.
+// Eigen uses. Every test executable links allocation_counter.cpp, with the
+// --wrap link options it needs (tests/CMakeLists.txt): the observer contract
+// (support/observer_contract.hpp) checks that fixed-size updates do not allocate.
 
 namespace adaptobs::testing {
 

@@ -35,7 +35,9 @@
 // - `reset(x0, θ0)` after a run equals a fresh construction at (x0, θ0), bit
 //   for bit, on the same samples;
 // - `output_error()` is zero before the first update and after a reset, is the
-//   factory's formula after each accepted update, and is zero in an absent channel.
+//   factory's formula after each accepted update, and is zero in an absent channel;
+// - with fixed sizes, neither the updates of the run nor the readings allocate
+//   (support/allocation_counter.hpp counts operator new and malloc and its kin).
 //
 // A float factory that names its double twin (`using InDouble = ...;`) also
 // runs `FloatFollowsDouble`, and a factory of `Eigen::Dynamic` sizes that names
@@ -43,6 +45,7 @@
 // (ADAPTOBS_TWIN_CONTRACT): after the same run, every reading agrees with the
 // twin's, to 1e-4 and 1e-12 relative (`twin_tolerance` overrides).
 
+#include "support/allocation_counter.hpp"
 #include "support/eigen_testing.hpp"
 
 #include <adaptobs/core/observer.hpp>
@@ -339,6 +342,25 @@ TYPED_TEST_P(ObserverContract, OutputErrorIsTheErrorOfTheLastAcceptedUpdate) {
   }
 }
 
+TYPED_TEST_P(ObserverContract, FixedSizeUpdatesAndReadingsDoNotAllocate) {
+  using O = typename TestFixture::Observer;
+  if constexpr (!O::Dims::is_fixed) {
+    GTEST_SKIP() << "run-time sizes allocate their workspaces at construction";
+  } else {
+    const auto run = TypeParam::samples();
+    O observer = TypeParam::make();
+    int rejected = 0;
+    EXPECT_EQ(allocations_during([&] {
+                for (const auto& sample : run) {
+                  rejected += observer.update(sample) != UpdateStatus::accepted;
+                  (void)TestFixture::readings(observer);
+                }
+              }),
+              0);
+    EXPECT_EQ(rejected, 0);
+  }
+}
+
 // ------------------------------------------------------------ twins
 
 /// Runs a factory and its twin (the same observer, plant and run in another
@@ -421,7 +443,7 @@ struct ContractName {
 
 REGISTER_TYPED_TEST_SUITE_P(ObserverContract, SatisfiesTheObserverConcept, NonFiniteSamplesAreRejectedAndChangeNothing,
                             AnOverflowingStepIsRejectedAndChangesNothing, ResetEqualsAFreshConstruction,
-                            OutputErrorIsTheErrorOfTheLastAcceptedUpdate);
+                            OutputErrorIsTheErrorOfTheLastAcceptedUpdate, FixedSizeUpdatesAndReadingsDoNotAllocate);
 
 }  // namespace adaptobs::testing
 
