@@ -12,6 +12,7 @@
 
 #include <atomic>
 #include <cstddef>
+#include <cstdlib>
 #include <new>
 
 namespace {
@@ -49,13 +50,46 @@ int __wrap_posix_memalign(void** p, std::size_t alignment, std::size_t size) {
 
 long adaptobs::testing::allocation_count() noexcept { return allocations.load(); }
 
-void* operator new(std::size_t size) {
+// Every replaceable form of operator new and delete is replaced, so that all of
+// them pair malloc with free: a form left to the runtime (the nothrow new of
+// std::stable_sort's buffer, say) would be freed here by a delete it did not
+// allocate for, which AddressSanitizer reports as a mismatch.
+namespace {
+void* counted_allocation(std::size_t size, std::size_t alignment) noexcept {
   ++allocations;
-  if (void* p = __real_malloc(size == 0 ? 1 : size)) return p;
+  if (size == 0) size = 1;
+  if (alignment <= alignof(std::max_align_t)) return __real_malloc(size);
+  void* p = nullptr;
+  return __real_posix_memalign(&p, alignment, size) == 0 ? p : nullptr;
+}
+void* counted_or_throw(std::size_t size, std::size_t alignment) {
+  if (void* p = counted_allocation(size, alignment)) return p;
   throw std::bad_alloc();
 }
-void* operator new[](std::size_t size) { return ::operator new(size); }
+}  // namespace
+
+void* operator new(std::size_t size) { return counted_or_throw(size, 0); }
+void* operator new[](std::size_t size) { return counted_or_throw(size, 0); }
+void* operator new(std::size_t size, std::align_val_t a) { return counted_or_throw(size, std::size_t(a)); }
+void* operator new[](std::size_t size, std::align_val_t a) { return counted_or_throw(size, std::size_t(a)); }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return counted_allocation(size, 0); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return counted_allocation(size, 0); }
+void* operator new(std::size_t size, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return counted_allocation(size, std::size_t(a));
+}
+void* operator new[](std::size_t size, std::align_val_t a, const std::nothrow_t&) noexcept {
+  return counted_allocation(size, std::size_t(a));
+}
+
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
