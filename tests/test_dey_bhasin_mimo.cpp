@@ -548,7 +548,7 @@ struct DeyBhasinDynamicContract : DeyBhasinContract {
   using InFixed = DeyBhasinContract;
   // The a-priori error z − φᵀp̂ cancels terms far larger than itself: after this
   // run it differs from the fixed-size one by 3e-12, the rest by less than 1e-12.
-  static constexpr double twin_tolerance = 1e-11;
+  static constexpr double dynamic_tolerance = 1e-11;
   static Observer make() {
     return Observer(Eigen::VectorXd(mimo::f()), Eigen::VectorXd(mimo::x_hat0()), Eigen::VectorXd(mimo::a_hat0()),
                     Eigen::MatrixXd(mimo::B_hat0()),

@@ -499,8 +499,7 @@ struct TakagiSugenoDynamicContract : TakagiSugenoContract<double> {
     for (Index i = 0; i < 8; ++i) vertices.push_back({fixed_model.A(i), fixed_model.B(i)});
     const auto zb = wwtp::premise_bounds<double>();
     const auto tb = wwtp::parameter_bounds<double>();
-    const Model model(vertices, Eigen::MatrixXd(fixed_model.C()), {}, {zb.lower, zb.upper},
-                                {tb.lower, tb.upper});
+    const Model model(vertices, Eigen::MatrixXd(fixed_model.C()), {}, {zb.lower, zb.upper}, {tb.lower, tb.upper});
     const auto fixed_gains = wwtp::paper_gains<double>();
     adaptobs::TakagiSugenoGains<Dims> gains;
     for (std::size_t i = 0; i < 8; ++i) {

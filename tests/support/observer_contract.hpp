@@ -43,7 +43,8 @@
 // runs `FloatFollowsDouble`, and a factory of `Eigen::Dynamic` sizes that names
 // its fixed-size twin (`using InFixed = ...;`) runs `DynamicFollowsFixed`
 // (ADAPTOBS_TWIN_CONTRACT): after the same run, every reading agrees with the
-// twin's, to 1e-4 and 1e-12 relative (`twin_tolerance` overrides).
+// twin's, to 1e-4 and 1e-12 relative (`float_tolerance` and `dynamic_tolerance`
+// override them).
 
 #include "support/allocation_counter.hpp"
 #include "support/eigen_testing.hpp"
@@ -366,8 +367,7 @@ TYPED_TEST_P(ObserverContract, FixedSizeUpdatesAndReadingsDoNotAllocate) {
 /// Runs a factory and its twin (the same observer, plant and run in another
 /// scalar, or with other size parameters) and expects every reading of the one,
 /// output error included, within `tolerance` of the other's, relative to
-/// max(1, the twin's largest magnitude); the factory's `twin_tolerance`
-/// overrides it. The run must have moved the twin's readings by more than 1e-2,
+/// max(1, the twin's largest magnitude). The run must have moved the twin's readings by more than 1e-2,
 /// or the comparison would be empty.
 template <class Factory, class Twin>
 void expect_readings_follow_the_twin(double tolerance) {
@@ -378,7 +378,6 @@ void expect_readings_follow_the_twin(double tolerance) {
   ASSERT_EQ(run.size(), twin_run.size());
   const auto observer = Instance::after(run, run.size());
   const auto twin = Reference::after(twin_run, twin_run.size());
-  if constexpr (requires { Factory::twin_tolerance; }) tolerance = Factory::twin_tolerance;
   const auto readings = Instance::readings(observer);
   const auto twin_readings = Reference::readings(twin);
   [&]<std::size_t... I>(std::index_sequence<I...>) {
@@ -394,7 +393,7 @@ void expect_readings_follow_the_twin(double tolerance) {
 
 /// The single-precision instance of an observer follows its double-precision
 /// twin: a float factory names its twin `InDouble`, and after the run every
-/// reading agrees to 1e-4 relative. The satellite and waste-water runs agree to
+/// reading agrees to 1e-4 relative (or the factory's `float_tolerance`). The satellite and waste-water runs agree to
 /// 1e-5; a float-only slip as small as a step size 1 % off in float fails.
 template <class Factory>
 class FloatFollowsDouble : public ::testing::Test {};
@@ -404,14 +403,16 @@ TYPED_TEST_SUITE_P(FloatFollowsDouble);
 TYPED_TEST_P(FloatFollowsDouble, ReadingsAfterTheRunAgreeToSinglePrecision) {
   static_assert(std::is_same_v<typename TypeParam::Observer::Scalar, float> &&
                 std::is_same_v<typename TypeParam::InDouble::Observer::Scalar, double>);
-  expect_readings_follow_the_twin<TypeParam, typename TypeParam::InDouble>(1e-4);
+  double tolerance = 1e-4;
+  if constexpr (requires { TypeParam::float_tolerance; }) tolerance = TypeParam::float_tolerance;
+  expect_readings_follow_the_twin<TypeParam, typename TypeParam::InDouble>(tolerance);
 }
 
 REGISTER_TYPED_TEST_SUITE_P(FloatFollowsDouble, ReadingsAfterTheRunAgreeToSinglePrecision);
 
 /// The `Eigen::Dynamic` instance of an observer follows its fixed-size twin: a
 /// factory of run-time sizes names its twin `InFixed`, and after the run every
-/// reading agrees to 1e-12 relative. Only the order of roundings may differ
+/// reading agrees to 1e-12 relative (or the factory's `dynamic_tolerance`). Only the order of roundings may differ
 /// (vectorized fixed-size products against the dynamic kernels).
 template <class Factory>
 class DynamicFollowsFixed : public ::testing::Test {};
@@ -420,7 +421,9 @@ TYPED_TEST_SUITE_P(DynamicFollowsFixed);
 
 TYPED_TEST_P(DynamicFollowsFixed, ReadingsAfterTheRunAgreeToRounding) {
   static_assert(!TypeParam::Observer::Dims::is_fixed && TypeParam::InFixed::Observer::Dims::is_fixed);
-  expect_readings_follow_the_twin<TypeParam, typename TypeParam::InFixed>(1e-12);
+  double tolerance = 1e-12;
+  if constexpr (requires { TypeParam::dynamic_tolerance; }) tolerance = TypeParam::dynamic_tolerance;
+  expect_readings_follow_the_twin<TypeParam, typename TypeParam::InFixed>(tolerance);
 }
 
 REGISTER_TYPED_TEST_SUITE_P(DynamicFollowsFixed, ReadingsAfterTheRunAgreeToRounding);
