@@ -8,9 +8,11 @@
 #include <adaptobs/adaptation/exponential_forgetting.hpp>
 #include <adaptobs/adaptation/normalized_gradient.hpp>
 #include <adaptobs/adaptation/recursive_least_squares.hpp>
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/QR>
 
 #include "support/eigen_testing.hpp"
 
@@ -43,10 +45,8 @@ using Regressor = Eigen::Matrix<double, 4, 2>;
 using Vector4 = Eigen::Vector4d;
 using Vector2 = Eigen::Vector2d;
 
-// Eigenvalues of a symmetric matrix in ascending order (a dynamic solver: one instantiation).
-Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& m) {
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m, Eigen::EigenvaluesOnly).eigenvalues();
-}
+// Eigenvalues of a symmetric matrix in ascending order (Jacobi; dynamic: one instantiation).
+Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& m) { return adaptobs::symmetric_eigenvalues(m); }
 
 // A symmetric positive definite matrix with eigenvalues in [lo, hi].
 template <class M>

@@ -13,7 +13,7 @@
 #include <adaptobs/observers/dey_bhasin.hpp>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include "models/dey_bhasin.hpp"
 #include "support/eigen_testing.hpp"
@@ -425,7 +425,7 @@ Index regressor_rank(Input input) {
     }
     plant.advance();
   }
-  const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(gram).eigenvalues();
+  const Eigen::VectorXd lambda = adaptobs::symmetric_eigenvalues(gram);
   return (lambda.array() > 1e-9 * lambda.maxCoeff()).count();
 }
 

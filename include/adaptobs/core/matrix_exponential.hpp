@@ -447,6 +447,7 @@ template <typename Scalar>
 }
 #ifdef ADAPTOBS_PRECOMPILED
 ADAPTOBS_INSTANTIATE DynamicMatrix<double> matrix_exponential_dense<double>(const DynamicMatrix<double>&);
+ADAPTOBS_INSTANTIATE DynamicMatrix<float> matrix_exponential_dense<float>(const DynamicMatrix<float>&);
 #endif
 
 }  // namespace detail

@@ -6,7 +6,8 @@
 /// cost seconds to compile in every translation unit that calls them. Each such
 /// routine therefore runs on dynamic-size matrices through one function
 /// template per scalar type. The optional library `adaptobs::precompiled`
-/// (src/precompiled.cpp) instantiates those templates for `double`, and whatever
+/// (src/precompiled.cpp) instantiates those templates for `double` (the matrix
+/// exponential, which sampled float models also call, for `float` too), and whatever
 /// links it is compiled with `ADAPTOBS_PRECOMPILED` defined. That turns the
 /// `ADAPTOBS_INSTANTIATE` lines after each routine into explicit instantiation
 /// declarations (`extern template`): the translation unit calls the compiled

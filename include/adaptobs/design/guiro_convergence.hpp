@@ -33,6 +33,7 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
 #include <adaptobs/design/power_bound.hpp>
@@ -188,6 +189,11 @@ GuiroConvergenceReport<Scalar> check_guiro_convergence(const DynamicMatrix<Scala
   }
   return report;
 }
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE GuiroConvergenceReport<double> check_guiro_convergence<double>(
+    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const DynamicMatrix<double>&,
+    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const std::vector<DynamicMatrix<double>>&);
+#endif
 }  // namespace detail
 
 /// Checks proposition 2.2 for gains (K, Γ), nominal regressor \f$\bar H\f$ and

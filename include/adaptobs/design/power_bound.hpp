@@ -17,6 +17,7 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/stability.hpp>
 
@@ -37,6 +38,9 @@ Scalar largest_singular_value(const DynamicMatrix<Scalar>& m) {
   if (m.size() == 0) return Scalar(0);
   return Eigen::JacobiSVD<DynamicMatrix<Scalar>>(m).singularValues()(0);
 }
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE double largest_singular_value<double>(const DynamicMatrix<double>&);
+#endif
 }  // namespace detail
 
 /// \f$\|U^k\|_2 \le M\lambda^k\f$ for every k ≥ 0.
