@@ -231,6 +231,23 @@ class RegressionLaw {
   detail::MaskedRegression<T> masked_;
 };
 
+/// The bases of a weighted least-squares law `L` (CRTP), written once: the
+/// estimate \f$(\hat p, \Gamma)\f$ with its proposal slot, and the `RegressionLaw`
+/// interface, whose types it exports.
+template <class L, typename S, int NP, int NZ>
+class LeastSquaresLaw
+    : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
+                                          typename RegressionTypes<S, NP, NZ>::Covariance>,
+      public RegressionLaw<L, RegressionTypes<S, NP, NZ>> {
+ public:
+  using Interface = RegressionLaw<L, RegressionTypes<S, NP, NZ>>;
+  using Estimate = detail::LeastSquaresEstimate<typename Interface::Parameters, typename Interface::Covariance>;
+  using Estimate::parameter_count;
+
+ protected:
+  LeastSquaresLaw(Index np, Index nz) : Interface(np, nz, /*weighted=*/true) {}
+};
+
 /// A recursive estimator of p from samples \f$(\varphi_t, z_t)\f$, split into
 /// a proposal and a commit so that observers can compute a whole step before
 /// changing anything (compute-then-commit):

@@ -71,17 +71,13 @@ template <class Derived>
 
 /// RLS with covariance resetting, eq. (22)–(23) of paper 003.
 template <typename S, int NP, int NZ>
-class CovarianceResettingRls
-    : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
-                                          typename RegressionTypes<S, NP, NZ>::Covariance>,
-      public RegressionLaw<CovarianceResettingRls<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
-  using Law = RegressionLaw<CovarianceResettingRls, RegressionTypes<S, NP, NZ>>;
-  friend Law;
+class CovarianceResettingRls : public LeastSquaresLaw<CovarianceResettingRls<S, NP, NZ>, S, NP, NZ> {
+  using Base = LeastSquaresLaw<CovarianceResettingRls, S, NP, NZ>;
+  friend typename Base::Interface;
 
  public:
-  using typename Law::Scalar, typename Law::Parameters, typename Law::Regressor, typename Law::Measurement,
-      typename Law::Covariance, typename Law::MeasurementWeight;
-  using Estimate = detail::LeastSquaresEstimate<Parameters, Covariance>;
+  using typename Base::Scalar, typename Base::Parameters, typename Base::Regressor, typename Base::Measurement,
+      typename Base::Covariance, typename Base::MeasurementWeight;
   static constexpr std::string_view name_propose = "CovarianceResettingRls::propose";
   static constexpr std::string_view name_restart = "CovarianceResettingRls::restart";
 
@@ -96,7 +92,7 @@ class CovarianceResettingRls
 
   /// \param nz measurement count, read only when `NZ` is dynamic (default: the size of R).
   CovarianceResettingRls(Parameters p0, Options options, Index nz = NZ)
-      : Law(p0.rows(), detail::measurement_size<NZ>(nz, options.R), true),
+      : Base(p0.rows(), detail::measurement_size<NZ>(nz, options.R)),
         options_(std::move(options)),
         correction_(p0.rows(), this->nz_) {
     constexpr std::string_view who = "CovarianceResettingRls";
@@ -119,7 +115,6 @@ class CovarianceResettingRls
     start();
   }
 
-  using Estimate::parameter_count;
   /// Number of resets since construction or the last restart.
   [[nodiscard]] Index reset_count() const noexcept { return track_[this->current_slot()].resets; }
   /// True when the last committed step reset the covariance.
@@ -177,7 +172,7 @@ class CovarianceResettingRls
   }
 
   void start() {
-    const Index np = parameter_count();
+    const Index np = this->parameter_count();
     this->current_covariance().setZero(np, np);
     this->current_covariance().diagonal().setConstant(options_.k0);
     track_[this->current_slot()] = Tracking{0, 0, false, options_.k0};

@@ -56,17 +56,13 @@ namespace adaptobs {
 
 /// RLS with exponential forgetting (Suzuki et al. 1980; paper 003 §5).
 template <typename S, int NP, int NZ>
-class ExponentialForgettingRls
-    : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
-                                          typename RegressionTypes<S, NP, NZ>::Covariance>,
-      public RegressionLaw<ExponentialForgettingRls<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
-  using Law = RegressionLaw<ExponentialForgettingRls, RegressionTypes<S, NP, NZ>>;
-  friend Law;
+class ExponentialForgettingRls : public LeastSquaresLaw<ExponentialForgettingRls<S, NP, NZ>, S, NP, NZ> {
+  using Base = LeastSquaresLaw<ExponentialForgettingRls, S, NP, NZ>;
+  friend typename Base::Interface;
 
  public:
-  using typename Law::Scalar, typename Law::Parameters, typename Law::Regressor, typename Law::Measurement,
-      typename Law::Covariance, typename Law::MeasurementWeight;
-  using Estimate = detail::LeastSquaresEstimate<Parameters, Covariance>;
+  using typename Base::Scalar, typename Base::Parameters, typename Base::Regressor, typename Base::Measurement,
+      typename Base::Covariance, typename Base::MeasurementWeight;
   static constexpr std::string_view name_propose = "ExponentialForgettingRls::propose";
   static constexpr std::string_view name_restart = "ExponentialForgettingRls::restart";
 
@@ -78,7 +74,7 @@ class ExponentialForgettingRls
 
   /// \param nz measurement count, read only when `NZ` is dynamic (default: the size of R).
   ExponentialForgettingRls(Parameters p0, Options options, Index nz = NZ)
-      : Law(p0.rows(), detail::measurement_size<NZ>(nz, options.R), true),
+      : Base(p0.rows(), detail::measurement_size<NZ>(nz, options.R)),
         options_(std::move(options)),
         factorization_(this->nz_) {
     constexpr std::string_view who = "ExponentialForgettingRls";
@@ -94,7 +90,6 @@ class ExponentialForgettingRls
     this->assign(p0, options_.gamma0, options_.gamma0);
   }
 
-  using Estimate::parameter_count;
   [[nodiscard]] const Options& options() const noexcept { return options_; }
 
  private:
@@ -139,7 +134,7 @@ class ExponentialForgettingRls
 
   Options options_;
   MeasurementWeight weight_;  // λR
-  typename Law::Types::Gain gamma_phi_;             // Γφ
+  typename Base::Types::Gain gamma_phi_;             // Γφ
   Eigen::Matrix<S, NZ, NP> gain_transposed_;        // Kᵀ
   MeasurementWeight innovation_weight_;             // M = λR + φᵀΓφ
   Eigen::LDLT<MeasurementWeight> factorization_;    // of M, which need not be positive definite

@@ -52,17 +52,13 @@ void validate_least_squares(const P& p0, const G& gamma0, const W& weight, Index
 
 /// Plain recursive least squares, eq. (20)–(22) of paper 003.
 template <typename S, int NP, int NZ>
-class RecursiveLeastSquares
-    : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
-                                          typename RegressionTypes<S, NP, NZ>::Covariance>,
-      public RegressionLaw<RecursiveLeastSquares<S, NP, NZ>, RegressionTypes<S, NP, NZ>> {
-  using Law = RegressionLaw<RecursiveLeastSquares, RegressionTypes<S, NP, NZ>>;
-  friend Law;
+class RecursiveLeastSquares : public LeastSquaresLaw<RecursiveLeastSquares<S, NP, NZ>, S, NP, NZ> {
+  using Base = LeastSquaresLaw<RecursiveLeastSquares, S, NP, NZ>;
+  friend typename Base::Interface;
 
  public:
-  using typename Law::Parameters, typename Law::Regressor, typename Law::Measurement, typename Law::Covariance,
-      typename Law::MeasurementWeight;
-  using Estimate = detail::LeastSquaresEstimate<Parameters, Covariance>;
+  using typename Base::Parameters, typename Base::Regressor, typename Base::Measurement, typename Base::Covariance,
+      typename Base::MeasurementWeight;
   static constexpr std::string_view name_propose = "RecursiveLeastSquares::propose";
   static constexpr std::string_view name_restart = "RecursiveLeastSquares::restart";
 
@@ -73,14 +69,13 @@ class RecursiveLeastSquares
 
   /// \param nz measurement count, read only when `NZ` is dynamic (default: the size of R).
   RecursiveLeastSquares(Parameters p0, Options options, Index nz = NZ)
-      : Law(p0.rows(), detail::measurement_size<NZ>(nz, options.R), true),
+      : Base(p0.rows(), detail::measurement_size<NZ>(nz, options.R)),
         options_(std::move(options)),
         correction_(p0.rows(), this->nz_) {
     detail::validate_least_squares(p0, options_.gamma0, options_.R, this->nz_, "RecursiveLeastSquares");
     this->assign(p0, options_.gamma0, options_.gamma0);
   }
 
-  using Estimate::parameter_count;
   [[nodiscard]] const Options& options() const noexcept { return options_; }
 
  private:

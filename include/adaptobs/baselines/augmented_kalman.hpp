@@ -121,7 +121,6 @@ class AugmentedKalmanFilter
   /// whose covariance would not be positive definite is rejected
   /// (`UpdateStatus::indefinite_covariance`) and changes nothing.
   UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
     const auto& system = model_.at(step_);
     const Index nx = x_.rows();
     Workspace& w = w_;

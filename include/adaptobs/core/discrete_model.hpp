@@ -68,6 +68,12 @@ template <StateSpace D>
   return finite_measured(sample.y, present, sample.u, sample.Psi);
 }
 
+/// True when u and the entries of y whose channel is present are finite.
+template <StateSpace D>
+[[nodiscard]] bool finite_sample(const InputOutputSample<D>& sample, const OutputMask<D>* present) {
+  return finite_measured(sample.y, present, sample.u);
+}
+
 /// Zeroes the rows of `m` whose output channel is absent (nothing for a null mask).
 template <StateSpace D, class Derived>
 void zero_absent_rows(Eigen::MatrixBase<Derived>& m, const OutputMask<D>* present) {

@@ -12,15 +12,19 @@ namespace adaptobs {
 
 /// Base of a discrete-time observer with a model (CRTP), not used on its own:
 /// `update(sample)`, its masked form and `sizes()`, with the run-time size
-/// checks of the sample and the mask. The observer supplies `step_with(sample,
-/// mask)` (mask null: every channel present), `model_`, and
-/// `Observer::name_update`, the name its size errors give.
+/// checks of the sample and the mask. The observer supplies `model_`,
+/// `Observer::name_update` (the name its size errors give) and its step, in one
+/// of two forms, which the base calls with a sample of the right shape whose
+/// measured entries are finite (mask null: every channel present):
+/// - `advance(sample, mask, workspace)` with a `detail::UpdateWorkspace` named
+///   `work_`, which the base hands the step (on the stack for fixed sizes);
+/// - `step_with(sample, mask)`, which keeps its scratch itself.
 template <class Observer, StateSpace Dims, template <StateSpace> class SampleOf>
 class DiscreteUpdate : public SizedBy<Dims> {
  public:
   using Sample = SampleOf<Dims>;
 
-  /// One step of the observer's law with the sample (its `step_with` cites the
+  /// One step of the observer's law with the sample (its `advance` or `step_with` cites the
   /// equations). Returns `UpdateStatus::accepted`, or the reason the sample
   /// was rejected (`nonfinite_input` for a NaN/Inf in it, `nonfinite_result`
   /// when the step would produce one, ...); a rejected step leaves the observer
@@ -42,7 +46,11 @@ class DiscreteUpdate : public SizedBy<Dims> {
  private:
   UpdateStatus checked_step(const Sample& sample, const OutputMask<Dims>* present) {
     if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, sizes(), Observer::name_update);
-    return self().step_with(sample, present);
+    if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
+    if constexpr (requires(Observer& o) { o.work_; })
+      return self().work_.run([&](auto& w) { return self().advance(sample, present, w); });
+    else
+      return self().step_with(sample, present);
   }
 
   Observer& self() noexcept { return static_cast<Observer&>(*this); }

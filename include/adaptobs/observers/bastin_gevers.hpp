@@ -24,7 +24,6 @@
 /// enters \f$A_oH\f$), so any first column is accepted; `spr_injection_gain`
 /// absorbs it in k.
 
-#include <adaptobs/adaptation/gradient_law.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/detail/segments.hpp>
@@ -104,10 +103,9 @@ template <ContinuousModel Model>
     Model model, StaticTransform<typename Model::Dims> transform, typename Model::Dims::GainMatrix k,
     typename Model::Dims::ParameterMatrix gamma, typename Model::Dims::State eta0,
     typename Model::Dims::Parameters theta0, UnifiedObserverOptions options = {}) {
-  using D = typename Model::Dims;
-  detail::require_shape(gamma, model.sizes().np, model.sizes().np, BastinGevers<D>::name, "gamma");
-  return BastinGeversObserver<Model>(std::move(model), BastinGevers<D>(std::move(transform), std::move(k)),
-                                     GradientLaw<D>(std::move(gamma)), std::move(eta0), std::move(theta0), options);
+  return detail::make_gradient_observer(std::move(model),
+                                        BastinGevers<typename Model::Dims>(std::move(transform), std::move(k)),
+                                        std::move(gamma), "gamma", std::move(eta0), std::move(theta0), options);
 }
 
 }  // namespace adaptobs

@@ -23,7 +23,6 @@
 /// constant model; this is the library's own sufficient condition for the V above,
 /// not one the paper states), Λ persistently exciting (`excitation_level()`).
 
-#include <adaptobs/adaptation/gradient_law.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/static_transform.hpp>
@@ -105,10 +104,9 @@ template <ContinuousModel Model>
     Model model, StaticTransform<typename Model::Dims> transform, typename Model::Dims::OutputMatrixSquare K1,
     typename Model::Dims::ParameterMatrix gamma, typename Model::Dims::State eta0,
     typename Model::Dims::Parameters theta0, UnifiedObserverOptions options = {}) {
-  using D = typename Model::Dims;
-  detail::require_shape(gamma, model.sizes().np, model.sizes().np, Besancon<D>::name, "gamma");
-  return BesanconObserver<Model>(std::move(model), Besancon<D>(std::move(transform), std::move(K1)),
-                                 GradientLaw<D>(std::move(gamma)), std::move(eta0), std::move(theta0), options);
+  return detail::make_gradient_observer(std::move(model),
+                                        Besancon<typename Model::Dims>(std::move(transform), std::move(K1)),
+                                        std::move(gamma), "gamma", std::move(eta0), std::move(theta0), options);
 }
 
 }  // namespace adaptobs

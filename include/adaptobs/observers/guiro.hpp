@@ -158,16 +158,9 @@ class GuiroObserver
   };
 
   /// One sample: correction of \f$z^-_k\f$ with \f$y_k\f$, θ̂ update, prediction
-  /// over the period with \f$\Psi_k\f$ and \f$u_k\f$ (eq. (2)); `present` is null when
-  /// every channel is. Returns `nonfinite_input` for a NaN/Inf in the sample and
-  /// `nonfinite_result` when the step would produce one; in both cases the
-  /// observer is left exactly as it was.
-  UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    return work_.run([&](Workspace& w) { return advance(sample, present, w); });
-  }
-
+  /// over the period with \f$\Psi_k\f$ and \f$u_k\f$ (eq. (2)); `nonfinite_result`,
+  /// changing nothing, when the step would produce a NaN/Inf.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
-    if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
     const auto& system = model_.at(step_);
     if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
 

@@ -186,16 +186,9 @@ class GuyaderZhangObserver
     }
   };
 
-  /// One step of eq. (2a)–(2c) with the sample \f$(u_k, y_k, \Psi_k)\f$; `present` is
-  /// null when every channel is. Returns `nonfinite_input` for a NaN/Inf in the
-  /// sample and `nonfinite_result` when the step would produce one; in both cases
-  /// the observer is left exactly as it was.
-  UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    return work_.run([&](Workspace& w) { return advance(sample, present, w); });
-  }
-
+  /// One step of eq. (2a)–(2c) with the sample \f$(u_k, y_k, \Psi_k)\f$;
+  /// `nonfinite_result`, changing nothing, when it would produce a NaN/Inf.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
-    if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
     const auto& system = model_.at(step_);
     if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
 

@@ -22,7 +22,6 @@
 /// Reading: the printed signs of F and G (−γᵢ in the first column) are right:
 /// row i + 1 of the bracket is \f$\gamma_{i+1}(\Xi_1 + \Psi_1)\f$.
 
-#include <adaptobs/adaptation/gradient_law.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/static_transform.hpp>
@@ -113,12 +112,9 @@ template <ContinuousModel Model>
     Eigen::Matrix<typename Model::Scalar, Model::Dims::nx, 1> gamma, typename Model::Dims::GainMatrix k,
     typename Model::Dims::ParameterMatrix adaptation_gain, typename Model::Dims::State eta0,
     typename Model::Dims::Parameters theta0, UnifiedObserverOptions options = {}) {
-  using D = typename Model::Dims;
-  detail::require_shape(adaptation_gain, model.sizes().np, model.sizes().np, MarinoTomei<D>::name, "adaptation_gain");
-  return MarinoTomeiObserver<Model>(std::move(model),
-                                    MarinoTomei<D>(std::move(transform), std::move(gamma), std::move(k)),
-                                    GradientLaw<D>(std::move(adaptation_gain)), std::move(eta0), std::move(theta0),
-                                    options);
+  return detail::make_gradient_observer(
+      std::move(model), MarinoTomei<typename Model::Dims>(std::move(transform), std::move(gamma), std::move(k)),
+      std::move(adaptation_gain), "adaptation_gain", std::move(eta0), std::move(theta0), options);
 }
 
 }  // namespace adaptobs

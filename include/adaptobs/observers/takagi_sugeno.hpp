@@ -185,16 +185,10 @@ class TakagiSugenoObserver
   };
 
   /// One step of eq. (65) (or (21) when \f$K_\theta\f$ is set) with the sample
-  /// \f$(u_k, y_k)\f$; `present` is null when every channel is. Returns
-  /// `nonfinite_input` for a NaN/Inf in the sample or in the premise variables
-  /// \f$\hat z_k\f$, `nonfinite_result` when the step would produce one; in both
-  /// cases the observer is left exactly as it was.
-  UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    return work_.run([&](Workspace& w) { return advance(sample, present, w); });
-  }
-
+  /// \f$(u_k, y_k)\f$; `nonfinite_input` for a NaN/Inf in the premise variables
+  /// \f$\hat z_k\f$, `nonfinite_result` when the step would produce one; both
+  /// change nothing.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
-    if (!detail::finite_measured(sample.y, present, sample.u)) return UpdateStatus::nonfinite_input;
     const Index nx = x_.rows(), nu = sample.u.rows(), ny = sample.y.rows(), np = theta_.rows();
 
     // Premise variables at the estimates, ẑ_k = z(x̂_k, u_k, θ̂_k) (they may use unmeasured states).

@@ -348,4 +348,20 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
   mutable Workspace work_;
 };
 
+namespace detail {
+/// The observer of a paper's algorithm with the gradient law of adaptation gain
+/// Γ (np × np; a wrong shape is named `argument` in the algorithm's words): the
+/// common end of the `make_*_observer` factories.
+template <ContinuousModel Model, class Algorithm>
+[[nodiscard]] UnifiedAdaptiveObserver<Model, Algorithm> make_gradient_observer(
+    Model model, Algorithm algorithm, typename Model::Dims::ParameterMatrix gamma, std::string_view argument,
+    typename Model::Dims::State eta0, typename Model::Dims::Parameters theta0, UnifiedObserverOptions options) {
+  const Index np = model.sizes().np;
+  require_shape(gamma, np, np, Algorithm::name, argument);
+  return UnifiedAdaptiveObserver<Model, Algorithm>(std::move(model), std::move(algorithm),
+                                                   GradientLaw<typename Model::Dims>(std::move(gamma)),
+                                                   std::move(eta0), std::move(theta0), options);
+}
+}  // namespace detail
+
 }  // namespace adaptobs

@@ -21,7 +21,6 @@
 /// A time-varying K(t) from `RiccatiDifferentialEquation` is applied sample by
 /// sample with `set_output_injection`.
 
-#include <adaptobs/adaptation/gradient_law.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/static_transform.hpp>
@@ -82,12 +81,9 @@ template <ContinuousModel Model>
     Model model, typename Model::Dims::GainMatrix K, typename Model::Dims::ParameterMatrix gamma,
     typename Model::Dims::State eta0, typename Model::Dims::Parameters theta0, UnifiedObserverOptions options = {}) {
   using D = typename Model::Dims;
-  const Sizes s = model.sizes();
-  detail::require_shape(K, s.nx, s.ny, ZhangContinuous<D>::name, "K");
-  detail::require_shape(gamma, s.np, s.np, ZhangContinuous<D>::name, "gamma");
-  return ZhangContinuousObserver<Model>(std::move(model), ZhangContinuous<D>(std::move(K)),
-                                        GradientLaw<D>(std::move(gamma)), std::move(eta0), std::move(theta0),
-                                        options);
+  detail::require_shape(K, model.sizes().nx, model.sizes().ny, ZhangContinuous<D>::name, "K");
+  return detail::make_gradient_observer(std::move(model), ZhangContinuous<D>(std::move(K)), std::move(gamma), "gamma",
+                                        std::move(eta0), std::move(theta0), options);
 }
 
 }  // namespace adaptobs
