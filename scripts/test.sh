@@ -61,9 +61,12 @@ if ((sanitize)); then
   # -O0 with line tables: the cheapest instrumented build whose reports still
   # name file and line (test_long_runs alone at -O1, see tests/CMakeLists.txt).
   # Eigen's own assertions stay on (no NDEBUG). One translation unit per test
-  # executable: clang compiles a family's shared templates once.
+  # executable: clang compiles a family's shared templates once. lld links the
+  # instrumented executables five times faster than ld.bfd (a minute and a half
+  # of CPU in all, several seconds of it at the end of the build, where nothing
+  # else runs beside it).
   configure "$root/build/sanitize" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
-    -DCMAKE_CXX_FLAGS_DEBUG="-O0 -gline-tables-only" \
+    -DCMAKE_CXX_FLAGS_DEBUG="-O0 -gline-tables-only" -DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld \
     -DADAPTOBS_SANITIZE=ON -DADAPTOBS_WARNINGS_AS_ERRORS=ON -DADAPTOBS_BUILD_BENCHMARKS=ON \
     -DADAPTOBS_VERIFY_HEADERS=OFF -DADAPTOBS_UNITY_TESTS=ON
   cmake --build "$root/build/sanitize" -j "$jobs"
