@@ -367,8 +367,8 @@ TYPED_TEST_P(ObserverContract, FixedSizeUpdatesAndReadingsDoNotAllocate) {
 /// Runs a factory and its twin (the same observer, plant and run in another
 /// scalar, or with other size parameters) and expects every reading of the one,
 /// output error included, within `tolerance` of the other's, relative to
-/// max(1, the twin's largest magnitude). The run must have moved the twin's readings by more than 1e-2,
-/// or the comparison would be empty.
+/// max(1, the twin's largest magnitude). The run must have moved the twin's
+/// readings by more than 1e-2, or the comparison would be empty.
 template <class Factory, class Twin>
 void expect_readings_follow_the_twin(double tolerance) {
   using Instance = ObserverContract<Factory>;
@@ -393,8 +393,9 @@ void expect_readings_follow_the_twin(double tolerance) {
 
 /// The single-precision instance of an observer follows its double-precision
 /// twin: a float factory names its twin `InDouble`, and after the run every
-/// reading agrees to 1e-4 relative (or the factory's `float_tolerance`). The satellite and waste-water runs agree to
-/// 1e-5; a float-only slip as small as a step size 1 % off in float fails.
+/// reading agrees to 1e-4 relative (or the factory's `float_tolerance`). The
+/// satellite and waste-water runs agree to 1e-5; a float-only slip as small as a
+/// step size 1 % off in float fails.
 template <class Factory>
 class FloatFollowsDouble : public ::testing::Test {};
 
@@ -412,8 +413,9 @@ REGISTER_TYPED_TEST_SUITE_P(FloatFollowsDouble, ReadingsAfterTheRunAgreeToSingle
 
 /// The `Eigen::Dynamic` instance of an observer follows its fixed-size twin: a
 /// factory of run-time sizes names its twin `InFixed`, and after the run every
-/// reading agrees to 1e-12 relative (or the factory's `dynamic_tolerance`). Only the order of roundings may differ
-/// (vectorized fixed-size products against the dynamic kernels).
+/// reading agrees to 1e-12 relative (or the factory's `dynamic_tolerance`). Only
+/// the order of roundings may differ (vectorized fixed-size products against the
+/// dynamic kernels).
 template <class Factory>
 class DynamicFollowsFixed : public ::testing::Test {};
 

@@ -24,11 +24,11 @@ class DiscreteUpdate : public SizedBy<Dims> {
  public:
   using Sample = SampleOf<Dims>;
 
-  /// One step of the observer's law with the sample (its `advance` or `step_with` cites the
-  /// equations). Returns `UpdateStatus::accepted`, or the reason the sample
-  /// was rejected (`nonfinite_input` for a NaN/Inf in it, `nonfinite_result`
-  /// when the step would produce one, ...); a rejected step leaves the observer
-  /// exactly as it was. With run-time sizes, a sample of the wrong shape throws
+  /// One step of the observer's law with the sample (its `advance` or
+  /// `step_with` cites the equations). Returns `UpdateStatus::accepted`, or the
+  /// reason the sample was rejected (`nonfinite_input` for a NaN/Inf in it,
+  /// `nonfinite_result` when the step would produce one, ...); a rejected step
+  /// leaves the observer exactly as it was. With run-time sizes, a sample of the wrong shape throws
   /// `ConfigurationError` naming it, before anything is read.
   [[nodiscard]] UpdateStatus update(const Sample& sample) { return checked_step(sample, nullptr); }
 
