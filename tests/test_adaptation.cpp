@@ -12,7 +12,6 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
-#include <Eigen/QR>
 
 #include "support/eigen_testing.hpp"
 
@@ -51,7 +50,7 @@ Eigen::VectorXd eigenvalues(const Eigen::MatrixXd& m) { return adaptobs::symmetr
 // A symmetric positive definite matrix with eigenvalues in [lo, hi].
 template <class M>
 M random_spd(RandomMatrices& rng, Index n, double lo, double hi) {
-  const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(rng.uniform<Eigen::MatrixXd>(n, n)).householderQ();
+  const Eigen::MatrixXd q = adaptobs::testing::random_orthogonal(rng, n);
   Eigen::VectorXd d(n);
   for (Index i = 0; i < n; ++i) d(i) = rng.scalar(lo, hi);
   const Eigen::MatrixXd m = q * d.asDiagonal() * q.transpose();
@@ -209,7 +208,7 @@ TEST(ExponentialForgetting, CovarianceGrowsAsInverseLambdaWhereUnexcited) {
 TEST(CovarianceResetting, ResetTestIsExactAtTheThreshold) {
   const double kmin = 1e-4;
   RandomMatrices rng(23);
-  const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(rng.uniform<Eigen::MatrixXd>(6, 6)).householderQ();
+  const Eigen::MatrixXd q = adaptobs::testing::random_orthogonal(rng, 6);
   const auto rotated = [&](double smallest) {
     Eigen::VectorXd d(6);
     d << smallest, 0.3, 1.0, 7.0, 50.0, 1000.0;

@@ -11,7 +11,6 @@
 
 #include "support/eigen_testing.hpp"
 
-#include <Eigen/QR>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,10 +28,7 @@ using Eigen::VectorXd;
 using ComplexVector = Eigen::VectorXcd;
 
 using adaptobs::testing::configuration_error_of;
-
-MatrixXd random_orthogonal(RandomMatrices& rng, int n) {
-  return Eigen::HouseholderQR<MatrixXd>(rng.uniform<MatrixXd>(n, n)).householderQ() * MatrixXd::Identity(n, n);
-}
+using adaptobs::testing::random_orthogonal;
 
 // Conjugate-closed random poles in the disk of radius 0.9, pairwise at least `gap` apart.
 ComplexVector random_poles(RandomMatrices& rng, int n, double gap = 0.1) {
@@ -243,7 +239,7 @@ double brute_force_constant(const MatrixXd& u, double lambda, int powers) {
   double m = 1;
   for (int k = 1; k <= powers; ++k) {
     p = (p * u / lambda).eval();
-    m = std::max(m, Eigen::JacobiSVD<MatrixXd>(p).singularValues()(0));
+    m = std::max(m, adaptobs::detail::largest_singular_value(p));
   }
   return m;
 }

@@ -32,36 +32,10 @@ struct Tolerance {
 };
 
 /// |a − b| ≤ abs_tol + rel_tol·|b| entrywise, in double; prints both matrices on
-/// failure. One function for every comparison: the template below only converts
-/// its arguments, so each test instantiates the comparison and Eigen's printing once.
-inline ::testing::AssertionResult dense_matrices_near(const char* a_expr, const char* b_expr,
-                                                      const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
-                                                      double abs_tol, double rel_tol) {
-  if (a.rows() != b.rows() || a.cols() != b.cols()) {
-    return ::testing::AssertionFailure() << a_expr << " is " << a.rows() << "x" << a.cols() << " but " << b_expr
-                                         << " is " << b.rows() << "x" << b.cols();
-  }
-  double worst = 0;
-  Eigen::Index wi = 0, wj = 0;
-  bool ok = true;
-  for (Eigen::Index j = 0; j < a.cols(); ++j) {
-    for (Eigen::Index i = 0; i < a.rows(); ++i) {
-      const double allowed = abs_tol + rel_tol * std::abs(b(i, j));
-      const double err = std::abs(a(i, j) - b(i, j));
-      if (!(err <= allowed)) {
-        ok = false;
-        if (!(err <= worst)) { worst = err; wi = i; wj = j; }
-      }
-    }
-  }
-  if (ok) return ::testing::AssertionSuccess();
-  std::ostringstream os;
-  os.precision(17);
-  os << a_expr << " and " << b_expr << " differ (abs tol " << abs_tol << ", rel tol " << rel_tol
-     << "); worst at (" << wi << "," << wj << "): " << a(wi, wj) << " vs " << b(wi, wj) << "\n"
-     << a_expr << " =\n" << a << "\n" << b_expr << " =\n" << b;
-  return ::testing::AssertionFailure() << os.str();
-}
+/// failure. One function for every comparison, compiled once (eigen_testing.cpp):
+/// the template below only converts its arguments.
+::testing::AssertionResult dense_matrices_near(const char* a_expr, const char* b_expr, const Eigen::MatrixXd& a,
+                                               const Eigen::MatrixXd& b, double abs_tol, double rel_tol);
 
 template <class DA, class DB>
 ::testing::AssertionResult matrices_near(const char* a_expr, const char* b_expr, const char* /*abs_expr*/,
@@ -105,6 +79,10 @@ class RandomMatrices {
  private:
   std::mt19937_64 rng_;
 };
+
+/// A random orthogonal n × n matrix: the Q factor of a uniform random matrix
+/// (compiled once, eigen_testing.cpp, so that no test instantiates a QR for it).
+Eigen::MatrixXd random_orthogonal(RandomMatrices& rng, Eigen::Index n);
 
 /// Least-squares fit of log(e_k) = c + k log(ρ) over the given samples;
 /// returns the geometric rate ρ (ρ < 1: the sequence decays geometrically).
