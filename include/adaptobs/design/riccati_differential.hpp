@@ -110,7 +110,6 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
     return gain_;
   }
 
-
  private:
   detail::CholeskyFactor<OutputCovariance> r_factor_;  // of R
   RungeKutta4<StateMatrix> rk4_;

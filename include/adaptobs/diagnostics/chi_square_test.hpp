@@ -56,7 +56,7 @@ struct ChiSquareOptions {
 };
 
 template <typename Scalar, int NY = Eigen::Dynamic>
-class ChiSquareTest : public detail::ThresholdAlarm<Scalar> {
+class ChiSquareTest : public ThresholdAlarm<Scalar> {
  public:
   using Vector = Eigen::Matrix<Scalar, NY, 1>;
   using Matrix = Eigen::Matrix<Scalar, NY, NY>;

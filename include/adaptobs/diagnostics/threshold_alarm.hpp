@@ -5,7 +5,7 @@
 
 #include <adaptobs/core/dimensions.hpp>
 
-namespace adaptobs::detail {
+namespace adaptobs {
 
 /// Base of a threshold test, not used on its own: its threshold h, whether the
 /// last value taken raised an alarm, and how many alarms were raised.
@@ -42,4 +42,4 @@ class ThresholdAlarm {
   bool alarm_ = false;
 };
 
-}  // namespace adaptobs::detail
+}  // namespace adaptobs

@@ -100,6 +100,7 @@ template <class Derived>
 typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& m) {
   return m.size() == 0 ? typename Derived::Scalar(0) : m.cwiseAbs().maxCoeff();
 }
+}  // namespace detail
 
 /// Base of both regressor integrals, not used on its own: the types of their
 /// results, the period T and the transition \f$e^{AT}\f$ each computes, with the
@@ -118,16 +119,14 @@ class RegressorIntegralBase {
  protected:
   /// A square and finite, T > 0; `who` names the integral in the errors.
   RegressorIntegralBase(const StateMatrix& A, Scalar period, std::string_view who) : period_(period) {
-    require_square(A, who, "A");
-    require_finite(A, who, "A");
-    require_positive(period, who, "period");
+    detail::require_square(A, who, "A");
+    detail::require_finite(A, who, "A");
+    detail::require_positive(period, who, "period");
   }
 
   Scalar period_;
   StateMatrix transition_;  // computed by the integral's constructor
 };
-
-}  // namespace detail
 
 /// \f$H_k\f$ and \f$\Psi_k\f$ of any regressor φ by adaptive Gauss–Kronrod quadrature (see file comment).
 ///
@@ -138,8 +137,8 @@ class RegressorIntegralBase {
 /// workspace allocated at construction (first use for dynamic sizes), hence
 /// `integrate` is not const and one object must not be used by two threads at once.
 template <typename Scalar, int NX, int NP>
-class RegressorIntegral : public detail::RegressorIntegralBase<Scalar, NX, NP> {
-  using Base = detail::RegressorIntegralBase<Scalar, NX, NP>;
+class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
+  using Base = RegressorIntegralBase<Scalar, NX, NP>;
 
  public:
   using typename Base::StateMatrix, typename Base::Regressor, typename Base::Result;
@@ -287,8 +286,8 @@ class RegressorIntegral : public detail::RegressorIntegralBase<Scalar, NX, NP> {
 
 /// \f$H_k\f$ and \f$\Psi_k\f$, exactly, for φ polynomial on each period (see file comment).
 template <typename Scalar, int NX, int NP>
-class PolynomialRegressorIntegral : public detail::RegressorIntegralBase<Scalar, NX, NP> {
-  using Base = detail::RegressorIntegralBase<Scalar, NX, NP>;
+class PolynomialRegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
+  using Base = RegressorIntegralBase<Scalar, NX, NP>;
 
  public:
   using typename Base::StateMatrix, typename Base::Regressor, typename Base::Result;
