@@ -10,6 +10,7 @@
 #include <adaptobs/design/guiro_gains.hpp>
 #include <adaptobs/design/pole_placement.hpp>
 #include <adaptobs/observers/guiro.hpp>
+#include <adaptobs/simulation/plant.hpp>
 
 #include "bench_support.hpp"
 #include "models/guiro.hpp"
@@ -29,13 +30,7 @@ using PaperSample = adaptobs::DiscreteSample<PaperDims>;
 constexpr Index ring_size = 256;
 
 std::vector<PaperSample> paper_samples() {
-  auto plant = g::make_plant<double>();
-  std::vector<PaperSample> samples;
-  for (Index k = 0; k < ring_size; ++k) {
-    samples.push_back(plant.sample());
-    plant.advance();
-  }
-  return samples;
+  return adaptobs::record_samples(g::make_plant<double>(), ring_size);
 }
 
 adaptobs::GuiroObserver<adaptobs::DiscreteLtiModel<PaperDims>> paper_observer() {
@@ -60,16 +55,17 @@ void BM_Guiro_Paper_TimeUpdate(benchmark::State& state) {
 }
 BENCHMARK(BM_Guiro_Paper_TimeUpdate);
 
-// Each iteration integrates H_k (and Ψ_k) for φ(t) = ((t+1)/(t+2), 0) over its period, then updates.
-void BM_Guiro_Paper_RecomputeH_Quadrature(benchmark::State& state) {
+// Times one update per iteration on the paper's samples, each with its Ψ_k
+// recomputed first by `recompute(t_k, h)` into h.
+template <class Recompute>
+void time_updates_recomputing_psi(benchmark::State& state, Recompute&& recompute) {
   auto observer = paper_observer();
   const auto samples = paper_samples();
-  adaptobs::RegressorIntegral<double, 2, 1> integral(g::continuous_dynamics<double>(), g::period);
   adaptobs::SampledRegressor<double, 2, 1> h;
   std::size_t k = 0;
   for (auto _ : state) {
     PaperSample sample = samples[k];
-    integral.integrate(g::Regressor{}, double(k) * g::period, h);
+    recompute(double(k) * g::period, h);
     sample.Psi = h.Psi;
     auto status = observer.update(sample);
     benchmark::DoNotOptimize(status);
@@ -78,29 +74,25 @@ void BM_Guiro_Paper_RecomputeH_Quadrature(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
+
+// Each iteration integrates H_k (and Ψ_k) for φ(t) = ((t+1)/(t+2), 0) over its period, then updates.
+void BM_Guiro_Paper_RecomputeH_Quadrature(benchmark::State& state) {
+  adaptobs::RegressorIntegral<double, 2, 1> integral(g::continuous_dynamics<double>(), g::period);
+  time_updates_recomputing_psi(state, [&](double t, adaptobs::SampledRegressor<double, 2, 1>& h) {
+    integral.integrate(g::Regressor{}, t, h);
+  });
+}
 BENCHMARK(BM_Guiro_Paper_RecomputeH_Quadrature);
 
 // φ linear on each period (through its values at both ends): exact H_k from precomputed moments.
 void BM_Guiro_Paper_RecomputeH_PiecewiseLinear(benchmark::State& state) {
-  auto observer = paper_observer();
-  const auto samples = paper_samples();
   const adaptobs::PolynomialRegressorIntegral<double, 2, 1> integral(g::continuous_dynamics<double>(), g::period, 1);
-  adaptobs::SampledRegressor<double, 2, 1> h;
   std::array<Eigen::Vector2d, 2> coefficients;
-  std::size_t k = 0;
-  for (auto _ : state) {
-    PaperSample sample = samples[k];
-    const double t = double(k) * g::period;
+  time_updates_recomputing_psi(state, [&](double t, adaptobs::SampledRegressor<double, 2, 1>& h) {
     coefficients[0] = g::Regressor{}(t);
     coefficients[1] = (g::Regressor{}(t + g::period) - coefficients[0]) / g::period;
     integral.integrate(coefficients, h);
-    sample.Psi = h.Psi;
-    auto status = observer.update(sample);
-    benchmark::DoNotOptimize(status);
-    benchmark::ClobberMemory();
-    k = (k + 1 == samples.size()) ? 0 : k + 1;
-  }
-  state.SetItemsProcessed(state.iterations());
+  });
 }
 BENCHMARK(BM_Guiro_Paper_RecomputeH_PiecewiseLinear);
 

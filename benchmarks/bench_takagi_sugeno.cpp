@@ -3,6 +3,7 @@
 // (21) parameters, fixed and dynamic sizes.
 
 #include <adaptobs/observers/takagi_sugeno.hpp>
+#include <adaptobs/simulation/plant.hpp>
 
 #include "bench_support.hpp"
 #include "models/wwtp.hpp"
@@ -16,13 +17,7 @@ using adaptobs::bench::SampleRing;
 namespace wwtp = adaptobs::examples::wwtp;
 
 SampleRing<adaptobs::InputOutputSample<wwtp::Dims<double>>> wwtp_ring() {
-  auto plant = wwtp::make_plant<double>(0.1);
-  std::vector<adaptobs::InputOutputSample<wwtp::Dims<double>>> samples;
-  for (Index k = 0; k < 1000; ++k) {
-    samples.push_back(plant.sample());
-    plant.advance();
-  }
-  return SampleRing(std::move(samples));
+  return SampleRing(adaptobs::record_samples(wwtp::make_plant<double>(0.1), 1000));
 }
 
 void BM_TakagiSugeno_WWTP(benchmark::State& state) {

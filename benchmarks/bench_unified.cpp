@@ -3,6 +3,8 @@
 // same plants: the third-order SISO plant (Alg. 1, 2) and the periodic MIMO
 // plant (Alg. 3, 4).
 
+#include <adaptobs/simulation/plant.hpp>
+
 #include "bench_support.hpp"
 #include "models/unified_design_definitions.hpp"
 
@@ -15,17 +17,6 @@ namespace {
 namespace designs = adaptobs::examples::designs;
 namespace siso = adaptobs::examples::siso;
 namespace periodic = adaptobs::examples::periodic;
-
-template <class Plant>
-std::vector<typename Plant::Sample> record(Plant plant, int n) {
-  std::vector<typename Plant::Sample> samples;
-  samples.reserve(std::size_t(n));
-  for (int k = 0; k < n; ++k) {
-    samples.push_back(plant.sample());
-    plant.advance();
-  }
-  return samples;
-}
 
 // Samples carry increasing times, so they cannot be replayed in a ring: after
 // the last one the observer restarts (one cheap update in 20000).
@@ -47,11 +38,11 @@ void time_steps(benchmark::State& state, Observer& observer, const std::vector<S
 }
 
 const auto& siso_samples() {
-  static const auto samples = record(siso::make_plant<double>(), 20000);
+  static const auto samples = adaptobs::record_samples(siso::make_plant<double>(), 20000);
   return samples;
 }
 const auto& mimo_samples() {
-  static const auto samples = record(periodic::make_plant<double>(), 20000);
+  static const auto samples = adaptobs::record_samples(periodic::make_plant<double>(), 20000);
   return samples;
 }
 

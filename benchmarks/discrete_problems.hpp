@@ -6,6 +6,7 @@
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/design/dare.hpp>
 #include <adaptobs/design/stability.hpp>
+#include <adaptobs/simulation/plant.hpp>
 
 #include "bench_support.hpp"
 #include "models/satellite.hpp"
@@ -16,13 +17,7 @@
 namespace adaptobs::bench {
 
 inline SampleRing<DiscreteSample<examples::satellite::Dims<double>>> satellite_ring() {
-  auto plant = examples::satellite::make_plant<double>();
-  std::vector<DiscreteSample<examples::satellite::Dims<double>>> samples;
-  for (Index k = 0; k < 1000; ++k) {
-    samples.push_back(plant.sample());
-    plant.advance();
-  }
-  return SampleRing(std::move(samples));
+  return SampleRing(record_samples(examples::satellite::make_plant<double>(), 1000));
 }
 
 /// n states, p = m = n/2 (one input); all sizes dynamic when N is.

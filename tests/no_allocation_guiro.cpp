@@ -5,6 +5,7 @@
 #include <adaptobs/models/regressor_integral.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
 #include <adaptobs/observers/guiro.hpp>
+#include <adaptobs/simulation/plant.hpp>
 
 #include "models/guiro.hpp"
 #include "support/allocation_counter.hpp"
@@ -16,7 +17,6 @@
 
 namespace {
 
-using adaptobs::Index;
 using adaptobs::testing::allocations_during;
 namespace g = adaptobs::examples::guiro;
 
@@ -27,12 +27,7 @@ TEST(NoAllocation, GuiroFixedSizeUpdatesAndRegressorIntegrals) {
   adaptobs::GuiroObserver observer(model, gains.K, gains.Gamma, g::initial_state_estimate<double>(),
                                    g::initial_parameter_estimate<double>());
   adaptobs::RegressorIntegral<double, 2, 1> integral(g::continuous_dynamics<double>(), g::period);
-  std::vector<adaptobs::DiscreteSample<g::Dims<double>>> samples;
-  auto plant = g::make_plant<double>();
-  for (Index k = 0; k < 200; ++k) {
-    samples.push_back(plant.sample());
-    plant.advance();
-  }
+  auto samples = adaptobs::record_samples(g::make_plant<double>(), 200);
   adaptobs::SampledRegressor<double, 2, 1> h;
   int rejected = 0;
   bool converged = true;

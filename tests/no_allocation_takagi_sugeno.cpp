@@ -3,6 +3,7 @@
 // checks constant parameters (65).
 
 #include <adaptobs/observers/takagi_sugeno.hpp>
+#include <adaptobs/simulation/plant.hpp>
 
 #include "models/wwtp.hpp"
 #include "support/allocation_counter.hpp"
@@ -13,17 +14,11 @@
 
 namespace {
 
-using adaptobs::Index;
 using adaptobs::testing::allocations_during;
 namespace wwtp = adaptobs::examples::wwtp;
 
 TEST(NoAllocation, TakagiSugenoWithLeakageFixedSizeUpdates) {
-  auto plant = wwtp::make_plant<double>(0.1);
-  std::vector<adaptobs::InputOutputSample<wwtp::Dims<double>>> samples;
-  for (Index k = 0; k < 5000; ++k) {
-    samples.push_back(plant.sample());
-    plant.advance();
-  }
+  const auto samples = adaptobs::record_samples(wwtp::make_plant<double>(0.1), 5000);
   auto gains = wwtp::paper_gains<double>();
   gains.K_theta = wwtp::Vector1<double>(1e-3);
   adaptobs::TakagiSugenoObserver observer(wwtp::model<double>(), gains, wwtp::initial_state_estimate<double>(),

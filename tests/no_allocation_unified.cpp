@@ -3,6 +3,8 @@
 // baseline), nor in their steps over 2000 samples with the excitation monitor and
 // fixed substeps, which the observer contract's factories do not configure.
 
+#include <adaptobs/simulation/plant.hpp>
+
 #include "support/allocation_counter.hpp"
 #include "unified_fixtures.hpp"
 
@@ -14,17 +16,6 @@ namespace {
 
 using adaptobs::testing::allocations_during;
 using namespace adaptobs::testing::unified;
-
-template <class Plant>
-std::vector<typename Plant::Sample> record(Plant plant, int n) {
-  std::vector<typename Plant::Sample> samples;
-  samples.reserve(std::size_t(n));
-  for (int k = 0; k < n; ++k) {
-    samples.push_back(plant.sample());
-    plant.advance();
-  }
-  return samples;
-}
 
 // The options the contract's factories leave at their defaults, and the
 // right-hand side f(t, ξ) that an external integrator calls.
@@ -43,8 +34,8 @@ void expect_allocation_free(Observer& observer, const Samples& samples) {
 }
 
 TEST(NoAllocation, UnifiedObserversWithOtherOptionsAndRightHandSides) {
-  const auto siso_samples = record(siso::make_plant<double>(), 2000);
-  const auto mimo_samples = record(periodic::make_plant<double>(), 2000);
+  const auto siso_samples = adaptobs::record_samples(siso::make_plant<double>(), 2000);
+  const auto mimo_samples = adaptobs::record_samples(periodic::make_plant<double>(), 2000);
   auto bg = bastin_gevers_observer<double>();
   expect_allocation_free(bg, siso_samples);
   auto mt = marino_tomei_observer<double>();

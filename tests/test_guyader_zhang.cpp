@@ -11,6 +11,7 @@
 
 #include "models/satellite.hpp"
 #include "support/eigen_testing.hpp"
+#include "support/ltv_test_system.hpp"
 #include "support/observer_contract.hpp"
 
 #include <gtest/gtest.h>
@@ -118,11 +119,7 @@ TEST(GuyaderZhang, Theorem1SatelliteRateAndFloor) {
 using Ltv = adaptobs::Dimensions<double, 3, 1, 1, 2>;
 
 adaptobs::DiscreteSystem<Ltv> ltv_system(Index k) {
-  const double angle = 0.3 + 0.2 * std::sin(0.05 * double(k));
-  Eigen::Matrix3d a;
-  a << std::cos(angle), -std::sin(angle), 0.1,  //
-      std::sin(angle), std::cos(angle), 0.0,    //
-      0.0, 0.2, 0.9;
+  const Eigen::Matrix3d a = adaptobs::testing::rotating_ltv_dynamics(k);
   Eigen::RowVector3d c(1.0, 0.3 * std::cos(0.1 * double(k)), 0.5);
   return {a, Eigen::Vector3d(0, 0, 1), c};
 }

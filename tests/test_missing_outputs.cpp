@@ -16,6 +16,7 @@
 
 #include "models/satellite.hpp"
 #include "support/eigen_testing.hpp"
+#include "support/ltv_test_system.hpp"
 
 #include <gtest/gtest.h>
 
@@ -189,11 +190,7 @@ TEST(GuyaderZhangMissing, SatelliteWithDroppedSamplesAndAnOutage) {
 using TwoOutputLtv = adaptobs::Dimensions<double, 3, 1, 2, 2>;
 
 adaptobs::DiscreteSystem<TwoOutputLtv> two_output_system(Index k) {
-  const double angle = 0.3 + 0.2 * std::sin(0.05 * double(k));
-  Eigen::Matrix3d a;
-  a << std::cos(angle), -std::sin(angle), 0.1,  //
-      std::sin(angle), std::cos(angle), 0.0,    //
-      0.0, 0.2, 0.9;
+  const Eigen::Matrix3d a = adaptobs::testing::rotating_ltv_dynamics(k);
   Eigen::Matrix<double, 2, 3> c;
   c << 1.0, 0.3 * std::cos(0.1 * double(k)), 0.5,  //
       0.0, 1.0, -0.4 * std::sin(0.07 * double(k));

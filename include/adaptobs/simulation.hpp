@@ -9,5 +9,6 @@
 #include <adaptobs/simulation/discrete_plant.hpp>
 #include <adaptobs/simulation/joint_integration.hpp>
 #include <adaptobs/simulation/output_loss.hpp>
+#include <adaptobs/simulation/plant.hpp>
 #include <adaptobs/simulation/runner.hpp>
 #include <adaptobs/simulation/series_table.hpp>

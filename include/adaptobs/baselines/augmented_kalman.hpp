@@ -33,6 +33,7 @@
 
 #include <Eigen/Core>
 
+#include <string_view>
 #include <utility>
 
 namespace adaptobs {
@@ -45,6 +46,18 @@ struct AugmentedKalmanCovariances {
   AugmentedMatrix P0;                 ///< initial covariance of [x; θ] (positive definite)
   AugmentedMatrix Q;                  ///< process noise of [x; θ] (positive semidefinite)
   typename D::OutputMatrixSquare R;   ///< output noise (positive definite)
+
+  /// The checks both augmented filters make of their covariances, each named
+  /// `covariances.<member>` in the error.
+  void validate(const Sizes& s, std::string_view who) const {
+    const Index n = s.nx + s.np;
+    detail::require_shape(P0, n, n, who, "covariances.P0");
+    detail::require_positive_definite(P0, who, "covariances.P0");
+    detail::require_shape(Q, n, n, who, "covariances.Q");
+    detail::require_positive_semidefinite(Q, who, "covariances.Q");
+    detail::require_shape(R, s.ny, s.ny, who, "covariances.R");
+    detail::require_positive_definite(R, who, "covariances.R");
+  }
 };
 
 template <DiscreteModel Model>
@@ -69,12 +82,7 @@ class AugmentedKalmanFilter
     const Sizes s = model_.sizes();
     const Index n = s.nx + s.np;
     detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
-    detail::require_shape(cov_.P0, n, n, who, "covariances.P0");
-    detail::require_positive_definite(cov_.P0, who, "covariances.P0");
-    detail::require_shape(cov_.Q, n, n, who, "covariances.Q");
-    detail::require_positive_semidefinite(cov_.Q, who, "covariances.Q");
-    detail::require_shape(cov_.R, s.ny, s.ny, who, "covariances.R");
-    detail::require_positive_definite(cov_.R, who, "covariances.R");
+    cov_.validate(s, who);
     p_ = cov_.P0;
     w_.xi.setZero(n);
     w_.p.setZero(n, n);

@@ -61,16 +61,8 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
         integrator_(internal_, sizes_, options, name) {
     const Sizes& s = sizes_;
     const Index n = s.nx + s.np;
-    detail::require_shape(eta0, s.nx, 1, name, "eta0");
-    detail::require_finite(eta0, name, "eta0");
-    detail::require_shape(theta0, s.np, 1, name, "theta0");
-    detail::require_finite(theta0, name, "theta0");
-    detail::require_shape(cov_.P0, n, n, name, "covariances.P0");
-    detail::require_positive_definite(cov_.P0, name, "covariances.P0");
-    detail::require_shape(cov_.Q, n, n, name, "covariances.Q");
-    detail::require_positive_semidefinite(cov_.Q, name, "covariances.Q");
-    detail::require_shape(cov_.R, s.ny, s.ny, name, "covariances.R");
-    detail::require_positive_definite(cov_.R, name, "covariances.R");
+    detail::require_initial_estimates(eta0, s.nx, theta0, s.np, name, "eta0", "theta0");
+    cov_.validate(s, name);
     (void)r_factor_.compute(cov_.R);  // positive definite: checked above
     w_.ae.setZero(n, n);
     w_.factor.setZero(n, n);

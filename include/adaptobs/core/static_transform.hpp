@@ -159,11 +159,7 @@ class StaticTransform : public SizedBy<D> {
   /// \f$\Psi = T\Phi\f$.
   template <class DPhi, class DPsi>
   void regressor(const Eigen::MatrixBase<DPhi>& Phi, Eigen::MatrixBase<DPsi>& Psi) const {
-    if (identity_) {
-      Psi = Phi;
-    } else {
-      Psi.noalias() = t_ * Phi;
-    }
+    multiply_unless_identity(t_, Phi, Psi);
   }
 
   /// \f$\varphi = TBu + Ky\f$.
@@ -181,14 +177,22 @@ class StaticTransform : public SizedBy<D> {
   /// \f$\eta = T^{-1}x\f$.
   template <class DX, class DEta>
   void to_original(const Eigen::MatrixBase<DX>& x, Eigen::MatrixBase<DEta>& eta) const {
-    if (identity_) {
-      eta = x;
-    } else {
-      eta.noalias() = t_inverse_ * x;
-    }
+    multiply_unless_identity(t_inverse_, x, eta);
   }
 
  private:
+  /// `out = m * in` with m either T or \f$T^{-1}\f$, a plain copy when T = I: the
+  /// one place where the products by T are skipped.
+  template <class DIn, class DOut>
+  void multiply_unless_identity(const StateMatrix& m, const Eigen::MatrixBase<DIn>& in,
+                                Eigen::MatrixBase<DOut>& out) const {
+    if (identity_) {
+      out = in;
+    } else {
+      out.noalias() = m * in;
+    }
+  }
+
   StateMatrix t_;
   StateMatrix t_inverse_;
   GainMatrix k_;

@@ -77,6 +77,26 @@ void require_finite(const Eigen::DenseBase<Derived>& m, std::string_view who, st
   if (!m.derived().allFinite()) fail_argument(who, argument, "must contain only finite numbers");
 }
 
+/// A single-output pair (A, c): A square and c one row of its order. Returns
+/// the order n, which the design routines of SISO systems go on with.
+template <class DA, class DC>
+Index require_single_output_pair(const Eigen::EigenBase<DA>& A, const Eigen::EigenBase<DC>& c, std::string_view who) {
+  require_square(A, who, "A");
+  require_shape(c, 1, A.rows(), who, "c");
+  return A.rows();
+}
+
+/// A single-input single-output triple (A, b, c): A square, b one column and
+/// c one row of its order. Returns the order n.
+template <class DA, class DB, class DC>
+Index require_siso_triple(const Eigen::EigenBase<DA>& A, const Eigen::EigenBase<DB>& b, const Eigen::EigenBase<DC>& c,
+                          std::string_view who) {
+  require_square(A, who, "A");
+  require_shape(b, A.rows(), 1, who, "b");
+  require_shape(c, 1, A.rows(), who, "c");
+  return A.rows();
+}
+
 /// The matrices (A, B, C) of a state-space system, discrete or continuous: A
 /// square, B with A's rows, C with A's columns, every entry finite.
 template <class System>

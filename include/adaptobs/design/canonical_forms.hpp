@@ -66,9 +66,7 @@ template <StateSpace D, class DA, class DC>
   using Scalar = typename D::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "bastin_gevers_form";
-  detail::require_square(A, who, "A");
-  const Index n = A.rows();
-  detail::require_shape(c, 1, n, who, "c");
+  const Index n = detail::require_single_output_pair(A, c, who);
   detail::require(zeros.size() == n && zeros(0) == Scalar(1), who, "zeros", "must be monic of degree n - 1");
   detail::require(n == 1 || is_hurwitz_polynomial(zeros), who, "zeros", "must be Hurwitz (A22 is the zero dynamics)");
   const Matrix a = A, cc = c;
@@ -100,9 +98,7 @@ template <StateSpace D, class DA, class DC>
   using Scalar = typename D::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "marino_tomei_form";
-  detail::require_square(A, who, "A");
-  const Index n = A.rows();
-  detail::require_shape(c, 1, n, who, "c");
+  const Index n = detail::require_single_output_pair(A, c, who);
   const Polynomial<Scalar> a = characteristic_polynomial(A);
   Matrix canonical = Matrix::Zero(n, n);
   canonical.diagonal(1).setOnes();

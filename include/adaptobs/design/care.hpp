@@ -307,10 +307,9 @@ template <class DA, class DG, class DQ>
 template <class DA, class DB, class DQ, class DR>
 [[nodiscard]] auto solve_care(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
                               const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R) {
-  using Scalar = typename DA::Scalar;
   using detail::dynamic_copy;
-  const auto dynamic = detail::solve_care<Scalar>(dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R));
-  return CareSolution<Scalar, DA::RowsAtCompileTime>{dynamic.X, dynamic.iterations, dynamic.relative_residual};
+  return detail::with_order<DA::RowsAtCompileTime>(
+      detail::solve_care(dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R)));
 }
 
 /// Steady-state Kalman–Bucy gain of \f$\dot x = Ax + w,\ y = Cx + v\f$ (spectral

@@ -295,10 +295,9 @@ template <class DA, class DB, class DQ, class DR>
 [[nodiscard]] auto solve_dare(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
                               const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R,
                               DareOptions options = {}) {
-  using Scalar = typename DA::Scalar;
   using detail::dynamic_copy;
-  const auto dynamic = detail::solve_dare<Scalar>(dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R), options);
-  return DareSolution<Scalar, DA::RowsAtCompileTime>{dynamic.X, dynamic.iterations, dynamic.relative_residual};
+  return detail::with_order<DA::RowsAtCompileTime>(
+      detail::solve_dare(dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R), options));
 }
 
 /// Steady-state Kalman gain of \f$x_{k+1} = A x_k + w_k,\ y_k = C x_k + v_k\f$,

@@ -193,10 +193,7 @@ template <class DA, class DB, class DC>
   using Scalar = typename DA::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "transfer_function";
-  detail::require_square(A, who, "A");
-  const Index n = A.rows();
-  detail::require_shape(b, n, 1, who, "b");
-  detail::require_shape(c, 1, n, who, "c");
+  const Index n = detail::require_siso_triple(A, b, c, who);
   SisoTransferFunction<Scalar> g;
   g.denominator = characteristic_polynomial(A);
   g.numerator.resize(n);
@@ -218,9 +215,7 @@ template <class DA, class DC>
     const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Polynomial<typename DA::Scalar>& p) {
   using Scalar = typename DA::Scalar;
   constexpr std::string_view who = "ackermann_observer_gain";
-  detail::require_square(A, who, "A");
-  const Index n = A.rows();
-  detail::require_shape(c, 1, n, who, "c");
+  const Index n = detail::require_single_output_pair(A, c, who);
   detail::require(p.size() == n + 1 && p(0) == Scalar(1), who, "p", "must be monic of degree n");
   const auto o = observability_matrix(A, c);
   const Eigen::FullPivLU<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> lu(o);

@@ -62,10 +62,7 @@ template <class DA, class DB, class DC>
   using Complex = std::complex<Scalar>;
   using ComplexMatrix = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "spr_frequency_sweep";
-  detail::require_square(A, who, "A");
-  const Index n = A.rows();
-  detail::require_shape(b, n, 1, who, "b");
-  detail::require_shape(c, 1, n, who, "c");
+  const Index n = detail::require_siso_triple(A, b, c, who);
   detail::require(omega_min > 0 && omega_max > omega_min && points >= 2, who, "omega_min, omega_max, points",
                   "must satisfy 0 < omega_min < omega_max and points ≥ 2");
   SprSweep<Scalar> r;

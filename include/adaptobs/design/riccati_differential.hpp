@@ -24,6 +24,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/kalman_covariances.hpp>
 
 #include <Eigen/Core>
 
@@ -36,19 +37,16 @@
 namespace adaptobs {
 
 template <StateSpace D>
-class RiccatiDifferentialEquation : public SizedBy<D> {
+class RiccatiDifferentialEquation : public KalmanCovariances<D> {
+  using Base = KalmanCovariances<D>;
+  using Base::p_, Base::q_, Base::r_;
+
  public:
-  using typename SizedBy<D>::Scalar, typename SizedBy<D>::StateMatrix, typename SizedBy<D>::GainMatrix;
-  using OutputCovariance = typename D::OutputMatrixSquare;
+  using typename Base::Scalar, typename Base::StateMatrix, typename Base::GainMatrix, typename Base::OutputCovariance;
 
   /// \param P0 initial P (positive definite), \param Q ≥ 0, \param R > 0.
   RiccatiDifferentialEquation(StateMatrix P0, StateMatrix Q, OutputCovariance R)
-      : p_(std::move(P0)), q_(std::move(Q)), r_(std::move(R)), rk4_(p_) {
-    constexpr std::string_view who = "RiccatiDifferentialEquation";
-    detail::require_positive_definite(p_, who, "P0");
-    detail::require_shape(q_, p_.rows(), p_.rows(), who, "Q");
-    detail::require_positive_semidefinite(q_, who, "Q");
-    detail::require_positive_definite(r_, who, "R");
+      : Base(std::move(P0), std::move(Q), std::move(R), "RiccatiDifferentialEquation"), rk4_(p_) {
     (void)r_factor_.compute(r_);  // positive definite: checked above
     cp_.setZero(r_.rows(), p_.rows());
     r_inv_cp_.setZero(r_.rows(), p_.rows());
@@ -112,12 +110,7 @@ class RiccatiDifferentialEquation : public SizedBy<D> {
     return gain_;
   }
 
-  [[nodiscard]] const StateMatrix& covariance() const noexcept { return p_; }
-
  private:
-  StateMatrix p_;
-  StateMatrix q_;
-  OutputCovariance r_;
   detail::CholeskyFactor<OutputCovariance> r_factor_;  // of R
   RungeKutta4<StateMatrix> rk4_;
   mutable typename D::OutputMatrix cp_, r_inv_cp_;

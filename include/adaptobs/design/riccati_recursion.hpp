@@ -15,6 +15,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/kalman_covariances.hpp>
 
 #include <Eigen/Core>
 
@@ -23,20 +24,17 @@ namespace adaptobs {
 /// Runs the Riccati difference equation alongside a time-varying system and
 /// hands out the predictor gain of each step.
 template <StateSpace D>
-class KalmanGainRecursion : public SizedBy<D> {
+class KalmanGainRecursion : public KalmanCovariances<D> {
+  using Base = KalmanCovariances<D>;
+  using Base::p_, Base::q_, Base::r_;
+
  public:
-  using typename SizedBy<D>::Scalar, typename SizedBy<D>::StateMatrix, typename SizedBy<D>::GainMatrix;
-  using OutputCovariance = typename D::OutputMatrixSquare;
+  using typename Base::Scalar, typename Base::StateMatrix, typename Base::GainMatrix, typename Base::OutputCovariance;
 
   /// \param P0 initial covariance (positive definite), \param Q state noise
   /// covariance (positive semidefinite), \param R output noise covariance (positive definite).
   KalmanGainRecursion(StateMatrix P0, StateMatrix Q, OutputCovariance R)
-      : p_(std::move(P0)), q_(std::move(Q)), r_(std::move(R)) {
-    constexpr std::string_view who = "KalmanGainRecursion";
-    detail::require_positive_definite(p_, who, "P0");
-    detail::require_shape(q_, p_.rows(), p_.rows(), who, "Q");
-    detail::require_positive_semidefinite(q_, who, "Q");
-    detail::require_positive_definite(r_, who, "R");
+      : Base(std::move(P0), std::move(Q), std::move(R), "KalmanGainRecursion") {
     gain_.setZero(p_.rows(), r_.rows());
     s_.setZero(r_.rows(), r_.rows());
     closed_loop_.setZero(p_.rows(), p_.rows());
@@ -70,13 +68,9 @@ class KalmanGainRecursion : public SizedBy<D> {
     return gain_;
   }
 
-  [[nodiscard]] const StateMatrix& covariance() const noexcept { return p_; }
   [[nodiscard]] const GainMatrix& gain() const noexcept { return gain_; }
 
  private:
-  StateMatrix p_;
-  StateMatrix q_;
-  OutputCovariance r_;
   GainMatrix gain_;
   // Workspace, sized once so that a step allocates nothing.
   OutputCovariance s_;

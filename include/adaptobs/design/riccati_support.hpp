@@ -115,6 +115,15 @@ struct RiccatiRoles {
   std::string_view unreached_mode;    ///< message for argument "A, Q": a marginal mode Q does not see
 };
 
+/// A solution computed at run-time size, handed back at the caller's
+/// compile-time order N: the public solvers of both equations run on dynamic
+/// copies (`dynamic_copy`), and return `CareSolution` or `DareSolution` sized as
+/// the caller's A.
+template <int N, template <typename, int> class Solution, typename Scalar>
+[[nodiscard]] Solution<Scalar, N> with_order(const Solution<Scalar, Eigen::Dynamic>& solution) {
+  return Solution<Scalar, N>{solution.X, solution.iterations, solution.relative_residual};
+}
+
 /// The checks both equations make of their data: A square and finite, B
 /// finite with A's rows, Q positive semidefinite, R positive definite.
 template <typename Scalar>

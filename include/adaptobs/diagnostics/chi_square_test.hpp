@@ -39,6 +39,7 @@
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/diagnostics/chi_square_distribution.hpp>
+#include <adaptobs/diagnostics/threshold_alarm.hpp>
 
 #include <Eigen/Core>
 
@@ -55,7 +56,7 @@ struct ChiSquareOptions {
 };
 
 template <typename Scalar, int NY = Eigen::Dynamic>
-class ChiSquareTest {
+class ChiSquareTest : public ThresholdAlarm<Scalar> {
  public:
   using Vector = Eigen::Matrix<Scalar, NY, 1>;
   using Matrix = Eigen::Matrix<Scalar, NY, NY>;
@@ -82,7 +83,7 @@ class ChiSquareTest {
     factor.solve_in_place(information_);
     information_ = Scalar(0.5) * (information_ + information_.transpose()).eval();
     const double dof = options.degrees_of_freedom > 0 ? options.degrees_of_freedom : static_cast<double>(window * ny);
-    threshold_ = static_cast<Scalar>(options.scale * chi_square_upper_quantile(dof, static_cast<double>(false_alarm_probability)));
+    this->threshold_ = static_cast<Scalar>(options.scale * chi_square_upper_quantile(dof, static_cast<double>(false_alarm_probability)));
   }
 
   /// Takes the output error of one sample. Returns `nonfinite_input`, with the
@@ -96,11 +97,10 @@ class ChiSquareTest {
     for (Index j = 0; j < information_.cols(); ++j) term += output_error(j) * information_.col(j).dot(output_error);
     if (!std::isfinite(term)) return UpdateStatus::nonfinite_input;
     sum_ += term;
-    alarm_ = false;
+    this->clear_alarm();
     if (++filled_ == window_) {
       decision_ = sum_;
-      alarm_ = sum_ > threshold_;
-      if (alarm_) ++alarms_;
+      this->decide(sum_);
       ++decisions_;
       sum_ = 0;
       filled_ = 0;
@@ -108,16 +108,12 @@ class ChiSquareTest {
     return UpdateStatus::accepted;
   }
 
-  /// The window completed by the last sample raised an alarm.
-  [[nodiscard]] bool alarm() const noexcept { return alarm_; }
   /// The sum over the window in progress (0 right after a decision).
   [[nodiscard]] Scalar statistic() const noexcept { return sum_; }
   /// The sum of the last completed window.
   [[nodiscard]] Scalar decision_statistic() const noexcept { return decision_; }
-  [[nodiscard]] Scalar threshold() const noexcept { return threshold_; }
   [[nodiscard]] Index window() const noexcept { return window_; }
   [[nodiscard]] Index decisions() const noexcept { return decisions_; }
-  [[nodiscard]] Index alarm_count() const noexcept { return alarms_; }
   /// Designed mean number of samples between false alarms, W/α.
   [[nodiscard]] Scalar mean_samples_between_false_alarms() const noexcept {
     return static_cast<Scalar>(window_) / false_alarm_probability_;
@@ -126,21 +122,18 @@ class ChiSquareTest {
   /// Back to the state after construction.
   void reset() {
     sum_ = decision_ = 0;
-    filled_ = decisions_ = alarms_ = 0;
-    alarm_ = false;
+    filled_ = decisions_ = 0;
+    this->clear_alarms();
   }
 
  private:
   Index window_;
   Scalar false_alarm_probability_;
   Matrix information_;
-  Scalar threshold_ = 0;
   Scalar sum_ = 0;
   Scalar decision_ = 0;
   Index filled_ = 0;
   Index decisions_ = 0;
-  Index alarms_ = 0;
-  bool alarm_ = false;
 };
 
 }  // namespace adaptobs

@@ -13,6 +13,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/diagnostics/threshold_alarm.hpp>
 
 #include <Eigen/Core>
 
@@ -38,7 +39,7 @@ namespace detail {
 /// updates its statistics with the normalized value z and returns the largest
 /// (with its component and sign), and `void clear_statistics()`.
 template <class Derived, typename Scalar, int N>
-class SequentialTest {
+class SequentialTest : public ThresholdAlarm<Scalar> {
  public:
   using Vector = Eigen::Matrix<Scalar, N, 1>;
 
@@ -48,7 +49,7 @@ class SequentialTest {
     if constexpr (N == Eigen::Dynamic)
       if (value.size() != nominal_.size()) require_shape(value, nominal_.size(), 1, std::string(name_) + "::update", "value");
     if (!value.allFinite()) return UpdateStatus::nonfinite_input;
-    alarm_ = false;
+    this->clear_alarm();
     // Every stride-th value is evaluated: a countdown, not a division per value.
     if (skip_ > 0) {
       --skip_;
@@ -68,9 +69,7 @@ class SequentialTest {
     Index component = 0;
     int sign = 0;
     const Scalar largest = derived().evaluate(z_, component, sign);
-    if (largest > threshold_) {
-      alarm_ = true;
-      ++alarms_;
+    if (this->decide(largest)) {
       alarm_statistic_ = largest;
       isolated_ = component;
       direction_ = sign;
@@ -81,15 +80,11 @@ class SequentialTest {
     return UpdateStatus::accepted;
   }
 
-  /// An alarm was raised by the last accepted value.
-  [[nodiscard]] bool alarm() const noexcept { return alarm_; }
   /// Component (0-based) named by the last alarm, and the sign of its change.
   [[nodiscard]] Index isolated() const noexcept { return isolated_; }
   [[nodiscard]] int direction() const noexcept { return direction_; }
   /// The statistic that raised the last alarm.
   [[nodiscard]] Scalar alarm_statistic() const noexcept { return alarm_statistic_; }
-  [[nodiscard]] Index alarm_count() const noexcept { return alarms_; }
-  [[nodiscard]] Scalar threshold() const noexcept { return threshold_; }
   [[nodiscard]] const Vector& nominal() const noexcept { return nominal_; }
 
   /// Re-anchors on a new nominal value (after a confirmed change) and restarts
@@ -105,14 +100,14 @@ class SequentialTest {
   /// Back to the state after construction, alarm count included.
   void reset() {
     restart();
-    alarms_ = 0;
+    this->clear_alarms();
   }
 
  protected:
   /// \param who the class's name, a string literal (kept for later messages).
   SequentialTest(std::string_view who, Vector nominal, const Vector& scale, Scalar threshold,
                  SequentialTestOptions options)
-      : name_(who), nominal_(std::move(nominal)), threshold_(threshold), options_(options) {
+      : ThresholdAlarm<Scalar>(threshold), name_(who), nominal_(std::move(nominal)), options_(options) {
     const Index n = nominal_.size();
     require(n >= 1, who, "nominal", "must have at least one component");
     require_finite(nominal_, who, "nominal");
@@ -136,22 +131,19 @@ class SequentialTest {
     skip_ = 0;
     holding_ = 0;
     reanchor_pending_ = false;
-    alarm_ = false;
+    this->clear_alarm();
   }
 
   std::string_view name_;  // the class's name, a string literal
   Vector nominal_;
   Vector inverse_scale_;
   Vector z_;  // the normalized value being evaluated
-  Scalar threshold_;
   SequentialTestOptions options_;
   Index skip_ = 0;  // values still to pass over before the next evaluation
   Index holding_ = 0;
-  Index alarms_ = 0;
   Index isolated_ = 0;
   int direction_ = 0;
   Scalar alarm_statistic_ = 0;
-  bool alarm_ = false;
   bool reanchor_pending_ = false;
 };
 

@@ -102,6 +102,32 @@ typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& m) {
 }
 }  // namespace detail
 
+/// Base of both regressor integrals, not used on its own: the types of their
+/// results, the period T and the transition \f$e^{AT}\f$ each computes, with the
+/// checks of (A, T) they share.
+template <typename Scalar, int NX, int NP>
+class RegressorIntegralBase {
+ public:
+  using StateMatrix = Eigen::Matrix<Scalar, NX, NX>;
+  using Regressor = Eigen::Matrix<Scalar, NX, NP>;
+  using Result = SampledRegressor<Scalar, NX, NP>;
+
+  /// \f$e^{AT}\f$.
+  [[nodiscard]] const StateMatrix& transition() const noexcept { return transition_; }
+  [[nodiscard]] Scalar period() const noexcept { return period_; }
+
+ protected:
+  /// A square and finite, T > 0; `who` names the integral in the errors.
+  RegressorIntegralBase(const StateMatrix& A, Scalar period, std::string_view who) : period_(period) {
+    detail::require_square(A, who, "A");
+    detail::require_finite(A, who, "A");
+    detail::require_positive(period, who, "period");
+  }
+
+  Scalar period_;
+  StateMatrix transition_;  // computed by the integral's constructor
+};
+
 /// \f$H_k\f$ and \f$\Psi_k\f$ of any regressor φ by adaptive Gauss–Kronrod quadrature (see file comment).
 ///
 /// Error control is global, as in QUADPACK's QAG: the panel with the largest
@@ -111,19 +137,16 @@ typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& m) {
 /// workspace allocated at construction (first use for dynamic sizes), hence
 /// `integrate` is not const and one object must not be used by two threads at once.
 template <typename Scalar, int NX, int NP>
-class RegressorIntegral {
+class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
+  using Base = RegressorIntegralBase<Scalar, NX, NP>;
+
  public:
-  using StateMatrix = Eigen::Matrix<Scalar, NX, NX>;
-  using Regressor = Eigen::Matrix<Scalar, NX, NP>;
-  using Result = SampledRegressor<Scalar, NX, NP>;
+  using typename Base::StateMatrix, typename Base::Regressor, typename Base::Result;
 
   /// \param A continuous-time dynamics (n × n), \param period sampling period T > 0.
   RegressorIntegral(const StateMatrix& A, Scalar period, RegressorIntegralOptions options = {})
-      : period_(period), options_(options) {
+      : Base(A, period, "RegressorIntegral"), options_(options) {
     constexpr std::string_view who = "RegressorIntegral";
-    detail::require_square(A, who, "A");
-    detail::require_finite(A, who, "A");
-    detail::require_positive(period, who, "period");
     detail::require(options.max_depth >= 0 && options.max_depth <= 40, who, "options.max_depth",
                     "must be in [0, 40]");
     detail::require(options.max_panels >= 1, who, "options.max_panels", "must be at least 1");
@@ -135,7 +158,7 @@ class RegressorIntegral {
     using Dynamic = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
     const Dynamic a = A;
     n_ = A.rows();
-    transition_ = matrix_exponential(Dynamic(a * period));
+    this->transition_ = matrix_exponential(Dynamic(a * period));
     levels_.resize(std::size_t(options.max_depth) + 1);
     Scalar h = period;
     for (Level& level : levels_) {
@@ -185,7 +208,7 @@ class RegressorIntegral {
       const Level& parent = levels_[std::size_t(left.depth)];
       ++left.depth;
       right.depth = left.depth;
-      right.start = left.start + std::ldexp(period_, -left.depth);
+      right.start = left.start + std::ldexp(this->period_, -left.depth);
       right.shift.noalias() = left.shift * parent.half;  // e^{−(a + h/2 − t₀)A}
       right.shift_norm = right.shift.cwiseAbs().rowwise().sum().maxCoeff();
       evaluate(phi, left, gauss);
@@ -195,16 +218,12 @@ class RegressorIntegral {
     }
     out.H.noalias() = first.shift * first.integral;
     for (std::size_t i = 1; i < count; ++i) out.H.noalias() += panels_[i].shift * panels_[i].integral;
-    out.Psi.noalias() = transition_ * out.H;
+    out.Psi.noalias() = this->transition_ * out.H;
     out.error_estimate = error;
     out.converged = error <= std::max(tolerance, roundoff_floor(count));
     out.panels = int(count);
     return out.converged;
   }
-
-  /// \f$e^{AT}\f$.
-  [[nodiscard]] const StateMatrix& transition() const noexcept { return transition_; }
-  [[nodiscard]] Scalar period() const noexcept { return period_; }
 
  private:
   struct Level {
@@ -234,7 +253,7 @@ class RegressorIntegral {
   void evaluate(const Phi& phi, Panel& panel, Regressor& gauss) const {
     using Rule = detail::GaussKronrod15;
     const Level& level = levels_[std::size_t(panel.depth)];
-    const Scalar half_width = std::ldexp(period_, -panel.depth) / 2;
+    const Scalar half_width = std::ldexp(this->period_, -panel.depth) / 2;
     Regressor term;
     Scalar magnitude = 0;
     for (std::size_t i = 0; i < 15; ++i) {
@@ -258,29 +277,25 @@ class RegressorIntegral {
                    difference <= Scalar(50) * std::numeric_limits<Scalar>::epsilon() * magnitude * half_width;
   }
 
-  Scalar period_;
   RegressorIntegralOptions options_;
   Scalar relative_tolerance_ = 0;
   Index n_ = 0;
-  StateMatrix transition_;
   std::vector<Level> levels_;
   std::vector<Panel> panels_;
 };
 
 /// \f$H_k\f$ and \f$\Psi_k\f$, exactly, for φ polynomial on each period (see file comment).
 template <typename Scalar, int NX, int NP>
-class PolynomialRegressorIntegral {
+class PolynomialRegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
+  using Base = RegressorIntegralBase<Scalar, NX, NP>;
+
  public:
-  using StateMatrix = Eigen::Matrix<Scalar, NX, NX>;
-  using Regressor = Eigen::Matrix<Scalar, NX, NP>;
-  using Result = SampledRegressor<Scalar, NX, NP>;
+  using typename Base::StateMatrix, typename Base::Regressor, typename Base::Result;
 
   /// \param degree highest power d of τ in \f$\varphi(t_k+\tau) = \sum_{j\le d}P_j\tau^j\f$.
-  PolynomialRegressorIntegral(const StateMatrix& A, Scalar period, int degree) : period_(period) {
+  PolynomialRegressorIntegral(const StateMatrix& A, Scalar period, int degree)
+      : Base(A, period, "PolynomialRegressorIntegral") {
     constexpr std::string_view who = "PolynomialRegressorIntegral";
-    detail::require_square(A, who, "A");
-    detail::require_finite(A, who, "A");
-    detail::require_positive(period, who, "period");
     detail::require(degree >= 0 && degree <= 16, who, "degree", "must be in [0, 16]");
     using Dynamic = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
     const Index n = A.rows();
@@ -295,7 +310,7 @@ class PolynomialRegressorIntegral {
     };
     const Dynamic forward = moments(Scalar(1));
     const Dynamic backward = moments(Scalar(-1));
-    transition_ = forward.leftCols(n);
+    this->transition_ = forward.leftCols(n);
     psi_moments_.resize(std::size_t(degree) + 1);
     h_moments_.resize(std::size_t(degree) + 1);
     // Ψ: ∫₀ᵀ e^{(T−τ)A} τ^j dτ = j!·(block j+1 of the forward row).
@@ -342,12 +357,8 @@ class PolynomialRegressorIntegral {
   }
 
   [[nodiscard]] int degree() const noexcept { return int(psi_moments_.size()) - 1; }
-  [[nodiscard]] const StateMatrix& transition() const noexcept { return transition_; }
-  [[nodiscard]] Scalar period() const noexcept { return period_; }
 
  private:
-  Scalar period_;
-  StateMatrix transition_;
   std::vector<StateMatrix> psi_moments_;  // ∫₀ᵀ e^{(T−τ)A} τ^j dτ
   std::vector<StateMatrix> h_moments_;    // ∫₀ᵀ e^{−τA} τ^j dτ
 };

@@ -30,14 +30,11 @@
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/polynomial.hpp>
-#include <adaptobs/design/spr_test.hpp>
+#include <adaptobs/observers/spr_observer_conditions.hpp>
 #include <adaptobs/observers/unified_adaptive_observer.hpp>
 
 #include <Eigen/Core>
 
-#include <algorithm>
-#include <limits>
-#include <optional>
 #include <string_view>
 #include <utility>
 
@@ -78,18 +75,13 @@ struct BastinGevers {
   }
 
   void check(const TransformedSystem<D>& so, const Sizes& sizes, bool time_invariant) const {
-    detail::require(time_invariant, name, "model",
-                    "must be time invariant (the SPR condition is on a transfer function)");
-    detail::require(sizes.ny == 1, name, "model", "must have a single output");
-    detail::require(detail::is_leading_identity(so.Co), name, "static_transform", "must give c_o = C T^-1 = e1^T");
+    detail::require_single_output_spr_form(so, sizes, time_invariant, name);
     const Index n = sizes.nx;
     detail::require(n == 1 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(n - 1, n - 1)), name, "static_transform",
                     "must give a Hurwitz A22 (form (5))");
     Eigen::Matrix<Scalar, D::nx, 1> gamma = Eigen::Matrix<Scalar, D::nx, 1>::Zero(n);
     gamma(0) = Scalar(1);
-    const typename D::StateMatrix closed = so.Ao - k * so.Co;
-    detail::require(strictly_positive_real(closed, gamma, so.Co).strictly_positive_real, name, "k",
-                    "must make c_o (sI - A_o + k c_o)^-1 e1 strictly positive real");
+    detail::require_spr_error_system(so, k, gamma, "e1", name);
   }
 };
 

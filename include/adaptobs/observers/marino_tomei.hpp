@@ -27,11 +27,13 @@
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/polynomial.hpp>
-#include <adaptobs/design/spr_test.hpp>
+#include <adaptobs/observers/spr_observer_conditions.hpp>
 #include <adaptobs/observers/unified_adaptive_observer.hpp>
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <limits>
 #include <string_view>
 #include <utility>
 
@@ -76,19 +78,14 @@ struct MarinoTomei {
   }
 
   void check(const TransformedSystem<D>& so, const Sizes& sizes, bool time_invariant) const {
-    detail::require(time_invariant, name, "model",
-                    "must be time invariant (the SPR condition is on a transfer function)");
-    detail::require(sizes.ny == 1, name, "model", "must have a single output");
-    detail::require(detail::is_leading_identity(so.Co), name, "static_transform", "must give c_o = C T^-1 = e1^T");
+    detail::require_single_output_spr_form(so, sizes, time_invariant, name);
     const Index n = sizes.nx;
     typename D::StateMatrix shift = D::StateMatrix::Zero(n, n);
     shift.diagonal(1).setOnes();
     const Scalar tol = Scalar(1e3) * std::numeric_limits<Scalar>::epsilon() * std::max(Scalar(1), so.Ao.cwiseAbs().maxCoeff());
     detail::require(n == 1 || (so.Ao.rightCols(n - 1) - shift.rightCols(n - 1)).cwiseAbs().maxCoeff() <= tol, name,
                     "static_transform", "must give the shift matrix A_o of form (7) (columns 2..n)");
-    const typename D::StateMatrix closed = so.Ao - k * so.Co;
-    detail::require(strictly_positive_real(closed, gamma, so.Co).strictly_positive_real, name, "k",
-                    "must make c_o (sI - A_o + k c_o)^-1 gamma strictly positive real");
+    detail::require_spr_error_system(so, k, gamma, "gamma", name);
   }
 
  private:

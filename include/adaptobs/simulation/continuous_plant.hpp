@@ -14,6 +14,7 @@
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/simulation/plant_state.hpp>
 
 #include <cstdint>
 #include <random>
@@ -51,8 +52,7 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
         rng_(options.seed) {
     constexpr std::string_view who = "ContinuousLinearPlant";
     const Sizes s = model_.sizes();
-    detail::require_shape(eta_, s.nx, 1, who, "eta0");
-    detail::require_shape(theta_, s.np, 1, who, "theta");
+    detail::require_plant_start(eta_, s.nx, theta_, s.np, who, "eta0");
     detail::require_positive(options.period, who, "options.period");
     detail::require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
     detail::require(options.output_noise >= 0, who, "options.output_noise", "must be non-negative");

@@ -10,29 +10,32 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/simulation/plant_state.hpp>
 
 #include <concepts>
 #include <utility>
 
 namespace adaptobs {
 
+/// The plant of the file comment; its sample of step k is \f$(u_k, y_k)\f$.
 template <StateSpace D, class TransitionFn, class InputFn, class ParameterFn>
   requires std::invocable<const TransitionFn&, const typename D::State&, const typename D::Input&,
                           const typename D::Parameters&> &&
            std::invocable<InputFn&, Index> && std::invocable<const ParameterFn&, Index>
-class DiscreteNonlinearPlant : public SizedBy<D> {
+class DiscreteNonlinearPlant : public DiscretePlantState<D, InputOutputSample<D>> {
+  using Base = DiscretePlantState<D, InputOutputSample<D>>;
+  using Base::x_, Base::theta_, Base::sample_, Base::k_;
+
  public:
-  using typename SizedBy<D>::Scalar, typename SizedBy<D>::State, typename SizedBy<D>::Parameters;
-  using Sample = InputOutputSample<D>;
+  using typename Base::Scalar, typename Base::State, typename Base::Parameters;
 
   DiscreteNonlinearPlant(TransitionFn transition, typename D::OutputMatrix C, State x0, InputFn input,
                          ParameterFn parameters_at, Scalar sampling_period = Scalar(1))
-      : transition_(std::move(transition)),
+      : Base(std::move(x0), sampling_period),
+        transition_(std::move(transition)),
         C_(std::move(C)),
-        x_(std::move(x0)),
         input_(std::move(input)),
-        parameters_at_(std::move(parameters_at)),
-        period_(sampling_period) {
+        parameters_at_(std::move(parameters_at)) {
     constexpr std::string_view who = "DiscreteNonlinearPlant";
     detail::require_shape(C_, C_.rows(), x_.rows(), who, "C");
     detail::require_finite(C_, who, "C");
@@ -40,14 +43,6 @@ class DiscreteNonlinearPlant : public SizedBy<D> {
     detail::require_positive(sampling_period, who, "sampling_period");
     make_sample();
   }
-
-  /// Measured sample of the current step: \f$(u_k, y_k)\f$.
-  [[nodiscard]] const Sample& sample() const noexcept { return sample_; }
-  /// True state \f$x_k\f$ and parameters \f$\theta_k\f$.
-  [[nodiscard]] const State& state() const noexcept { return x_; }
-  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
-  [[nodiscard]] Index step() const noexcept { return k_; }
-  [[nodiscard]] double time() const noexcept { return static_cast<double>(k_) * static_cast<double>(period_); }
 
   /// Moves to step k + 1.
   void advance() {
@@ -65,13 +60,8 @@ class DiscreteNonlinearPlant : public SizedBy<D> {
 
   TransitionFn transition_;
   typename D::OutputMatrix C_;
-  State x_;
   InputFn input_;
   ParameterFn parameters_at_;
-  Scalar period_;
-  Parameters theta_;
-  Sample sample_;
-  Index k_ = 0;
 };
 
 /// `make_discrete_nonlinear_plant<D>(f, C, x0, input, parameters_at)`: deduces the callables' types.

@@ -10,6 +10,7 @@
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/simulation/plant_state.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -29,40 +30,32 @@ struct PlantNoise {
   std::uint64_t seed = 1;
 };
 
+/// The plant of the file comment; its sample of step k is \f$(u_k, y_k, \Psi_k)\f$.
 template <DiscreteModel Model, class InputFn, class RegressorFn>
-class DiscreteLinearPlant : public SizedBy<typename Model::Dims> {
+class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, DiscreteSample<typename Model::Dims>> {
+  using Base = DiscretePlantState<typename Model::Dims, DiscreteSample<typename Model::Dims>>;
+  using Base::x_, Base::theta_, Base::sample_, Base::k_;
+
  public:
-  using Dims = typename Model::Dims;
-  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters;
-  using Sample = DiscreteSample<Dims>;
+  using typename Base::Scalar, typename Base::State, typename Base::Parameters;
 
   DiscreteLinearPlant(Model model, State x0, Parameters theta, InputFn input, RegressorFn regressor,
                       PlantNoise<Scalar> noise = {}, Scalar sampling_period = Scalar(1))
-      : model_(std::move(model)),
-        x_(std::move(x0)),
-        theta_(std::move(theta)),
+      : Base(std::move(x0), std::move(theta), sampling_period),
+        model_(std::move(model)),
         input_(std::move(input)),
         regressor_(std::move(regressor)),
         noise_(noise),
-        period_(sampling_period),
         rng_(noise.seed) {
     constexpr std::string_view who = "DiscreteLinearPlant";
     const Sizes s = model_.sizes();
-    detail::require_shape(x_, s.nx, 1, who, "x0");
-    detail::require_shape(theta_, s.np, 1, who, "theta");
+    detail::require_plant_start(x_, s.nx, theta_, s.np, who, "x0");
     detail::require(noise.output >= 0 && noise.state >= 0 && noise.parameter >= 0, who, "noise",
                     "standard deviations must be non-negative");
     detail::require_positive(sampling_period, who, "sampling_period");
     make_sample();
   }
 
-  /// Measured sample of the current step: \f$(u_k, y_k, \Psi_k)\f$.
-  [[nodiscard]] const Sample& sample() const noexcept { return sample_; }
-  /// True state \f$x_k\f$ and parameters \f$\theta_k\f$.
-  [[nodiscard]] const State& state() const noexcept { return x_; }
-  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
-  [[nodiscard]] Index step() const noexcept { return k_; }
-  [[nodiscard]] double time() const noexcept { return static_cast<double>(k_) * static_cast<double>(period_); }
   [[nodiscard]] const Model& model() const noexcept { return model_; }
 
   /// Sets \f$\theta\f$ from this step on, e.g. to inject a fault; the current
@@ -108,15 +101,10 @@ class DiscreteLinearPlant : public SizedBy<typename Model::Dims> {
   }
 
   Model model_;
-  State x_;
-  Parameters theta_;
   InputFn input_;
   RegressorFn regressor_;
   PlantNoise<Scalar> noise_;
-  Scalar period_;
   std::mt19937_64 rng_;
-  Sample sample_;
-  Index k_ = 0;
 };
 
 }  // namespace adaptobs

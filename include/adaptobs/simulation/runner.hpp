@@ -13,6 +13,7 @@
 #include <adaptobs/core/observer.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/simulation/output_loss.hpp>
+#include <adaptobs/simulation/plant.hpp>
 #include <adaptobs/simulation/series_table.hpp>
 
 #include <array>
@@ -23,19 +24,6 @@
 #include <utility>
 
 namespace adaptobs {
-
-/// A simulated system: current truth, current measured sample, and a way forward.
-template <class P>
-concept Plant = requires(P& p, const P& cp) {
-  typename P::Sample;
-  { cp.sample() } -> std::convertible_to<const typename P::Sample&>;
-  cp.sample().u;
-  cp.sample().y;
-  cp.state();
-  cp.parameters();
-  { cp.time() } -> std::convertible_to<double>;
-  p.advance();
-};
 
 /// An observer taking part in a simulation, and the suffix of its CSV columns
 /// (empty for the primary observer).

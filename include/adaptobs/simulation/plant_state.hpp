@@ -1,0 +1,57 @@
+#pragma once
+/// \file
+/// What the simulated plants share: the check of their initial true state and
+/// parameters, and the trajectory of a discrete-time plant with its accessors.
+
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <string_view>
+#include <utility>
+
+namespace adaptobs {
+
+namespace detail {
+
+/// The initial true state and parameters of a simulated plant: columns of nx
+/// and np entries, named in the error as given (the state's name differs
+/// between the discrete and the continuous plants).
+template <class X, class Theta>
+void require_plant_start(const Eigen::DenseBase<X>& x0, Index nx, const Eigen::DenseBase<Theta>& theta, Index np,
+                         std::string_view who, std::string_view x_name) {
+  require_shape(x0, nx, 1, who, x_name);
+  require_shape(theta, np, 1, who, "theta");
+}
+
+}  // namespace detail
+
+/// Base of a simulated discrete-time plant, not used on its own: its state
+/// \f$x_k\f$, parameters \f$\theta_k\f$, step k, sampling period and the sample
+/// it measures at step k. The plant moves them on and fills the sample.
+template <StateSpace D, class SampleType>
+class DiscretePlantState : public SizedBy<D> {
+ public:
+  using Sample = SampleType;
+
+  /// Measured sample of the current step.
+  [[nodiscard]] const Sample& sample() const noexcept { return sample_; }
+  /// True state \f$x_k\f$ and parameters \f$\theta_k\f$.
+  [[nodiscard]] const typename D::State& state() const noexcept { return x_; }
+  [[nodiscard]] const typename D::Parameters& parameters() const noexcept { return theta_; }
+  [[nodiscard]] Index step() const noexcept { return k_; }
+  [[nodiscard]] double time() const noexcept { return static_cast<double>(k_) * static_cast<double>(period_); }
+
+ protected:
+  DiscretePlantState(typename D::State x0, typename D::Parameters theta, typename D::Scalar period)
+      : x_(std::move(x0)), theta_(std::move(theta)), period_(period) {}
+  /// For a plant that sets \f$\theta_k\f$ itself before each sample.
+  DiscretePlantState(typename D::State x0, typename D::Scalar period) : x_(std::move(x0)), period_(period) {}
+
+  typename D::State x_;
+  typename D::Parameters theta_;
+  typename D::Scalar period_;
+  Sample sample_;
+  Index k_ = 0;
+};
+
+}  // namespace adaptobs
