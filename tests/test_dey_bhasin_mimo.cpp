@@ -12,7 +12,6 @@
 #include <adaptobs/design/stability.hpp>
 #include <adaptobs/observers/dey_bhasin.hpp>
 
-#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "models/dey_bhasin.hpp"
@@ -83,8 +82,8 @@ TEST(DeyBhasinExample, FirstBlockOfAIsReadAsZeroPointFour) {
     controllability.middleCols<2>(2 * k) = power * mimo::B();
     power = a * power;
   }
-  EXPECT_EQ(Eigen::FullPivLU<Eigen::MatrixXd>(observability).rank(), 6);
-  EXPECT_EQ(Eigen::FullPivLU<Eigen::MatrixXd>(controllability).rank(), 6);
+  EXPECT_EQ(adaptobs::testing::lu_rank(observability), 6);
+  EXPECT_EQ(adaptobs::testing::lu_rank(controllability), 6);
   // p's first entry a₁ − f₁ is exactly 0: normalizing p̂ by p is undefined, â by a is not.
   const auto observer = mimo::make_observer();
   EXPECT_EQ(true_p(observer)(0), 0.0);
@@ -466,7 +465,7 @@ TEST(DeyBhasin, Theorem5Step26FailsButTheWeightedNormStepHolds) {
   const Matrix6 f = observer.filters().transition_matrix();
   Eigen::Matrix<double, 6, 1> free_error = mimo::x0() - mimo::x_hat0();  // F^t x̃_0
   const auto weighted = [&](const Vector15& e, const Eigen::MatrixXd& g) {
-    return std::sqrt(e.dot(g.llt().solve(Eigen::VectorXd(e))));
+    return std::sqrt(e.dot(adaptobs::testing::solve_by_llt(g, Eigen::VectorXd(e)).col(0)));
   };
   Index violations_26 = 0;
   ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);  // t = 0: no adaptation
@@ -513,11 +512,10 @@ TEST(DeyBhasin, WithoutResettingEqualsBatchLeastSquares18) {
     }
     plant.advance();
   }
-  const Eigen::LLT<Eigen::MatrixXd> factor(information);
-  const Vector15 batch = factor.solve(rhs);
+  const Vector15 batch = adaptobs::testing::solve_by_llt(information, rhs).col(0);
   EXPECT_MATRIX_NEAR(observer.parameters(), batch, 1e-9 * batch.norm(), 0.0);
-  EXPECT_MATRIX_NEAR(observer.law().covariance(), Matrix15(factor.solve(Eigen::MatrixXd::Identity(15, 15))),
-                     1e-9 * observer.law().covariance().norm(), 0.0);
+  const Matrix15 inverse = adaptobs::testing::solve_by_llt(information, Eigen::MatrixXd::Identity(15, 15));
+  EXPECT_MATRIX_NEAR(observer.law().covariance(), inverse, 1e-9 * observer.law().covariance().norm(), 0.0);
 }
 
 // --- Implementation properties ------------------------------------------------------

@@ -9,8 +9,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/QR>
 
 #include <algorithm>
 #include <cmath>
@@ -43,7 +41,7 @@ TEST(MatrixExponential, DiagonalizableMatchesSpectralForm) {
   RandomMatrices rng(12);
   for (double scale : {1e-3, 0.1, 1.0, 4.0, 20.0}) {
     // Symmetric A = Q D Qᵀ with Q orthogonal: e^A = Q e^D Qᵀ, well conditioned.
-    const Eigen::Matrix<double, 5, 5> q = rng.uniform<Eigen::Matrix<double, 5, 5>>().householderQr().householderQ();
+    const Eigen::Matrix<double, 5, 5> q = adaptobs::testing::random_orthogonal(rng, 5);
     const Eigen::Matrix<double, 5, 1> d = rng.uniform<Eigen::Matrix<double, 5, 1>>(5, 1, -scale, scale);
     const Eigen::Matrix<double, 5, 5> a = q * d.asDiagonal() * q.transpose();
     const Eigen::Matrix<double, 5, 5> expected = q * d.array().exp().matrix().asDiagonal() * q.transpose();
@@ -165,9 +163,7 @@ TEST(MatrixExponential, BadlyScaledSimilarityIsBalanced) {
   // D = diag(1, s, s²) its entries span up to 1e32 in magnitude.
   Eigen::Matrix3d sym;
   sym << -2, 1, 0.5, 1, -3, 1, 0.5, 1, -1;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(sym);
-  const Eigen::Matrix3d e_sym =
-      eig.eigenvectors() * eig.eigenvalues().array().exp().matrix().asDiagonal() * eig.eigenvectors().transpose();
+  const Eigen::Matrix3d e_sym = adaptobs::testing::symmetric_exponential(sym);
   for (double s : {1e4, 1e8, 1e16}) {
     const Eigen::Vector3d d(1, s, s * s);
     const Eigen::Matrix3d a = d.asDiagonal() * sym * d.cwiseInverse().asDiagonal();

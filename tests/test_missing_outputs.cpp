@@ -12,7 +12,6 @@
 #include <adaptobs/observers/guyader_zhang.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 
-#include <Eigen/Cholesky>
 
 #include "models/satellite.hpp"
 #include "support/eigen_testing.hpp"
@@ -334,7 +333,7 @@ TEST(AugmentedKalmanMissing, MaskedStepIsTheCorrectionWithThePresentChannelsOnly
     Eigen::VectorXd xi(6);
     xi << filter.state(), filter.parameters();
     if (m > 0) {
-      const Eigen::MatrixXd gain = (h * p * h.transpose() + r_s).llt().solve(h * p).transpose();  // P symmetric
+      const Eigen::MatrixXd gain = adaptobs::testing::solve_by_llt(h * p * h.transpose() + r_s, h * p).transpose();  // P symmetric
       xi += gain * (y - c * filter.state());
       const Eigen::MatrixXd joseph = Eigen::MatrixXd::Identity(6, 6) - gain * h;
       p = (joseph * p * joseph.transpose() + gain * r_s * gain.transpose()).eval();

@@ -12,7 +12,6 @@
 
 #include "support/eigen_testing.hpp"
 
-#include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,6 +25,7 @@ namespace {
 
 using adaptobs::testing::configuration_error_of;
 using Matrix = Eigen::MatrixXd;
+using adaptobs::testing::solve_by_ldlt;
 
 Matrix rows(int r, int c, std::initializer_list<double> entries) {
   Matrix m(r, c);
@@ -55,13 +55,13 @@ struct RiccatiCase {
 // the CARE's by the norms of their factors), computed here with LDLT instead of LLT.
 double dare_residual(const Matrix& X, const RiccatiCase& c) {
   const Matrix btxa = c.B.transpose() * X * c.A;
-  const Matrix correction = btxa.transpose() * (c.R + c.B.transpose() * X * c.B).ldlt().solve(btxa);
+  const Matrix correction = btxa.transpose() * solve_by_ldlt(c.R + c.B.transpose() * X * c.B, btxa);
   const Matrix ata = c.A.transpose() * X * c.A;
   return (ata - correction + c.Q - X).norm() / (X.norm() + ata.norm() + correction.norm() + c.Q.norm());
 }
 
 double care_residual(const Matrix& X, const RiccatiCase& c) {
-  const Matrix g = c.B * c.R.ldlt().solve(c.B.transpose());
+  const Matrix g = c.B * solve_by_ldlt(c.R, c.B.transpose());
   const Matrix atx = c.A.transpose() * X;
   return (atx + atx.transpose() - X * g * X + c.Q).norm() /
          (2 * c.A.norm() * X.norm() + g.norm() * X.squaredNorm() + c.Q.norm());
@@ -73,12 +73,12 @@ void report(const RiccatiCase& c, const std::string& outcome) { std::printf("  %
 
 // The closed-loop figure of a solution, computed here with eigenvalues.
 double dare_closed_loop_radius(const Matrix& X, const RiccatiCase& c) {
-  const Matrix gain = (c.R + c.B.transpose() * X * c.B).ldlt().solve(c.B.transpose() * X * c.A);
+  const Matrix gain = solve_by_ldlt(c.R + c.B.transpose() * X * c.B, c.B.transpose() * X * c.A);
   return adaptobs::spectral_radius(Matrix(c.A - c.B * gain));
 }
 
 double care_closed_loop_abscissa(const Matrix& X, const RiccatiCase& c) {
-  return adaptobs::spectral_abscissa(Matrix(c.A - c.B * c.R.ldlt().solve(c.B.transpose() * X)));
+  return adaptobs::spectral_abscissa(Matrix(c.A - c.B * solve_by_ldlt(c.R, c.B.transpose() * X)));
 }
 
 /// How the outcome of one kind of equation is checked: the residual computed
@@ -190,7 +190,7 @@ std::vector<RiccatiCase> darex_collection() {
     const Matrix d = rows(2, 2, {1, 0, 1, 0});
     const Matrix r = Matrix::Identity(2, 2) + d.transpose() * d;
     const Matrix s = c.transpose() * d;
-    const Matrix r_inv_st = r.ldlt().solve(s.transpose());
+    const Matrix r_inv_st = solve_by_ldlt(r, s.transpose());
     Matrix q = c.transpose() * c - s * r_inv_st;
     q = 0.5 * (q + q.transpose()).eval();
     cases.push_back({"DAREX 10 (cross term removed)", a - b * r_inv_st, b, q, r});

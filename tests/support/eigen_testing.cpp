@@ -3,6 +3,9 @@
 
 #include "support/eigen_testing.hpp"
 
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <Eigen/QR>
 
 #include <cmath>
@@ -42,5 +45,16 @@ Eigen::MatrixXd random_orthogonal(RandomMatrices& rng, Eigen::Index n) {
   return Eigen::HouseholderQR<Eigen::MatrixXd>(rng.uniform<Eigen::MatrixXd>(n, n)).householderQ() *
          Eigen::MatrixXd::Identity(n, n);
 }
+
+Eigen::MatrixXd solve_by_ldlt(const Eigen::MatrixXd& m, const Eigen::MatrixXd& b) { return m.ldlt().solve(b); }
+
+Eigen::MatrixXd solve_by_llt(const Eigen::MatrixXd& m, const Eigen::MatrixXd& b) { return m.llt().solve(b); }
+
+Eigen::MatrixXd symmetric_exponential(const Eigen::MatrixXd& m) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(m);
+  return eig.eigenvectors() * eig.eigenvalues().array().exp().matrix().asDiagonal() * eig.eigenvectors().transpose();
+}
+
+Eigen::Index lu_rank(const Eigen::MatrixXd& m) { return Eigen::FullPivLU<Eigen::MatrixXd>(m).rank(); }
 
 }  // namespace adaptobs::testing

@@ -84,6 +84,16 @@ class RandomMatrices {
 /// (compiled once, eigen_testing.cpp, so that no test instantiates a QR for it).
 Eigen::MatrixXd random_orthogonal(RandomMatrices& rng, Eigen::Index n);
 
+/// \f$M^{-1}B\f$ for a symmetric M, by Eigen's LDLT (semidefinite M) or LLT
+/// (positive definite M): the reference solves of the tests, compiled once.
+Eigen::MatrixXd solve_by_ldlt(const Eigen::MatrixXd& m, const Eigen::MatrixXd& b);
+Eigen::MatrixXd solve_by_llt(const Eigen::MatrixXd& m, const Eigen::MatrixXd& b);
+/// \f$e^M = Qe^\Lambda Q^T\f$ of a symmetric M from Eigen's symmetric
+/// eigendecomposition: a reference independent of any matrix exponential.
+Eigen::MatrixXd symmetric_exponential(const Eigen::MatrixXd& m);
+/// Numerical rank by Eigen's full-pivoting LU with its default threshold.
+Eigen::Index lu_rank(const Eigen::MatrixXd& m);
+
 /// Least-squares fit of log(e_k) = c + k log(ρ) over the given samples;
 /// returns the geometric rate ρ (ρ < 1: the sequence decays geometrically).
 inline double fit_geometric_rate(const std::vector<double>& errors) {
