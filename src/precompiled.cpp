@@ -6,6 +6,7 @@
 #define ADAPTOBS_INSTANTIATE template
 
 #include <adaptobs/core/matrix_exponential.hpp>
+#include <adaptobs/design/canonical_forms.hpp>
 #include <adaptobs/design/care.hpp>
 #include <adaptobs/design/dare.hpp>
 #include <adaptobs/design/dense_eigenvalues.hpp>
@@ -13,6 +14,7 @@
 #include <adaptobs/design/guiro_gains.hpp>
 #include <adaptobs/design/lyapunov.hpp>
 #include <adaptobs/design/pole_placement.hpp>
+#include <adaptobs/design/positive_real.hpp>
 #include <adaptobs/design/power_bound.hpp>
 
 #ifndef ADAPTOBS_PRECOMPILED

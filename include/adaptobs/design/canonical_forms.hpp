@@ -20,7 +20,9 @@
 ///   \f$(A_{22} + \alpha I, A_{12})\f$, so every eigenvalue has real part below −α.
 ///   ((A, C) observable ⇔ \f$(A_{22}, A_{12})\f$ observable.) K removes the first m columns.
 
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/care.hpp>
@@ -32,44 +34,53 @@
 
 #include <cmath>
 #include <optional>
+#include <string_view>
 
 namespace adaptobs {
 
 namespace detail {
+/// A static transformation on run-time sizes: T and the injection K (n × m)
+/// that removes the first m columns of \f$TAT^{-1}\f$.
+template <typename Scalar>
+struct DenseStaticTransform {
+  DynamicMatrix<Scalar> T, K;
+};
+
+/// The fixed- or run-time-size transformation of `D`.
+template <StateSpace D>
+[[nodiscard]] StaticTransform<D> to_static_transform(const DenseStaticTransform<typename D::Scalar>& t) {
+  return StaticTransform<D>(typename D::StateMatrix(t.T), typename D::GainMatrix(t.K));
+}
+
 // Columns spanning ker C (orthonormal), from a QR factorization of Cᵀ.
 template <typename Scalar>
-Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> kernel_basis(
-    const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& c, std::string_view who) {
+DynamicMatrix<Scalar> kernel_basis(const DynamicMatrix<Scalar>& c, std::string_view who) {
   const Index n = c.cols(), m = c.rows();
-  const Eigen::ColPivHouseholderQR<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> qr(c.transpose());
+  const Eigen::ColPivHouseholderQR<DynamicMatrix<Scalar>> qr(c.transpose());
   require(qr.rank() == m, who, "C", "must have full row rank");
-  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> q =
-      qr.householderQ() * Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Identity(n, n);
+  const DynamicMatrix<Scalar> q = qr.householderQ() * DynamicMatrix<Scalar>::Identity(n, n);
   return q.rightCols(n - m);
 }
 
-template <StateSpace D, class Matrix>
-StaticTransform<D> transform_with_injection_of_first_columns(const Matrix& t, const Matrix& a, Index m) {
-  const Eigen::FullPivLU<Matrix> lu(t);
-  const Matrix tat = t * a * lu.inverse();
-  return StaticTransform<D>(typename D::StateMatrix(t), typename D::GainMatrix(tat.leftCols(m)));
+template <typename Scalar>
+DenseStaticTransform<Scalar> transform_with_injection_of_first_columns(const DynamicMatrix<Scalar>& t,
+                                                                       const DynamicMatrix<Scalar>& a, Index m) {
+  const Eigen::FullPivLU<DynamicMatrix<Scalar>> lu(t);
+  const DynamicMatrix<Scalar> tat = t * a * lu.inverse();
+  return {t, tat.leftCols(m)};
 }
-}  // namespace detail
 
-/// Transform to the form (5) of Algorithm 1 with \f$\det(sI - A_{22}) = \nu(s)\f$
-/// (`zeros`: monic, degree n − 1, Hurwitz). `kernel` (n × (n−1)), when given,
-/// chooses the basis of ker c used for the last columns of \f$T^{-1}\f$.
-template <StateSpace D, class DA, class DC>
-[[nodiscard]] StaticTransform<D> bastin_gevers_form(
-    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Polynomial<typename D::Scalar>& zeros,
-    const std::optional<Eigen::Matrix<typename D::Scalar, Eigen::Dynamic, Eigen::Dynamic>>& kernel = std::nullopt) {
-  using Scalar = typename D::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+// The forms on run-time sizes, one instance per scalar type (compiled once in
+// adaptobs::precompiled); the templates below check, copy and size the result.
+template <typename Scalar>
+[[nodiscard]] DenseStaticTransform<Scalar> bastin_gevers_form_dense(
+    const DynamicMatrix<Scalar>& a, const DynamicMatrix<Scalar>& cc, const Polynomial<Scalar>& zeros,
+    const std::optional<DynamicMatrix<Scalar>>& kernel) {
+  using Matrix = DynamicMatrix<Scalar>;
   constexpr std::string_view who = "bastin_gevers_form";
-  const Index n = detail::require_single_output_pair(A, c, who);
-  detail::require(zeros.size() == n && zeros(0) == Scalar(1), who, "zeros", "must be monic of degree n - 1");
-  detail::require(n == 1 || is_hurwitz_polynomial(zeros), who, "zeros", "must be Hurwitz (A22 is the zero dynamics)");
-  const Matrix a = A, cc = c;
+  const Index n = require_single_output_pair(a, cc, who);
+  require(zeros.size() == n && zeros(0) == Scalar(1), who, "zeros", "must be monic of degree n - 1");
+  require(n == 1 || is_hurwitz_polynomial(zeros), who, "zeros", "must be Hurwitz (A22 is the zero dynamics)");
   // Rows c B_k of the Faddeev–LeVerrier adjugate: C adj(sI − A) v has coefficients M v.
   const Polynomial<Scalar> den = characteristic_polynomial(a);
   Matrix m(n, n), bk = Matrix::Identity(n, n);
@@ -79,36 +90,91 @@ template <StateSpace D, class DA, class DC>
     bk.diagonal().array() += den(k + 1);
   }
   const Eigen::FullPivLU<Matrix> lu(m);
-  detail::require(lu.isInvertible(), who, "A, c", "must be an observable pair");
+  require(lu.isInvertible(), who, "A, c", "must be an observable pair");
   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> v = lu.solve(zeros);
-  Matrix w = kernel ? *kernel : detail::kernel_basis<Scalar>(cc, who);
-  detail::require_shape(w, n, n - 1, who, "kernel");
-  detail::require((cc * w).cwiseAbs().maxCoeff() <= Scalar(1e-10) * std::max(Scalar(1), w.cwiseAbs().maxCoeff()), who,
-                  "kernel", "must span the kernel of c");
+  Matrix w = kernel ? *kernel : kernel_basis<Scalar>(cc, who);
+  require_shape(w, n, n - 1, who, "kernel");
+  require((cc * w).cwiseAbs().maxCoeff() <= Scalar(1e-10) * std::max(Scalar(1), w.cwiseAbs().maxCoeff()), who,
+          "kernel", "must span the kernel of c");
   Matrix t_inv(n, n);
   t_inv << v, w;
   const Eigen::FullPivLU<Matrix> t_lu(t_inv);
-  detail::require(t_lu.isInvertible(), who, "kernel", "must have independent columns");
-  return detail::transform_with_injection_of_first_columns<D>(Matrix(t_lu.inverse()), a, 1);
+  require(t_lu.isInvertible(), who, "kernel", "must have independent columns");
+  return transform_with_injection_of_first_columns<Scalar>(Matrix(t_lu.inverse()), a, 1);
 }
 
-/// Transform to the form (7) of Algorithm 2: \f$c_o = e_1^T\f$, \f$A_o = S\f$ (shift).
-template <StateSpace D, class DA, class DC>
-[[nodiscard]] StaticTransform<D> marino_tomei_form(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c) {
-  using Scalar = typename D::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+template <typename Scalar>
+[[nodiscard]] DenseStaticTransform<Scalar> marino_tomei_form_dense(const DynamicMatrix<Scalar>& A,
+                                                                   const DynamicMatrix<Scalar>& c) {
+  using Matrix = DynamicMatrix<Scalar>;
   constexpr std::string_view who = "marino_tomei_form";
-  const Index n = detail::require_single_output_pair(A, c, who);
+  const Index n = require_single_output_pair(A, c, who);
   const Polynomial<Scalar> a = characteristic_polynomial(A);
   Matrix canonical = Matrix::Zero(n, n);
   canonical.diagonal(1).setOnes();
   canonical.col(0) = -a.tail(n);
   Matrix e1 = Matrix::Zero(1, n);
   e1(0, 0) = Scalar(1);
-  const Eigen::FullPivLU<Matrix> o(observability_matrix(A, c));
-  detail::require(o.isInvertible(), who, "A, c", "must be an observable pair");
-  const Matrix t = observability_matrix(canonical, e1).fullPivLu().solve(observability_matrix(A, c));
-  return StaticTransform<D>(typename D::StateMatrix(t), typename D::GainMatrix(-a.tail(n)));
+  const Matrix o = observability_matrix(A, c);
+  const Eigen::FullPivLU<Matrix> o_lu(o);
+  require(o_lu.isInvertible(), who, "A, c", "must be an observable pair");
+  return {observability_matrix(canonical, e1).fullPivLu().solve(o), -a.tail(n)};
+}
+
+template <typename Scalar>
+[[nodiscard]] DenseStaticTransform<Scalar> besancon_form_dense(const DynamicMatrix<Scalar>& a,
+                                                               const DynamicMatrix<Scalar>& cc, Scalar decay) {
+  using Matrix = DynamicMatrix<Scalar>;
+  constexpr std::string_view who = "besancon_form";
+  require_square(a, who, "A");
+  const Index n = a.rows(), m = cc.rows();
+  require_shape(cc, m, n, who, "C");
+  require(decay >= 0 && std::isfinite(decay), who, "decay", "must be non-negative");
+  Matrix t0(n, n);
+  t0 << cc, kernel_basis<Scalar>(cc, who).transpose();
+  const Matrix at = t0 * a * t0.inverse();
+  const Index r = n - m;
+  Matrix t = t0;
+  if (r > 0) {
+    const Matrix a12 = at.topRightCorner(m, r);
+    const Matrix a22 = at.bottomRightCorner(r, r) + decay * Matrix::Identity(r, r);
+    const Eigen::FullPivLU<Matrix> obs(observability_matrix(a22, a12));
+    require(obs.rank() == r, who, "A, C", "must be an observable pair");
+    const Matrix x = kalman_bucy_gain(a22, a12, Matrix::Identity(r, r), Matrix::Identity(m, m)).K;
+    Matrix left = Matrix::Identity(n, n);
+    left.bottomLeftCorner(r, m) = -x;
+    t = left * t0;
+  }
+  return transform_with_injection_of_first_columns<Scalar>(t, a, m);
+}
+
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE DenseStaticTransform<double> bastin_gevers_form_dense<double>(
+    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const Polynomial<double>&,
+    const std::optional<DynamicMatrix<double>>&);
+ADAPTOBS_INSTANTIATE DenseStaticTransform<double> marino_tomei_form_dense<double>(const DynamicMatrix<double>&,
+                                                                                  const DynamicMatrix<double>&);
+ADAPTOBS_INSTANTIATE DenseStaticTransform<double> besancon_form_dense<double>(const DynamicMatrix<double>&,
+                                                                              const DynamicMatrix<double>&, double);
+#endif
+}  // namespace detail
+
+/// Transform to the form (5) of Algorithm 1 with \f$\det(sI - A_{22}) = \nu(s)\f$
+/// (`zeros`: monic, degree n − 1, Hurwitz). `kernel` (n × (n−1)), when given,
+/// chooses the basis of ker c used for the last columns of \f$T^{-1}\f$.
+template <StateSpace D, class DA, class DC>
+[[nodiscard]] StaticTransform<D> bastin_gevers_form(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Polynomial<typename D::Scalar>& zeros,
+    const std::optional<Eigen::Matrix<typename D::Scalar, Eigen::Dynamic, Eigen::Dynamic>>& kernel = std::nullopt) {
+  return detail::to_static_transform<D>(
+      detail::bastin_gevers_form_dense<typename D::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(c), zeros, kernel));
+}
+
+/// Transform to the form (7) of Algorithm 2: \f$c_o = e_1^T\f$, \f$A_o = S\f$ (shift).
+template <StateSpace D, class DA, class DC>
+[[nodiscard]] StaticTransform<D> marino_tomei_form(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c) {
+  return detail::to_static_transform<D>(
+      detail::marino_tomei_form_dense<typename D::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(c)));
 }
 
 /// Transform to the form (8) of Algorithm 3 for a constant (A, C) with m outputs:
@@ -117,30 +183,8 @@ template <StateSpace D, class DA, class DC>
 template <StateSpace D, class DA, class DC>
 [[nodiscard]] StaticTransform<D> besancon_form(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
                                                typename D::Scalar decay = 1) {
-  using Scalar = typename D::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  constexpr std::string_view who = "besancon_form";
-  detail::require_square(A, who, "A");
-  const Index n = A.rows(), m = C.rows();
-  detail::require_shape(C, m, n, who, "C");
-  detail::require(decay >= 0 && std::isfinite(decay), who, "decay", "must be non-negative");
-  const Matrix a = A, cc = C;
-  Matrix t0(n, n);
-  t0 << cc, detail::kernel_basis<Scalar>(cc, who).transpose();
-  const Matrix at = t0 * a * t0.inverse();
-  const Index r = n - m;
-  Matrix t = t0;
-  if (r > 0) {
-    const Matrix a12 = at.topRightCorner(m, r);
-    const Matrix a22 = at.bottomRightCorner(r, r) + decay * Matrix::Identity(r, r);
-    const Eigen::FullPivLU<Matrix> obs(observability_matrix(a22, a12));
-    detail::require(obs.rank() == r, who, "A, C", "must be an observable pair");
-    const Matrix x = kalman_bucy_gain(a22, a12, Matrix::Identity(r, r), Matrix::Identity(m, m)).K;
-    Matrix left = Matrix::Identity(n, n);
-    left.bottomLeftCorner(r, m) = -x;
-    t = left * t0;
-  }
-  return detail::transform_with_injection_of_first_columns<D>(t, a, m);
+  return detail::to_static_transform<D>(
+      detail::besancon_form_dense<typename D::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C), decay));
 }
 
 }  // namespace adaptobs

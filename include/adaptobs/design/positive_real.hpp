@@ -18,6 +18,8 @@
 /// \f$c\gamma > 0\f$ and \f$N_\gamma\f$ is Hurwitz; placing the poles at
 /// \f$(s + \lambda)N_\gamma(s)/(c\gamma)\f$ gives \f$G = c\gamma/(s + \lambda)\f$, SPR for every λ > 0.
 
+#include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/care.hpp>
 #include <adaptobs/design/polynomial.hpp>
@@ -34,6 +36,7 @@
 #include <complex>
 #include <limits>
 #include <optional>
+#include <string_view>
 
 namespace adaptobs {
 
@@ -48,25 +51,33 @@ struct SprSweep {
   explicit operator bool() const noexcept { return strictly_positive_real; }
 };
 
-/// Samples \f$(1 + \omega^2)\,\mathrm{Re}\,G(j\omega)\f$ at ω = 0 and on a
-/// logarithmic grid of [omega_min, omega_max]; requires it positive, A Hurwitz
-/// and \f$-cAb > 0\f$. (Weighting by \f$1 + \omega^2\f$ keeps the test from
-/// reading round-off as a sign where \f$\mathrm{Re}\,G\f$ decays like \f$\omega^{-2}\f$.)
-template <class DA, class DB, class DC>
-[[nodiscard]] SprSweep<typename DA::Scalar> spr_frequency_sweep(const Eigen::MatrixBase<DA>& A,
-                                                                const Eigen::MatrixBase<DB>& b,
-                                                                const Eigen::MatrixBase<DC>& c,
-                                                                typename DA::Scalar omega_min = 1e-4,
-                                                                typename DA::Scalar omega_max = 1e4, int points = 2001) {
-  using Scalar = typename DA::Scalar;
+/// A Kalman–Yakubovich–Popov certificate of \f$c(sI - A)^{-1}b\f$ being SPR:
+/// \f$P = P^T > 0\f$ with \f$A^TP + PA < 0\f$ and \f$Pb = c^T\f$, and its residuals.
+template <typename Scalar, int N>
+struct KypCertificate {
+  Eigen::Matrix<Scalar, N, N> P;
+  Scalar equality_residual = 0;  ///< \f$\|Pb - c^T\|_\infty\f$
+  Scalar min_eigenvalue_P = 0;   ///< \f$\lambda_{\min}(P)\f$ (> 0)
+  Scalar max_eigenvalue_lyapunov = 0;  ///< \f$\lambda_{\max}(A^TP + PA)\f$ (< 0)
+};
+
+namespace detail {
+// The sweep, the residuals and the certificate on run-time sizes, one instance
+// per scalar type (compiled once in adaptobs::precompiled); the templates
+// below check and copy their arguments and size the result.
+
+template <typename Scalar>
+[[nodiscard]] SprSweep<Scalar> spr_frequency_sweep_dense(const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& b,
+                                                         const DynamicMatrix<Scalar>& c, Scalar omega_min,
+                                                         Scalar omega_max, int points) {
   using Complex = std::complex<Scalar>;
   using ComplexMatrix = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "spr_frequency_sweep";
-  const Index n = detail::require_siso_triple(A, b, c, who);
-  detail::require(omega_min > 0 && omega_max > omega_min && points >= 2, who, "omega_min, omega_max, points",
-                  "must satisfy 0 < omega_min < omega_max and points ≥ 2");
+  const Index n = require_siso_triple(A, b, c, who);
+  require(omega_min > 0 && omega_max > omega_min && points >= 2, who, "omega_min, omega_max, points",
+          "must satisfy 0 < omega_min < omega_max and points ≥ 2");
   SprSweep<Scalar> r;
-  r.hurwitz = is_hurwitz_stable(Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>(A));
+  r.hurwitz = is_hurwitz_stable(A);
   r.high_frequency_limit = -(c * A * b)(0, 0);
   const ComplexMatrix a = A.template cast<Complex>();
   const ComplexMatrix bb = b.template cast<Complex>();
@@ -89,59 +100,34 @@ template <class DA, class DB, class DC>
   return r;
 }
 
-/// A Kalman–Yakubovich–Popov certificate of \f$c(sI - A)^{-1}b\f$ being SPR:
-/// \f$P = P^T > 0\f$ with \f$A^TP + PA < 0\f$ and \f$Pb = c^T\f$, and its residuals.
-template <typename Scalar, int N>
-struct KypCertificate {
-  Eigen::Matrix<Scalar, N, N> P;
-  Scalar equality_residual = 0;  ///< \f$\|Pb - c^T\|_\infty\f$
-  Scalar min_eigenvalue_P = 0;   ///< \f$\lambda_{\min}(P)\f$ (> 0)
-  Scalar max_eigenvalue_lyapunov = 0;  ///< \f$\lambda_{\max}(A^TP + PA)\f$ (< 0)
-};
-
-/// Residuals of a candidate certificate P.
-template <class DP, class DA, class DB, class DC>
-[[nodiscard]] KypCertificate<typename DP::Scalar, DP::RowsAtCompileTime> kyp_residuals(
-    const Eigen::MatrixBase<DP>& P, const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b,
-    const Eigen::MatrixBase<DC>& c) {
-  using Scalar = typename DP::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  KypCertificate<Scalar, DP::RowsAtCompileTime> k;
+template <typename Scalar>
+[[nodiscard]] KypCertificate<Scalar, Eigen::Dynamic> kyp_residuals_dense(const DynamicMatrix<Scalar>& P,
+                                                                         const DynamicMatrix<Scalar>& A,
+                                                                         const DynamicMatrix<Scalar>& b,
+                                                                         const DynamicMatrix<Scalar>& c) {
+  using Matrix = DynamicMatrix<Scalar>;
+  KypCertificate<Scalar, Eigen::Dynamic> k;
   k.P = P;
   k.equality_residual = (P * b - c.transpose()).cwiseAbs().maxCoeff();
-  const Matrix p = P, lyap = A.transpose() * P + P * A;
-  k.min_eigenvalue_P = Eigen::SelfAdjointEigenSolver<Matrix>(Matrix(0.5 * (p + p.transpose())), Eigen::EigenvaluesOnly).eigenvalues()(0);
+  const Matrix lyap = A.transpose() * P + P * A;
+  k.min_eigenvalue_P = Eigen::SelfAdjointEigenSolver<Matrix>(Matrix(0.5 * (P + P.transpose())), Eigen::EigenvaluesOnly).eigenvalues()(0);
   k.max_eigenvalue_lyapunov =
       Eigen::SelfAdjointEigenSolver<Matrix>(Matrix(0.5 * (lyap + lyap.transpose())), Eigen::EigenvaluesOnly)
-          .eigenvalues()(p.rows() - 1);
+          .eigenvalues()(P.rows() - 1);
   return k;
 }
 
-/// KYP certificate of an SPR \f$c(sI - A)^{-1}b\f$, found without an SDP solver,
-/// or nothing when G is not SPR.
-///
-/// In coordinates \f$x' = T_nx\f$, \f$T_n = [c; N_\perp]\f$ with \f$N_\perp b = 0\f$:
-/// \f$A' = \begin{bmatrix} a & q^T\\ r & A_0\end{bmatrix}\f$, \f$b' = (cb, 0)\f$, \f$c' = e_1^T\f$;
-/// \f$Pb = c^T\f$ forces \f$P' = \mathrm{diag}(1/cb, X)\f$, and (Schur complement on
-/// the (1,1) entry, which needs cb > 0 and a < 0) \f$A'^TP' + P'A' = -\mathrm{diag}(\cdot, \varepsilon I)\f$ becomes
-/// \f[ \tilde A^TX + X\tilde A + X\frac{rr^T}{\delta}X + \frac{qq^T}{(cb)^2\delta} + \varepsilon I = 0,\quad
-///     \delta = \frac{-2a}{cb},\ \tilde A = A_0 + \frac{rq^T}{2|a|}, \f]
-/// solved from its Hamiltonian (ε = 1, halved on failure). The returned P is
-/// verified: \f$\|Pb - c^T\| \le 10^{-10}\|c\|\f$, \f$P > 0\f$ and
-/// \f$\lambda_{\max}(A^TP + PA) < -10^{-9}\|P\|\|A\|\f$ (a margin, so that a
-/// borderline function is not certified by round-off).
-template <class DA, class DB, class DC>
-[[nodiscard]] std::optional<KypCertificate<typename DA::Scalar, DA::RowsAtCompileTime>> kyp_certificate(
-    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b, const Eigen::MatrixBase<DC>& c) {
-  using Scalar = typename DA::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+template <typename Scalar>
+[[nodiscard]] std::optional<KypCertificate<Scalar, Eigen::Dynamic>> kyp_certificate_dense(
+    const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& b, const DynamicMatrix<Scalar>& c) {
+  using Matrix = DynamicMatrix<Scalar>;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   constexpr std::string_view who = "kyp_certificate";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
+  require_square(A, who, "A");
+  require_finite(A, who, "A");
   const Index n = A.rows();
-  detail::require_shape(b, n, 1, who, "b");
-  detail::require_shape(c, 1, n, who, "c");
+  require_shape(b, n, 1, who, "b");
+  require_shape(c, 1, n, who, "c");
   const Scalar cb = (c * b)(0, 0);
   if (!(cb > 0)) return std::nullopt;
 
@@ -164,11 +150,10 @@ template <class DA, class DB, class DC>
   Matrix p_prime = Matrix::Zero(n, n);
   p_prime(0, 0) = p11;
   const Scalar p_norm_tol = Scalar(1e-9);
-  const auto verified = [&](const Matrix& pp) -> std::optional<KypCertificate<Scalar, DA::RowsAtCompileTime>> {
+  const auto verified = [&](const Matrix& pp) -> std::optional<KypCertificate<Scalar, Eigen::Dynamic>> {
     const Matrix p_dynamic = tn.transpose() * pp * tn;
-    const Eigen::Matrix<Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime> p =
-        Scalar(0.5) * (p_dynamic + p_dynamic.transpose());
-    auto k = kyp_residuals(p, A, b, c);
+    const Matrix p = Scalar(0.5) * (p_dynamic + p_dynamic.transpose());
+    auto k = kyp_residuals_dense<Scalar>(p, A, b, c);
     const Scalar margin = p_norm_tol * p.norm() * std::max(Scalar(1), A.norm());
     if (k.equality_residual <= Scalar(1e-10) * std::max(Scalar(1), c.cwiseAbs().maxCoeff()) &&
         k.min_eigenvalue_P > 0 && k.max_eigenvalue_lyapunov < -margin)
@@ -193,6 +178,71 @@ template <class DA, class DB, class DC>
     if (auto k = verified(p_prime)) return k;
   }
   return std::nullopt;
+}
+
+/// The certificate with P of `N` rows.
+template <int N, typename Scalar>
+[[nodiscard]] KypCertificate<Scalar, N> sized_certificate(const KypCertificate<Scalar, Eigen::Dynamic>& k) {
+  return {Eigen::Matrix<Scalar, N, N>(k.P), k.equality_residual, k.min_eigenvalue_P, k.max_eigenvalue_lyapunov};
+}
+
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE SprSweep<double> spr_frequency_sweep_dense<double>(const DynamicMatrix<double>&,
+                                                                        const DynamicMatrix<double>&,
+                                                                        const DynamicMatrix<double>&, double, double,
+                                                                        int);
+ADAPTOBS_INSTANTIATE KypCertificate<double, Eigen::Dynamic> kyp_residuals_dense<double>(const DynamicMatrix<double>&,
+                                                                                        const DynamicMatrix<double>&,
+                                                                                        const DynamicMatrix<double>&,
+                                                                                        const DynamicMatrix<double>&);
+ADAPTOBS_INSTANTIATE std::optional<KypCertificate<double, Eigen::Dynamic>> kyp_certificate_dense<double>(
+    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const DynamicMatrix<double>&);
+#endif
+}  // namespace detail
+
+/// Samples \f$(1 + \omega^2)\,\mathrm{Re}\,G(j\omega)\f$ at ω = 0 and on a
+/// logarithmic grid of [omega_min, omega_max]; requires it positive, A Hurwitz
+/// and \f$-cAb > 0\f$. (Weighting by \f$1 + \omega^2\f$ keeps the test from
+/// reading round-off as a sign where \f$\mathrm{Re}\,G\f$ decays like \f$\omega^{-2}\f$.)
+template <class DA, class DB, class DC>
+[[nodiscard]] SprSweep<typename DA::Scalar> spr_frequency_sweep(const Eigen::MatrixBase<DA>& A,
+                                                                const Eigen::MatrixBase<DB>& b,
+                                                                const Eigen::MatrixBase<DC>& c,
+                                                                typename DA::Scalar omega_min = 1e-4,
+                                                                typename DA::Scalar omega_max = 1e4, int points = 2001) {
+  return detail::spr_frequency_sweep_dense<typename DA::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(b),
+                                                                detail::dynamic_copy(c), omega_min, omega_max, points);
+}
+
+/// Residuals of a candidate certificate P.
+template <class DP, class DA, class DB, class DC>
+[[nodiscard]] KypCertificate<typename DP::Scalar, DP::RowsAtCompileTime> kyp_residuals(
+    const Eigen::MatrixBase<DP>& P, const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b,
+    const Eigen::MatrixBase<DC>& c) {
+  return detail::sized_certificate<DP::RowsAtCompileTime>(detail::kyp_residuals_dense<typename DP::Scalar>(
+      detail::dynamic_copy(P), detail::dynamic_copy(A), detail::dynamic_copy(b), detail::dynamic_copy(c)));
+}
+
+/// KYP certificate of an SPR \f$c(sI - A)^{-1}b\f$, found without an SDP solver,
+/// or nothing when G is not SPR.
+///
+/// In coordinates \f$x' = T_nx\f$, \f$T_n = [c; N_\perp]\f$ with \f$N_\perp b = 0\f$:
+/// \f$A' = \begin{bmatrix} a & q^T\\ r & A_0\end{bmatrix}\f$, \f$b' = (cb, 0)\f$, \f$c' = e_1^T\f$;
+/// \f$Pb = c^T\f$ forces \f$P' = \mathrm{diag}(1/cb, X)\f$, and (Schur complement on
+/// the (1,1) entry, which needs cb > 0 and a < 0) \f$A'^TP' + P'A' = -\mathrm{diag}(\cdot, \varepsilon I)\f$ becomes
+/// \f[ \tilde A^TX + X\tilde A + X\frac{rr^T}{\delta}X + \frac{qq^T}{(cb)^2\delta} + \varepsilon I = 0,\quad
+///     \delta = \frac{-2a}{cb},\ \tilde A = A_0 + \frac{rq^T}{2|a|}, \f]
+/// solved from its Hamiltonian (ε = 1, halved on failure). The returned P is
+/// verified: \f$\|Pb - c^T\| \le 10^{-10}\|c\|\f$, \f$P > 0\f$ and
+/// \f$\lambda_{\max}(A^TP + PA) < -10^{-9}\|P\|\|A\|\f$ (a margin, so that a
+/// borderline function is not certified by round-off).
+template <class DA, class DB, class DC>
+[[nodiscard]] std::optional<KypCertificate<typename DA::Scalar, DA::RowsAtCompileTime>> kyp_certificate(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b, const Eigen::MatrixBase<DC>& c) {
+  const auto k = detail::kyp_certificate_dense<typename DA::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(b),
+                                                                    detail::dynamic_copy(c));
+  if (!k) return std::nullopt;
+  return detail::sized_certificate<DA::RowsAtCompileTime>(*k);
 }
 
 /// Output-injection gain k making \f$c(sI - A + kc)^{-1}\gamma = c\gamma/(s + \lambda)\f$
