@@ -186,6 +186,17 @@ TEST(CanonicalForms, BastinGeversFormOfTheThirdOrderPlant) {
                                                     poly({1, -1, 3}));
             }).find("'zeros'"),
             std::string::npos);
+  // A valid fourth-order pair for three-state dimensions: refused, naming A.
+  Eigen::Matrix4d shift = Eigen::Matrix4d::Zero();
+  shift.diagonal(1).setOnes();
+  EXPECT_NE(configuration_error_of([&] {
+              (void)adaptobs::bastin_gevers_form<D>(shift, Eigen::RowVector4d(1, 0, 0, 0), poly({1, 6, 11, 6}));
+            }).find("'A'"),
+            std::string::npos);
+  EXPECT_NE(configuration_error_of([&] {
+              (void)adaptobs::marino_tomei_form<D>(shift, Eigen::RowVector4d(1, 0, 0, 0));
+            }).find("'A'"),
+            std::string::npos);
 }
 
 TEST(CanonicalForms, MarinoTomeiFormOfTheThirdOrderPlant) {
@@ -219,6 +230,11 @@ TEST(CanonicalForms, BesanconFormOfRandomMimoSystems) {
     EXPECT_MATRIX_NEAR(ao.leftCols(2), Block42::Zero(), 1e-10, 0);
     EXPECT_LT(adaptobs::spectral_abscissa(Matrix(ao.bottomRightCorner(2, 2))), -0.5);
   }
+  // One output for two-output dimensions: refused, naming C.
+  const Eigen::Matrix4d a = rng.uniform<Eigen::Matrix4d>();
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::besancon_form<D>(a, Eigen::RowVector4d(1, 0, 0, 0), 0.5); })
+                .find("'C'"),
+            std::string::npos);
 }
 
 TEST(SprDesign, GainsOfAlgorithmsOneAndTwo) {

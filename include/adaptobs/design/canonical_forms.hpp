@@ -46,9 +46,14 @@ struct DenseStaticTransform {
   DynamicMatrix<Scalar> T, K;
 };
 
-/// The fixed- or run-time-size transformation of `D`.
+/// The transformation in the types of `D`; refused, naming `A` or the output
+/// matrix, when the pair's sizes are not the fixed sizes of `D`.
 template <StateSpace D>
-[[nodiscard]] StaticTransform<D> to_static_transform(const DenseStaticTransform<typename D::Scalar>& t) {
+[[nodiscard]] StaticTransform<D> to_static_transform(const DenseStaticTransform<typename D::Scalar>& t,
+                                                     std::string_view who, std::string_view output_matrix) {
+  if constexpr (D::nx != Eigen::Dynamic) require_shape(t.T, D::nx, D::nx, who, "A");
+  if constexpr (D::ny != Eigen::Dynamic)
+    require(t.K.cols() == D::ny, who, output_matrix, "must have as many rows as the outputs of the dimensions D");
   return StaticTransform<D>(typename D::StateMatrix(t.T), typename D::GainMatrix(t.K));
 }
 
@@ -167,14 +172,16 @@ template <StateSpace D, class DA, class DC>
     const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Polynomial<typename D::Scalar>& zeros,
     const std::optional<Eigen::Matrix<typename D::Scalar, Eigen::Dynamic, Eigen::Dynamic>>& kernel = std::nullopt) {
   return detail::to_static_transform<D>(
-      detail::bastin_gevers_form_dense<typename D::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(c), zeros, kernel));
+      detail::bastin_gevers_form_dense<typename D::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(c), zeros, kernel),
+      "bastin_gevers_form", "c");
 }
 
 /// Transform to the form (7) of Algorithm 2: \f$c_o = e_1^T\f$, \f$A_o = S\f$ (shift).
 template <StateSpace D, class DA, class DC>
 [[nodiscard]] StaticTransform<D> marino_tomei_form(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c) {
   return detail::to_static_transform<D>(
-      detail::marino_tomei_form_dense<typename D::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(c)));
+      detail::marino_tomei_form_dense<typename D::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(c)),
+      "marino_tomei_form", "c");
 }
 
 /// Transform to the form (8) of Algorithm 3 for a constant (A, C) with m outputs:
@@ -184,7 +191,8 @@ template <StateSpace D, class DA, class DC>
 [[nodiscard]] StaticTransform<D> besancon_form(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
                                                typename D::Scalar decay = 1) {
   return detail::to_static_transform<D>(
-      detail::besancon_form_dense<typename D::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C), decay));
+      detail::besancon_form_dense<typename D::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C), decay),
+      "besancon_form", "C");
 }
 
 }  // namespace adaptobs
