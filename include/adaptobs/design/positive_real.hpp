@@ -123,11 +123,8 @@ template <typename Scalar>
   using Matrix = DynamicMatrix<Scalar>;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   constexpr std::string_view who = "kyp_certificate";
-  require_square(A, who, "A");
+  const Index n = require_siso_triple(A, b, c, who);
   require_finite(A, who, "A");
-  const Index n = A.rows();
-  require_shape(b, n, 1, who, "b");
-  require_shape(c, 1, n, who, "c");
   const Scalar cb = (c * b)(0, 0);
   if (!(cb > 0)) return std::nullopt;
 
