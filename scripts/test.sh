@@ -2,7 +2,8 @@
 # Builds the library, tests and examples with g++ (-O2, warnings as errors)
 # and runs the CTest suite, then builds them again with clang++ under
 # AddressSanitizer and UndefinedBehaviorSanitizer, with the benchmarks
-# (uninstrumented), and runs the suite there, the benchmark smoke run included.
+# (uninstrumented) and every public header compiled on its own, and runs the
+# suite there, the benchmark smoke run included.
 #
 #   scripts/test.sh                               both builds
 #   ADAPTOBS_SKIP_SANITIZERS=1 scripts/test.sh    the g++ Release build only
@@ -46,8 +47,11 @@ configure() {
 }
 
 echo "== g++ -O2 build, warnings as errors"
+# The header check (every public header compiled on its own) runs once, in the
+# sanitizer build when there is one: clang parses the headers there at -O0 in
+# 45 s of CPU, where g++ at -O2 takes 107.
 configure "$root/build/test" -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
-  -DADAPTOBS_WARNINGS_AS_ERRORS=ON -DADAPTOBS_BUILD_BENCHMARKS=OFF
+  -DADAPTOBS_WARNINGS_AS_ERRORS=ON -DADAPTOBS_BUILD_BENCHMARKS=OFF -DADAPTOBS_VERIFY_HEADERS=$((sanitize ? 0 : 1))
 cmake --build "$root/build/test" -j "$jobs"
 ctest --test-dir "$root/build/test" --output-on-failure -j "$jobs"
 # The reference manual, when doxygen is installed: any Doxygen warning fails the run.
@@ -68,7 +72,7 @@ if ((sanitize)); then
   configure "$root/build/sanitize" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_CXX_FLAGS_DEBUG="-O0 -gline-tables-only" -DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld \
     -DADAPTOBS_SANITIZE=ON -DADAPTOBS_WARNINGS_AS_ERRORS=ON -DADAPTOBS_BUILD_BENCHMARKS=ON \
-    -DADAPTOBS_VERIFY_HEADERS=OFF -DADAPTOBS_UNITY_TESTS=ON
+    -DADAPTOBS_VERIFY_HEADERS=ON -DADAPTOBS_UNITY_TESTS=ON
   cmake --build "$root/build/sanitize" -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$root/build/sanitize" --output-on-failure -j "$jobs"

@@ -269,6 +269,14 @@ TEST(GlrDetector, FalseAlarmsAtTheDesignedRateOnIndependentDraws) {
   EXPECT_LT(spacing, 1.25 * 200);
 }
 
+// The threshold search keeps its normal values when they fit, redraws them from
+// the seed for each candidate otherwise: the same values, so the same h to the bit.
+TEST(GlrDetector, ThresholdIsTheSameWhetherTheDrawsAreKeptOrRedrawn) {
+  const double kept = adaptobs::detail::glr_threshold_search(10, 200.0, 2, Index{1} << 22);
+  EXPECT_EQ(adaptobs::detail::glr_threshold_search(10, 200.0, 2, 0), kept);
+  EXPECT_EQ(adaptobs::glr_threshold(10, 200.0, 2), kept);
+}
+
 TEST(GlrDetector, StatisticIsTheBestWindowAndIsolates) {
   // Values 0, 0, 3, 3 in component 1 and 0 in component 0, window 3: the best
   // window is the last two values, (3 + 3)² / (2·2) = 9 (the last three: 36/6 = 6).

@@ -20,6 +20,7 @@
 
 #include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/care.hpp>
 #include <adaptobs/design/polynomial.hpp>
@@ -27,7 +28,6 @@
 #include <adaptobs/design/stability.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/QR>
 
@@ -110,10 +110,8 @@ template <typename Scalar>
   k.P = P;
   k.equality_residual = (P * b - c.transpose()).cwiseAbs().maxCoeff();
   const Matrix lyap = A.transpose() * P + P * A;
-  k.min_eigenvalue_P = Eigen::SelfAdjointEigenSolver<Matrix>(Matrix(0.5 * (P + P.transpose())), Eigen::EigenvaluesOnly).eigenvalues()(0);
-  k.max_eigenvalue_lyapunov =
-      Eigen::SelfAdjointEigenSolver<Matrix>(Matrix(0.5 * (lyap + lyap.transpose())), Eigen::EigenvaluesOnly)
-          .eigenvalues()(P.rows() - 1);
+  k.min_eigenvalue_P = symmetric_eigenvalues(Matrix(0.5 * (P + P.transpose())))(0);
+  k.max_eigenvalue_lyapunov = symmetric_eigenvalues(Matrix(0.5 * (lyap + lyap.transpose())))(P.rows() - 1);
   return k;
 }
 

@@ -110,36 +110,44 @@ class GlrDetector : public detail::SequentialTest<GlrDetector<Scalar, N>, Scalar
   Index filled_ = 0;
 };
 
-/// The threshold h at which `components` windowed GLR statistics of window M,
-/// fed independent standard normal values, raise false alarms every
-/// `mean_evaluations` evaluations on average (all components together).
-///
-/// Found by simulation: a `GlrDetector` with restarts after each alarm runs on
-/// `50 × mean_evaluations` evaluations (at least 20000) of standard normal
-/// values, the same ones, from a fixed seed, for every candidate h, and h is
-/// searched (bracketing, then regula falsi on the log of the count) until the
-/// alarm count is within one of its target. With about 50 alarms at the answer,
-/// the rate it gives carries a relative Monte-Carlo error of about
-/// \f$1/\sqrt{50} \approx 14\,\%\f$ (which the tests' tolerances allow for).
-/// Refuses, naming 'mean_evaluations', a target outside [2, 10⁵] evaluations
-/// (beyond, the simulation would take seconds).
-[[nodiscard]] inline double glr_threshold(Index window, double mean_evaluations, Index components = 1) {
-  constexpr std::string_view who = "glr_threshold";
-  detail::require(window >= 1, who, "window", "must be at least 1");
-  detail::require(components >= 1, who, "components", "must be at least 1");
-  detail::require(mean_evaluations >= 2 && mean_evaluations <= 1e5, who, "mean_evaluations",
-                  "must lie in [2, 1e5] evaluations");
+namespace detail {
+
+/// `glr_threshold`'s search, its arguments checked. The search tries a dozen
+/// candidates on the same values; drawing a normal value costs more than a GLR
+/// step, so the values are drawn once and kept when there are at most
+/// `kept_values` of them (`glr_threshold` keeps up to 32 MB), and drawn anew
+/// from the seed for each candidate otherwise: the same numbers either way,
+/// hence the same h.
+[[nodiscard]] inline double glr_threshold_search(Index window, double mean_evaluations, Index components,
+                                                 Index kept_values) {
   const auto length = static_cast<Index>(std::max(20000.0, 50 * mean_evaluations));
   const double wanted = static_cast<double>(length) / mean_evaluations;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(components), one = Eigen::VectorXd::Ones(components);
-  auto alarms_at = [&](double h) {
-    GlrDetector<double> glr(zero, one, window, h);
+  const bool kept = length * components <= kept_values;
+  auto draw = [&](auto&& use) {
     std::mt19937_64 rng(20261125);
     std::normal_distribution<double> normal(0.0, 1.0);
     Eigen::VectorXd z(components);
     for (Index k = 0; k < length; ++k) {
       for (Index i = 0; i < components; ++i) z(i) = normal(rng);
-      (void)glr.update(z);
+      use(k, z);
+    }
+  };
+  Eigen::MatrixXd values;
+  if (kept) {
+    values.resize(components, length);
+    draw([&](Index k, const Eigen::VectorXd& z) { values.col(k) = z; });
+  }
+  auto alarms_at = [&](double h) {
+    GlrDetector<double> glr(zero, one, window, h);
+    if (kept) {
+      Eigen::VectorXd z(components);
+      for (Index k = 0; k < length; ++k) {
+        z = values.col(k);
+        (void)glr.update(z);
+      }
+    } else {
+      draw([&](Index, const Eigen::VectorXd& z) { (void)glr.update(z); });
     }
     return static_cast<double>(glr.alarm_count());
   };
@@ -164,6 +172,30 @@ class GlrDetector : public detail::SequentialTest<GlrDetector<Scalar, N>, Scalar
     (count > wanted ? count_low : count_high) = count;
   }
   return 0.5 * (low + high);
+}
+
+}  // namespace detail
+
+/// The threshold h at which `components` windowed GLR statistics of window M,
+/// fed independent standard normal values, raise false alarms every
+/// `mean_evaluations` evaluations on average (all components together).
+///
+/// Found by simulation: a `GlrDetector` with restarts after each alarm runs on
+/// `50 × mean_evaluations` evaluations (at least 20000) of standard normal
+/// values, the same ones, from a fixed seed, for every candidate h, and h is
+/// searched (bracketing, then regula falsi on the log of the count) until the
+/// alarm count is within one of its target. With about 50 alarms at the answer,
+/// the rate it gives carries a relative Monte-Carlo error of about
+/// \f$1/\sqrt{50} \approx 14\,\%\f$ (which the tests' tolerances allow for).
+/// Refuses, naming 'mean_evaluations', a target outside [2, 10⁵] evaluations
+/// (beyond, the simulation would take seconds).
+[[nodiscard]] inline double glr_threshold(Index window, double mean_evaluations, Index components = 1) {
+  constexpr std::string_view who = "glr_threshold";
+  detail::require(window >= 1, who, "window", "must be at least 1");
+  detail::require(components >= 1, who, "components", "must be at least 1");
+  detail::require(mean_evaluations >= 2 && mean_evaluations <= 1e5, who, "mean_evaluations",
+                  "must lie in [2, 1e5] evaluations");
+  return detail::glr_threshold_search(window, mean_evaluations, components, Index{1} << 22);
 }
 
 }  // namespace adaptobs

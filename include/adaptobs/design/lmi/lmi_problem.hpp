@@ -11,10 +11,10 @@
 /// are printed.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -281,7 +281,7 @@ class LmiProblem {
       const Eigen::MatrixXd g = c.G.value(y);
       if (!g.allFinite()) return std::numeric_limits<double>::infinity();
       const Eigen::MatrixXd s = 0.5 * (g + g.transpose());
-      const double top = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(s, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+      const double top = symmetric_eigenvalues(s).maxCoeff();
       worst = std::max(worst, top);
     }
     return worst;
