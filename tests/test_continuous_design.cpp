@@ -155,6 +155,22 @@ TEST(PositiveReal, ExactTestSweepAndKypAgreeOnReferenceFunctions) {
   EXPECT_FALSE(g2.strict_at_infinity);
 }
 
+// The residuals of a P with known spectrum {0.5, 2, 7} (rotated by a random
+// orthogonal Q) and A = −I: AᵀP + PA = −2P has largest eigenvalue −1, and
+// c = (Pb)ᵀ + 10⁻³e₂ misses the equality Pb = cᵀ by exactly 10⁻³.
+TEST(PositiveReal, KypResidualsOfAKnownCertificate) {
+  RandomMatrices rng(11);
+  const Matrix q = adaptobs::testing::random_orthogonal(rng, 3);
+  const Matrix p = q * Eigen::Vector3d(7, 0.5, 2).asDiagonal() * q.transpose();
+  const Vector b = Eigen::Vector3d(1, -2, 0.5);
+  Eigen::RowVectorXd c = (p * b).transpose();
+  c(1) += 1e-3;
+  const auto k = adaptobs::kyp_residuals(p, Matrix(-Matrix::Identity(3, 3)), b, c);
+  EXPECT_NEAR(k.min_eigenvalue_P, 0.5, 1e-13);
+  EXPECT_NEAR(k.max_eigenvalue_lyapunov, -1.0, 1e-13);
+  EXPECT_NEAR(k.equality_residual, 1e-3, 1e-13);
+}
+
 // Transform of Algorithm 1 with ν = (s + 1)(s + 3) and ker C spanned by
 // (e2, e1 − e3): exact rationals.
 TEST(CanonicalForms, BastinGeversFormOfTheThirdOrderPlant) {
