@@ -50,7 +50,12 @@ echo "== g++ -O2 build, warnings as errors"
 # The header check (every public header compiled on its own) runs once, in the
 # sanitizer build when there is one: clang parses the headers there at -O0 in
 # 45 s of CPU, where g++ at -O2 takes 107.
+# The --param flags only tune g++'s own memory: it collects its garbage each time
+# its heap grows past a floor of at most 128 MB, and a 4 GB floor skips nearly
+# every collection. The objects are byte for byte the same; the largest unit
+# compiles with 8 % less CPU and 2.4 GB of memory instead of 2.0.
 configure "$root/build/test" -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
+  -DCMAKE_CXX_FLAGS="--param=ggc-min-heapsize=4194304 --param=ggc-min-expand=400" \
   -DADAPTOBS_WARNINGS_AS_ERRORS=ON -DADAPTOBS_BUILD_BENCHMARKS=OFF -DADAPTOBS_VERIFY_HEADERS=$((sanitize ? 0 : 1))
 cmake --build "$root/build/test" -j "$jobs"
 ctest --test-dir "$root/build/test" --output-on-failure -j "$jobs"
