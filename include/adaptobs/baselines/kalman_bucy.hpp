@@ -20,6 +20,7 @@
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/core/continuous_model.hpp>
+#include <adaptobs/core/continuous_update.hpp>
 #include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/detail/products.hpp>
@@ -37,7 +38,9 @@
 namespace adaptobs {
 
 template <ContinuousModel Model>
-class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
+class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFilter<Model>, typename Model::Dims> {
+  friend ContinuousUpdate<AugmentedKalmanBucyFilter, typename Model::Dims>;
+
  public:
   using Dims = typename Model::Dims;
   using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
@@ -51,6 +54,7 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
   /// \f$(\hat x, \hat\theta, \mathrm{vec}\,P)\f$ stacked.
   using InternalState = Eigen::Matrix<Scalar, internal_size, 1>;
   static constexpr std::string_view name = "AugmentedKalmanBucyFilter";
+  static constexpr std::string_view name_reset = "AugmentedKalmanBucyFilter::reset";
 
   AugmentedKalmanBucyFilter(Model model, State eta0, Parameters theta0, Covariances covariances,
                             SamplingOptions options = {})
@@ -73,27 +77,6 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     eta_ = eta0;
     theta_ = theta0;
     set_initial(eta0, theta0);
-  }
-
-  /// Advances the estimates to `sample.t` (see `SampledIntegrator`, which bounds
-  /// the RK4 step over long intervals). The integrated P is re-symmetrized; a
-  /// step that would leave it not positive definite is rejected
-  /// (`UpdateStatus::indefinite_covariance`). A rejected sample leaves the filter
-  /// exactly as it was.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) {
-    const UpdateStatus status = integrator_.advance(
-        sample, internal_,
-        [this](const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) {
-          derivative(s, ds, t, u, y);
-        },
-        name, [this](InternalState& candidate) { return symmetrize_covariance(candidate); });
-    if (status != UpdateStatus::accepted) return status;
-    refresh_estimates();
-    // ε(t_k) at the integrated estimate (w_.epsilon holds the last RK4 stage's).
-    decltype(auto) sys = model_.at(sample.t);
-    output_error_ = sample.y;
-    output_error_.noalias() -= sys.C * eta_;
-    return status;
   }
 
   /// Right-hand side of \f$(\hat x, \hat\theta, P)\f$ (see the file comment).
@@ -126,45 +109,10 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     dP.noalias() -= w.gain * w.pct.transpose();
   }
 
-  /// Run-time sizes (nx, nu, ny, np).
-  [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
-
-  [[nodiscard]] const State& state() const noexcept { return eta_; }
-  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
-  [[nodiscard]] Scalar time() const noexcept { return integrator_.time(); }
-  /// Output error \f$\varepsilon(t_k) = y_k - C(t_k)\hat\eta(t_k) = y_k - C_e\hat\chi(t_k)\f$ of the
-  /// last accepted sample (0 before the first): the innovation \f$y - C_e\hat\chi\f$ that
-  /// drives the filter (file comment) at the estimate integrated to \f$t_k\f$ — at the
-  /// first sample, the initial estimate. Fault detectors test it
-  /// (diagnostics/chi_square_test.hpp). As for the unified observers, it is a
-  /// prediction error only with `SignalReconstruction::hold` for y; with `linear`
-  /// or `quadratic` \f$y_k\f$ has already acted on \f$\hat\chi(t_k)\f$.
-  [[nodiscard]] const Output& output_error() const noexcept { return output_error_; }
   /// Covariance P of \f$[\hat x; \hat\theta]\f$.
   [[nodiscard]] AugmentedMatrix covariance() const {
     const Index n = sizes_.nx + sizes_.np;
     return Eigen::Map<const AugmentedMatrix>(internal_.data() + n, n, n);
-  }
-  [[nodiscard]] const InternalState& internal_state() const noexcept { return internal_; }
-  bool set_internal_state(const InternalState& s) {
-    detail::require_shape(s, internal_.rows(), 1, name, "s");
-    if (!detail::all_finite(s)) return false;
-    internal_ = s;
-    refresh_estimates();
-    return true;
-  }
-
-  /// Keeps every estimate and P but forgets the previous sample: the next one
-  /// sets a new time origin. For resuming after an interval rejected as
-  /// `UpdateStatus::interval_too_long`.
-  void resynchronize() noexcept { integrator_.resynchronize(); }
-
-  void reset(const State& eta0, const Parameters& theta0) {
-    constexpr std::string_view who = "AugmentedKalmanBucyFilter::reset";
-    detail::require_initial_estimates(eta0, sizes_.nx, theta0, sizes_.np, who, "eta0", "theta0");
-    set_initial(eta0, theta0);
-    output_error_.setZero();
-    integrator_.restart();
   }
 
  private:
@@ -176,8 +124,9 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
 
   // P of an integrated step made exactly symmetric, then tested by a Cholesky
   // factorization: RK4 on the Riccati equation keeps P neither symmetric nor,
-  // with a step too long for its dynamics, positive definite.
-  UpdateStatus symmetrize_covariance(InternalState& candidate) {
+  // with a step too long for its dynamics, positive definite. A step that would
+  // leave it so is rejected as `UpdateStatus::indefinite_covariance`.
+  UpdateStatus check_step(InternalState& candidate) {
     const Index n = sizes_.nx + sizes_.np;
     Eigen::Map<AugmentedMatrix> p(candidate.data() + n, n, n);
     for (Index j = 0; j < n; ++j)
@@ -196,6 +145,13 @@ class AugmentedKalmanBucyFilter : public SizedBy<typename Model::Dims> {
     detail::segment<Dims::np>(internal_, sizes_.nx, sizes_.np) = theta0;
     covariance_map() = cov_.P0;
     refresh_estimates();
+  }
+
+  // The output error \f$y_k - C_e\hat\chi(t_k)\f$ at the integrated estimate
+  // (w_.epsilon holds the last RK4 stage's).
+  void finish_update(const Sample& sample, bool) {
+    output_error_ = sample.y;
+    output_error_.noalias() -= model_.at(sample.t).C * eta_;
   }
 
   void refresh_estimates() {

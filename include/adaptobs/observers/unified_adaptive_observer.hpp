@@ -38,6 +38,7 @@
 #include <adaptobs/adaptation/gradient_law.hpp>
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
+#include <adaptobs/core/continuous_update.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/detail/products.hpp>
@@ -89,7 +90,10 @@ struct UnifiedObserverOptions {
 /// and any parameter update law (`GradientLaw` by default).
 template <ContinuousModel Model, UnifiedAlgorithm<typename Model::Dims> Algorithm,
           ParameterUpdateLaw<typename Model::Dims> Law = GradientLaw<typename Model::Dims>>
-class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
+class UnifiedAdaptiveObserver
+    : public ContinuousUpdate<UnifiedAdaptiveObserver<Model, Algorithm, Law>, typename Model::Dims> {
+  friend ContinuousUpdate<UnifiedAdaptiveObserver, typename Model::Dims>;
+
  public:
   using Dims = typename Model::Dims;
   using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
@@ -103,6 +107,8 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
       sum_of_sizes(sum_of_sizes(Dims::nx, product_of_sizes(nr, Dims::np)), Dims::np);
   /// \f$(\hat x, \mathrm{vec}\,\Xi, \hat\theta)\f$ stacked.
   using InternalState = Eigen::Matrix<Scalar, internal_size, 1>;
+  static constexpr std::string_view name = Algorithm::name;
+  static constexpr std::string_view name_reset = "UnifiedAdaptiveObserver::reset";
 
   /// \param eta0 initial estimate \f$\hat\eta(t_0)\f$ in the original coordinates;
   /// \param theta0 initial \f$\hat\theta(t_0)\f$. Ξ starts at 0. The time origin
@@ -115,8 +121,8 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
         sizes_(model_.sizes()),
         r_(algorithm_.dynamic_transform.rows()),
         internal_(make_internal(sizes_, r_)),
-        integrator_(internal_, sizes_, options.sampling, Algorithm::name) {
-    constexpr std::string_view who = Algorithm::name;
+        integrator_(internal_, sizes_, options.sampling, name) {
+    constexpr std::string_view who = name;
     const Sizes& s = sizes_;
     detail::require(s.np >= 1, who, "model", "must have at least one unknown parameter");
     detail::require_shape(algorithm_.static_transform.T(), s.nx, s.nx, who, "static_transform.T");
@@ -136,26 +142,6 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     eta_ = eta0;
     theta_ = theta0;
     set_initial(eta0, theta0);
-  }
-
-  /// Advances the estimates to `sample.t` (see `SampledIntegrator`). A rejected
-  /// sample (non-finite, time not advancing, or a non-finite step) leaves the
-  /// observer exactly as it was.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) {
-    const bool stepping = integrator_.started();
-    const UpdateStatus status = integrator_.advance(
-        sample, internal_,
-        [this](const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) {
-          derivative(s, ds, t, u, y);
-        },
-        Algorithm::name);
-    if (status != UpdateStatus::accepted) return status;
-    refresh_estimates();
-    if (stepping && excitation_) excitation_->add(work_.R);
-    // ε(t_k) at the integrated estimate (work_.epsilon holds the last RK4 stage's).
-    output_error_ = sample.y;
-    output_error_.noalias() -= system_at(sample.t).Co * transformed_state();
-    return status;
   }
 
   /// Right-hand side of the internal state at time t for the signals u(t), y(t).
@@ -193,24 +179,6 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     dx.noalias() += w.Omega * dtheta;
   }
 
-  /// Run-time sizes (nx, nu, ny, np).
-  [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
-
-  /// \f$\hat\eta = T^{-1}\hat x\f$, the state estimate in the original coordinates.
-  [[nodiscard]] const State& state() const noexcept { return eta_; }
-  /// \f$\hat\theta\f$.
-  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
-  /// Time of the last accepted sample.
-  [[nodiscard]] Scalar time() const noexcept { return integrator_.time(); }
-  /// Output error \f$\varepsilon(t_k) = y_k - C_o(t_k)\hat x(t_k) = y_k - C\hat\eta(t_k)\f$ of
-  /// the last accepted sample (0 before the first): the \f$\varepsilon\f$ of the update law
-  /// \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$ (file comment) at the estimate integrated to
-  /// \f$t_k\f$ — at the first sample, the initial estimate. Fault detectors test it
-  /// (diagnostics/chi_square_test.hpp). The integration to \f$t_k\f$ uses y reconstructed
-  /// between the samples: with `SignalReconstruction::hold` it uses \f$y\f$ up to
-  /// \f$t_{k-1}\f$ only, so \f$\varepsilon(t_k)\f$ is a prediction error (an innovation); with
-  /// `linear` or `quadratic` \f$y_k\f$ has already acted on \f$\hat x(t_k)\f$ over the interval.
-  [[nodiscard]] const Output& output_error() const noexcept { return output_error_; }
   /// \f$\hat x\f$ in the coordinates of system (2).
   [[nodiscard]] auto transformed_state() const { return detail::segment<Dims::nx>(internal_, 0, sizes_.nx); }
   /// Ξ of eq. (3a).
@@ -227,17 +195,6 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
   [[nodiscard]] State transformed_estimate_z() const {
     return State(transformed_state() - omega() * theta_);
   }
-  [[nodiscard]] const InternalState& internal_state() const noexcept { return internal_; }
-  /// Replaces the internal state (for an external integrator driving `derivative`).
-  /// Returns false, changing nothing, when `s` holds NaN or Inf.
-  bool set_internal_state(const InternalState& s) {
-    detail::require_shape(s, internal_.rows(), 1, Algorithm::name, "s");
-    if (!detail::all_finite(s)) return false;
-    internal_ = s;
-    refresh_estimates();
-    return true;
-  }
-
   /// Matrices of (2) at time t.
   [[nodiscard]] TransformedSystem<Dims> transformed_system(Scalar t) const { return system_at(t); }
   [[nodiscard]] const Algorithm& algorithm() const noexcept { return algorithm_; }
@@ -258,21 +215,6 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
   [[nodiscard]] std::optional<Scalar> excitation_level() const {
     if (!excitation_ || !excitation_->full() || !excitation_->available()) return std::nullopt;
     return excitation_->level();
-  }
-
-  /// Keeps every estimate and filter but forgets the previous sample: the next
-  /// one sets a new time origin. For resuming after an interval rejected as
-  /// `UpdateStatus::interval_too_long`.
-  void resynchronize() noexcept { integrator_.resynchronize(); }
-
-  /// Restarts from \f$\hat\eta_0, \hat\theta_0\f$ with Ξ = 0; the next sample sets the time origin.
-  void reset(const State& eta0, const Parameters& theta0) {
-    constexpr std::string_view who = "UnifiedAdaptiveObserver::reset";
-    detail::require_initial_estimates(eta0, sizes_.nx, theta0, sizes_.np, who, "eta0", "theta0");
-    set_initial(eta0, theta0);
-    output_error_.setZero();
-    integrator_.restart();
-    if (excitation_) excitation_->reset();
   }
 
  private:
@@ -320,7 +262,18 @@ class UnifiedAdaptiveObserver : public SizedBy<typename Model::Dims> {
     }
   }
 
+  // After an accepted sample: the excitation of the step just integrated (once
+  // there was one) and ε(t_k) at the integrated estimate (work_.epsilon holds
+  // the last RK4 stage's).
+  void finish_update(const Sample& sample, bool stepping) {
+    if (stepping && excitation_) excitation_->add(work_.R);
+    output_error_ = sample.y;
+    output_error_.noalias() -= system_at(sample.t).Co * transformed_state();
+  }
+
+  // Ξ = 0, and the excitation monitor empty.
   void set_initial(const State& eta0, const Parameters& theta0) {
+    if (excitation_) excitation_->reset();
     internal_.setZero();
     detail::segment<Dims::nx>(internal_, 0, sizes_.nx) = algorithm_.static_transform.to_transformed(eta0);
     detail::segment<Dims::np>(internal_, sizes_.nx + r_ * sizes_.np, sizes_.np) = theta0;

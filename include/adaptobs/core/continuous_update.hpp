@@ -1,0 +1,115 @@
+#pragma once
+/// \file
+/// The public update of the continuous-time observers and the Kalman–Bucy
+/// filter, written once: the base class their `update`, estimates, time and
+/// internal state come from.
+
+#include <adaptobs/core/continuous_model.hpp>
+#include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/sampled_integration.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <string_view>
+
+namespace adaptobs {
+
+/// Base of an observer integrated between its samples (CRTP), not used on its
+/// own. The observer stacks everything it integrates in one vector
+/// `internal_` of type `InternalState`, advanced by a `SampledIntegrator`
+/// named `integrator_`, and keeps its estimates in `sizes_`, `eta_` (original
+/// coordinates), `theta_` and `output_error_`. It supplies
+/// - `Observer::name` and `Observer::name_reset`, the names its errors give;
+/// - `derivative(s, ds, t, u, y)`, the right-hand side of `internal_`;
+/// - `refresh_estimates()`, which reads `eta_` and `theta_` out of `internal_`;
+/// - `finish_update(sample, stepping)`, run after an accepted sample (the
+///   output error at the sample, per-step diagnostics);
+/// - `set_initial(eta0, theta0)`, which restarts `internal_` and its diagnostics;
+/// - optionally `check_step(candidate)`, which may adjust an integrated state
+///   and returns `accepted` or the reason to reject it.
+template <class Observer, StateSpace Dims>
+class ContinuousUpdate : public SizedBy<Dims> {
+  using Scalar = typename Dims::Scalar;
+
+ public:
+  using Sample = ContinuousSample<Dims>;
+
+  /// Advances the estimates to `sample.t` (see `SampledIntegrator`, which bounds
+  /// the RK4 step over long intervals). Returns `UpdateStatus::accepted`, or why
+  /// the sample was rejected (non-finite, time not advancing, an interval too
+  /// long, a non-finite step, or the observer's own check of the step); a
+  /// rejected sample leaves the observer exactly as it was.
+  [[nodiscard]] UpdateStatus update(const Sample& sample) {
+    using InternalState = typename Observer::InternalState;
+    Observer& o = self();
+    const bool stepping = o.integrator_.started();
+    const auto rhs = [&o](const InternalState& s, InternalState& ds, Scalar t, const typename Dims::Input& u,
+                          const typename Dims::Output& y) { o.derivative(s, ds, t, u, y); };
+    const auto check = [&o](InternalState& candidate) {
+      if constexpr (requires { o.check_step(candidate); })
+        return o.check_step(candidate);
+      else
+        return UpdateStatus::accepted;
+    };
+    const UpdateStatus status = o.integrator_.advance(sample, o.internal_, rhs, Observer::name, check);
+    if (status != UpdateStatus::accepted) return status;
+    o.refresh_estimates();
+    o.finish_update(sample, stepping);
+    return status;
+  }
+
+  /// Run-time sizes (nx, nu, ny, np).
+  [[nodiscard]] Sizes sizes() const noexcept { return self().sizes_; }
+  /// State estimate \f$\hat\eta(t_k)\f$ in the model's coordinates.
+  [[nodiscard]] const typename Dims::State& state() const noexcept { return self().eta_; }
+  /// Parameter estimate \f$\hat\theta(t_k)\f$.
+  [[nodiscard]] const typename Dims::Parameters& parameters() const noexcept { return self().theta_; }
+  /// Time of the last accepted sample.
+  [[nodiscard]] Scalar time() const noexcept { return self().integrator_.time(); }
+  /// Output error \f$\varepsilon(t_k) = y_k - C(t_k)\hat\eta(t_k)\f$ of the last accepted
+  /// sample (0 before the first), at the estimate integrated to \f$t_k\f$ — at the
+  /// first sample, the initial estimate: the error that drives the observer (its
+  /// file comment), which fault detectors test (diagnostics/chi_square_test.hpp).
+  /// The integration to \f$t_k\f$ uses y reconstructed between the samples: with
+  /// `SignalReconstruction::hold` it uses y up to \f$t_{k-1}\f$ only, so
+  /// \f$\varepsilon(t_k)\f$ is a prediction error (an innovation); with `linear` or
+  /// `quadratic` \f$y_k\f$ has already acted on the estimate over the interval.
+  [[nodiscard]] const typename Dims::Output& output_error() const noexcept { return self().output_error_; }
+
+  /// Everything the observer integrates, stacked (for an external integrator
+  /// driving `derivative`, see `odeint_system`).
+  [[nodiscard]] const auto& internal_state() const noexcept { return self().internal_; }
+  /// Replaces the internal state. Returns false, changing nothing, when `s`
+  /// holds NaN or Inf; a wrong size throws `ConfigurationError`.
+  template <class O = Observer>
+  bool set_internal_state(const typename O::InternalState& s) {
+    Observer& o = self();
+    detail::require_shape(s, o.internal_.rows(), 1, Observer::name, "s");
+    if (!detail::all_finite(s)) return false;
+    o.internal_ = s;
+    o.refresh_estimates();
+    return true;
+  }
+
+  /// Keeps every estimate but forgets the previous sample: the next one sets a
+  /// new time origin. For resuming after an interval rejected as
+  /// `UpdateStatus::interval_too_long`.
+  void resynchronize() noexcept { self().integrator_.resynchronize(); }
+
+  /// Restarts from \f$\hat\eta_0, \hat\theta_0\f$ as after construction; the next
+  /// sample sets the time origin.
+  void reset(const typename Dims::State& eta0, const typename Dims::Parameters& theta0) {
+    Observer& o = self();
+    detail::require_initial_estimates(eta0, o.sizes_.nx, theta0, o.sizes_.np, Observer::name_reset, "eta0",
+                                      "theta0");
+    o.set_initial(eta0, theta0);
+    o.output_error_.setZero();
+    o.integrator_.restart();
+  }
+
+ private:
+  Observer& self() noexcept { return static_cast<Observer&>(*this); }
+  const Observer& self() const noexcept { return static_cast<const Observer&>(*this); }
+};
+
+}  // namespace adaptobs
