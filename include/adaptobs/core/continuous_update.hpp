@@ -45,12 +45,7 @@ class ContinuousUpdate : public SizedBy<Dims> {
     const bool stepping = o.integrator_.started();
     const auto rhs = [&o](const InternalState& s, InternalState& ds, Scalar t, const typename Dims::Input& u,
                           const typename Dims::Output& y) { o.derivative(s, ds, t, u, y); };
-    const auto check = [&o](InternalState& candidate) {
-      if constexpr (requires { o.check_step(candidate); })
-        return o.check_step(candidate);
-      else
-        return UpdateStatus::accepted;
-    };
+    const auto check = [&o](InternalState& candidate) { return check_step(o, candidate); };
     const UpdateStatus status = o.integrator_.advance(sample, o.internal_, rhs, Observer::name, check);
     if (status != UpdateStatus::accepted) return status;
     o.refresh_estimates();
@@ -108,6 +103,15 @@ class ContinuousUpdate : public SizedBy<Dims> {
   }
 
  private:
+  /// The observer's own check of an integrated step (`check_step`), if it has one.
+  template <class InternalState>
+  static UpdateStatus check_step(Observer& o, InternalState& candidate) {
+    if constexpr (requires { o.check_step(candidate); })
+      return o.check_step(candidate);
+    else
+      return UpdateStatus::accepted;
+  }
+
   Observer& self() noexcept { return static_cast<Observer&>(*this); }
   const Observer& self() const noexcept { return static_cast<const Observer&>(*this); }
 };
