@@ -33,7 +33,9 @@
 //   `nonfinite_result`, every reading unchanged;
 // - after a rejection the run carries on as if the sample had never come;
 // - `reset(x0, θ0)` after a run equals a fresh construction at (x0, θ0), bit
-//   for bit, on the same samples;
+//   for bit, on the same samples; a non-finite θ0 (and, for the discrete
+//   observers, a negative start step, named) throws `ConfigurationError` and
+//   changes nothing;
 // - `output_error()` is zero before the first update and after a reset, is the
 //   factory's formula after each accepted update, and is zero in an absent channel;
 // - with fixed sizes, neither the updates of the run nor the readings allocate
@@ -308,6 +310,22 @@ TYPED_TEST_P(ObserverContract, ResetEqualsAFreshConstruction) {
   EXPECT_TRUE(same_bits(TestFixture::readings(observer), TestFixture::readings(reference)));
 }
 
+TYPED_TEST_P(ObserverContract, ResetRefusesBadArgumentsAndChangesNothing) {
+  using O = typename TestFixture::Observer;
+  const auto run = TypeParam::samples();
+  auto observer = TestFixture::after(run, run.size() / 2);
+  const auto before = TestFixture::readings(observer);
+  const typename O::State x0 = observer.state();
+  typename O::Parameters theta0 = observer.parameters();
+  theta0(0) = std::numeric_limits<typename O::Scalar>::quiet_NaN();
+  EXPECT_NE(configuration_error_of([&] { observer.reset(x0, theta0); }), "<no exception>");
+  // The discrete observers restart at a step k of a time-varying model.
+  if constexpr (requires { observer.reset(x0, theta0, Index(0)); }) {
+    EXPECT_CONFIGURATION_ERROR_NAMES(observer.reset(x0, observer.parameters(), Index(-1)), "start_step");
+  }
+  EXPECT_TRUE(same_bits(TestFixture::readings(observer), before));
+}
+
 TYPED_TEST_P(ObserverContract, OutputErrorIsTheErrorOfTheLastAcceptedUpdate) {
   using O = typename TestFixture::Observer;
   static_assert(DiagnosableObserver<O>);
@@ -448,6 +466,7 @@ struct ContractName {
 
 REGISTER_TYPED_TEST_SUITE_P(ObserverContract, SatisfiesTheObserverConcept, NonFiniteSamplesAreRejectedAndChangeNothing,
                             AnOverflowingStepIsRejectedAndChangesNothing, ResetEqualsAFreshConstruction,
+                            ResetRefusesBadArgumentsAndChangesNothing,
                             OutputErrorIsTheErrorOfTheLastAcceptedUpdate, FixedSizeUpdatesAndReadingsDoNotAllocate);
 
 }  // namespace adaptobs::testing

@@ -60,6 +60,9 @@ struct AugmentedKalmanCovariances {
   }
 };
 
+/// Kalman filter on the state augmented with the parameters (file comment).
+/// Its `output_error()` is \f$\varepsilon_k = y_k - C_k\hat x_{k|k-1}\f$, the Kalman
+/// innovation \f$y_k - H_k\hat\xi_{k|k-1}\f$ of the correction (before it).
 template <DiscreteModel Model>
 class AugmentedKalmanFilter
     : public DiscreteUpdate<AugmentedKalmanFilter<Model>, typename Model::Dims, DiscreteSample> {
@@ -67,6 +70,7 @@ class AugmentedKalmanFilter
 
  public:
   static constexpr std::string_view name_update = "AugmentedKalmanFilter::update";
+  static constexpr std::string_view name_reset = "AugmentedKalmanFilter::reset";
   using Dims = typename Model::Dims;
   using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
       typename SizedBy<Dims>::Output;
@@ -96,34 +100,24 @@ class AugmentedKalmanFilter
     w_.r_masked.setZero(s.ny, s.ny);
     w_.c_masked.setZero(s.ny, s.nx);
     w_.innovation.setZero(s.ny);
-    innovation_.setZero(s.ny);
+    output_error_.setZero(s.ny);
     w_.x.setZero(s.nx);
     w_.theta.setZero(s.np);
     w_.cholesky = detail::CholeskyFactor<typename Dims::OutputMatrixSquare>(s.ny);
   }
 
   [[nodiscard]] const State& state() const noexcept { return x_; }
-  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
-  /// Output error \f$\varepsilon_k = y_k - C_k\hat x_{k|k-1}\f$ of the last accepted
-  /// update, absent channels zero (0 before the first): the Kalman innovation
-  /// \f$y_k - H_k\hat\xi_{k|k-1}\f$ of the correction (before it), which fault detectors
-  /// test (diagnostics/chi_square_test.hpp).
-  [[nodiscard]] const Output& output_error() const noexcept { return innovation_; }
   /// Covariance of the augmented estimate [x̂; θ̂].
   [[nodiscard]] const AugmentedMatrix& covariance() const noexcept { return p_; }
-  [[nodiscard]] Index step() const noexcept { return step_; }
 
-  void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
-    constexpr std::string_view who = "AugmentedKalmanFilter::reset";
-    detail::require_initial_estimates(x0, x_.rows(), theta0, theta_.rows(), who);
+ private:
+  // The rest of `reset`: the covariance back to P0.
+  void restart(const State& x0, const Parameters& theta0) {
     x_ = x0;
     theta_ = theta0;
     p_ = cov_.P0;
-    innovation_.setZero();
-    step_ = start_step;
   }
 
- private:
   /// Correction with \f$y_k\f$, then prediction to step k + 1 with
   /// \f$(A_k, B_k, \Psi_k, u_k)\f$; `present` is null when every channel is. A step
   /// whose covariance would not be positive definite is rejected
@@ -190,7 +184,7 @@ class AugmentedKalmanFilter
     detail::commit(x_, w.x);
     detail::commit(theta_, w.theta);
     detail::commit(p_, w.scratch);
-    detail::commit(innovation_, w.innovation);
+    detail::commit(output_error_, w.innovation);
     ++step_;
     return UpdateStatus::accepted;
   }
@@ -212,7 +206,7 @@ class AugmentedKalmanFilter
   Parameters theta_;
   Covariances cov_;
   AugmentedMatrix p_;
-  Output innovation_;
+  Output output_error_;
   Index step_ = 0;
   Workspace w_;
 };

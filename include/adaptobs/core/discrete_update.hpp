@@ -7,13 +7,18 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <string_view>
 
 namespace adaptobs {
 
 /// Base of a discrete-time observer with a model (CRTP), not used on its own:
-/// `update(sample)`, its masked form and `sizes()`, with the run-time size
-/// checks of the sample and the mask. The observer supplies `model_`,
-/// `Observer::name_update` (the name its size errors give) and its step, in one
+/// `update(sample)`, its masked form, `reset` and the accessors every discrete
+/// observer has, with the run-time size checks of the sample and the mask. The
+/// observer supplies `model_`, `theta_`, `output_error_`, `step_`,
+/// `Observer::name_update` and `Observer::name_reset` (the names its errors
+/// give), `restart(x0, theta0)` (the rest of `reset`) and its step, in one
 /// of two forms, which the base calls with a sample of the right shape whose
 /// measured entries are finite (mask null: every channel present):
 /// - `advance(sample, mask, workspace)` with a `detail::UpdateWorkspace` named
@@ -42,6 +47,30 @@ class DiscreteUpdate : public SizedBy<Dims> {
 
   /// Run-time sizes (nx, nu, ny, np).
   [[nodiscard]] Sizes sizes() const noexcept { return self().model_.sizes(); }
+  /// Parameter estimate \f$\hat\theta_k\f$.
+  [[nodiscard]] const typename Dims::Parameters& parameters() const noexcept { return self().theta_; }
+  /// Output error of the last accepted update, absent channels zero (0 before
+  /// the first): the error the observer corrects its estimates with (its class
+  /// comment gives the formula), which fault detectors test
+  /// (diagnostics/chi_square_test.hpp).
+  [[nodiscard]] const typename Dims::Output& output_error() const noexcept { return self().output_error_; }
+  /// Number k of accepted samples since construction or the last reset.
+  [[nodiscard]] Index step() const noexcept { return self().step_; }
+  [[nodiscard]] const auto& model() const noexcept { return self().model_; }
+
+  /// Restarts from the initial estimates at step `start_step`, as after
+  /// construction with the current gains (the observer's `restart` clears its
+  /// own memory: filtered regressors, covariance, diagnostics).
+  void reset(const typename Dims::State& x0, const typename Dims::Parameters& theta0, Index start_step = 0) {
+    constexpr std::string_view who = Observer::name_reset;
+    const Sizes s = sizes();
+    detail::require_initial_estimates(x0, s.nx, theta0, s.np, who, initial_state_name());
+    detail::require(start_step >= 0, who, "start_step", "must be non-negative");
+    Observer& o = self();
+    o.restart(x0, theta0);
+    o.output_error_.setZero();
+    o.step_ = start_step;
+  }
 
  private:
   UpdateStatus checked_step(const Sample& sample, const OutputMask<Dims>* present) {
@@ -51,6 +80,15 @@ class DiscreteUpdate : public SizedBy<Dims> {
       return self().work_.run([&](auto& w) { return self().advance(sample, present, w); });
     else
       return self().step_with(sample, present);
+  }
+
+  // The name `reset` gives its initial state in errors: the observer's
+  // `name_initial_state` (the paper's letter) or "x0".
+  static constexpr std::string_view initial_state_name() {
+    if constexpr (requires { Observer::name_initial_state; })
+      return Observer::name_initial_state;
+    else
+      return "x0";
   }
 
   Observer& self() noexcept { return static_cast<Observer&>(*this); }

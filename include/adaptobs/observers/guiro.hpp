@@ -61,6 +61,11 @@ struct GuiroOptions {
 /// Guiro–Iggidr–Ngom–Touré observer over the sampled model \f$(E, B_d, C)\f$
 /// of a continuous system (see file comment); an LTV discrete model
 /// \f$(E_k, B_k, C_k)\f$ is accepted too.
+///
+/// Its `output_error()` is \f$\varepsilon_k = y_k - Cz^-_k\f$: the innovation that
+/// eq. (2), second line, corrects \f$z^-_k\f$ with (also when the paper's uncorrected
+/// \f$z_0\f$ skips that correction), not the a-posteriori error \f$Cz_k - y_k\f$ of
+/// the θ̂ update.
 template <DiscreteModel Model>
 class GuiroObserver
     : public DiscreteUpdate<GuiroObserver<Model>, typename Model::Dims, DiscreteSample> {
@@ -68,6 +73,8 @@ class GuiroObserver
 
  public:
   static constexpr std::string_view name_update = "GuiroObserver::update";
+  static constexpr std::string_view name_reset = "GuiroObserver::reset";
+  static constexpr std::string_view name_initial_state = "z0";
   using Dims = typename Model::Dims;
   using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
       typename SizedBy<Dims>::Output, typename SizedBy<Dims>::GainMatrix;
@@ -92,7 +99,7 @@ class GuiroObserver
     detail::require_finite(parameter_gain_, who, "Gamma");
     detail::require_initial_estimates(z_, s.nx, theta_, s.np, who, "z0", "theta0");
     corrected_ = z_;
-    innovation_.setZero(s.ny);
+    output_error_.setZero(s.ny);
     work_.resize(s);
   }
 
@@ -101,32 +108,8 @@ class GuiroObserver
   /// The paper's \f$z_{k-1}\f$: the estimate at the last consumed sample after
   /// its correction (the initial estimate before any update).
   [[nodiscard]] const State& corrected_state() const noexcept { return corrected_; }
-  /// Parameter estimate \f$\hat\theta_k\f$.
-  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
-  /// Output error \f$\varepsilon_k = y_k - Cz^-_k\f$ of the last accepted update,
-  /// absent channels zero (0 before the first): the innovation that eq. (2),
-  /// second line, corrects \f$z^-_k\f$ with (also when the paper's uncorrected
-  /// \f$z_0\f$ skips that correction), not the a-posteriori error \f$Cz_k - y_k\f$ of
-  /// the θ̂ update. Fault detectors test it (diagnostics/chi_square_test.hpp).
-  [[nodiscard]] const Output& output_error() const noexcept { return innovation_; }
-  /// Number k of accepted samples since construction or the last reset.
-  [[nodiscard]] Index step() const noexcept { return step_; }
-  [[nodiscard]] const Model& model() const noexcept { return model_; }
   [[nodiscard]] const GainMatrix& gain() const noexcept { return gain_; }
   [[nodiscard]] const ParameterGain& parameter_gain() const noexcept { return parameter_gain_; }
-
-  /// Restarts from \f$z_0, \hat\theta_0\f$ at step `start_step`.
-  void reset(const State& z0, const Parameters& theta0, Index start_step = 0) {
-    constexpr std::string_view who = "GuiroObserver::reset";
-    detail::require_initial_estimates(z0, z_.rows(), theta0, theta_.rows(), who, "z0", "theta0");
-    detail::require(start_step >= 0, who, "start_step", "must be non-negative");
-    z_ = z0;
-    corrected_ = z0;
-    innovation_.setZero();
-    theta_ = theta0;
-    step_ = start_step;
-    started_ = false;
-  }
 
   /// Gains used from the next update on: K corrects that sample's prediction and
   /// Γ multiplies its output error (file comment, "Irregular sample times", for a
@@ -142,6 +125,15 @@ class GuiroObserver
   }
 
  private:
+  // The rest of `reset`: the next sample is again the first (its prediction z0
+  // is corrected or not as at construction).
+  void restart(const State& z0, const Parameters& theta0) {
+    z_ = z0;
+    corrected_ = z0;
+    theta_ = theta0;
+    started_ = false;
+  }
+
   struct Workspace {
     Output innovation;               // y_k − C z^-_k
     Output residual;                 // C z_k − y_k
@@ -189,7 +181,7 @@ class GuiroObserver
     detail::commit(z_, w.predicted);
     detail::commit(corrected_, w.corrected);
     detail::commit(theta_, w.theta);
-    detail::commit(innovation_, w.innovation);
+    detail::commit(output_error_, w.innovation);
     started_ = true;
     ++step_;
     return UpdateStatus::accepted;
@@ -208,7 +200,7 @@ class GuiroObserver
   ParameterGain parameter_gain_;
   State z_;          // z^-_k
   State corrected_;  // z_{k−1}
-  Output innovation_;  // y_{k−1} − C z^-_{k−1}
+  Output output_error_;  // y_{k−1} − C z^-_{k−1}
   Parameters theta_;
   GuiroOptions options_;
   Index step_ = 0;

@@ -68,7 +68,9 @@ struct GuyaderZhangOptions {
 ///
 /// Each `update` consumes \f$(u_k, y_k, \Psi_k)\f$ and advances the estimates
 /// from step k to k + 1. The gain \f$K_k\f$ and step size \f$\mu_k\f$ are
-/// constant unless changed with `set_gain` / `set_mu` between updates.
+/// constant unless changed with `set_gain` / `set_mu` between updates. Its
+/// `output_error()` is \f$\varepsilon_k = y_k - C_k\hat x_k\f$, the innovation of
+/// eq. (2b)–(2c).
 template <DiscreteModel Model>
 class GuyaderZhangObserver
     : public DiscreteUpdate<GuyaderZhangObserver<Model>, typename Model::Dims, DiscreteSample> {
@@ -76,6 +78,7 @@ class GuyaderZhangObserver
 
  public:
   static constexpr std::string_view name_update = "GuyaderZhangObserver::update";
+  static constexpr std::string_view name_reset = "GuyaderZhangObserver::reset";
   using Dims = typename Model::Dims;
   using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
       typename SizedBy<Dims>::GainMatrix, typename SizedBy<Dims>::RegressorMatrix, typename SizedBy<Dims>::Output;
@@ -102,41 +105,17 @@ class GuyaderZhangObserver
 
     upsilon_.setZero(s.nx, s.np);
     last_c_upsilon_.setZero(s.ny, s.np);
-    last_innovation_.setZero(s.ny);
+    output_error_.setZero(s.ny);
     work_.resize(s);
     if constexpr (Model::time_invariant) update_closed_loop();
   }
 
   /// State estimate \f$\hat x_k\f$.
   [[nodiscard]] const State& state() const noexcept { return x_; }
-  /// Parameter estimate \f$\hat\theta_k\f$.
-  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
-  /// Output error \f$\varepsilon_k = y_k - C_k\hat x_k\f$ of the last accepted
-  /// update, absent channels zero (0 before the first): the innovation of
-  /// eq. (2b)–(2c), which fault detectors test (diagnostics/chi_square_test.hpp).
-  [[nodiscard]] const Output& output_error() const noexcept { return last_innovation_; }
   /// Filtered regressor \f$\Upsilon_k\f$ (eq. (2a)).
   [[nodiscard]] const RegressorMatrix& upsilon() const noexcept { return upsilon_; }
-  /// Number k of accepted samples since construction or the last reset.
-  [[nodiscard]] Index step() const noexcept { return step_; }
-  [[nodiscard]] const Model& model() const noexcept { return model_; }
   [[nodiscard]] const GainMatrix& gain() const noexcept { return gain_; }
   [[nodiscard]] Scalar mu() const noexcept { return mu_; }
-
-  /// Restarts from \f$\hat x_0, \hat\theta_0\f$ at step `start_step`, with \f$\Upsilon = 0\f$.
-  void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
-    constexpr std::string_view who = "GuyaderZhangObserver::reset";
-    detail::require_initial_estimates(x0, x_.rows(), theta0, theta_.rows(), who);
-    detail::require(start_step >= 0, who, "start_step", "must be non-negative");
-    x_ = x0;
-    theta_ = theta0;
-    upsilon_.setZero();
-    last_c_upsilon_.setZero();
-    last_innovation_.setZero();
-    last_mu_ = Scalar(0);
-    step_ = start_step;
-    if (excitation_) excitation_->reset();
-  }
 
   /// Gain \f$K_k\f$ used from the next update on (e.g. from `KalmanGainRecursion`).
   void set_gain(const GainMatrix& K) {
@@ -168,6 +147,16 @@ class GuyaderZhangObserver
   }
 
  private:
+  // The rest of `reset`: \f$\Upsilon = 0\f$ and the diagnostics emptied.
+  void restart(const State& x0, const Parameters& theta0) {
+    x_ = x0;
+    theta_ = theta0;
+    upsilon_.setZero();
+    last_c_upsilon_.setZero();
+    last_mu_ = Scalar(0);
+    if (excitation_) excitation_->reset();
+  }
+
   // Intermediate results of one step, committed only when all are finite.
   struct Workspace {
     typename Dims::Output innovation;
@@ -237,7 +226,7 @@ class GuyaderZhangObserver
     detail::commit(theta_, w.theta);
     detail::commit(upsilon_, w.upsilon);
     detail::commit(last_c_upsilon_, w.c_upsilon);
-    detail::commit(last_innovation_, w.innovation);
+    detail::commit(output_error_, w.innovation);
     last_mu_ = mu_k;
     if (excitation_) excitation_->add(last_c_upsilon_, last_mu_);
     ++step_;
@@ -266,7 +255,7 @@ class GuyaderZhangObserver
   RegressorMatrix upsilon_;
   typename Dims::StateMatrix closed_loop_;  // A − K C, cached for a time-invariant model
   typename Dims::OutputRegressor last_c_upsilon_;
-  Output last_innovation_;
+  Output output_error_;
   Scalar last_mu_ = Scalar(0);
   Index step_ = 0;
   bool normalized_step_;

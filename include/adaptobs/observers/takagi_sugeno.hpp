@@ -50,6 +50,9 @@
 
 namespace adaptobs {
 
+/// Takagi–Sugeno adaptive observer, eq. (65) (eq. (21) with \f$K_\theta\f$ set). Its
+/// `output_error()` is \f$\varepsilon_k = D_k(y_k - C\hat x_k)\f$, the error that drives
+/// both \f$L_i\f$ and \f$K_{y,i}\f$.
 template <TakagiSugenoSystem Model>
 class TakagiSugenoObserver
     : public DiscreteUpdate<TakagiSugenoObserver<Model>, typename Model::Dims, InputOutputSample> {
@@ -57,6 +60,7 @@ class TakagiSugenoObserver
 
  public:
   static constexpr std::string_view name_update = "TakagiSugenoObserver::update";
+  static constexpr std::string_view name_reset = "TakagiSugenoObserver::reset";
   using Dims = typename Model::Dims;
   using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
       typename SizedBy<Dims>::Output;
@@ -76,18 +80,12 @@ class TakagiSugenoObserver
     set_gains(gains);
     weights_.setZero(model_.vertex_count());
     premises_.setZero(model_.premise_count());
-    last_output_error_.setZero(s.ny);
+    output_error_.setZero(s.ny);
     work_.resize(s, model_);
   }
 
-  /// State estimate \f$\hat x_k\f$ and parameter estimate \f$\hat\theta_k\f$.
+  /// State estimate \f$\hat x_k\f$.
   [[nodiscard]] const State& state() const noexcept { return x_; }
-  [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
-  /// Output error \f$\varepsilon_k = D_k(y_k - C\hat x_k)\f$ of the last accepted
-  /// update, absent channels zero (0 before the first): the output error that
-  /// drives both \f$L_i\f$ and \f$K_{y,i}\f$ in eq. (65) (and (21)), which fault
-  /// detectors test (diagnostics/chi_square_test.hpp).
-  [[nodiscard]] const Output& output_error() const noexcept { return last_output_error_; }
   /// Weights \f$\hat h_i\f$ used by the last accepted update (zero before the first).
   [[nodiscard]] const Weights& weights() const noexcept { return weights_; }
   /// Premise variables \f$\hat z_k\f$ of the last accepted update, before clipping.
@@ -95,26 +93,9 @@ class TakagiSugenoObserver
   /// False when the last accepted update had to clip \f$\hat z_k\f$ or \f$\hat\theta_k\f$ to its sector
   /// (the estimates left the region where the model is exact; Remark 8).
   [[nodiscard]] bool premises_in_sectors() const noexcept { return in_sectors_; }
-  /// Number k of accepted samples since construction or the last reset.
-  [[nodiscard]] Index step() const noexcept { return step_; }
-  [[nodiscard]] const Model& model() const noexcept { return model_; }
   [[nodiscard]] const Gains& gains() const noexcept { return gains_; }
   /// True for the time-varying-parameter observer (eq. (21), \f$K_\theta\f$ set).
   [[nodiscard]] bool has_leakage() const noexcept { return gains_.K_theta.has_value(); }
-
-  /// Restarts from \f$\hat x_0, \hat\theta_0\f$ at step `start_step`.
-  void reset(const State& x0, const Parameters& theta0, Index start_step = 0) {
-    constexpr std::string_view who = "TakagiSugenoObserver::reset";
-    detail::require_initial_estimates(x0, x_.rows(), theta0, theta_.rows(), who);
-    detail::require(start_step >= 0, who, "start_step", "must be non-negative");
-    x_ = x0;
-    theta_ = theta0;
-    weights_.setZero();
-    premises_.setZero();
-    last_output_error_.setZero();
-    in_sectors_ = true;
-    step_ = start_step;
-  }
 
   /// Replaces the gains (checked as at construction) from the next update on.
   void set_gains(const Gains& gains) {
@@ -157,6 +138,15 @@ class TakagiSugenoObserver
   }
 
  private:
+  // The rest of `reset`: no weights or premises yet.
+  void restart(const State& x0, const Parameters& theta0) {
+    x_ = x0;
+    theta_ = theta0;
+    weights_.setZero();
+    premises_.setZero();
+    in_sectors_ = true;
+  }
+
   static constexpr int nv_at_compile_time = sum_of_sizes(sum_of_sizes(Dims::nx, Dims::nu), Dims::ny);
   static constexpr int na_at_compile_time = sum_of_sizes(Dims::nx, Dims::np);
   using VertexMaps =
@@ -223,7 +213,7 @@ class TakagiSugenoObserver
     detail::commit(theta_, w.theta);
     detail::commit(weights_, w.h);
     detail::commit(premises_, w.z);
-    last_output_error_ = w.v.tail(ny);  // a copy: v is a segment of the workspace
+    output_error_ = w.v.tail(ny);  // a copy: v is a segment of the workspace
     ++step_;
     return UpdateStatus::accepted;
   }
@@ -260,7 +250,7 @@ class TakagiSugenoObserver
   Parameters theta_;
   Weights weights_;
   PremiseVector premises_;
-  Output last_output_error_;
+  Output output_error_;
   bool in_sectors_ = true;
   Index step_ = 0;
   // A run-time number of vertices keeps its workspace even with fixed sizes.
