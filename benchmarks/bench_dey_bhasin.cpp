@@ -1,4 +1,4 @@
-// Dey–Bhasin and Suzuki observers (paper 003 §5) against the augmented-state
+// Dey–Bhasin and Suzuki observers (Dey & Bhasin 2022, §5) against the augmented-state
 // Kalman filter on the same systems (written in the linear-in-p form (7):
 // x_{t+1} = F x_t + Ψ_t p with Ψ_t = [I_r ⊗ y_t, u_tᵀ ⊗ I_n]); each adaptation
 // law alone at p ∈ {4, 16, 64} (q = 2); and the cost of the reset test of

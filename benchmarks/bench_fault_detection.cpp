@@ -1,4 +1,4 @@
-// Fault detection at the satellite's sizes (paper 000 §4): the CUSUM and the
+// Fault detection at the satellite's sizes (Guyader & Zhang 2003, §4): the CUSUM and the
 // GLR on θ̂ and the χ² test on the output errors, each alone and with the Guyader–Zhang
 // update they watch (BM_GuyaderZhang_Satellite, same binary, is the update
 // alone); and the Monte-Carlo evaluator's throughput on 1 and 2 threads.

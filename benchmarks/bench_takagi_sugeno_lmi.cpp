@@ -1,5 +1,5 @@
 // Time of the LMI synthesis (theorem 2, K_i = 0.03, Q_e of Remark 6) for the
-// waste water plant of paper 004 §6 with DSDP: building the 60 × 60 vertex LMIs,
+// waste water plant of Srinivasarengan et al. (2018) §6 with DSDP: building the 60 × 60 vertex LMIs,
 // solving, and verifying the solution.
 
 #include <adaptobs/design/lmi/takagi_sugeno_synthesis.hpp>

@@ -1,4 +1,4 @@
-// The continuous-time observers of the unified formulation (paper 001), one
+// The continuous-time observers of the unified formulation (Zhang 2005), one
 // sample = one RK4 step each, beside the augmented Kalman–Bucy filter on the
 // same plants: the third-order SISO plant (Alg. 1, 2) and the periodic MIMO
 // plant (Alg. 3, 4).

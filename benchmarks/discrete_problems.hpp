@@ -1,6 +1,6 @@
 #pragma once
 // Discrete-time problems shared by the Guyader–Zhang and augmented-Kalman
-// benchmarks: the satellite of paper 000 and a random stable system whose
+// benchmarks: the satellite of Guyader & Zhang (2003) and a random stable system whose
 // size is swept.
 
 #include <adaptobs/core/discrete_model.hpp>

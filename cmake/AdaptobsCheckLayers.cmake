@@ -8,8 +8,12 @@
 #   observers, baselines        -> core, models, adaptation, design, diagnostics, and their own layer
 #   simulation                  -> anything below
 #
+# It also checks that headers cite papers by author and year, as listed in
+# docs/references.md, never by a file of extracted text ("000_<hash>.txt") or
+# an index ("paper 000") that only makes sense beside those files.
+#
 # Run as a script (CTest `layer_rule`): cmake -DROOT=<include/adaptobs> -P AdaptobsCheckLayers.cmake
-# It fails naming every include that crosses upward or sideways.
+# It fails naming every include that crosses upward or sideways, and every such citation.
 cmake_minimum_required(VERSION 3.20)
 
 set(allowed_core core)
@@ -31,6 +35,11 @@ foreach(layer core models adaptation design diagnostics observers baselines simu
   file(GLOB_RECURSE headers "${ROOT}/${layer}/*.hpp")
   foreach(header IN LISTS headers)
     math(EXPR checked "${checked} + 1")
+    file(STRINGS "${header}" citations REGEX "[0-9][0-9][0-9]_[0-9a-f]+\\.txt|[Pp]apers? [0-9][0-9][0-9]")
+    foreach(line IN LISTS citations)
+      file(RELATIVE_PATH name "${ROOT}" "${header}")
+      string(APPEND violations "\n  ${name}: cites a paper by file or index, not by author and year: ${line}")
+    endforeach()
     file(STRINGS "${header}" includes REGEX "^#include <adaptobs/")
     foreach(line IN LISTS includes)
       string(REGEX REPLACE "^#include <adaptobs/([a-z_]+)[/.].*" "\\1" target "${line}")
@@ -45,6 +54,6 @@ if(checked EQUAL 0)
   message(FATAL_ERROR "AdaptobsCheckLayers: no header found under ${ROOT}")
 endif()
 if(violations)
-  message(FATAL_ERROR "Layer rule broken:${violations}")
+  message(FATAL_ERROR "Header rules broken:${violations}")
 endif()
-message(STATUS "Layer rule holds for ${checked} headers")
+message(STATUS "Layer and citation rules hold for ${checked} headers")

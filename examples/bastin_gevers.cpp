@@ -1,4 +1,4 @@
-// Algorithm 1 of paper 001 (§III-A, Bastin & Gevers): the third-order SISO
+// Algorithm 1 of Zhang (2005, §III-A, Bastin & Gevers): the third-order SISO
 // plant of examples/models/siso_third_order.hpp, not in canonical form, is
 // brought to the form (5) by the library's static transform
 // (det(sI − A22) = (s + 1)(s + 3)); k makes c_o(sI − A_o + k c_o)⁻¹e1 = 1/(s + 2),
@@ -32,6 +32,6 @@ int main(int argc, char** argv) {
 
   adaptobs::examples::run_siso_example(
       observer, args, "bastin_gevers",
-      "Bastin-Gevers adaptive observer (paper 001, Algorithm 1) on a third-order SISO plant");
+      "Bastin-Gevers adaptive observer (Zhang 2005, Algorithm 1) on a third-order SISO plant");
   return 0;
 }

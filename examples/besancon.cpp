@@ -1,4 +1,4 @@
-// Algorithm 3 of paper 001 (§III-C, Besançon) on the MIMO LTV plant of
+// Algorithm 3 of Zhang (2005, §III-C, Besançon) on the MIMO LTV plant of
 // examples/models/periodic_mimo.hpp (n = 4, m = 2, p = 2, period 2π): the
 // plant's output matrix is not [I 0]; the constant T of the model brings it to
 // the form (8). The error e2 obeys ė2 = A22(t)e2 — exponentially stable
@@ -40,6 +40,6 @@ int main(int argc, char** argv) {
   adaptobs::examples::write_outputs(
       table, args.out_dir(), "besancon",
       adaptobs::examples::estimates_and_errors_figure(
-          "Besancon adaptive observer (paper 001, Algorithm 3) on a periodic MIMO plant", "1 and -2", 2, 4));
+          "Besancon adaptive observer (Zhang 2005, Algorithm 3) on a periodic MIMO plant", "1 and -2", 2, 4));
   return 0;
 }

@@ -1,4 +1,4 @@
-// MIMO example of paper 003 §5 (Dey & Bhasin): q = 2 outputs, m = 2 inputs,
+// MIMO example of Dey & Bhasin (2022) §5 (Dey & Bhasin): q = 2 outputs, m = 2 inputs,
 // order r = 3 (n = 6 states), every entry of A and B unknown, RLS with
 // covariance resetting (k0 = 1000, R = I, kmin = 1e-4), two runs:
 //   - an input that is not sufficiently rich, u = [sin 0.2t, sin 0.5t]:
@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
   adaptobs::examples::write_outputs(
       {{nonpe.table, "dey_bhasin_mimo_nonpe", "nonpe"}, {pe.table, "dey_bhasin_mimo_pe", "pe"}}, args.out_dir(),
       "dey_bhasin_mimo", adaptobs::examples::gap_shading(pe.table, loss) + R"(
-set multiplot layout 3,2 title 'Dey-Bhasin adaptive observer, MIMO example (paper 003, section 5)'
+set multiplot layout 3,2 title 'Dey-Bhasin adaptive observer, MIMO example (Dey and Bhasin 2022, section 5)'
 set grid
 set xlabel 't'
 set key off

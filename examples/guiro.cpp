@@ -1,4 +1,4 @@
-// Continuous dynamics, sampled output: the example of paper 002 §4 (Guiro,
+// Continuous dynamics, sampled output: the example of Guiro et al. (2008) §4 (Guiro,
 // Iggidr, Ngom, Touré). ẋ = [0 0; 1 0] x + ((t+1)/(t+2), 0)ᵀ θ, y_k = x₂(k),
 // θ = 5; the gains K, Γ are designed so that the error matrix U has the
 // spectrum {1/2, 3/5, 1/5}, compared with the printed ones, and checked
@@ -242,7 +242,7 @@ void print_final_estimates(Index samples, const Run& run) {
 void write_figure(const Run& run, const adaptobs::examples::Arguments& args, const adaptobs::OutputLoss& loss) {
   adaptobs::examples::write_outputs(run.table, args.out_dir(), "guiro",
                                     adaptobs::examples::gap_shading(run.table, loss.options()) + R"(
-set multiplot layout 2,1 title 'Guiro-Iggidr-Ngom-Toure adaptive observer, continuous dynamics and sampled output (paper 002, section 4)'
+set multiplot layout 2,1 title 'Guiro-Iggidr-Ngom-Toure adaptive observer, continuous dynamics and sampled output (Guiro et al. 2008, section 4)'
 set grid
 set xlabel 't (sample times: k on the regular grid, T = 1)'
 set title 'Figure 1: state x_1 and its estimate z_1'

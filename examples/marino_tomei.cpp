@@ -1,4 +1,4 @@
-// Algorithm 2 of paper 001 (§III-B, Marino & Tomei): the third-order SISO
+// Algorithm 2 of Zhang (2005, §III-B, Marino & Tomei): the third-order SISO
 // plant of examples/models/siso_third_order.hpp, not in canonical form, is
 // brought to the form (7) (c_o = e1ᵀ, A_o the shift) by the library's static
 // transform; γ = (1, 3, 2) and k = (8, 17, 10) make
@@ -34,6 +34,6 @@ int main(int argc, char** argv) {
 
   adaptobs::examples::run_siso_example(
       observer, args, "marino_tomei",
-      "Marino-Tomei adaptive observer (paper 001, Algorithm 2) on a third-order SISO plant");
+      "Marino-Tomei adaptive observer (Zhang 2005, Algorithm 2) on a third-order SISO plant");
   return 0;
 }

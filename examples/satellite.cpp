@@ -1,4 +1,4 @@
-// Controlled satellite, paper 000 §4 (Guyader & Zhang): joint estimation of
+// Controlled satellite, Guyader & Zhang (2003) §4 (Guyader & Zhang): joint estimation of
 // the state and of the two thrust efficiencies θ = (1, 1.5) from noisy
 // distance and angle measurements, beside the augmented-state Kalman filter.
 //
@@ -78,7 +78,7 @@ void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::
                   const adaptobs::OutputLoss& loss) {
   adaptobs::examples::write_outputs(table, args.out_dir(), "satellite",
                                     adaptobs::examples::gap_shading(table, loss.options()) + R"(
-set multiplot layout 3,1 title 'Guyader-Zhang adaptive observer, controlled satellite (paper 000, section 4)'
+set multiplot layout 3,1 title 'Guyader-Zhang adaptive observer, controlled satellite (Guyader and Zhang 2003, section 4)'
 set grid
 set xlabel 't (s)'
 set title 'Figure 1: thrusts'

@@ -1,4 +1,4 @@
-// Thruster fault on the controlled satellite of paper 000 §4: the
+// Thruster fault on the controlled satellite of Guyader & Zhang (2003) §4: the
 // Guyader–Zhang observer's estimates watched by a CUSUM and a windowed GLR on θ̂
 // (detection and isolation) and a χ² test on the output errors, all designed
 // from fault-free runs for one mean time between false alarms.
@@ -37,7 +37,7 @@ void write_figure(const adaptobs::SeriesTable& table, const satellite::MonitorDe
   band.precision(10);
   band << "s1 = " << design.cusum.scale(0) << "; s2 = " << design.cusum.scale(1) << "\n";
   adaptobs::examples::write_outputs(table, args.out_dir(), "satellite_fault", band.str() + R"(
-set multiplot layout 3,1 title 'Thruster fault on the satellite: tests on the Guyader-Zhang estimates (paper 000, section 4)'
+set multiplot layout 3,1 title 'Thruster fault on the satellite: tests on the Guyader-Zhang estimates (Guyader and Zhang 2003, section 4)'
 set grid
 set xlabel 't (s)'
 set title 'parameter estimates, with their fault-free spread (2 scales)'

@@ -1,4 +1,4 @@
-// SISO comparison of paper 003 §5 (figures 4–5): the Dey–Bhasin observer
+// SISO comparison of Dey & Bhasin (2022) §5 (figures 4–5): the Dey–Bhasin observer
 // (RLS with covariance resetting, k0 = 1e4, R = 1, kmin = 1e-4) against the
 // observer of Suzuki, Nakamura & Koga (1980) — the same filters with RLS and
 // exponential forgetting, weighting factor √0.5 taken as the forgetting factor
@@ -62,7 +62,7 @@ void print_step(const std::string& name, adaptobs::Index step) {
 
 void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::Arguments& args) {
   adaptobs::examples::write_outputs(table, args.out_dir(), "suzuki_siso", R"(
-set multiplot layout 3,2 title 'Covariance resetting against exponential forgetting, SISO example (paper 003, section 5)'
+set multiplot layout 3,2 title 'Covariance resetting against exponential forgetting, SISO example (Dey and Bhasin 2022, section 5)'
 set grid
 set xlabel 't'
 set title 'Figure 4(a): normalized estimates, Suzuki et al. (forgetting, lambda = sqrt 0.5)'

@@ -1,4 +1,4 @@
-// All four algorithms of paper 001 on one plant where all apply — the
+// All four algorithms of Zhang (2005) on one plant where all apply — the
 // third-order SISO plant of examples/models/siso_third_order.hpp (constant,
 // observable, one output) — each brought to its own form by the library's
 // static transforms, beside the Kalman–Bucy filter on [x; θ] (appendix).
@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   print_value("theta_relative_error_kalman_bucy", relative(kb));
 
   adaptobs::examples::write_outputs(table, args.out_dir(), "unified_comparison", R"(
-set multiplot layout 3,1 title 'Paper 001: four adaptive observers of one unified formulation, and the Kalman-Bucy filter on [x; theta]'
+set multiplot layout 3,1 title 'Zhang (2005): four adaptive observers of one unified formulation, and the Kalman-Bucy filter on [x; theta]'
 set grid
 set xlabel 't (s)'
 set key outside right

@@ -1,4 +1,4 @@
-// Waste water treatment plant, paper 004 §6 (Srinivasarengan et al.): joint
+// Waste water treatment plant, Srinivasarengan et al. (2018) §6 (Srinivasarengan et al.): joint
 // estimation of the biomass and substrate (x1, x2) and of the growth-rate error
 // θ (a = 0.5 + θ) with the Takagi–Sugeno adaptive observer (65), once with the
 // printed gains and once with gains designed here by theorem 2 with DSDP.
@@ -140,7 +140,7 @@ void print_paper_sector_design(const Model& model) {
 void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::Arguments& args,
                   const adaptobs::OutputLoss& loss) {
   adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp", adaptobs::examples::gap_shading(table, loss.options()) + R"(
-set multiplot layout 3,2 title 'Takagi-Sugeno adaptive observer, waste water treatment plant (paper 004, section 6)'
+set multiplot layout 3,2 title 'Takagi-Sugeno adaptive observer, waste water treatment plant (Srinivasarengan et al. 2018, section 6)'
 set grid
 set xlabel 'k'
 set title 'Figure 1: estimation of x_1'

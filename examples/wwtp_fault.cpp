@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
 
   const std::string band = "s1 = " + std::to_string(design.cusum.scale(0)) + "\n";
   adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp_fault", band + R"(
-set multiplot layout 3,1 title 'Growth-rate change in the waste water treatment plant: Takagi-Sugeno observer (paper 004, section 6)'
+set multiplot layout 3,1 title 'Growth-rate change in the waste water treatment plant: Takagi-Sugeno observer (Srinivasarengan et al. 2018, section 6)'
 set grid
 set xlabel 'sample'
 set title 'parameter estimate, with its fault-free spread (2 scales)'

@@ -1,4 +1,4 @@
-// Algorithm 4 of paper 001 (§III-D, Zhang 2002) on the MIMO LTV plant of
+// Algorithm 4 of Zhang (2005, §III-D, Zhang 2002) on the MIMO LTV plant of
 // examples/models/periodic_mimo.hpp: no coordinate change, eq. (12a)–(12b),
 // with the constant gain K = T⁻¹[3I; 0] (Floquet exponents of A − KC printed)
 // and, beside it (suffix `riccati`), with K(t) from the Riccati differential
@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   print_value("riccati_final_K", riccati.gain(model.at(plant.time()).C));
 
   adaptobs::examples::write_outputs(table, args.out_dir(), "zhang_continuous", R"(
-set multiplot layout 2,1 title 'Zhang (2002) adaptive observer (paper 001, Algorithm 4) on a periodic MIMO plant'
+set multiplot layout 2,1 title 'Zhang (2002) adaptive observer (Zhang 2005, Algorithm 4) on a periodic MIMO plant'
 set grid
 set xlabel 't (s)'
 set title 'parameter estimates (true 1 and -2)'

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the library's examples (Release) and runs the satellite example of
-# paper 000: writes satellite.csv and satellite.png into the folder it prints.
+# Guyader & Zhang (2003): writes satellite.csv and satellite.png into the folder it prints.
 #
 #   scripts/demo.sh [OUTPUT_DIR]      (default: build/demo/output)
 set -euo pipefail

@@ -1,5 +1,5 @@
 #pragma once
-// The example system of paper 002 §4, shared by the Guiro observer and design tests:
+// The example system of Guiro et al. (2008) §4, shared by the Guiro observer and design tests:
 // E = e^{AT}, C and the closed-form H_0, and the gains designed for it.
 
 #include <adaptobs/design/guiro_gains.hpp>

@@ -1,4 +1,4 @@
-// Adaptation laws on their own (paper 003, eq. (17)–(23); exponential
+// Adaptation laws on their own (Dey & Bhasin 2022, eq. (17)–(23); exponential
 // forgetting; normalized gradient): the recursions against their closed forms,
 // the exactness and the cost of the reset test, partial measurements (the step
 // on the present sub-regression), compute-then-commit, and configuration checks.

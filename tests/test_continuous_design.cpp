@@ -1,4 +1,4 @@
-// Design helpers of the continuous-time observers (paper 001): polynomials and
+// Design helpers of the continuous-time observers (Zhang 2005): polynomials and
 // transfer functions, strict positive realness (exact test, frequency sweep,
 // KYP certificate), the SPR gain design, the static transforms to the forms
 // of Algorithms 1–3, CARE / Lyapunov / Riccati differential equation, and the

@@ -157,7 +157,7 @@ TEST(KalmanGainRecursion, TimeVaryingGainsMakeErrorDynamicsExponentiallyStable) 
     transition = ((system.A - gain * system.C) * transition).eval();
     norms.push_back(transition.norm());
   }
-  // Definition 1 of paper 000: ‖Π (A_i − K_iC_i)‖ ≤ r q^k with q < 1.
+  // Definition 1 of Guyader & Zhang (2003): ‖Π (A_i − K_iC_i)‖ ≤ r q^k with q < 1.
   EXPECT_LT(norms.back(), 1e-8);
   EXPECT_LT(adaptobs::testing::fit_geometric_rate(norms), 0.97);
   const Eigen::Matrix3d p = recursion.covariance();

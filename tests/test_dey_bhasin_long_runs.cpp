@@ -1,4 +1,4 @@
-// The Dey–Bhasin observer over long horizons (paper 003 §5): the MIMO example
+// The Dey–Bhasin observer over long horizons (Dey & Bhasin 2022, §5): the MIMO example
 // within the bounds of theorem 5 for 10⁵ steps without excitation, and the SISO
 // covariance over 10⁶ steps, symmetric, inside [kmin, k0] and reset exactly when
 // λ_min(Γ̄) reaches kmin. Part of test_long_runs, which the sanitizer build

@@ -1,4 +1,4 @@
-// Dey–Bhasin observer (paper 003) on the MIMO example of §5 and on random
+// Dey–Bhasin observer (Dey & Bhasin 2022) on the MIMO example of §5 and on random
 // dimensions: the reading of the example, eq. (7) and (12), the structured
 // filters against the literal (8)–(11), convergence with a sufficiently rich
 // input (theorem 6), the proof step of theorem 5, batch least squares (18),

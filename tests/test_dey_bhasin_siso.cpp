@@ -1,4 +1,4 @@
-// Dey–Bhasin observer on the SISO comparison of paper 003 §5: the Suzuki et
+// Dey–Bhasin observer on the SISO comparison of Dey & Bhasin (2022) §5: the Suzuki et
 // al. exponential-forgetting baseline losing boundedness while resetting does
 // not, float and double, and the observer with another adaptation law. The
 // covariance over 10⁶ steps is in test_dey_bhasin_long_runs.cpp.

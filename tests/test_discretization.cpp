@@ -1,5 +1,5 @@
 // Matrix exponential and zero-order-hold discretization: closed forms, the
-// satellite matrices printed in paper 000 §4, and configuration errors.
+// satellite matrices printed in Guyader & Zhang (2003) §4, and configuration errors.
 
 #include <adaptobs/core/discretization.hpp>
 #include <adaptobs/core/matrix_exponential.hpp>
@@ -223,7 +223,7 @@ TEST(ZeroOrderHold, DiagonalSystemClosedForm) {
   EXPECT_NEAR((h - Eigen::Matrix3d(h.diagonal().asDiagonal())).norm(), 0.0, 1e-15);
 }
 
-// One printed entry of paper 000 §4 and the number of significant digits printed.
+// One printed entry of Guyader & Zhang (2003) §4 and the number of significant digits printed.
 struct Printed {
   int row, col;
   double value;

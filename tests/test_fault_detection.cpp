@@ -1,8 +1,8 @@
 // Fault detection: the χ² quantile and Siegmund's run length against known
 // values; the CUSUM, GLR and χ² tests against their designed false-alarm rates
 // on independent normal draws, on the satellite's Guyader–Zhang observer and on
-// the waste water plant's Takagi–Sugeno observer; the faults of paper 000 §4 and
-// paper 004 §6 over 1000 seeds; re-arming an RLS law; bad input.
+// the waste water plant's Takagi–Sugeno observer; the faults of Guyader & Zhang (2003) §4 and
+// Srinivasarengan et al. (2018) §6 over 1000 seeds; re-arming an RLS law; bad input.
 
 #include <adaptobs/core/observer.hpp>
 #include <adaptobs/diagnostics/calibration.hpp>
@@ -423,7 +423,7 @@ TEST(ChiSquareTest, TwoMomentCorrectionRestoresTheRateOnCorrelatedErrors) {
             << "\n";
 }
 
-// ---------------------------------------------------------------- satellite, paper 000 §4
+// ---------------------------------------------------------------- satellite, Guyader & Zhang (2003) §4
 
 
 // Alarms per unit time of `run(seed)` (a fault-free run) over seeds 101, 102, ...
@@ -510,7 +510,7 @@ TEST(SatelliteFaultDetection, FiftySecondDriftDetected) {
             << " p95_delay " << summary.p95_detection_delay << " isolation " << summary.isolation_rate << "\n";
 }
 
-// ---------------------------------------------------------------- waste water plant, paper 004 §6
+// ---------------------------------------------------------------- waste water plant, Srinivasarengan et al. (2018) §6
 
 TEST(WwtpFaultDetection, FalseAlarmRatesMatchDesign) {
   static_assert(adaptobs::DiagnosableObserver<adaptobs::TakagiSugenoObserver<wwtp::Model<double>>>);
@@ -547,7 +547,7 @@ TEST(WwtpFaultDetection, DefaultFaultDetectedOver1000Seeds) {
 
 // ---------------------------------------------------------------- re-arming an RLS-type observer
 
-// Dey–Bhasin SISO plant of paper 003 §5 with plain RLS (Γ₀ = 10⁴ I): at t = 300
+// Dey–Bhasin SISO plant of Dey & Bhasin (2022) §5 with plain RLS (Γ₀ = 10⁴ I): at t = 300
 // the input gain drops by 40 % (B → 0.6 B). A CUSUM on p̂ alarms; with
 // `restart_adaptation` at the alarm the law converges to the new B at its
 // initial speed, without it RLS's gain has shrunk like 1/t and it crawls.

@@ -1,5 +1,5 @@
 // Gain design and convergence diagnostic of the continuous-discrete adaptive
-// observer of Guiro, Iggidr, Ngom, Touré (paper 002): the paper's example and
+// observer of Guiro, Iggidr, Ngom, Touré (Guiro et al. 2008): the paper's example and
 // its printed gains, closed forms, random MIMO cases, cases without solution,
 // and proposition 2.2 (the observer itself is tested in test_guiro.cpp).
 

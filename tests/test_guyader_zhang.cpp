@@ -1,4 +1,4 @@
-// Guyader–Zhang adaptive observer (paper 000): theorem 1 (noise free,
+// Guyader–Zhang adaptive observer (Guyader & Zhang 2003): theorem 1 (noise free,
 // exponential convergence), the satellite example, the diagnostics of
 // assumptions 2–3, float/double and fixed/dynamic agreement, and rejection of
 // bad input. Theorem 2 over long runs and many seeds is in

@@ -1,4 +1,4 @@
-// Theorem 2 of Guyader & Zhang (paper 000) on the satellite of §4: with
+// Theorem 2 of Guyader & Zhang (Guyader & Zhang 2003) on the satellite of §4: with
 // bounded noises the errors stay bounded and stationary over 10⁵ steps, and
 // with zero-mean noise they are zero-mean over 200 seeds. Part of
 // test_long_runs, which the sanitizer build compiles with optimization

@@ -1,7 +1,7 @@
 // Missing and partial outputs (`OutputMask`). Guyader–Zhang (file comment of
 // observers/guyader_zhang.hpp): all channels present is the plain update bit
 // for bit; no channel is the time update of the error analysis; the satellite
-// of paper 000 §4 keeps its accuracy with random drops and an outage, where
+// of Guyader & Zhang (2003) §4 keeps its accuracy with random drops and an outage, where
 // skipping the samples does not; an LTV model stays in phase. The augmented
 // Kalman filter: a mask is the Kalman correction with the present rows of C
 // and the present block of R. `update_finite_outputs`: a glitch in y is the
@@ -134,7 +134,7 @@ TEST(GuyaderZhangMissing, RunTimeSizedMaskOfTheWrongLengthNamesPresent) {
   EXPECT_EQ(observer.step(), 0);
 }
 
-// Paper 000 §4 with 30 % of the output samples lost at random, and separately a
+// Guyader & Zhang (2003) §4 with 30 % of the output samples lost at random, and separately a
 // 20-s outage from t = 100 s: θ̂ over the last 100 s stays within 0.05 of (1, 1.5).
 // Skipping the lost samples instead leaves x̂ behind the plant at each one.
 TEST(GuyaderZhangMissing, SatelliteWithDroppedSamplesAndAnOutage) {

@@ -1,4 +1,4 @@
-// Takagi–Sugeno polytopic model and adaptive observer (paper 004): sector
+// Takagi–Sugeno polytopic model and adaptive observer (Srinivasarengan et al. 2018): sector
 // weights (10)–(11) and Remark 1, the vertices of the waste water plant of §6
 // against the printed ones, exactness of the polytopic model, observer (65) and
 // its time-varying variant (21), the paper's gains on the plant, missing outputs,

@@ -1,4 +1,4 @@
-// LMI synthesis of the Takagi–Sugeno observer gains (paper 004, theorems 1–2,
+// LMI synthesis of the Takagi–Sugeno observer gains (Srinivasarengan et al. 2018, theorems 1–2,
 // corollary 1) with DSDP: the solver interface on problems with known answers,
 // the waste water plant of §6 (feasible, verified independently, and the
 // observer converges with the designed gains), infeasible instances reported as

@@ -1,4 +1,4 @@
-// The continuous-time observers over long runs and across gaps (paper 001):
+// The continuous-time observers over long runs and across gaps (Zhang 2005):
 // the Kalman–Bucy filter's 1/t convergence without parameter noise, a gap of 2
 // and 20 s crossed with the learned step limit, and irregular sample times
 // against the regular grid. Part of test_long_runs, which the sanitizer build

@@ -1,4 +1,4 @@
-// The four continuous-time observers of the unified formulation (paper 001)
+// The four continuous-time observers of the unified formulation (Zhang 2005)
 // and the augmented Kalman–Bucy baseline: convergence on the examples' plants
 // with fitted decay rates, a flipped update law, fixed against dynamic sizes
 // and float, and bad input. The structure along trajectories ((4a), Lyapunov

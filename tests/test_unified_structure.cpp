@@ -1,4 +1,4 @@
-// The structure of the unified formulation (paper 001), checked along
+// The structure of the unified formulation (Zhang 2005), checked along
 // trajectories: the identity (4a) for each algorithm's (F, G, H) and the
 // paper's z-form observer equations, Lyapunov functions that never increase,
 // joint plant–observer integration to machine precision, and the discrete

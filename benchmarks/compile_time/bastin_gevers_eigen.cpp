@@ -1,5 +1,5 @@
 // Compile-time benchmark, hand-written side: the Bastin–Gevers adaptive
-// observer (paper 001, Algorithm 1) in the coordinates x = Tη of form (5), with
+// observer (Zhang 2005, Algorithm 1) in the coordinates x = Tη of form (5), with
 // its filter Ξ̇ = A22 Ξ + Ψ2 and θ̂̇ = Γ ξ ε, stepped by a hand-written RK4 (one
 // step per sample, u held, y linear between samples) with Eigen alone.
 // Paired with bastin_gevers_observer.cpp.

@@ -1,5 +1,5 @@
 // Compile-time benchmark, library side: one adaptobs::BastinGeversObserver
-// (paper 001, Algorithm 1) on the third-order SISO plant of the examples, from
+// (Zhang 2005, Algorithm 1) on the third-order SISO plant of the examples, from
 // a given transform (T, K) to form (5) and gain k, updated over 2000 samples
 // (Ts = 0.01 s) with one RK4 step per sample.
 // Paired with bastin_gevers_eigen.cpp (the same job with Eigen alone).

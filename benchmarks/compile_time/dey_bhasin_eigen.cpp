@@ -1,5 +1,5 @@
 // Compile-time benchmark, hand-written side: the Dey–Bhasin adaptive observer
-// (paper 003, filters (8)–(13), RLS with covariance resetting (22)–(23)) with
+// (Dey & Bhasin 2022, filters (8)–(13), RLS with covariance resetting (22)–(23)) with
 // fixed-size Eigen types, on the same plant, input and 1000 steps.
 // Paired with dey_bhasin_observer.cpp.
 

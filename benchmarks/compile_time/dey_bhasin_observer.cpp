@@ -1,6 +1,6 @@
 // Compile-time benchmark, library side: one adaptobs::DeyBhasinObserver (order
 // 3, 2 outputs, 2 inputs, 15 unknowns; RLS with covariance resetting) on the
-// MIMO plant of paper 003 §5 driven by its sufficiently rich input, 1000 steps.
+// MIMO plant of Dey & Bhasin (2022) §5 driven by its sufficiently rich input, 1000 steps.
 // Paired with dey_bhasin_eigen.cpp (the same job with Eigen alone).
 
 #include <adaptobs/observers/dey_bhasin.hpp>

@@ -1,5 +1,5 @@
 // Compile-time benchmark, library side: one adaptobs::GuyaderZhangObserver at
-// the satellite's sizes (paper 000 §4) from the printed gain, 1000 updates on
+// the satellite's sizes (Guyader & Zhang 2003, §4) from the printed gain, 1000 updates on
 // a simulated noise-free plant, then both diagnostics.
 // Paired with guyader_zhang_eigen.cpp (the same job with Eigen alone).
 

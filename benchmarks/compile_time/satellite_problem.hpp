@@ -1,5 +1,5 @@
 #pragma once
-// The satellite of paper 000 §4 with its printed matrices (Ts = 0.1 s) and
+// The satellite of Guyader & Zhang (2003) §4 with its printed matrices (Ts = 0.1 s) and
 // printed gain, and the thrust pulses that excite it: the data both sides of
 // the guyader_zhang pair share, in Eigen types only, so that it costs both the same.
 

@@ -1,5 +1,5 @@
 // Compile-time benchmark, hand-written side: the Takagi–Sugeno adaptive
-// observer (paper 004, eq. (65)) on the waste water plant of §6 with Eigen
+// observer (Srinivasarengan et al. 2018, eq. (65)) on the waste water plant of §6 with Eigen
 // alone: the 8 vertices of the sector-nonlinearity model, the memberships (10)
 // at the estimates, the printed gains, the same 500 steps.
 // Paired with takagi_sugeno_observer.cpp.

@@ -1,5 +1,5 @@
 // Compile-time benchmark, library side: one adaptobs::TakagiSugenoObserver
-// (eq. (65), 8 vertices) on the waste water plant of paper 004 §6 with the
+// (eq. (65), 8 vertices) on the waste water plant of Srinivasarengan et al. (2018) §6 with the
 // printed gains, 500 steps with θ = 0.05.
 // Paired with takagi_sugeno_eigen.cpp (the same job with Eigen alone).
 

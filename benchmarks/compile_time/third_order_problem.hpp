@@ -1,5 +1,5 @@
 #pragma once
-// The third-order SISO plant of the continuous-time examples (paper 001,
+// The third-order SISO plant of the continuous-time examples (Zhang 2005,
 // Algorithm 1), with the transform (T, K) to form (5) and the gain k: the data
 // both sides of the bastin_gevers pair share, in Eigen types only.
 

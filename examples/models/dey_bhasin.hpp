@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The two systems of paper 003 §5 (Dey & Bhasin), shared by the examples
+/// The two systems of Dey & Bhasin (2022) §5 (Dey & Bhasin), shared by the examples
 /// `dey_bhasin_mimo` and `suzuki_siso`, the tests and the benchmarks; and the
 /// analysis helpers they use (normalized estimates, theorem-5 sums).
 ///
@@ -20,7 +20,7 @@
 ///   0, so the paper's "normalized parameter estimates" are read as â/a and
 ///   b̂/b (every true entry of a and B is non-zero here).
 ///
-/// SISO (Suzuki et al. 1980, via paper 003 §5): A = [1.52 1; −0.6 0],
+/// SISO (Suzuki et al. 1980, via Dey & Bhasin (2022) §5): A = [1.52 1; −0.6 0],
 /// B = [0.43; −0.35], F = [1.49 1; −0.55 0], x₀ = x̂₀ = 0, Â₀ = [0 1; 0 0],
 /// B̂₀ = 0, k0 = 1e4, R = 1, kmin = 1e-4, weighting factor √0.5, u_t = sin(0.2t).
 

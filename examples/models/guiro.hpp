@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The example of paper 002 §4 (Guiro, Iggidr, Ngom, Touré), shared by the
+/// The example of Guiro et al. (2008) §4 (Guiro, Iggidr, Ngom, Touré), shared by the
 /// `guiro` example, the tests and the benchmarks:
 /// \f[ \dot x = \begin{bmatrix}0&0\\1&0\end{bmatrix}x + \begin{bmatrix}\frac{t+1}{t+2}\\0\end{bmatrix}\theta,
 ///     \qquad y_k = [0\ \ 1]\,x(kT),\qquad \theta = 5,\ T = 1, \f]

@@ -3,7 +3,7 @@
 /// A MIMO linear time-varying plant (n = 4, m = 2, p = 2, period 2π), used by
 /// the `besancon` and `zhang_continuous` examples, the tests and the benchmarks.
 ///
-/// In coordinates \f$x = T\eta\f$ it has the form (8) of paper 001 (§III-C),
+/// In coordinates \f$x = T\eta\f$ it has the form (8) of Zhang (2005, §III-C),
 /// \f$C_o = [I\ 0]\f$, without output injection:
 /// \f[ A_o(t) = \begin{bmatrix} -1 & 0.5 + 0.5\sin t & 1 & 0\\ -0.5 & -1.5 & 0.5\cos t & 1
 ///     \\ 0.3 & 0 & -2 & w(t)\\ 0 & -0.3 & -w(t) & -2\end{bmatrix},\quad w(t) = 1 + 0.5\sin t, \f]

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The controlled satellite of paper 000 §4 (Guyader & Zhang), shared by the
+/// The controlled satellite of Guyader & Zhang (2003) §4 (Guyader & Zhang), shared by the
 /// `satellite` example, the tests and the benchmarks.
 ///
 /// Linearized motion about a circular orbit of normalized radius 1 with
@@ -11,7 +11,7 @@
 ///     + \begin{bmatrix} 0&0\\ \theta^1&0\\ 0&0\\ 0&\theta^2\end{bmatrix}u. \f]
 /// Sampled with a zero-order hold (Ts = 0.1 s) it becomes
 /// \f$x_{k+1} = A x_k + \Psi_k\theta\f$ with \f$\Psi_k = H\,\mathrm{diag}\text{-}(u_k)\f$,
-/// \f$H = \int_0^{T_s}e^{A_cs}ds\f$ (paper 000 §4).
+/// \f$H = \int_0^{T_s}e^{A_cs}ds\f$ (Guyader & Zhang 2003, §4).
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
@@ -59,7 +59,7 @@ DiscreteLtiModel<Dims<S>> model() {
   return {discretized<S>().Ad, Eigen::Matrix<S, 4, 2>::Zero(), output_matrix<S>()};
 }
 
-/// Observer gain K printed in paper 000 §4.
+/// Observer gain K printed in Guyader & Zhang (2003) §4.
 template <typename S>
 Eigen::Matrix<S, 4, 2> paper_gain() {
   Eigen::Matrix<S, 4, 2> k;
@@ -78,7 +78,7 @@ template <typename S> Eigen::Matrix<S, 2, 1> initial_parameter_estimate() { retu
 /// Square thrust pulses: unit amplitude, 1 s long, every 10 s; radial pulses
 /// start at t = 0, 10, 20, ... and tangential ones at t = 5, 15, 25, ...
 ///
-/// Amplitude and width are set by assumption 2 of paper 000: a pulse of
+/// Amplitude and width are set by assumption 2 of Guyader & Zhang (2003): a pulse of
 /// length d drives C Υ up to about 0.47 d (d in s, unit thrust), so with μ = 4
 /// pulses of 1 s keep ‖√μ C Υ‖ ≤ 0.94 ≤ 1, while 5-s pulses would reach 2.2
 /// and make the observer diverge.
@@ -100,7 +100,7 @@ struct PulseThrusts {
   }
 };
 
-/// \f$\Psi_k = H \begin{bmatrix}0&0\\u^1_k&0\\0&0\\0&u^2_k\end{bmatrix}\f$ (paper 000 §4).
+/// \f$\Psi_k = H \begin{bmatrix}0&0\\u^1_k&0\\0&0\\0&u^2_k\end{bmatrix}\f$ (Guyader & Zhang 2003, §4).
 template <typename S>
 struct ThrustRegressor {
   Eigen::Matrix<S, 4, 4> H = discretized<S>().Bd;

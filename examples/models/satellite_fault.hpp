@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// A thruster fault on the controlled satellite of paper 000 §4, watched by a
+/// A thruster fault on the controlled satellite of Guyader & Zhang (2003) §4, watched by a
 /// `FaultMonitor` on its Guyader–Zhang observer; shared by the
 /// `satellite_fault` example, the tests and the benchmarks.
 ///

@@ -2,7 +2,7 @@
 /// \file
 /// A third-order SISO plant that is *not* in any canonical form, used by the
 /// `bastin_gevers`, `marino_tomei` and `unified_comparison` examples, the tests
-/// and the benchmarks (paper 001 prints no example; this is the plant of the
+/// and the benchmarks (Zhang 2005 prints no example; this is the plant of the
 /// library's verification of §III-A/B):
 /// \f[ \dot\eta = \begin{bmatrix} -1 & 2 & 0\\ -1 & -1 & 1\\ 0.5 & 0 & -2\end{bmatrix}\eta
 ///     + \begin{bmatrix} 0\\ 1\\ 0.5\end{bmatrix}u + \Phi(t)\theta,\qquad y = [1\ 0\ 1]\,\eta, \f]

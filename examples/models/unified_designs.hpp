@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The observer designs of the continuous-time examples (paper 001), shared
+/// The observer designs of the continuous-time examples (Zhang 2005), shared
 /// with the tests and the benchmarks: each algorithm with its static transform,
 /// gains and adaptation gain, on the plant it is shown with.
 ///

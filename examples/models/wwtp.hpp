@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The simplified waste water treatment plant of paper 004 §6 (Srinivasarengan
+/// The simplified waste water treatment plant of Srinivasarengan et al. (2018) §6 (Srinivasarengan
 /// et al.), shared by the `wwtp` example, the tests and the benchmarks.
 ///
 /// Plant (72), with \f$a = a_0 + \theta\f$ (73) and the constants of Table 1:

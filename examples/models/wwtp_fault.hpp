@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// A fault of the waste water treatment plant of paper 004 §6: the growth
+/// A fault of the waste water treatment plant of Srinivasarengan et al. (2018) §6: the growth
 /// parameter θ steps from 0 to 0.15 at sample 400 (or ramps there), watched by a
 /// `FaultMonitor` on the Takagi–Sugeno observer with the printed gains; shared
 /// by the `wwtp_fault` example and the tests.

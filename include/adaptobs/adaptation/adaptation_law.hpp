@@ -5,7 +5,7 @@
 /// \f[ z_t = \varphi_t^T p + v_t,\qquad z_t \in \mathbb{R}^{n_z},\; p \in \mathbb{R}^{n_p},
 ///     \; \varphi_t \in \mathbb{R}^{n_p \times n_z}, \f]
 /// where \f$v_t\f$ is whatever the model leaves out (noise, or the vanishing
-/// term \f$CF^t\tilde x_0\f$ of paper 003, eq. (16)).
+/// term \f$CF^t\tilde x_0\f$ of Dey & Bhasin (2022), eq. (16)).
 ///
 /// An observer whose output error is linear in its unknown parameters forms
 /// \f$(\varphi_t, z_t)\f$ from its filters and hands them to any law modelling
@@ -14,9 +14,9 @@
 ///
 /// | law | update | header |
 /// |---|---|---|
-/// | `RecursiveLeastSquares` | paper 003, eq. (19)–(22) | `recursive_least_squares.hpp` |
-/// | `CovarianceResettingRls` | paper 003, eq. (22)–(23) | `covariance_resetting.hpp` |
-/// | `ExponentialForgettingRls` | exponentially weighted least squares (Suzuki et al. 1980, via paper 003 §5) | `exponential_forgetting.hpp` |
+/// | `RecursiveLeastSquares` | Dey & Bhasin (2022), eq. (19)–(22) | `recursive_least_squares.hpp` |
+/// | `CovarianceResettingRls` | Dey & Bhasin (2022), eq. (22)–(23) | `covariance_resetting.hpp` |
+/// | `ExponentialForgettingRls` | exponentially weighted least squares (Suzuki et al. 1980, via Dey & Bhasin (2022) §5) | `exponential_forgetting.hpp` |
 /// | `NormalizedGradient` | normalized (projection) gradient | `normalized_gradient.hpp` |
 ///
 /// Every law is constructed as `Law(p0, options, nz)` with its own `Options`

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Recursive least squares with covariance resetting on the smallest
-/// eigenvalue (Dey & Bhasin (2022), eq. (22)–(23)).
+/// eigenvalue (Dey & Bhasin 2022, eq. (22)–(23)).
 ///
 /// Each step computes the RLS covariance and estimate
 /// \f[ \bar\Gamma_t = \Gamma_{t-1} - \Gamma_{t-1}\varphi_tW_t\varphi_t^T\Gamma_{t-1},\qquad
@@ -69,7 +69,7 @@ template <class Derived>
   return detail::cholesky_in_place(shifted);
 }
 
-/// RLS with covariance resetting, eq. (22)–(23) of paper 003.
+/// RLS with covariance resetting, eq. (22)–(23) of Dey & Bhasin (2022).
 template <typename S, int NP, int NZ>
 class CovarianceResettingRls : public LeastSquaresLaw<CovarianceResettingRls<S, NP, NZ>, S, NP, NZ> {
   using Base = LeastSquaresLaw<CovarianceResettingRls, S, NP, NZ>;

@@ -13,7 +13,7 @@
 ///     \Gamma_t = \tfrac1\lambda\big(\Gamma_{t-1} - \Gamma_{t-1}\varphi_tW_t\varphi_t^T\Gamma_{t-1}\big). \f]
 /// λ = 1 is plain RLS.
 ///
-/// Reading: paper 003 gives Suzuki's "weighting factor" as \f$\sqrt{0.5}\f$ and
+/// Reading: Dey & Bhasin (2022) gives Suzuki's "weighting factor" as \f$\sqrt{0.5}\f$ and
 /// not the cost it enters. It is taken here as λ itself, the multiplier of the
 /// past cost (Ljung's forgetting factor, Goodwin & Sin's exponential data
 /// weighting); a convention where the weight enters squared would mean
@@ -27,7 +27,7 @@
 /// shows the growth before it.
 ///
 /// Numerics. Long before it overflows, the wound-up Γ stops being positive
-/// definite in floating point (in the SISO example of paper 003 §5: from
+/// definite in floating point (in the SISO example of Dey & Bhasin (2022) §5: from
 /// step 96, with max|Γ| = 3e12), and \f$\lambda R + \varphi^T\Gamma\varphi\f$ can turn
 /// negative (step 108). The law is therefore computed in its textbook gain
 /// form, which assumes no definiteness: \f$K = \Gamma\varphi M^{-1}\f$ with M
@@ -54,7 +54,7 @@
 
 namespace adaptobs {
 
-/// RLS with exponential forgetting (Suzuki et al. 1980; paper 003 §5).
+/// RLS with exponential forgetting (Suzuki et al. 1980; Dey & Bhasin (2022) §5).
 template <typename S, int NP, int NZ>
 class ExponentialForgettingRls : public LeastSquaresLaw<ExponentialForgettingRls<S, NP, NZ>, S, NP, NZ> {
   using Base = LeastSquaresLaw<ExponentialForgettingRls, S, NP, NZ>;

@@ -2,7 +2,7 @@
 /// \file
 /// Continuous-time gradient adaptation \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$.
 ///
-/// The parameter update of the four observers of paper 001: with
+/// The parameter update of the four observers of Zhang (2005): with
 /// \f$\varepsilon = y - C_o\hat x\f$ the output error and R the regressor of the
 /// algorithm (m × p), \f$R = \xi^T\f$ for Alg. 1–2, \f$R = A_{12}\Xi + \Psi_1\f$ for
 /// Alg. 3, \f$R = C\Omega\f$ for Alg. 4 (eq. (12b)). Γ is symmetric positive definite.

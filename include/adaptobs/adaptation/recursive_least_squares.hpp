@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Recursive least squares (Dey & Bhasin (2022), eq. (17)–(22)).
+/// Recursive least squares (Dey & Bhasin 2022, eq. (17)–(22)).
 ///
 /// Minimizes the cost (17)
 /// \f[ J_t(\hat p) = \tfrac12\Big[\sum_{i=1}^t (z_i - \varphi_i^T\hat p)^T R^{-1}(z_i - \varphi_i^T\hat p)
@@ -50,7 +50,7 @@ void validate_least_squares(const P& p0, const G& gamma0, const W& weight, Index
 
 }  // namespace detail
 
-/// Plain recursive least squares, eq. (20)–(22) of paper 003.
+/// Plain recursive least squares, eq. (20)–(22) of Dey & Bhasin (2022).
 template <typename S, int NP, int NZ>
 class RecursiveLeastSquares : public LeastSquaresLaw<RecursiveLeastSquares<S, NP, NZ>, S, NP, NZ> {
   using Base = LeastSquaresLaw<RecursiveLeastSquares, S, NP, NZ>;

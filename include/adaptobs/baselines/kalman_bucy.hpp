@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Kalman–Bucy filter on the state augmented with the unknown parameters — the
-/// continuous-time baseline of the unified observers (paper 001, appendix, system (16)).
+/// continuous-time baseline of the unified observers (Zhang 2005, appendix, system (16)).
 ///
 /// For \f$\dot\eta = A\eta + Bu + \Phi\theta\f$, \f$\dot\theta = 0\f$, \f$y = C\eta\f$, the extended system
 /// \f$\dot\chi = A_e\chi + [Bu; 0]\f$, \f$y = C_e\chi\f$ with

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Continuous-time linear models with unknown parameters (paper 001, eq. (1)):
+/// Continuous-time linear models with unknown parameters (Zhang 2005, eq. (1)):
 /// \f[ \dot\eta(t) = A(t)\eta(t) + B(t)u(t) + \Phi(t)\theta,\qquad y(t) = C(t)\eta(t). \f]
 ///
 /// A model supplies the known matrices \f$(A(t), B(t), C(t))\f$ — constant

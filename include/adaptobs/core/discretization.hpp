@@ -8,7 +8,7 @@
 ///   A_d = e^{A T_s},\; B_d = \int_0^{T_s} e^{A s}\,ds\; B \f]
 /// (C. F. Van Loan, "Computing integrals involving the matrix exponential",
 /// IEEE TAC 23(3), 1978). With \f$B = I\f$ the upper-right block is the matrix
-/// \f$H = \int_0^{T_s} e^{As}ds\f$ that paper 000 (§4) uses to bring the
+/// \f$H = \int_0^{T_s} e^{As}ds\f$ that Guyader & Zhang (2003, §4) uses to bring the
 /// satellite's unknown input gains into the form \f$\Psi_k\theta\f$.
 
 #include <adaptobs/core/dimensions.hpp>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Dynamic transformation of paper 001 (§II-B, eq. (3)–(4)).
+/// Dynamic transformation of Zhang (2005, §II-B, eq. (3)–(4)).
 ///
 /// \f[ \dot\Xi = F(t)\Xi + G\Psi(t) \quad (3a),\qquad \Omega = H\Xi \quad (3b),\qquad
 ///     z = x - \Omega\theta \quad (3c). \f]
@@ -9,7 +9,7 @@
 ///     y = C_o z + C_o\Omega\theta \quad (4a). \f]
 /// Ξ is r × p; F is r × r, G is r × n, H is n × r, with G and H constant.
 ///
-/// The four algorithms of paper 001 all take \f$F(t) = G A_o(t) H\f$ (the
+/// The four algorithms of Zhang (2005) all take \f$F(t) = G A_o(t) H\f$ (the
 /// *projected* filter): Alg. 1 and 3 with G = [0 I], H = [0; I] (F = A22),
 /// Alg. 2 with G = [−g I], H = [0; I] (F = A22 − g a12, with A_o the shift),
 /// Alg. 4 with G = H = I (F = A_o). A constant F may be given instead.

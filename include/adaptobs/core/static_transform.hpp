@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Static transformation of paper 001 (§II-A, eq. (2)): a coordinate change
+/// Static transformation of Zhang (2005, §II-A, eq. (2)): a coordinate change
 /// \f$x = T\eta\f$ and an output injection K.
 ///
 /// Applied to system (1) it gives

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Static transformations (paper 001, eq. (2)) that bring a constant pair (A, C)
+/// Static transformations (Zhang 2005, eq. (2)) that bring a constant pair (A, C)
 /// to the forms of Algorithms 1–3.
 ///
 /// - `bastin_gevers_form` (Alg. 1, §III-A, form (5)): \f$c_o = e_1^T\f$,

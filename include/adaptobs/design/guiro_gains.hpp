@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Gains K and Γ of the continuous-discrete adaptive observer of Guiro, Iggidr,
-/// Ngom and Touré (Guiro et al. (2008), §2.2–§3) for any number of
+/// Ngom and Touré (Guiro et al. 2008, §2.2–§3) for any number of
 /// states n, outputs m and parameters p.
 ///
 /// With \f$E = e^{AT}\f$ and a nominal regressor \f$\bar H\f$ (the paper takes
@@ -233,7 +233,7 @@ ADAPTOBS_INSTANTIATE DynamicGuiroGains<double> design_guiro_gains<double>(const 
 }  // namespace detail
 
 /// Error matrix \f$U = \begin{bmatrix}(I-KC)E & (I-KC)E\bar H\\ -\Gamma C & I\end{bmatrix}\f$
-/// of paper 002, §2.2 (eq. (5) with \f$H_0\f$ replaced by \f$\bar H\f$).
+/// of Guiro et al. (2008), §2.2 (eq. (5) with \f$H_0\f$ replaced by \f$\bar H\f$).
 template <class DE, class DC, class DH, class DK, class DG>
 [[nodiscard]] auto guiro_error_matrix(const Eigen::MatrixBase<DE>& E, const Eigen::MatrixBase<DC>& C,
                                       const Eigen::MatrixBase<DH>& Hbar, const Eigen::MatrixBase<DK>& K,

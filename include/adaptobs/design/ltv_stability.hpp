@@ -9,7 +9,7 @@
 /// period) has eigenvalues \f$\mu_i\f$, the Floquet exponents are
 /// \f$\log|\mu_i|/T\f$, and the system is exponentially stable iff all are negative.
 /// Used for the conditions of Algorithm 3 (\f$\dot e_2 = A_{22}(t)e_2\f$) and
-/// Algorithm 4 (\f$\dot{\tilde z} = (A(t) - K(t)C(t))\tilde z\f$, eq. (13)) of paper 001.
+/// Algorithm 4 (\f$\dot{\tilde z} = (A(t) - K(t)C(t))\tilde z\f$, eq. (13)) of Zhang (2005).
 
 #include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/runge_kutta.hpp>

@@ -4,7 +4,7 @@
 /// frequency sweep, a Kalman–Yakubovich–Popov certificate, and the design of a
 /// gain k making \f$c(sI - A + kc)^{-1}\gamma\f$ SPR.
 ///
-/// Algorithms 1 and 2 of paper 001 (§III-A, §III-B) converge when
+/// Algorithms 1 and 2 of Zhang (2005, §III-A, §III-B) converge when
 /// \f$c_o(sI - A_o + kc_o)^{-1}\gamma\f$ is SPR: then (KYP lemma) some
 /// \f$P = P^T > 0\f$ satisfies \f$\bar A^TP + P\bar A < 0\f$ and \f$P\gamma = c_o^T\f$ with
 /// \f$\bar A = A_o - kc_o\f$, and \f$V = e^TPe + \tilde\theta^T\Gamma^{-1}\tilde\theta\f$

@@ -2,7 +2,7 @@
 /// \file
 /// Time-varying Kalman–Bucy gains from the Riccati differential equation.
 ///
-/// Algorithm 4 of paper 001 (§III-D) needs K(t) making \f$A(t) - K(t)C(t)\f$
+/// Algorithm 4 of Zhang (2005, §III-D) needs K(t) making \f$A(t) - K(t)C(t)\f$
 /// exponentially stable; "typically such a K(t) is computed with the aid of a
 /// dynamic Riccati equation like in the Kalman filter":
 /// \f[ \dot P = A P + P A^T + Q - P C^T R^{-1} C P,\qquad K = P C^T R^{-1}, \f]

@@ -2,10 +2,10 @@
 /// \file
 /// Time-varying Kalman gains \f$K_k\f$ from the Riccati difference equation.
 ///
-/// Assumption 1 of paper 000 asks for a bounded \f$K_k\f$ making
+/// Assumption 1 of Guyader & Zhang (2003) asks for a bounded \f$K_k\f$ making
 /// \f$\eta_{k+1} = (A_k - K_k C_k)\eta_k\f$ exponentially stable; for a
 /// uniformly completely observable pair \f$(A_k, C_k)\f$ the Kalman predictor
-/// gain does it (Jazwinski 1970, quoted in paper 000 §2):
+/// gain does it (Jazwinski 1970, quoted in Guyader & Zhang (2003) §2):
 /// \f[ K_k = A_k P_k C_k^T (C_k P_k C_k^T + R)^{-1},\qquad
 ///     P_{k+1} = (A_k - K_k C_k) P_k (A_k - K_k C_k)^T + K_k R K_k^T + Q. \f]
 /// The covariance is propagated in this Joseph-like form, a sum of positive

@@ -4,7 +4,7 @@
 ///
 /// Keeps the average of the last L positive semidefinite contributions
 /// \f$\Phi_i^T\Phi_i\f$ (e.g. \f$\mu_i\Upsilon_i^T C_i^T C_i\Upsilon_i\f$ for
-/// assumption 3 of paper 000, eq. (4)) and reports its smallest eigenvalue,
+/// assumption 3 of Guyader & Zhang (2003), eq. (4)) and reports its smallest eigenvalue,
 /// the largest α for which \f$\frac1L\sum_{i=k}^{k+L-1}\Phi_i^T\Phi_i \ge \alpha I\f$
 /// holds on that window. A value that stays away from zero says the unknown
 /// parameters are identifiable from the data; a value near zero says some

@@ -44,7 +44,7 @@
 
 namespace adaptobs {
 
-/// Filters (8)–(11) of paper 003 for order `R`, `Q` outputs and `M` inputs (any may be `Eigen::Dynamic`).
+/// Filters (8)–(11) of Dey & Bhasin (2022) for order `R`, `Q` outputs and `M` inputs (any may be `Eigen::Dynamic`).
 template <typename S, int R, int Q, int M>
 class CanonicalFormFilters {
  public:

@@ -335,7 +335,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   detail::UpdateWorkspace<Workspace, Dims::is_fixed> work_;
 };
 
-/// The Suzuki–Nakamura–Koga style observer of paper 003 §5: the same filters,
+/// The Suzuki–Nakamura–Koga style observer of Dey & Bhasin (2022) §5: the same filters,
 /// adapted by RLS with exponential forgetting (`ExponentialForgettingRls`).
 template <typename S, int R, int Q, int M>
 using SuzukiObserver = DeyBhasinObserver<S, R, Q, M, ExponentialForgettingRls>;

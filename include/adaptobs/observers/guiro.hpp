@@ -4,7 +4,7 @@
 /// (2008, docs/references.md), eq. (2), generalized to p parameters,
 /// m outputs, a sampling period T and known inputs.
 ///
-/// System (paper 002, eq. (1)): \f$\dot x = Ax + Bu(t) + \varphi(t)\theta\f$,
+/// System (Guiro et al. 2008, eq. (1)): \f$\dot x = Ax + Bu(t) + \varphi(t)\theta\f$,
 /// \f$y_k = Cx(kT)\f$, with \f$\theta\in\mathbb{R}^p\f$ and \f$\varphi(t)\in\mathbb{R}^{n\times p}\f$.
 /// Between samples the observer integrates \f$\dot z = Az + Bu + \varphi(t)\hat\theta_k\f$;
 /// at the samples it corrects z with the output and θ̂ with the previous

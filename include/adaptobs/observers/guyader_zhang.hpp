@@ -1,9 +1,9 @@
 #pragma once
 /// \file
 /// Discrete-time MIMO LTV adaptive observer of Guyader & Zhang
-/// (Guyader & Zhang (2003), eq. (2a)–(2c); docs/references.md).
+/// (Guyader & Zhang 2003, eq. (2a)–(2c); docs/references.md).
 ///
-/// System (paper 000, eq. (1), noise free):
+/// System (Guyader & Zhang 2003, eq. (1), noise free):
 /// \f[ x_{k+1} = A_k x_k + B_k u_k + \Psi_k\theta,\qquad y_k = C_k x_k. \f]
 /// The observer filters the regressor through the stable error dynamics
 /// \f$A_k - K_kC_k\f$ (eq. (2a)), corrects θ̂ along \f$\Upsilon_k^TC_k^T\f$ times

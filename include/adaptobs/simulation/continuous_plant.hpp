@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Simulated continuous-time plant with unknown parameters (paper 001, eq. (1)):
+/// Simulated continuous-time plant with unknown parameters (Zhang 2005, eq. (1)):
 /// \f[ \dot\eta = A(t)\eta + B(t)u(t) + \Phi\theta,\qquad y = C(t)\eta + v, \f]
 /// integrated with RK4 (inputs and regressor evaluated exactly at the stage
 /// times) and sampled every `period`: each sample carries \f$u, y\f$ at \f$t_k\f$ and

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Simulated discrete-time plant with unknown parameters and optional noise
-/// (paper 000, eq. (1)):
+/// (Guyader & Zhang 2003, eq. (1)):
 /// \f[ \theta_{k+1} = \theta_k + e_k,\quad x_{k+1} = A_kx_k + B_ku_k + \Psi_k\theta_k + w_k,\quad
 ///     y_k = C_kx_k + v_k. \f]
 /// Inputs and regressors are user callables `input(k)` and `regressor(k, u_k)`.
