@@ -213,8 +213,7 @@ class RegressionLaw {
 
   /// Back to \f$\hat p_0\f$ and the law's initial gain.
   void restart(const Parameters& p0) {
-    detail::require_shape(p0, law().parameter_count(), 1, Law::name_restart, "p0");
-    detail::require_finite(p0, Law::name_restart, "p0");
+    detail::require_finite_shape(p0, law().parameter_count(), 1, Law::name_restart, "p0");
     law().restart_at(p0);
   }
 

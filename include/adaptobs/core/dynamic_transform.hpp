@@ -116,11 +116,9 @@ class DynamicTransform {
       : f_(std::move(F)), g_(std::move(G)), h_(std::move(H)) {
     constexpr std::string_view who = "DynamicTransform";
     detail::require_finite(g_, who, "G");
-    detail::require_shape(h_, g_.cols(), g_.rows(), who, "H");
-    detail::require_finite(h_, who, "H");
+    detail::require_finite_shape(h_, g_.cols(), g_.rows(), who, "H");
     if (f_) {
-      detail::require_shape(*f_, g_.rows(), g_.rows(), who, "F");
-      detail::require_finite(*f_, who, "F");
+      detail::require_finite_shape(*f_, g_.rows(), g_.rows(), who, "F");
     }
     if constexpr (may_be_identity) {
       identity_ = g_.rows() == g_.cols() &&

@@ -102,8 +102,7 @@ class StaticTransform : public SizedBy<D> {
     constexpr std::string_view who = "StaticTransform";
     detail::require_square(t_, who, "T");
     detail::require_finite(t_, who, "T");
-    detail::require_shape(k_, t_.rows(), k_.cols(), who, "K");
-    detail::require_finite(k_, who, "K");
+    detail::require_finite_shape(k_, t_.rows(), k_.cols(), who, "K");
     auto inverse = detail::well_conditioned_inverse(t_);
     detail::require(inverse.has_value(), who, "T", "must be invertible (condition number below 1/(n eps))");
     t_inverse_ = std::move(*inverse);
@@ -129,8 +128,7 @@ class StaticTransform : public SizedBy<D> {
 
   /// Replaces K (e.g. the gain of a Riccati differential equation at the current sample).
   void set_output_injection(const GainMatrix& K) {
-    detail::require_shape(K, k_.rows(), k_.cols(), "StaticTransform::set_output_injection", "K");
-    detail::require_finite(K, "StaticTransform::set_output_injection", "K");
+    detail::require_finite_shape(K, k_.rows(), k_.cols(), "StaticTransform::set_output_injection", "K");
     k_ = K;
   }
 

@@ -77,6 +77,15 @@ void require_finite(const Eigen::DenseBase<Derived>& m, std::string_view who, st
   if (!m.derived().allFinite()) fail_argument(who, argument, "must contain only finite numbers");
 }
 
+/// The shape check, then the finiteness check, of one argument: the pair that
+/// nearly every matrix argument gets.
+template <class Derived>
+void require_finite_shape(const Eigen::DenseBase<Derived>& m, Index rows, Index cols, std::string_view who,
+                          std::string_view argument) {
+  require_shape(m, rows, cols, who, argument);
+  require_finite(m, who, argument);
+}
+
 /// A single-output pair (A, c): A square and c one row of its order. Returns
 /// the order n, which the design routines of SISO systems go on with.
 template <class DA, class DC>
@@ -103,10 +112,8 @@ template <class System>
 void validate_state_space(const System& s, std::string_view who) {
   require_square(s.A, who, "A");
   require_finite(s.A, who, "A");
-  require_shape(s.B, s.A.rows(), s.B.cols(), who, "B");
-  require_finite(s.B, who, "B");
-  require_shape(s.C, s.C.rows(), s.A.rows(), who, "C");
-  require_finite(s.C, who, "C");
+  require_finite_shape(s.B, s.A.rows(), s.B.cols(), who, "B");
+  require_finite_shape(s.C, s.C.rows(), s.A.rows(), who, "C");
 }
 
 /// The initial estimates of an observer: a finite state column of nx entries
@@ -115,10 +122,8 @@ template <class X, class Theta>
 void require_initial_estimates(const Eigen::DenseBase<X>& x0, Index nx, const Eigen::DenseBase<Theta>& theta0, Index np,
                                std::string_view who, std::string_view x_name = "x0",
                                std::string_view theta_name = "theta0") {
-  require_shape(x0, nx, 1, who, x_name);
-  require_finite(x0, who, x_name);
-  require_shape(theta0, np, 1, who, theta_name);
-  require_finite(theta0, who, theta_name);
+  require_finite_shape(x0, nx, 1, who, x_name);
+  require_finite_shape(theta0, np, 1, who, theta_name);
 }
 
 /// Symmetric to a relative tolerance of 100 ulp of its largest entry.

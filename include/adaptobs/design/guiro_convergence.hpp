@@ -132,8 +132,7 @@ GuiroConvergenceReport<Scalar> check_guiro_convergence(const DynamicMatrix<Scala
   // ‖W(k)‖₂ = ‖(I − KC) E (H_k − H̄)‖₂.
   const Matrix ikc_e = (Matrix::Identity(n, n) - K * C) * E;
   for (const Matrix& h : H_sequence) {
-    require_shape(h, n, p, who, "H_sequence");
-    require_finite(h, who, "H_sequence");
+    require_finite_shape(h, n, p, who, "H_sequence");
     report.w_norms.push_back(detail::largest_singular_value<Scalar>(ikc_e * (h - Hbar)));
   }
   const auto& w = report.w_norms;

@@ -120,11 +120,9 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
   require_square(E, who, "E");
   require_finite(E, who, "E");
   const Index n = E.rows(), m = C.rows(), p = Hbar.cols(), na = n + p;
-  require_shape(C, m, n, who, "C");
-  require_finite(C, who, "C");
+  require_finite_shape(C, m, n, who, "C");
   require(m >= 1, who, "C", "must have at least one row (output)");
-  require_shape(Hbar, n, p, who, "Hbar");
-  require_finite(Hbar, who, "Hbar");
+  require_finite_shape(Hbar, n, p, who, "Hbar");
   if (target.size() != na) {
     std::ostringstream os;
     os << "must hold n + p = " << na << " values (got " << target.size() << ")";

@@ -66,8 +66,7 @@ solve_continuous_lyapunov(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBas
   detail::require_square(A, who, "A");
   detail::require_finite(A, who, "A");
   const Index n = A.rows();
-  detail::require_shape(Q, n, n, who, "Q");
-  detail::require_finite(Q, who, "Q");
+  detail::require_finite_shape(Q, n, n, who, "Q");
   Eigen::Matrix<Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime> X(n, n);
   if (n == 0) return X;
   X = detail::solve_continuous_lyapunov_dense(detail::dynamic_copy(A), detail::dynamic_copy(Q));

@@ -48,8 +48,7 @@ template <class DA, class DC>
   constexpr std::string_view who = "observability";
   detail::require_square(A, who, "A");
   detail::require_finite(A, who, "A");
-  detail::require_shape(C, C.rows(), A.rows(), who, "C");
-  detail::require_finite(C, who, "C");
+  detail::require_finite_shape(C, C.rows(), A.rows(), who, "C");
   const Index n = A.rows();
   const Scalar rel = relative_tolerance > 0 ? relative_tolerance
                                             : Scalar(1e6) * std::numeric_limits<Scalar>::epsilon();

@@ -258,8 +258,7 @@ class PolePlacer {
       : options_(options), rng_(options.seed) {
     detail::require_square(A, who, "A");
     detail::require_finite(A, who, "A");
-    detail::require_shape(C, C.rows(), A.rows(), who, "C");
-    detail::require_finite(C, who, "C");
+    detail::require_finite_shape(C, C.rows(), A.rows(), who, "C");
     detail::require(poles.size() == A.rows(), who, "poles", "must hold one pole per state");
     detail::require(options.tries >= 1, who, "options.tries", "must be at least 1");
     const Index n = A.rows();

@@ -131,8 +131,7 @@ void validate_riccati_data(const DynamicMatrix<Scalar>& A, const DynamicMatrix<S
                            const DynamicMatrix<Scalar>& Q, const DynamicMatrix<Scalar>& R, const RiccatiRoles& roles) {
   require_square(A, roles.who, "A");
   require_finite(A, roles.who, "A");
-  require_shape(B, A.rows(), B.cols(), roles.who, roles.b);
-  require_finite(B, roles.who, roles.b);
+  require_finite_shape(B, A.rows(), B.cols(), roles.who, roles.b);
   require_shape(Q, A.rows(), A.rows(), roles.who, "Q");
   require_positive_semidefinite(Q, roles.who, "Q");
   require_shape(R, B.cols(), B.cols(), roles.who, "R");

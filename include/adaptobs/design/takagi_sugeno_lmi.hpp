@@ -161,10 +161,8 @@ inline void validate_lmi_data(const TakagiSugenoLmiData& data, std::string_view 
   require(r > 0 && data.B.size() == data.A.size(), who, "data.B", "must hold one matrix per vertex of data.A");
   const Index nx = data.nx(), nu = data.nu();
   for (std::size_t i = 0; i < data.A.size(); ++i) {
-    require_shape(data.A[i], nx, nx, who, "data.A");
-    require_finite(data.A[i], who, "data.A");
-    require_shape(data.B[i], nx, nu, who, "data.B");
-    require_finite(data.B[i], who, "data.B");
+    require_finite_shape(data.A[i], nx, nx, who, "data.A");
+    require_finite_shape(data.B[i], nx, nu, who, "data.B");
   }
   require_finite(data.C, who, "data.C");
   require_shape(data.Q_x, nx, nx, who, "data.Q_x");
@@ -172,8 +170,7 @@ inline void validate_lmi_data(const TakagiSugenoLmiData& data, std::string_view 
   require_shape(data.Q_theta, data.Q_theta.rows(), data.Q_theta.rows(), who, "data.Q_theta");
   require_positive_semidefinite(data.Q_theta, who, "data.Q_theta");
   if (data.theorem == TakagiSugenoTheorem::time_varying_parameters) {
-    require_shape(data.K_theta, data.np(), data.np(), who, "data.K_theta");
-    require_finite(data.K_theta, who, "data.K_theta");
+    require_finite_shape(data.K_theta, data.np(), data.np(), who, "data.K_theta");
   }
 }
 

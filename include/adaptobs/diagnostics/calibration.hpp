@@ -41,8 +41,7 @@ template <typename Scalar, int N>
         n = v.size();
         sum.setZero(n, n);
       }
-      detail::require_shape(v, n, 1, who, "runs");
-      detail::require_finite(v, who, "runs");
+      detail::require_finite_shape(v, n, 1, who, "runs");
       sum.noalias() += v * v.transpose();
       ++count;
     }
@@ -119,8 +118,7 @@ template <typename Scalar, int N>
   Vector sum = Vector::Zero(n), squares = Vector::Zero(n);
   for (const auto& run : runs)
     for (std::size_t k = 0; k < run.size(); k += step) {
-      detail::require_shape(run[k], n, 1, who, "runs");
-      detail::require_finite(run[k], who, "runs");
+      detail::require_finite_shape(run[k], n, 1, who, "runs");
       sum += run[k] - nominal;
       squares += (run[k] - nominal).cwiseAbs2();
       ++result.evaluations;

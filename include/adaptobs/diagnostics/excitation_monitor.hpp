@@ -47,8 +47,7 @@ class ExcitationMonitor {
   template <class Derived>
   void add(const Eigen::MatrixBase<Derived>& phi, Scalar weight = Scalar(1)) {
     constexpr std::string_view who = "ExcitationMonitor::add";
-    detail::require_shape(phi, phi.rows(), sum_.cols(), who, "phi");
-    detail::require_finite(phi, who, "phi");
+    detail::require_finite_shape(phi, phi.rows(), sum_.cols(), who, "phi");
     detail::require(weight >= Scalar(0) && std::isfinite(weight), who, "weight", "must be non-negative and finite");
     Gramian& slot = ring_[next_];
     sum_ -= slot;

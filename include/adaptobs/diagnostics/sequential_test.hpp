@@ -91,8 +91,7 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   /// the statistics, the stride and the hold-off; the alarm count is kept.
   void rearm(const Vector& nominal) {
     const std::string who = std::string(name_) + "::rearm";
-    require_shape(nominal, nominal_.size(), 1, who, "nominal");
-    require_finite(nominal, who, "nominal");
+    require_finite_shape(nominal, nominal_.size(), 1, who, "nominal");
     nominal_ = nominal;
     restart();
   }

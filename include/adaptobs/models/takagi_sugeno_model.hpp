@@ -86,10 +86,8 @@ namespace detail {
 template <typename S, int N>
 void validate_sectors(const SectorBounds<S, N>& bounds, Index expected_size, std::string_view who,
                       std::string_view argument) {
-  require_shape(bounds.lower, expected_size, 1, who, argument);
-  require_shape(bounds.upper, expected_size, 1, who, argument);
-  require_finite(bounds.lower, who, argument);
-  require_finite(bounds.upper, who, argument);
+  require_finite_shape(bounds.lower, expected_size, 1, who, argument);
+  require_finite_shape(bounds.upper, expected_size, 1, who, argument);
   for (Index j = 0; j < expected_size; ++j) {
     if (!(bounds.lower(j) < bounds.upper(j))) {
       std::ostringstream os;
@@ -251,15 +249,12 @@ class TakagiSugenoModel : public SizedBy<D> {
     B_.resize(nx, nu * r);
     for (Index i = 0; i < r; ++i) {
       const auto& v = vertices[static_cast<std::size_t>(i)];
-      detail::require_shape(v.A, nx, nx, who, "vertices[i].A");
-      detail::require_finite(v.A, who, "vertices[i].A");
-      detail::require_shape(v.B, nx, nu, who, "vertices[i].B");
-      detail::require_finite(v.B, who, "vertices[i].B");
+      detail::require_finite_shape(v.A, nx, nx, who, "vertices[i].A");
+      detail::require_finite_shape(v.B, nx, nu, who, "vertices[i].B");
       A_.middleCols(i * nx, nx) = v.A;
       B_.middleCols(i * nu, nu) = v.B;
     }
-    detail::require_shape(C_, C_.rows(), nx, who, "C");
-    detail::require_finite(C_, who, "C");
+    detail::require_finite_shape(C_, C_.rows(), nx, who, "C");
   }
 
   [[nodiscard]] Sizes sizes() const noexcept {

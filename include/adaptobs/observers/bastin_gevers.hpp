@@ -58,8 +58,7 @@ struct BastinGevers {
             static_transform.T().rows(), static_transform.T().rows() - 1,
             Eigen::Matrix<Scalar, filter_rows, 1>::Zero(static_transform.T().rows() - 1))),
         k(std::move(gain)) {
-    detail::require_shape(k, static_transform.T().rows(), 1, name, "k");
-    detail::require_finite(k, name, "k");
+    detail::require_finite_shape(k, static_transform.T().rows(), 1, name, "k");
   }
 
   void injection_gain(const TransformedSystem<D>& /*so*/, Scalar /*t*/, typename D::GainMatrix& L) const { L = k; }

@@ -58,8 +58,7 @@ struct Besancon {
                                                              static_transform.K().cols()))),
         K1(std::move(gain)) {
     const Index m = static_transform.K().cols();
-    detail::require_shape(K1, m, m, name, "K1");
-    detail::require_finite(K1, name, "K1");
+    detail::require_finite_shape(K1, m, m, name, "K1");
   }
 
   /// \f$L = [K_1; A_{21}(t)]\f$: \f$K_1(y - \hat z_1)\f$ in the first block, \f$A_{21}y\f$ in the second.

@@ -229,10 +229,8 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   static Parameters initial_parameters(const Filters& filters, const Coefficients& a0, const InputMatrix& B0) {
     constexpr std::string_view who = "DeyBhasinObserver";
     const Index r = filters.order();
-    detail::require_shape(a0, r, 1, who, "a0");
-    detail::require_finite(a0, who, "a0");
-    detail::require_shape(B0, filters.states(), filters.inputs(), who, "B0");
-    detail::require_finite(B0, who, "B0");
+    detail::require_finite_shape(a0, r, 1, who, "a0");
+    detail::require_finite_shape(B0, filters.states(), filters.inputs(), who, "B0");
     Parameters p(filters.parameters());
     p.template head<R>(r) = a0 - filters.coefficients();
     p.template segment<product_of_sizes(M, Dims::nx)>(r, B0.size()) = B0.reshaped();

@@ -93,10 +93,8 @@ class GuiroObserver
         options_(options) {
     constexpr std::string_view who = "GuiroObserver";
     const Sizes s = model_.sizes();
-    detail::require_shape(gain_, s.nx, s.ny, who, "K");
-    detail::require_finite(gain_, who, "K");
-    detail::require_shape(parameter_gain_, s.np, s.ny, who, "Gamma");
-    detail::require_finite(parameter_gain_, who, "Gamma");
+    detail::require_finite_shape(gain_, s.nx, s.ny, who, "K");
+    detail::require_finite_shape(parameter_gain_, s.np, s.ny, who, "Gamma");
     detail::require_initial_estimates(z_, s.nx, theta_, s.np, who, "z0", "theta0");
     corrected_ = z_;
     output_error_.setZero(s.ny);
@@ -116,10 +114,8 @@ class GuiroObserver
   /// schedule over varying intervals).
   void set_gains(const GainMatrix& K, const ParameterGain& Gamma) {
     constexpr std::string_view who = "GuiroObserver::set_gains";
-    detail::require_shape(K, gain_.rows(), gain_.cols(), who, "K");
-    detail::require_finite(K, who, "K");
-    detail::require_shape(Gamma, parameter_gain_.rows(), parameter_gain_.cols(), who, "Gamma");
-    detail::require_finite(Gamma, who, "Gamma");
+    detail::require_finite_shape(K, gain_.rows(), gain_.cols(), who, "K");
+    detail::require_finite_shape(Gamma, parameter_gain_.rows(), parameter_gain_.cols(), who, "Gamma");
     gain_ = K;
     parameter_gain_ = Gamma;
   }

@@ -96,8 +96,7 @@ class GuyaderZhangObserver
         normalized_step_(options.normalized_step) {
     constexpr std::string_view who = "GuyaderZhangObserver";
     const Sizes s = model_.sizes();
-    detail::require_shape(gain_, s.nx, s.ny, who, "K");
-    detail::require_finite(gain_, who, "K");
+    detail::require_finite_shape(gain_, s.nx, s.ny, who, "K");
     detail::require_positive(mu_, who, "mu");
     detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
     detail::require(options.excitation_window >= 0, who, "options.excitation_window", "must be non-negative");
@@ -119,8 +118,7 @@ class GuyaderZhangObserver
 
   /// Gain \f$K_k\f$ used from the next update on (e.g. from `KalmanGainRecursion`).
   void set_gain(const GainMatrix& K) {
-    detail::require_shape(K, gain_.rows(), gain_.cols(), "GuyaderZhangObserver::set_gain", "K");
-    detail::require_finite(K, "GuyaderZhangObserver::set_gain", "K");
+    detail::require_finite_shape(K, gain_.rows(), gain_.cols(), "GuyaderZhangObserver::set_gain", "K");
     gain_ = K;
     if constexpr (Model::time_invariant) update_closed_loop();
   }

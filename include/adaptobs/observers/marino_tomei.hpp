@@ -58,13 +58,11 @@ struct MarinoTomei {
         gamma(std::move(gamma_vector)),
         k(std::move(gain)) {
     const Index n = static_transform.T().rows();
-    detail::require_shape(gamma, n, 1, name, "gamma");
-    detail::require_finite(gamma, name, "gamma");
+    detail::require_finite_shape(gamma, n, 1, name, "gamma");
     detail::require(gamma(0) == Scalar(1), name, "gamma", "must have a first entry equal to 1");
     detail::require(n == 1 || is_hurwitz_polynomial(Polynomial<Scalar>(gamma)), name, "gamma",
                     "must hold the coefficients of a Hurwitz polynomial (F must be Hurwitz)");
-    detail::require_shape(k, n, 1, name, "k");
-    detail::require_finite(k, name, "k");
+    detail::require_finite_shape(k, n, 1, name, "k");
   }
 
   void injection_gain(const TransformedSystem<D>& /*so*/, Scalar /*t*/, typename D::GainMatrix& L) const { L = k; }

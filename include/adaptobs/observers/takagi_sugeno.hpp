@@ -112,16 +112,13 @@ class TakagiSugenoObserver
     require_count(gains.L.size(), "gains.L");
     require_count(gains.K.size(), "gains.K");
     for (const auto& l : gains.L) {
-      detail::require_shape(l, s.nx, s.ny, who, "gains.L");
-      detail::require_finite(l, who, "gains.L");
+      detail::require_finite_shape(l, s.nx, s.ny, who, "gains.L");
     }
     for (const auto& k : gains.K) {
-      detail::require_shape(k, s.np, s.ny, who, "gains.K");
-      detail::require_finite(k, who, "gains.K");
+      detail::require_finite_shape(k, s.np, s.ny, who, "gains.K");
     }
     if (gains.K_theta) {
-      detail::require_shape(*gains.K_theta, s.np, s.np, who, "gains.K_theta");
-      detail::require_finite(*gains.K_theta, who, "gains.K_theta");
+      detail::require_finite_shape(*gains.K_theta, s.np, s.np, who, "gains.K_theta");
     }
     gains_ = gains;
     // [V_1 … V_r], V_i = [[A_i, B_i, L_i], [0, 0, K_{y,i}]], so that

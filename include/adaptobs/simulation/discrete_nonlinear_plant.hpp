@@ -37,8 +37,7 @@ class DiscreteNonlinearPlant : public DiscretePlantState<D, InputOutputSample<D>
         input_(std::move(input)),
         parameters_at_(std::move(parameters_at)) {
     constexpr std::string_view who = "DiscreteNonlinearPlant";
-    detail::require_shape(C_, C_.rows(), x_.rows(), who, "C");
-    detail::require_finite(C_, who, "C");
+    detail::require_finite_shape(C_, C_.rows(), x_.rows(), who, "C");
     detail::require_finite(x_, who, "x0");
     detail::require_positive(sampling_period, who, "sampling_period");
     make_sample();

@@ -61,8 +61,7 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
   /// Sets \f$\theta\f$ from this step on, e.g. to inject a fault; the current
   /// sample is unchanged (θ_k enters x_{k+1}, not y_k).
   void set_parameters(const Parameters& theta) {
-    detail::require_shape(theta, theta_.rows(), 1, "DiscreteLinearPlant::set_parameters", "theta");
-    detail::require_finite(theta, "DiscreteLinearPlant::set_parameters", "theta");
+    detail::require_finite_shape(theta, theta_.rows(), 1, "DiscreteLinearPlant::set_parameters", "theta");
     theta_ = theta;
   }
 

@@ -111,8 +111,7 @@ inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSu
   const Index nx = data.nx(), ny = data.ny(), np = data.np();
   require(std::isfinite(o.margin) && o.margin >= 0, who, "options.margin", "must be finite and non-negative");
   if (o.parameter_gain.size() > 0) {
-    require_shape(o.parameter_gain, np, ny, who, "options.parameter_gain");
-    require_finite(o.parameter_gain, who, "options.parameter_gain");
+    require_finite_shape(o.parameter_gain, np, ny, who, "options.parameter_gain");
   }
   if (o.min_parameter_gain) {
     require(np == 1 && ny == 1, who, "options.min_parameter_gain", "needs a scalar parameter and a scalar output");
@@ -306,8 +305,7 @@ template <class Model>
     detail::require_positive_semidefinite(options.Q_theta, who, "options.Q_theta");
   }
   if (options.theorem == TakagiSugenoTheorem::time_varying_parameters) {
-    detail::require_shape(options.K_theta, s.np, s.np, who, "options.K_theta");
-    detail::require_finite(options.K_theta, who, "options.K_theta");
+    detail::require_finite_shape(options.K_theta, s.np, s.np, who, "options.K_theta");
   }
   for (Index i = 0; i < model.vertex_count(); ++i) {
     data.A.push_back(model.A(i).template cast<double>());
