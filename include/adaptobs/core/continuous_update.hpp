@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// The public update of the continuous-time observers and the Kalman–Bucy
-/// filter, written once: the base class their `update`, estimates, time and
+/// filter, written once: the base class their `update`, `reset`, estimates, time and
 /// internal state come from.
 
 #include <adaptobs/core/continuous_model.hpp>

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
-/// The public update of the discrete-time observers and the augmented Kalman
-/// filter, written once: the base class their `update` and `sizes()` come from.
+/// What the discrete-time observers and the augmented Kalman filter share,
+/// written once: the base class their `update`, `reset` and common accessors
+/// come from.
 
 #include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
@@ -33,8 +34,8 @@ class DiscreteUpdate : public SizedBy<Dims> {
   /// `step_with` cites the equations). Returns `UpdateStatus::accepted`, or the
   /// reason the sample was rejected (`nonfinite_input` for a NaN/Inf in it,
   /// `nonfinite_result` when the step would produce one, ...); a rejected step
-  /// leaves the observer exactly as it was. With run-time sizes, a sample of the wrong shape throws
-  /// `ConfigurationError` naming it, before anything is read.
+  /// leaves the observer exactly as it was. With run-time sizes, a sample of
+  /// the wrong shape throws `ConfigurationError` naming it, before anything is read.
   [[nodiscard]] UpdateStatus update(const Sample& sample) { return checked_step(sample, nullptr); }
 
   /// The same with only the output channels in `present` measured (the
