@@ -20,7 +20,10 @@ State rk4(const F& f, const State& x, double t, double h) {
 
 int main() {
   const ThirdOrderProblem problem = third_order_problem();
-  const auto& [A, T, B, C, K, k] = problem;
+  // References, not a structured binding: clang before 16 cannot capture bindings in a lambda.
+  const Eigen::Matrix3d &A = problem.A, &T = problem.T;
+  const Eigen::Vector3d &B = problem.B, &K = problem.K, &k = problem.k;
+  const Eigen::RowVector3d& C = problem.C;
   const auto Phi = third_order_regressor;
   const Eigen::Matrix3d Tinv = T.inverse();
   const Eigen::RowVector3d Co = C * Tinv;

@@ -16,7 +16,10 @@ using Dims = adaptobs::Dimensions<double, 3, 1, 1, 2>;
 
 int main() {
   const ThirdOrderProblem problem = third_order_problem();
-  const auto& [A, T, B, C, K, k] = problem;
+  // References, not a structured binding: clang before 16 cannot capture bindings in a lambda.
+  const Eigen::Matrix3d &A = problem.A, &T = problem.T;
+  const Eigen::Vector3d &B = problem.B, &K = problem.K, &k = problem.k;
+  const Eigen::RowVector3d& C = problem.C;
   const auto Phi = third_order_regressor;
 
   auto observer = adaptobs::make_bastin_gevers_observer(
