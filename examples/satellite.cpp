@@ -80,6 +80,10 @@ void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::
                                     adaptobs::examples::gap_shading(table, loss.options()) + R"(
 set multiplot layout 3,1 title 'Guyader-Zhang adaptive observer, controlled satellite (Guyader and Zhang 2003, section 4)'
 set grid
+# The legends beside the plots, and the three time axes aligned under one another.
+set key outside right top
+set lmargin at screen 0.06
+set rmargin at screen 0.80
 set xlabel 't (s)'
 set title 'Figure 1: thrusts'
 set yrange [-0.2:1.2]
