@@ -1,4 +1,4 @@
-// Controlled satellite, Guyader & Zhang (2003) §4 (Guyader & Zhang): joint estimation of
+// Controlled satellite, Guyader & Zhang (2003), §4: joint estimation of
 // the state and of the two thrust efficiencies θ = (1, 1.5) from noisy
 // distance and angle measurements, beside the augmented-state Kalman filter.
 //

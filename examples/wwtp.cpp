@@ -1,4 +1,4 @@
-// Waste water treatment plant, Srinivasarengan et al. (2018) §6 (Srinivasarengan et al.): joint
+// Waste water treatment plant, Srinivasarengan et al. (2018), §6: joint
 // estimation of the biomass and substrate (x1, x2) and of the growth-rate error
 // θ (a = 0.5 + θ) with the Takagi–Sugeno adaptive observer (65), once with the
 // printed gains and once with gains designed here by theorem 2 with DSDP.

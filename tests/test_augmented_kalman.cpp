@@ -1,4 +1,4 @@
-// Augmented-state Kalman filter baseline (Guyader & Zhang 2003, §1, Zhang (2005) appendix).
+// Augmented-state Kalman filter baseline (Guyader & Zhang 2003, §1; Zhang 2005, appendix).
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/core/observer.hpp>

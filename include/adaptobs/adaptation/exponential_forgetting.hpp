@@ -54,7 +54,7 @@
 
 namespace adaptobs {
 
-/// RLS with exponential forgetting (Suzuki et al. 1980; Dey & Bhasin (2022) §5).
+/// RLS with exponential forgetting (Suzuki et al. 1980; Dey & Bhasin 2022, §5).
 template <typename S, int NP, int NZ>
 class ExponentialForgettingRls : public LeastSquaresLaw<ExponentialForgettingRls<S, NP, NZ>, S, NP, NZ> {
   using Base = LeastSquaresLaw<ExponentialForgettingRls, S, NP, NZ>;

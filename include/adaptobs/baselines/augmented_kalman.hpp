@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// Kalman filter on the state augmented with the unknown parameters — the
-/// classical alternative to an adaptive observer (Guyader & Zhang 2003, §1; Zhang (2005), appendix).
+/// classical alternative to an adaptive observer (Guyader & Zhang 2003, §1; Zhang 2005, appendix).
 ///
 /// The extended system of the discrete model \f$x_{k+1} = A_kx_k + B_ku_k + \Psi_k\theta_k\f$,
 /// \f$\theta_{k+1} = \theta_k\f$, \f$y_k = C_kx_k\f$ is

@@ -95,7 +95,7 @@ class GuiroObserver
     const Sizes s = model_.sizes();
     detail::require_finite_shape(gain_, s.nx, s.ny, who, "K");
     detail::require_finite_shape(parameter_gain_, s.np, s.ny, who, "Gamma");
-    detail::require_initial_estimates(z_, s.nx, theta_, s.np, who, "z0", "theta0");
+    detail::require_initial_estimates(z_, s.nx, theta_, s.np, who, name_initial_state, "theta0");
     corrected_ = z_;
     output_error_.setZero(s.ny);
     work_.resize(s);
