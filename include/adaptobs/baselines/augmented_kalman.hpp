@@ -100,7 +100,7 @@ class AugmentedKalmanFilter
     w_.r_masked.setZero(s.ny, s.ny);
     w_.c_masked.setZero(s.ny, s.nx);
     w_.innovation.setZero(s.ny);
-    output_error_.setZero(s.ny);
+    this->output_error_.setZero(s.ny);
     w_.x.setZero(s.nx);
     w_.theta.setZero(s.np);
     w_.cholesky = detail::CholeskyFactor<typename Dims::OutputMatrixSquare>(s.ny);
@@ -123,7 +123,7 @@ class AugmentedKalmanFilter
   /// whose covariance would not be positive definite is rejected
   /// (`UpdateStatus::indefinite_covariance`) and changes nothing.
   UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
-    const auto& system = model_.at(step_);
+    const auto& system = model_.at(this->step());
     const Index nx = x_.rows();
     Workspace& w = w_;
 
@@ -184,8 +184,7 @@ class AugmentedKalmanFilter
     detail::commit(x_, w.x);
     detail::commit(theta_, w.theta);
     detail::commit(p_, w.scratch);
-    detail::commit(output_error_, w.innovation);
-    ++step_;
+    detail::commit(this->output_error_, w.innovation);
     return UpdateStatus::accepted;
   }
 
@@ -206,8 +205,6 @@ class AugmentedKalmanFilter
   Parameters theta_;
   Covariances cov_;
   AugmentedMatrix p_;
-  Output output_error_;
-  Index step_ = 0;
   Workspace w_;
 };
 

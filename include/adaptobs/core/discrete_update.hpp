@@ -17,11 +17,12 @@ namespace adaptobs {
 /// Base of a discrete-time observer with a model (CRTP), not used on its own:
 /// `update(sample)`, its masked form, `reset` and the accessors every discrete
 /// observer has, with the run-time size checks of the sample and the mask. The
-/// observer supplies `model_`, `theta_`, `output_error_`, `step_`,
-/// `Observer::name_update` and `Observer::name_reset` (the names its errors
-/// give), `restart(x0, theta0)` (the rest of `reset`) and its step, in one
-/// of two forms, which the base calls with a sample of the right shape whose
-/// measured entries are finite (mask null: every channel present):
+/// observer supplies `model_`, `theta_`, `Observer::name_update` and
+/// `Observer::name_reset` (the names its errors give), `restart(x0, theta0)`
+/// (the rest of `reset`) and its step, which on accepting a sample writes the
+/// base's `output_error_` (sized by the observer's constructor); the base
+/// counts the accepted steps. The step comes in one of two forms, which the base calls with a sample of the right shape
+/// whose measured entries are finite (mask null: every channel present):
 /// - `advance(sample, mask, workspace)` with a `detail::UpdateWorkspace` named
 ///   `work_`, which the base hands the step (on the stack for fixed sizes);
 /// - `step_with(sample, mask)`, which keeps its scratch itself.
@@ -54,9 +55,9 @@ class DiscreteUpdate : public SizedBy<Dims> {
   /// the first): the error the observer corrects its estimates with (its class
   /// comment gives the formula), which fault detectors test
   /// (diagnostics/chi_square_test.hpp).
-  [[nodiscard]] const typename Dims::Output& output_error() const noexcept { return self().output_error_; }
+  [[nodiscard]] const typename Dims::Output& output_error() const noexcept { return output_error_; }
   /// Number k of accepted samples since construction or the last reset.
-  [[nodiscard]] Index step() const noexcept { return self().step_; }
+  [[nodiscard]] Index step() const noexcept { return step_; }
   [[nodiscard]] const auto& model() const noexcept { return self().model_; }
 
   /// Restarts from the initial estimates at step `start_step`, as after
@@ -67,20 +68,26 @@ class DiscreteUpdate : public SizedBy<Dims> {
     const Sizes s = sizes();
     detail::require_initial_estimates(x0, s.nx, theta0, s.np, who, initial_state_name());
     detail::require(start_step >= 0, who, "start_step", "must be non-negative");
-    Observer& o = self();
-    o.restart(x0, theta0);
-    o.output_error_.setZero();
-    o.step_ = start_step;
+    self().restart(x0, theta0);
+    output_error_.setZero();
+    step_ = start_step;
   }
+
+ protected:
+  /// The output error of the last accepted step, sized and written by the observer.
+  typename Dims::Output output_error_;
 
  private:
   UpdateStatus checked_step(const Sample& sample, const OutputMask<Dims>* present) {
     if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, sizes(), Observer::name_update);
     if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
+    UpdateStatus status;
     if constexpr (requires(Observer& o) { o.work_; })
-      return self().work_.run([&](auto& w) { return self().advance(sample, present, w); });
+      status = self().work_.run([&](auto& w) { return self().advance(sample, present, w); });
     else
-      return self().step_with(sample, present);
+      status = self().step_with(sample, present);
+    if (status == UpdateStatus::accepted) ++step_;
+    return status;
   }
 
   // The name `reset` gives its initial state in errors: the observer's
@@ -94,6 +101,8 @@ class DiscreteUpdate : public SizedBy<Dims> {
 
   Observer& self() noexcept { return static_cast<Observer&>(*this); }
   const Observer& self() const noexcept { return static_cast<const Observer&>(*this); }
+
+  Index step_ = 0;
 };
 
 }  // namespace adaptobs

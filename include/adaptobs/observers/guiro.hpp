@@ -97,7 +97,7 @@ class GuiroObserver
     detail::require_finite_shape(parameter_gain_, s.np, s.ny, who, "Gamma");
     detail::require_initial_estimates(z_, s.nx, theta_, s.np, who, name_initial_state, "theta0");
     corrected_ = z_;
-    output_error_.setZero(s.ny);
+    this->output_error_.setZero(s.ny);
     work_.resize(s);
   }
 
@@ -149,7 +149,7 @@ class GuiroObserver
   /// over the period with \f$\Psi_k\f$ and \f$u_k\f$ (eq. (2)); `nonfinite_result`,
   /// changing nothing, when the step would produce a NaN/Inf.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
-    const auto& system = model_.at(step_);
+    const auto& system = model_.at(this->step());
     if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
 
     /// Eq. (2), second line: \f$z_k = z^-_k - K(Cz^-_k - y_k)\f$ (skipped for the
@@ -177,9 +177,8 @@ class GuiroObserver
     detail::commit(z_, w.predicted);
     detail::commit(corrected_, w.corrected);
     detail::commit(theta_, w.theta);
-    detail::commit(output_error_, w.innovation);
+    detail::commit(this->output_error_, w.innovation);
     started_ = true;
-    ++step_;
     return UpdateStatus::accepted;
   }
 
@@ -196,10 +195,8 @@ class GuiroObserver
   ParameterGain parameter_gain_;
   State z_;          // z^-_k
   State corrected_;  // z_{k−1}
-  Output output_error_;  // y_{k−1} − C z^-_{k−1}
   Parameters theta_;
   GuiroOptions options_;
-  Index step_ = 0;
   bool started_ = false;
   detail::UpdateWorkspace<Workspace, Dims::is_fixed> work_;
 };

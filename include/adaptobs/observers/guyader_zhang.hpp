@@ -104,7 +104,7 @@ class GuyaderZhangObserver
 
     upsilon_.setZero(s.nx, s.np);
     last_c_upsilon_.setZero(s.ny, s.np);
-    output_error_.setZero(s.ny);
+    this->output_error_.setZero(s.ny);
     work_.resize(s);
     if constexpr (Model::time_invariant) update_closed_loop();
   }
@@ -176,7 +176,7 @@ class GuyaderZhangObserver
   /// One step of eq. (2a)–(2c) with the sample \f$(u_k, y_k, \Psi_k)\f$;
   /// `nonfinite_result`, changing nothing, when it would produce a NaN/Inf.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
-    const auto& system = model_.at(step_);
+    const auto& system = model_.at(this->step());
     if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
 
     // Output error y_k − C_k x̂_k and C_k Υ_k, shared by (2a)–(2c); with a mask,
@@ -224,10 +224,9 @@ class GuyaderZhangObserver
     detail::commit(theta_, w.theta);
     detail::commit(upsilon_, w.upsilon);
     detail::commit(last_c_upsilon_, w.c_upsilon);
-    detail::commit(output_error_, w.innovation);
+    detail::commit(this->output_error_, w.innovation);
     last_mu_ = mu_k;
     if (excitation_) excitation_->add(last_c_upsilon_, last_mu_);
-    ++step_;
     return UpdateStatus::accepted;
   }
 
@@ -253,9 +252,7 @@ class GuyaderZhangObserver
   RegressorMatrix upsilon_;
   typename Dims::StateMatrix closed_loop_;  // A − K C, cached for a time-invariant model
   typename Dims::OutputRegressor last_c_upsilon_;
-  Output output_error_;
   Scalar last_mu_ = Scalar(0);
-  Index step_ = 0;
   bool normalized_step_;
   std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;
   // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.

@@ -80,7 +80,7 @@ class TakagiSugenoObserver
     set_gains(gains);
     weights_.setZero(model_.vertex_count());
     premises_.setZero(model_.premise_count());
-    output_error_.setZero(s.ny);
+    this->output_error_.setZero(s.ny);
     work_.resize(s, model_);
   }
 
@@ -210,8 +210,7 @@ class TakagiSugenoObserver
     detail::commit(theta_, w.theta);
     detail::commit(weights_, w.h);
     detail::commit(premises_, w.z);
-    output_error_ = w.v.tail(ny);  // a copy: v is a segment of the workspace
-    ++step_;
+    this->output_error_ = w.v.tail(ny);  // a copy: v is a segment of the workspace
     return UpdateStatus::accepted;
   }
 
@@ -247,9 +246,7 @@ class TakagiSugenoObserver
   Parameters theta_;
   Weights weights_;
   PremiseVector premises_;
-  Output output_error_;
   bool in_sectors_ = true;
-  Index step_ = 0;
   // A run-time number of vertices keeps its workspace even with fixed sizes.
   detail::UpdateWorkspace<Workspace, Dims::is_fixed && vertices_at_compile_time != Eigen::Dynamic> work_;
 };
