@@ -1,5 +1,5 @@
-// Takagi–Sugeno polytopic adaptive observer on the waste water plant of paper
-// 004 §6 (2 states, 8 vertices): one update with constant (65) and time-varying
+// Takagi–Sugeno polytopic adaptive observer on the waste water plant of
+// Srinivasarengan et al. (2018), §6 (2 states, 8 vertices): one update with constant (65) and time-varying
 // (21) parameters, fixed and dynamic sizes.
 
 #include <adaptobs/observers/takagi_sugeno.hpp>

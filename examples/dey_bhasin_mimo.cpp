@@ -97,6 +97,34 @@ RunResult run(Input input, adaptobs::Index steps, const std::string& name, adapt
 
 }  // namespace
 
+// Gnuplot body of dey_bhasin_mimo.png after the shading of the lost samples: figures 1–3 of the paper, without and with a rich input.
+constexpr const char* figure_script = R"(
+set multiplot layout 3,2 title 'Dey-Bhasin adaptive observer, MIMO example (Dey and Bhasin 2022, section 5)'
+set grid
+set xlabel 't'
+set key off
+set title 'Figure 1(a): normalized estimates, input not sufficiently rich'
+plot for [i=1:15] nonpe using 't':(column(sprintf('thetahat_norm_%d', i))) with lines
+set title 'Figure 1(b): normalized estimates, sufficiently rich input'
+set yrange [-1:3]
+plot for [i=1:15] pe using 't':(column(sprintf('thetahat_norm_%d', i))) with lines
+set autoscale y
+set logscale y
+set format y '10^{%T}'
+set key top right
+set title 'Figure 2: 2-norm of the state estimation error, input not sufficiently rich'
+plot nonpe using 't':'xerr_norm' with lines lw 1.5 title '||x - xhat||'
+set title 'Figure 2: 2-norm of the state estimation error, sufficiently rich input'
+plot pe using 't':'xerr_norm' with lines lw 1.5 title '||x - xhat||'
+unset logscale y
+set format y '%g'
+set xrange [0:200]
+set title 'Figure 3(a): input not sufficiently rich'
+plot nonpe using 't':'u_1' with lines title 'u^1', nonpe using 't':'u_2' with lines title 'u^2'
+set title 'Figure 3(b): sufficiently rich input'
+plot pe using 't':'u_1' with lines title 'u^1', pe using 't':'u_2' with lines title 'u^2'
+unset multiplot)";
+
 int main(int argc, char** argv) {
   const adaptobs::examples::Arguments args(
       argc, argv, "dey_bhasin_mimo",
@@ -138,31 +166,6 @@ int main(int argc, char** argv) {
 
   adaptobs::examples::write_outputs(
       {{nonpe.table, "dey_bhasin_mimo_nonpe", "nonpe"}, {pe.table, "dey_bhasin_mimo_pe", "pe"}}, args.out_dir(),
-      "dey_bhasin_mimo", adaptobs::examples::gap_shading(pe.table, loss) + R"(
-set multiplot layout 3,2 title 'Dey-Bhasin adaptive observer, MIMO example (Dey and Bhasin 2022, section 5)'
-set grid
-set xlabel 't'
-set key off
-set title 'Figure 1(a): normalized estimates, input not sufficiently rich'
-plot for [i=1:15] nonpe using 't':(column(sprintf('thetahat_norm_%d', i))) with lines
-set title 'Figure 1(b): normalized estimates, sufficiently rich input'
-set yrange [-1:3]
-plot for [i=1:15] pe using 't':(column(sprintf('thetahat_norm_%d', i))) with lines
-set autoscale y
-set logscale y
-set format y '10^{%T}'
-set key top right
-set title 'Figure 2: 2-norm of the state estimation error, input not sufficiently rich'
-plot nonpe using 't':'xerr_norm' with lines lw 1.5 title '||x - xhat||'
-set title 'Figure 2: 2-norm of the state estimation error, sufficiently rich input'
-plot pe using 't':'xerr_norm' with lines lw 1.5 title '||x - xhat||'
-unset logscale y
-set format y '%g'
-set xrange [0:200]
-set title 'Figure 3(a): input not sufficiently rich'
-plot nonpe using 't':'u_1' with lines title 'u^1', nonpe using 't':'u_2' with lines title 'u^2'
-set title 'Figure 3(b): sufficiently rich input'
-plot pe using 't':'u_1' with lines title 'u^1', pe using 't':'u_2' with lines title 'u^2'
-unset multiplot)");
+      "dey_bhasin_mimo", adaptobs::examples::gap_shading(pe.table, loss) + figure_script);
   return 0;
 }

@@ -60,6 +60,29 @@ void print_step(const std::string& name, adaptobs::Index step) {
     print_text(name, "none");
 }
 
+// The exponential-forgetting recursion of Suzuki et al. in plain IEEE
+// arithmetic: fed the resetting observer's regressor and committed
+// unconditionally, with the first steps at which its covariance and its
+// estimates stop being finite.
+struct RawForgettingLaw {
+  adaptobs::ExponentialForgettingRls<double, 4, 1> law;
+  adaptobs::Index covariance_nonfinite = -1, estimate_nonfinite = -1;
+  double gamma_max = 0, last_finite_gamma = 0;  // largest |Γ| entry: now, and when last finite
+
+  // Step t with the regressor and measurement the observer used (none at t = 0).
+  template <class Observer>
+  void step(adaptobs::Index t, const Observer& observer) {
+    if (t > 0) {
+      (void)law.propose(observer.regressor(), observer.measurement());
+      law.commit();
+    }
+    gamma_max = law.covariance().cwiseAbs().template maxCoeff<Eigen::PropagateNaN>();
+    if (covariance_nonfinite < 0 && !law.covariance().allFinite()) covariance_nonfinite = t;
+    if (covariance_nonfinite < 0) last_finite_gamma = gamma_max;
+    if (estimate_nonfinite < 0 && !law.parameters().allFinite()) estimate_nonfinite = t;
+  }
+};
+
 void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::Arguments& args) {
   adaptobs::examples::write_outputs(table, args.out_dir(), "suzuki_siso", R"(
 set multiplot layout 3,2 title 'Covariance resetting against exponential forgetting, SISO example (Dey and Bhasin 2022, section 5)'
@@ -100,31 +123,25 @@ int main(int argc, char** argv) {
 
   auto resetting = siso::make_observer();
   auto suzuki = siso::make_suzuki(lambda);
-  adaptobs::ExponentialForgettingRls<double, 4, 1> raw(resetting.parameters(), siso::suzuki_options(lambda));
+  RawForgettingLaw raw{adaptobs::ExponentialForgettingRls<double, 4, 1>(resetting.parameters(),
+                                                                        siso::suzuki_options(lambda))};
   auto plant = siso::make_plant();
   const Eigen::Vector4d p = resetting.parameters_of(siso::a(), siso::B());
   print_problem(p, resetting.parameters(), lambda);
 
   adaptobs::SeriesTable table;
-  adaptobs::Index covariance_nonfinite = -1, estimate_nonfinite = -1, first_rejected = -1;
-  double last_finite_gamma = 0, state_error = 0;
+  adaptobs::Index first_rejected = -1;
+  double state_error = 0;
   for (adaptobs::Index t = 0; t < steps; ++t) {
     const auto& sample = plant.sample();
     if (resetting.update(sample) != adaptobs::UpdateStatus::accepted) print_value("resetting_rejected_step", double(t));
     const adaptobs::UpdateStatus status = suzuki.update(sample);
     if (status != adaptobs::UpdateStatus::accepted && first_rejected < 0) first_rejected = t;
-    if (t > 0) {  // the raw law, in plain IEEE arithmetic
-      (void)raw.propose(resetting.regressor(), resetting.measurement());
-      raw.commit();
-    }
-    const double gamma_max_raw = raw.covariance().cwiseAbs().template maxCoeff<Eigen::PropagateNaN>();
-    if (covariance_nonfinite < 0 && !raw.covariance().allFinite()) covariance_nonfinite = t;
-    if (covariance_nonfinite < 0) last_finite_gamma = gamma_max_raw;
-    if (estimate_nonfinite < 0 && !raw.parameters().allFinite()) estimate_nonfinite = t;
-    const Eigen::Vector2d x_raw = resetting.state_with(raw.parameters());
+    raw.step(t, resetting);
+    const Eigen::Vector2d x_raw = resetting.state_with(raw.law.parameters());
     state_error = (plant.state() - resetting.current_state()).norm();  // x_t − x̂_t
-    const Eigen::Vector2d a_raw = raw.parameters().head<2>() + siso::f();
-    const Eigen::Vector2d b_raw = raw.parameters().tail<2>();
+    const Eigen::Vector2d a_raw = raw.law.parameters().head<2>() + siso::f();
+    const Eigen::Vector2d b_raw = raw.law.parameters().tail<2>();
 
     table.begin_row()
         .add("t", double(t))
@@ -135,13 +152,13 @@ int main(int argc, char** argv) {
         .add("theta", p)
         .add("thetahat", resetting.parameters())
         .add("xhat_suzuki", x_raw)
-        .add("thetahat_suzuki", raw.parameters())
+        .add("thetahat_suzuki", raw.law.parameters())
         .add("thetahat_norm", db::normalized_estimates(resetting, siso::a(), siso::B()))
         .add("thetahat_norm_suzuki", db::normalized_estimates(a_raw, b_raw, siso::a(), siso::B()))
         .add("xerr_norm", state_error)
         .add("xerr_norm_suzuki", (plant.state() - x_raw).norm())
         .add("gamma_max", resetting.law().covariance().cwiseAbs().maxCoeff())
-        .add("gamma_max_suzuki", gamma_max_raw)
+        .add("gamma_max_suzuki", raw.gamma_max)
         .add("status_suzuki", status == adaptobs::UpdateStatus::accepted ? 1.0 : 0.0)
         .add("resets", double(resetting.law().reset_count()));
     plant.advance();
@@ -150,9 +167,9 @@ int main(int argc, char** argv) {
   print_value("resets", double(resetting.law().reset_count()));
   print_value("thetahat_norm_final", db::normalized_estimates(resetting, siso::a(), siso::B()).transpose());
   print_value("xerr_norm_final", state_error);
-  print_value("suzuki_gamma_max_last_finite", last_finite_gamma);
-  print_step("suzuki_covariance_nonfinite_step", covariance_nonfinite);
-  print_step("suzuki_estimates_nonfinite_step", estimate_nonfinite);
+  print_value("suzuki_gamma_max_last_finite", raw.last_finite_gamma);
+  print_step("suzuki_covariance_nonfinite_step", raw.covariance_nonfinite);
+  print_step("suzuki_estimates_nonfinite_step", raw.estimate_nonfinite);
   print_step("suzuki_observer_first_rejected_step", first_rejected);
   print_value("thetahat_norm_suzuki_observer_final", db::normalized_estimates(suzuki, siso::a(), siso::B()).transpose());
 

@@ -26,6 +26,37 @@ namespace siso = adaptobs::examples::siso;
 namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
 
+// Gnuplot body of unified_comparison.png: both parameter estimates of the five observers, and their error.
+constexpr const char* figure_script = R"(
+set multiplot layout 3,1 title 'Zhang (2005): four adaptive observers of one unified formulation, and the Kalman-Bucy filter on [x; theta]'
+set grid
+set xlabel 't (s)'
+set key outside right
+set title 'theta^1 (true 2)'
+plot csv using 't':'thetahat_bg_1' with lines lw 1.5 title 'Alg. 1 Bastin-Gevers', \
+     csv using 't':'thetahat_mt_1' with lines lw 1.5 title 'Alg. 2 Marino-Tomei', \
+     csv using 't':'thetahat_bes_1' with lines lw 1.5 title 'Alg. 3 Besancon', \
+     csv using 't':'thetahat_1' with lines lw 1.5 title 'Alg. 4 Zhang', \
+     csv using 't':'thetahat_kb_1' with lines lw 1.5 dt 2 title 'Kalman-Bucy [x; theta]', \
+     csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true'
+set title 'theta^2 (true -1)'
+plot csv using 't':'thetahat_bg_2' with lines lw 1.5 title 'Alg. 1 Bastin-Gevers', \
+     csv using 't':'thetahat_mt_2' with lines lw 1.5 title 'Alg. 2 Marino-Tomei', \
+     csv using 't':'thetahat_bes_2' with lines lw 1.5 title 'Alg. 3 Besancon', \
+     csv using 't':'thetahat_2' with lines lw 1.5 title 'Alg. 4 Zhang', \
+     csv using 't':'thetahat_kb_2' with lines lw 1.5 dt 2 title 'Kalman-Bucy [x; theta]', \
+     csv using 't':'theta_2' with lines lc 'black' dt 3 title 'true'
+set title 'parameter estimation error |estimate - theta|'
+set logscale y
+set format y '10^{%T}'
+e(a, b) = sqrt((column(a.'_1') - column('theta_1'))**2 + (column(a.'_2') - column('theta_2'))**2)
+plot csv using 't':(e('thetahat_bg', '')) with lines lw 1.5 title 'Alg. 1 Bastin-Gevers', \
+     csv using 't':(e('thetahat_mt', '')) with lines lw 1.5 title 'Alg. 2 Marino-Tomei', \
+     csv using 't':(e('thetahat_bes', '')) with lines lw 1.5 title 'Alg. 3 Besancon', \
+     csv using 't':(e('thetahat', '')) with lines lw 1.5 title 'Alg. 4 Zhang', \
+     csv using 't':(e('thetahat_kb', '')) with lines lw 1.5 dt 2 title 'Kalman-Bucy [x; theta]'
+unset multiplot)";
+
 int main(int argc, char** argv) {
   const adaptobs::examples::Arguments args(argc, argv, "unified_comparison",
                                            {{"seconds", "100"}, {"noise", "0"}, {"seed", "1"}});
@@ -66,34 +97,6 @@ int main(int argc, char** argv) {
   print_value("theta_relative_error_besancon", relative(bes));
   print_value("theta_relative_error_kalman_bucy", relative(kb));
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "unified_comparison", R"(
-set multiplot layout 3,1 title 'Zhang (2005): four adaptive observers of one unified formulation, and the Kalman-Bucy filter on [x; theta]'
-set grid
-set xlabel 't (s)'
-set key outside right
-set title 'theta^1 (true 2)'
-plot csv using 't':'thetahat_bg_1' with lines lw 1.5 title 'Alg. 1 Bastin-Gevers', \
-     csv using 't':'thetahat_mt_1' with lines lw 1.5 title 'Alg. 2 Marino-Tomei', \
-     csv using 't':'thetahat_bes_1' with lines lw 1.5 title 'Alg. 3 Besancon', \
-     csv using 't':'thetahat_1' with lines lw 1.5 title 'Alg. 4 Zhang', \
-     csv using 't':'thetahat_kb_1' with lines lw 1.5 dt 2 title 'Kalman-Bucy [x; theta]', \
-     csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true'
-set title 'theta^2 (true -1)'
-plot csv using 't':'thetahat_bg_2' with lines lw 1.5 title 'Alg. 1 Bastin-Gevers', \
-     csv using 't':'thetahat_mt_2' with lines lw 1.5 title 'Alg. 2 Marino-Tomei', \
-     csv using 't':'thetahat_bes_2' with lines lw 1.5 title 'Alg. 3 Besancon', \
-     csv using 't':'thetahat_2' with lines lw 1.5 title 'Alg. 4 Zhang', \
-     csv using 't':'thetahat_kb_2' with lines lw 1.5 dt 2 title 'Kalman-Bucy [x; theta]', \
-     csv using 't':'theta_2' with lines lc 'black' dt 3 title 'true'
-set title 'parameter estimation error |estimate - theta|'
-set logscale y
-set format y '10^{%T}'
-e(a, b) = sqrt((column(a.'_1') - column('theta_1'))**2 + (column(a.'_2') - column('theta_2'))**2)
-plot csv using 't':(e('thetahat_bg', '')) with lines lw 1.5 title 'Alg. 1 Bastin-Gevers', \
-     csv using 't':(e('thetahat_mt', '')) with lines lw 1.5 title 'Alg. 2 Marino-Tomei', \
-     csv using 't':(e('thetahat_bes', '')) with lines lw 1.5 title 'Alg. 3 Besancon', \
-     csv using 't':(e('thetahat', '')) with lines lw 1.5 title 'Alg. 4 Zhang', \
-     csv using 't':(e('thetahat_kb', '')) with lines lw 1.5 dt 2 title 'Kalman-Bucy [x; theta]'
-unset multiplot)");
+  adaptobs::examples::write_outputs(table, args.out_dir(), "unified_comparison", figure_script);
   return 0;
 }

@@ -1,5 +1,5 @@
-// A change of the growth parameter of the waste water treatment plant of paper
-// 004 §6, watched on the Takagi–Sugeno observer (printed gains) by a CUSUM and a
+// A change of the growth parameter of the waste water treatment plant of
+// Srinivasarengan et al. (2018), §6, watched on the Takagi–Sugeno observer (printed gains) by a CUSUM and a
 // windowed GLR on θ̂ and a χ² test on the output errors, designed from fault-free runs for one
 // mean time between false alarms. The biomass measurement carries noise of
 // standard deviation 0.01 (the paper's simulation is noise-free).
@@ -23,6 +23,50 @@
 namespace wwtp = adaptobs::examples::wwtp;
 using adaptobs::examples::Detector;
 using adaptobs::examples::print_value;
+
+// Gnuplot panel of the estimate and its fault-free band (s1, the CUSUM scale); the monitor panels follow.
+constexpr const char* estimate_panel = R"(
+set multiplot layout 3,1 title 'Growth-rate change in the waste water treatment plant: Takagi-Sugeno observer (Srinivasarengan et al. 2018, section 6)'
+set grid
+set xlabel 'sample'
+set title 'parameter estimate, with its fault-free spread (2 scales)'
+plot csv using 't':(column('thetahat_1') - 2*s1):(column('thetahat_1') + 2*s1) with filledcurves fs transparent solid 0.3 title 'band', \
+     csv using 't':'thetahat_1' with lines lw 1.5 title 'theta estimate', \
+     csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true')";
+
+// One run, written to wwtp_fault.csv and .png (after an alarm the CUSUM holds
+// off for 3 periods, then re-anchors).
+void run_once(const adaptobs::examples::Arguments& args, const wwtp::MonitorDesign& design,
+              const wwtp::GrowthFault& fault) {
+  auto monitor = adaptobs::examples::rearming_monitor(design);
+  adaptobs::SeriesTable table;
+  double first_alarm = -1;
+  wwtp::Simulation{fault}(static_cast<std::uint64_t>(args.number("seed")), true,
+                          static_cast<adaptobs::Index>(args.number("steps")),
+                          [&](adaptobs::Index k, const auto& observer, const auto& plant, const auto& sample) {
+                            const bool watching =
+                                k >= wwtp::monitor_from && adaptobs::accepted(monitor.observe(observer));
+                            if (watching && monitor.cusum().alarm() && first_alarm < 0) first_alarm = double(k);
+                            table.begin_row()
+                                .add("t", double(k))
+                                .add("u", sample.u)
+                                .add("y", sample.y)
+                                .add("x", plant.state())
+                                .add("xhat", observer.state())
+                                .add("theta", Eigen::Matrix<double, 1, 1>(fault.theta_at(k)))
+                                .add("thetahat", observer.parameters());
+                            adaptobs::examples::add_monitor_columns(table, monitor, watching);
+                            return true;
+                          });
+  print_value("first_alarm_time", first_alarm);
+  print_value("detection_delay", first_alarm >= 0 ? first_alarm - double(fault.step) : -1.0);
+  print_value("cusum_alarms", double(monitor.cusum().alarm_count()));
+  print_value("chi_square_alarms", double(monitor.chi_square().alarm_count()));
+
+  const std::string band = "s1 = " + std::to_string(design.cusum.scale(0)) + "\n";
+  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp_fault", band + estimate_panel +
+                                        std::string(adaptobs::examples::monitor_panels) + "unset multiplot");
+}
 
 int main(int argc, char** argv) {
   const adaptobs::examples::Arguments args(argc, argv, "wwtp_fault",
@@ -57,41 +101,6 @@ int main(int argc, char** argv) {
     return 0;
   }
 
-  // One run (after an alarm the CUSUM holds off for 3 periods, then re-anchors).
-  auto monitor = adaptobs::examples::rearming_monitor(design);
-  adaptobs::SeriesTable table;
-  double first_alarm = -1;
-  wwtp::Simulation{fault}(static_cast<std::uint64_t>(args.number("seed")), true,
-                          static_cast<adaptobs::Index>(args.number("steps")),
-                          [&](adaptobs::Index k, const auto& observer, const auto& plant, const auto& sample) {
-                            const bool watching =
-                                k >= wwtp::monitor_from && adaptobs::accepted(monitor.observe(observer));
-                            if (watching && monitor.cusum().alarm() && first_alarm < 0) first_alarm = double(k);
-                            table.begin_row()
-                                .add("t", double(k))
-                                .add("u", sample.u)
-                                .add("y", sample.y)
-                                .add("x", plant.state())
-                                .add("xhat", observer.state())
-                                .add("theta", Eigen::Matrix<double, 1, 1>(fault.theta_at(k)))
-                                .add("thetahat", observer.parameters());
-                            adaptobs::examples::add_monitor_columns(table, monitor, watching);
-                            return true;
-                          });
-  print_value("first_alarm_time", first_alarm);
-  print_value("detection_delay", first_alarm >= 0 ? first_alarm - double(fault.step) : -1.0);
-  print_value("cusum_alarms", double(monitor.cusum().alarm_count()));
-  print_value("chi_square_alarms", double(monitor.chi_square().alarm_count()));
-
-  const std::string band = "s1 = " + std::to_string(design.cusum.scale(0)) + "\n";
-  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp_fault", band + R"(
-set multiplot layout 3,1 title 'Growth-rate change in the waste water treatment plant: Takagi-Sugeno observer (Srinivasarengan et al. 2018, section 6)'
-set grid
-set xlabel 'sample'
-set title 'parameter estimate, with its fault-free spread (2 scales)'
-plot csv using 't':(column('thetahat_1') - 2*s1):(column('thetahat_1') + 2*s1) with filledcurves fs transparent solid 0.3 title 'band', \
-     csv using 't':'thetahat_1' with lines lw 1.5 title 'theta estimate', \
-     csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true')" +
-                                        std::string(adaptobs::examples::monitor_panels) + "unset multiplot");
+  run_once(args, design, fault);
   return 0;
 }

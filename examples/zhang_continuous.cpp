@@ -21,6 +21,25 @@ namespace periodic = adaptobs::examples::periodic;
 namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
 
+// Gnuplot body of zhang_continuous.png: the estimates and their error, constant K against the Riccati K(t).
+constexpr const char* figure_script = R"(
+set multiplot layout 2,1 title 'Zhang (2002) adaptive observer (Zhang 2005, Algorithm 4) on a periodic MIMO plant'
+set grid
+set xlabel 't (s)'
+set title 'parameter estimates (true 1 and -2)'
+plot csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1, constant K', \
+     csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2, constant K', \
+     csv using 't':'thetahat_riccati_1' with lines dt 2 title 'theta^1, Riccati K(t)', \
+     csv using 't':'thetahat_riccati_2' with lines dt 2 title 'theta^2, Riccati K(t)', \
+     csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true', \
+     csv using 't':'theta_2' with lines lc 'black' dt 3 notitle
+set title 'parameter estimation error'
+set logscale y
+set format y '10^{%T}'
+plot csv using 't':(sqrt((column('thetahat_1')-column('theta_1'))**2 + (column('thetahat_2')-column('theta_2'))**2)) with lines lw 1.5 title 'constant K', \
+     csv using 't':(sqrt((column('thetahat_riccati_1')-column('theta_1'))**2 + (column('thetahat_riccati_2')-column('theta_2'))**2)) with lines lw 1.5 title 'Riccati K(t)'
+unset multiplot)";
+
 int main(int argc, char** argv) {
   const adaptobs::examples::Arguments args(argc, argv, "zhang_continuous",
                                            {{"seconds", "40"}, {"gamma", "50"}, {"noise", "0"}, {"seed", "1"}});
@@ -64,22 +83,6 @@ int main(int argc, char** argv) {
   print_value("excitation_level_eq15", observer.excitation_level().value_or(0.0));
   print_value("riccati_final_K", riccati.gain(model.at(plant.time()).C));
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "zhang_continuous", R"(
-set multiplot layout 2,1 title 'Zhang (2002) adaptive observer (Zhang 2005, Algorithm 4) on a periodic MIMO plant'
-set grid
-set xlabel 't (s)'
-set title 'parameter estimates (true 1 and -2)'
-plot csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1, constant K', \
-     csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2, constant K', \
-     csv using 't':'thetahat_riccati_1' with lines dt 2 title 'theta^1, Riccati K(t)', \
-     csv using 't':'thetahat_riccati_2' with lines dt 2 title 'theta^2, Riccati K(t)', \
-     csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true', \
-     csv using 't':'theta_2' with lines lc 'black' dt 3 notitle
-set title 'parameter estimation error'
-set logscale y
-set format y '10^{%T}'
-plot csv using 't':(sqrt((column('thetahat_1')-column('theta_1'))**2 + (column('thetahat_2')-column('theta_2'))**2)) with lines lw 1.5 title 'constant K', \
-     csv using 't':(sqrt((column('thetahat_riccati_1')-column('theta_1'))**2 + (column('thetahat_riccati_2')-column('theta_2'))**2)) with lines lw 1.5 title 'Riccati K(t)'
-unset multiplot)");
+  adaptobs::examples::write_outputs(table, args.out_dir(), "zhang_continuous", figure_script);
   return 0;
 }

@@ -1,5 +1,5 @@
-// Continuous-discrete adaptive observer of Guiro, Iggidr, Ngom, Touré (paper
-// 002): the regressor integrals H_k (closed forms, adaptive bisection, exact
+// Continuous-discrete adaptive observer of Guiro, Iggidr, Ngom, Touré (2008,
+// docs/references.md): the regressor integrals H_k (closed forms, adaptive bisection, exact
 // polynomial form) and the observer itself (convergence, error recursion (4),
 // float/double, fixed/dynamic, bad input). The gain design and proposition 2.2
 // are tested in test_guiro_design.cpp.

@@ -1,5 +1,5 @@
-// Compile-time benchmark, hand-written side: the Guyader–Zhang observer (paper
-// 000, eq. (2a)–(2c)) at the satellite's sizes with fixed-size Eigen types, the
+// Compile-time benchmark, hand-written side: the Guyader–Zhang observer (Guyader
+// & Zhang 2003, eq. (2a)–(2c)) at the satellite's sizes with fixed-size Eigen types, the
 // same 1000 updates and the same two diagnostics (assumption 2: ‖√μ C Υ‖;
 // assumption 3: smallest eigenvalue of the average of μ ΥᵀCᵀCΥ over 100 steps).
 // Paired with guyader_zhang_observer.cpp.

@@ -11,7 +11,7 @@
 /// because \f$S^k \to 0\f$. A bound from a Lyapunov equation,
 /// \f$M \le \sqrt{\operatorname{cond}P}\f$, is cheaper but can be several times larger.
 ///
-/// Perturbation results such as proposition 2.1 of paper
+/// Perturbation results such as proposition 2.1 of
 /// Guiro et al. (2008) tolerate \f$\|W(k)\| < (1-\lambda)/M\f$;
 /// `best_power_bound` picks the λ that maximizes that margin.
 
