@@ -95,9 +95,8 @@ RunResult run(Input input, adaptobs::Index steps, const std::string& name, adapt
   return result;
 }
 
-}  // namespace
-
-// Gnuplot body of dey_bhasin_mimo.png after the shading of the lost samples: figures 1–3 of the paper, without and with a rich input.
+// Gnuplot body of dey_bhasin_mimo.png, after the shading of the lost samples:
+// figures 1–3 of the paper, without and with a rich input.
 constexpr const char* figure_script = R"(
 set multiplot layout 3,2 title 'Dey-Bhasin adaptive observer, MIMO example (Dey and Bhasin 2022, section 5)'
 set grid
@@ -124,6 +123,8 @@ plot nonpe using 't':'u_1' with lines title 'u^1', nonpe using 't':'u_2' with li
 set title 'Figure 3(b): sufficiently rich input'
 plot pe using 't':'u_1' with lines title 'u^1', pe using 't':'u_2' with lines title 'u^2'
 unset multiplot)";
+
+}  // namespace
 
 int main(int argc, char** argv) {
   const adaptobs::examples::Arguments args(

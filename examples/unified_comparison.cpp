@@ -26,7 +26,8 @@ namespace siso = adaptobs::examples::siso;
 namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
 
-// Gnuplot body of unified_comparison.png: both parameter estimates of the five observers, and their error.
+// Gnuplot body of unified_comparison.png: both parameter estimates of the five
+// observers, and their error.
 constexpr const char* figure_script = R"(
 set multiplot layout 3,1 title 'Zhang (2005): four adaptive observers of one unified formulation, and the Kalman-Bucy filter on [x; theta]'
 set grid

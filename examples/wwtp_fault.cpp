@@ -24,7 +24,10 @@ namespace wwtp = adaptobs::examples::wwtp;
 using adaptobs::examples::Detector;
 using adaptobs::examples::print_value;
 
-// Gnuplot panel of the estimate and its fault-free band (s1, the CUSUM scale); the monitor panels follow.
+namespace {
+
+// Gnuplot panel of the estimate and its fault-free band (s1, the CUSUM scale);
+// the monitor panels follow.
 constexpr const char* estimate_panel = R"(
 set multiplot layout 3,1 title 'Growth-rate change in the waste water treatment plant: Takagi-Sugeno observer (Srinivasarengan et al. 2018, section 6)'
 set grid
@@ -67,6 +70,8 @@ void run_once(const adaptobs::examples::Arguments& args, const wwtp::MonitorDesi
   adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp_fault", band + estimate_panel +
                                         std::string(adaptobs::examples::monitor_panels) + "unset multiplot");
 }
+
+}  // namespace
 
 int main(int argc, char** argv) {
   const adaptobs::examples::Arguments args(argc, argv, "wwtp_fault",

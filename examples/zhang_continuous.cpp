@@ -21,7 +21,8 @@ namespace periodic = adaptobs::examples::periodic;
 namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
 
-// Gnuplot body of zhang_continuous.png: the estimates and their error, constant K against the Riccati K(t).
+// Gnuplot body of zhang_continuous.png: the estimates and their error, constant K
+// against the Riccati K(t).
 constexpr const char* figure_script = R"(
 set multiplot layout 2,1 title 'Zhang (2002) adaptive observer (Zhang 2005, Algorithm 4) on a periodic MIMO plant'
 set grid

@@ -21,8 +21,9 @@ namespace adaptobs {
 /// `Observer::name_reset` (the names its errors give), `restart(x0, theta0)`
 /// (the rest of `reset`) and its step, which on accepting a sample writes the
 /// base's `output_error_` (sized by the observer's constructor); the base
-/// counts the accepted steps. The step comes in one of two forms, which the base calls with a sample of the right shape
-/// whose measured entries are finite (mask null: every channel present):
+/// counts the accepted steps. The step comes in one of two forms, which the
+/// base calls with a sample of the right shape whose measured entries are
+/// finite (mask null: every channel present):
 /// - `advance(sample, mask, workspace)` with a `detail::UpdateWorkspace` named
 ///   `work_`, which the base hands the step (on the stack for fixed sizes);
 /// - `step_with(sample, mask)`, which keeps its scratch itself.
