@@ -1,8 +1,9 @@
 #pragma once
 /// \file
-/// What the discrete-time observers and the augmented Kalman filter share,
-/// written once: the base class their `update`, `reset` and common accessors
-/// come from.
+/// What the discrete-time observers over a model (Guyader–Zhang, Guiro,
+/// Takagi–Sugeno) and the augmented Kalman filter share, written once: the base
+/// class their `update`, `reset` and common accessors come from. The
+/// Dey–Bhasin observer, a filter bank with an adaptation law, has its own.
 
 #include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>

@@ -5,7 +5,7 @@
 /// Bad configuration fails where it is given (a constructor or a design
 /// function) with a `ConfigurationError` whose message names the component and
 /// the offending argument, e.g. `GuyaderZhangObserver: argument 'mu' must be
-/// positive (got -1)`.
+/// positive and finite (got -1)`.
 
 #include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/dimensions.hpp>

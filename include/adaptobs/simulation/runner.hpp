@@ -6,8 +6,9 @@
 /// \f$t_k, u_k, y_k, x_k, \hat x_k, \theta_k, \hat\theta_k\f$ — the estimates
 /// *before* the sample of step k is consumed, so that \f$\hat x_k\f$ is compared
 /// with \f$x_k\f$ — in the column order of the examples' CSV schema
-/// (`t,u_*,y_*,x_*,xhat_*,theta_*,thetahat_*`); further observers add
-/// `xhat_<suffix>_*` and `thetahat_<suffix>_*` columns.
+/// (`t,u_*,y_*,x_*,xhat_*,theta_*,thetahat_*`, with `y_available` after `y_*`
+/// when outputs can be lost: the present channels as bits); further observers
+/// add `xhat_<suffix>_*` and `thetahat_<suffix>_*` columns.
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/observer.hpp>
