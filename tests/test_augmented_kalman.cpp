@@ -6,6 +6,7 @@
 
 #include "models/satellite.hpp"
 #include "support/eigen_testing.hpp"
+#include "support/ltv_test_system.hpp"
 #include "support/observer_contract.hpp"
 
 #include <gtest/gtest.h>
@@ -94,6 +95,14 @@ TEST(AugmentedKalman, WrongSampleSizesThrowNamingTheEntryAndChangeNothing) {
   EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-12, 1e-12);
   EXPECT_MATRIX_NEAR(dynamic.output_error(), fixed.output_error(), 1e-12, 1e-12);
+}
+
+TEST(AugmentedKalman, ATimeVaryingModelOfWrongSizesAtAStepIsRefusedAndChangesNothing) {
+  adaptobs::testing::expect_resized_step_refused([](auto model) {
+    return adaptobs::AugmentedKalmanFilter(
+        std::move(model), Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1),
+        {Eigen::MatrixXd::Identity(3, 3), 1e-3 * Eigen::MatrixXd::Identity(3, 3), Eigen::MatrixXd::Identity(1, 1)});
+  });
 }
 
 TEST(AugmentedKalman, NoiseFreeAgreesWithExactState) {

@@ -320,6 +320,9 @@ TEST(ExcitationMonitor, RefusesWrongColumnsNonFiniteEntriesAndBadWeightsAddingNo
   EXPECT_TRUE(monitor.average() == average);
   // (e1ᵀe1 + 0.5·4·e2ᵀe2)/2 = diag(0.5, 1)
   EXPECT_DOUBLE_EQ(monitor.level(), 0.5);
+  // A run-time count that contradicts the compile-time one.
+  const std::string message = configuration_error_of([] { adaptobs::ExcitationMonitor<double, 2> fixed(5, 3); });
+  EXPECT_NE(message.find("'np'"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -618,6 +618,14 @@ TEST(DeyBhasin, BadConfigurationNamesTheArgument) {
   EXPECT_CONFIGURATION_ERROR_NAMES(observer.update(DynamicObserver::Sample{Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(2)}),
                  "sample.u");
   EXPECT_CONFIGURATION_ERROR_NAMES(observer.reset(Eigen::VectorXd::Zero(6), Eigen::VectorXd::Zero(14)), "p0");
+  EXPECT_CONFIGURATION_ERROR_NAMES(observer.state_with(Eigen::VectorXd::Zero(14)), "p");
+  // A run-time order with a compile-time output count q = 2: x0 needs r·q = 6
+  // entries, even where another q would divide its length.
+  using RunTimeOrder = adaptobs::DeyBhasinObserver<double, Eigen::Dynamic, 2, 2>;
+  EXPECT_CONFIGURATION_ERROR_NAMES(RunTimeOrder(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(9),
+                                                Eigen::VectorXd(mimo::a_hat0()), Eigen::MatrixXd::Zero(6, 2),
+                                                {.k0 = 10, .kmin = 1e-3, .R = Eigen::Matrix2d::Identity()}),
+                                   "x0");
 }
 
 }  // namespace

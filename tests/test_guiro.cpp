@@ -16,6 +16,7 @@
 #include "guiro_paper_fixture.hpp"
 #include "models/guiro.hpp"
 #include "support/eigen_testing.hpp"
+#include "support/ltv_test_system.hpp"
 #include "support/observer_contract.hpp"
 
 #include <gtest/gtest.h>
@@ -44,6 +45,14 @@ using adaptobs::testing::guiro::Paper;
 using adaptobs::testing::guiro::paper_gains;
 
 // ---- H_k ------------------------------------------------------------------------
+
+TEST(Guiro, ATimeVaryingModelOfWrongSizesAtAStepIsRefusedAndChangesNothing) {
+  adaptobs::testing::expect_resized_step_refused([](auto model) {
+    return adaptobs::GuiroObserver(std::move(model), Eigen::MatrixXd::Constant(2, 1, 0.3),
+                                   Eigen::MatrixXd::Constant(1, 1, 0.1), Eigen::VectorXd::Zero(2),
+                                   Eigen::VectorXd::Zero(1));
+  });
+}
 
 TEST(GuiroRegressor, H0MatchesThePrintedClosedForm) {
   adaptobs::RegressorIntegral<double, 2, 1> integral(g::continuous_dynamics<double>(), 1.0);

@@ -342,6 +342,13 @@ namespace {
 
 using adaptobs::testing::configuration_error_of;
 
+TEST(GuyaderZhang, ATimeVaryingModelOfWrongSizesAtAStepIsRefusedAndChangesNothing) {
+  adaptobs::testing::expect_resized_step_refused([](auto model) {
+    return adaptobs::GuyaderZhangObserver(std::move(model), Eigen::MatrixXd::Constant(2, 1, 0.3), 0.5,
+                                          Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1));
+  });
+}
+
 TEST(GuyaderZhang, BadConfigurationNamesTheArgument) {
   const auto model = satellite::model<double>();
   const Eigen::Matrix<double, 4, 2> k = satellite::paper_gain<double>();
@@ -352,6 +359,11 @@ TEST(GuyaderZhang, BadConfigurationNamesTheArgument) {
         configuration_error_of([&] { adaptobs::GuyaderZhangObserver o(model, k, mu, x0, th0); });
     EXPECT_NE(message.find("'mu'"), std::string::npos) << message;
   }
+  // A parameter count other than the compile-time one (θ̂ is sized by the type).
+  using SatelliteDims = std::remove_cvref_t<decltype(model)>::Dims;
+  EXPECT_CONFIGURATION_ERROR_NAMES((adaptobs::DiscreteLtiModel<SatelliteDims>(model.system().A, model.system().B,
+                                                                              model.system().C, 3)),
+                                   "np");
   auto observer = make_satellite_observer<double>();
   EXPECT_NE(configuration_error_of([&] { observer.set_mu(0.0); }).find("'mu'"), std::string::npos);
   Eigen::Matrix<double, 4, 2> nan_gain = k;

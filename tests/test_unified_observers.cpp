@@ -399,6 +399,31 @@ TEST(UnifiedFormulation, BadConfigurationNamesTheArgument) {
   }
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::StaticTransform<SD>(Eigen::Matrix3d::Zero(), zero3), "T");
   EXPECT_CONFIGURATION_ERROR_NAMES(kalman_bucy_filter<double>(-1.0), "covariances.Q");
+  // Run-time sizes: a transform without states, or measuring more states than it has.
+  using DD = adaptobs::DynamicDimensions<double>;
+  const adaptobs::StaticTransform<DD> empty(Eigen::MatrixXd(0, 0), Eigen::MatrixXd(0, 1));
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::BastinGevers<DD>(empty, Eigen::MatrixXd(0, 1)), "transform");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::MarinoTomei<DD>(empty, Eigen::VectorXd(0), Eigen::MatrixXd(0, 1)),
+                                   "transform");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::Besancon<DD>(adaptobs::StaticTransform<DD>(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Zero(2, 3)),
+                             Eigen::MatrixXd::Identity(3, 3)),
+      "transform");
+}
+
+TEST(UnifiedFormulation, AnOutputInjectionThatBreaksTheConditionsIsRefusedAndChangesNothing) {
+  auto observer = siso_zhang_observer<double>();
+  const Eigen::Vector3d k = observer.algorithm().static_transform.K();
+  const Eigen::Matrix3d ao = observer.transformed_system(0).Ao;
+  // A − KC with K = (−10, 0, 0) is not Hurwitz: refused as at construction.
+  EXPECT_CONFIGURATION_ERROR_NAMES(observer.set_output_injection(Eigen::Vector3d(-10, 0, 0)), "K");
+  EXPECT_TRUE(observer.algorithm().static_transform.K() == k);
+  EXPECT_TRUE(observer.transformed_system(0).Ao == ao);
+  // A stabilizing K is taken, and A_o = A − KC follows it.
+  const Eigen::Vector3d doubled = 2 * k;
+  observer.set_output_injection(doubled);
+  EXPECT_TRUE(observer.algorithm().static_transform.K() == doubled);
+  EXPECT_TRUE(observer.transformed_system(0).Ao.isApprox(ao - k * observer.model().system().C));
 }
 
 static_assert(adaptobs::Observer<decltype(bastin_gevers_observer<double>())>);

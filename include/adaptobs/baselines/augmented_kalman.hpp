@@ -124,6 +124,7 @@ class AugmentedKalmanFilter
   /// (`UpdateStatus::indefinite_covariance`) and changes nothing.
   UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
     const auto& system = model_.at(this->step());
+    this->check_system_sizes(system);
     const Index nx = x_.rows();
     Workspace& w = w_;
 

@@ -94,9 +94,9 @@ concept DiscreteModel = StateSpace<typename M::Dims> && requires(const M& m, Ind
 
 namespace detail {
 template <StateSpace D>
-void validate_system(const DiscreteSystem<D>& s, Index np, std::string_view who) {
+void validate_system(const DiscreteSystem<D>& s, Index np, std::string_view who, std::string_view np_name) {
   validate_state_space(s, who);
-  require(np >= 0, who, "np", "must be non-negative");
+  require_parameter_count<D>(np, who, np_name);
 }
 }  // namespace detail
 
@@ -106,11 +106,11 @@ class DiscreteLtiModel : public SizedBy<D> {
  public:
   static constexpr bool time_invariant = true;
 
-  /// \param np number of unknown parameters (only read when `D::np` is dynamic).
+  /// \param np number of unknown parameters (`D::np` itself when that is fixed).
   DiscreteLtiModel(typename D::StateMatrix A, typename D::InputMatrix B, typename D::OutputMatrix C,
                    Index np = D::np)
       : system_{std::move(A), std::move(B), std::move(C)}, np_(np) {
-    detail::validate_system(system_, np_, "DiscreteLtiModel");
+    detail::validate_system(system_, np_, "DiscreteLtiModel", "np");
   }
 
   [[nodiscard]] const DiscreteSystem<D>& at(Index /*k*/) const noexcept { return system_; }
@@ -138,7 +138,7 @@ class DiscreteLtvModel : public SizedBy<D> {
     detail::require(sizes_.nx >= 0 && sizes_.nu >= 0 && sizes_.ny >= 0 && sizes_.np >= 0, who, "sizes",
                     "must be non-negative (dynamic dimensions need explicit sizes)");
     const DiscreteSystem<D> first = matrices_at_(Index{0});
-    detail::validate_system(first, sizes_.np, who);
+    detail::validate_system(first, sizes_.np, who, "sizes.np");
     detail::require(first.A.rows() == sizes_.nx && first.B.cols() == sizes_.nu && first.C.rows() == sizes_.ny, who,
                     "matrices_at", "returns matrices whose sizes differ from 'sizes'");
   }

@@ -136,6 +136,16 @@ class DynamicTransform {
 };
 
 namespace detail {
+/// r = n − m, the unmeasured states of the block forms (5), (7), (8) of
+/// Algorithms 1–3 for a transform of n states with m measured ones. Refuses,
+/// naming `argument`, a transform without states or measuring more states than
+/// it has, before any block of size r is formed.
+inline Index unmeasured_states(Index n, Index m, std::string_view who, std::string_view argument) {
+  require(n >= 1, who, argument, "must have at least one state (T at least 1 x 1)");
+  require(m <= n, who, argument, "must measure no more states than it has (K with at most as many columns as T rows)");
+  return n - m;
+}
+
 /// G = [−g I_r] and H = [0; I_r] for a state of size n = m + r: the dynamic
 /// transform shared by Algorithms 1–3, with F given or projected.
 template <typename Scalar, int N, int R, class DG>

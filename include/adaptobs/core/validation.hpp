@@ -106,6 +106,14 @@ Index require_siso_triple(const Eigen::EigenBase<DA>& A, const Eigen::EigenBase<
   return A.rows();
 }
 
+/// A parameter count given at run time: non-negative, and `D::np` itself when
+/// that is fixed (a different count would size θ̂ against the compile-time type).
+template <StateSpace D>
+void require_parameter_count(Index np, std::string_view who, std::string_view argument) {
+  require(np >= 0, who, argument, "must be non-negative");
+  if constexpr (D::np != Eigen::Dynamic) require(np == D::np, who, argument, "must equal the compile-time count D::np");
+}
+
 /// The matrices (A, B, C) of a state-space system, discrete or continuous: A
 /// square, B with A's rows, C with A's columns, every entry finite.
 template <class System>

@@ -33,10 +33,13 @@ class ExcitationMonitor {
  public:
   using Gramian = Eigen::Matrix<Scalar, NP, NP>;
 
-  /// \param window number L of samples averaged (≥ 1), \param np parameter count (read when NP is dynamic).
+  /// \param window number L of samples averaged (≥ 1), \param np parameter count (p; with a
+  /// compile-time NP it must be NP).
   explicit ExcitationMonitor(Index window, Index np = NP) : window_(window) {
     detail::require(window >= 1, "ExcitationMonitor", "window", "must be at least 1");
     detail::require(np >= 0, "ExcitationMonitor", "np", "must be non-negative");
+    detail::require(NP == Eigen::Dynamic || np == NP, "ExcitationMonitor", "np",
+                    "must equal the compile-time parameter count NP");
     ring_.assign(static_cast<std::size_t>(window), Gramian::Zero(np, np));
     sum_.setZero(np, np);
   }

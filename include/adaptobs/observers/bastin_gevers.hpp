@@ -54,9 +54,7 @@ struct BastinGevers {
 
   BastinGevers(StaticTransform<D> transform, typename D::GainMatrix gain)
       : static_transform(std::move(transform)),
-        dynamic_transform(detail::block_transform<Scalar, D::nx, filter_rows>(
-            static_transform.T().rows(), static_transform.T().rows() - 1,
-            Eigen::Matrix<Scalar, filter_rows, 1>::Zero(static_transform.T().rows() - 1))),
+        dynamic_transform(make_dynamic_transform(static_transform)),
         k(std::move(gain)) {
     detail::require_finite_shape(k, static_transform.T().rows(), 1, name, "k");
   }
@@ -81,6 +79,13 @@ struct BastinGevers {
     Eigen::Matrix<Scalar, D::nx, 1> gamma = Eigen::Matrix<Scalar, D::nx, 1>::Zero(n);
     gamma(0) = Scalar(1);
     detail::require_spr_error_system(so, k, gamma, "e1", name);
+  }
+
+ private:
+  // G = [0 I], H = [0; I] around the n − 1 unmeasured states of form (5).
+  static DynamicTransform<Scalar, D::nx, filter_rows> make_dynamic_transform(const StaticTransform<D>& transform) {
+    const Index r = detail::unmeasured_states(transform.T().rows(), 1, name, "transform");
+    return detail::block_transform<Scalar, D::nx, filter_rows>(r + 1, r, Eigen::Matrix<Scalar, filter_rows, 1>::Zero(r));
   }
 };
 

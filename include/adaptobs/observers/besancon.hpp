@@ -52,10 +52,7 @@ struct Besancon {
 
   Besancon(StaticTransform<D> transform, OutputSquare gain)
       : static_transform(std::move(transform)),
-        dynamic_transform(detail::block_transform<Scalar, D::nx, filter_rows>(
-            static_transform.T().rows(), static_transform.T().rows() - static_transform.K().cols(),
-            Eigen::Matrix<Scalar, filter_rows, D::ny>::Zero(static_transform.T().rows() - static_transform.K().cols(),
-                                                             static_transform.K().cols()))),
+        dynamic_transform(make_dynamic_transform(static_transform)),
         K1(std::move(gain)) {
     const Index m = static_transform.K().cols();
     detail::require_finite_shape(K1, m, m, name, "K1");
@@ -91,6 +88,15 @@ struct Besancon {
                     name, "K1",
                     "must make A11 - K1 + (A11 - K1)^T negative definite (the library's sufficient condition "
                     "for the Lyapunov function above, not a condition of the paper)");
+  }
+
+ private:
+  // G = [0 I], H = [0; I] around the n − m unmeasured states of form (8).
+  static DynamicTransform<Scalar, D::nx, filter_rows> make_dynamic_transform(const StaticTransform<D>& transform) {
+    const Index m = transform.K().cols();
+    const Index r = detail::unmeasured_states(transform.T().rows(), m, name, "transform");
+    return detail::block_transform<Scalar, D::nx, filter_rows>(r + m, r,
+                                                               Eigen::Matrix<Scalar, filter_rows, D::ny>::Zero(r, m));
   }
 };
 

@@ -87,7 +87,8 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
         law_(initial_parameters(filters_, a0, B0), std::move(options), filters_.outputs()),
         x0_(std::move(x0)) {
     constexpr std::string_view who = "DeyBhasinObserver";
-    detail::require_finite(x0_, who, "x0");
+    // n = rq with the filters' q: a compile-time Q is not the q of x0's length.
+    detail::require_finite_shape(x0_, filters_.states(), 1, who, "x0");
     const Sizes s = filters_.sizes();
     bank_.setZero(s.ny + s.nu, filters_.order());
     last_.setZero(s.ny + s.nu);
@@ -158,6 +159,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   /// \f$S_tp + F^t\hat x_0\f$ for any p at the last sample t: the state (12) of the model
   /// with parameters p (with \f$\hat x_0 = x_0\f$ and the true p it is \f$x_t\f$).
   [[nodiscard]] State state_with(const Parameters& p) const {
+    detail::require_shape(p, filters_.parameters(), 1, "DeyBhasinObserver::state_with", "p");
     State x(filters_.states());
     filters_.state(bank_, p, current_free_, x);
     return x;

@@ -150,7 +150,7 @@ class GuiroObserver
   /// changing nothing, when the step would produce a NaN/Inf.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
     const auto& system = model_.at(this->step());
-    if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
+    this->check_system_sizes(system);
 
     /// Eq. (2), second line: \f$z_k = z^-_k - K(Cz^-_k - y_k)\f$ (skipped for the
     /// paper's uncorrected \f$z_0\f$).
@@ -180,14 +180,6 @@ class GuiroObserver
     detail::commit(this->output_error_, w.innovation);
     started_ = true;
     return UpdateStatus::accepted;
-  }
-
-  void check_system_sizes(const DiscreteSystem<Dims>& system) const {
-    constexpr std::string_view who = "GuiroObserver::update";
-    const Sizes s = model_.sizes();
-    detail::require_shape(system.A, s.nx, s.nx, who, "model.at(k).A");
-    detail::require_shape(system.B, s.nx, s.nu, who, "model.at(k).B");
-    detail::require_shape(system.C, s.ny, s.nx, who, "model.at(k).C");
   }
 
   Model model_;

@@ -177,7 +177,7 @@ class GuyaderZhangObserver
   /// `nonfinite_result`, changing nothing, when it would produce a NaN/Inf.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
     const auto& system = model_.at(this->step());
-    if constexpr (!Dims::is_fixed && !Model::time_invariant) check_system_sizes(system);
+    this->check_system_sizes(system);
 
     // Output error y_k − C_k x̂_k and C_k Υ_k, shared by (2a)–(2c); with a mask,
     // their absent rows are those of C̄_k = D_kC_k, i.e. zero.
@@ -234,14 +234,6 @@ class GuyaderZhangObserver
     const auto& system = model_.at(0);
     closed_loop_ = system.A;
     closed_loop_.noalias() -= gain_ * system.C;
-  }
-
-  void check_system_sizes(const DiscreteSystem<Dims>& system) const {
-    constexpr std::string_view who = "GuyaderZhangObserver::update";
-    const Sizes s = model_.sizes();
-    detail::require_shape(system.A, s.nx, s.nx, who, "model.at(k).A");
-    detail::require_shape(system.B, s.nx, s.nu, who, "model.at(k).B");
-    detail::require_shape(system.C, s.ny, s.nx, who, "model.at(k).C");
   }
 
   Model model_;

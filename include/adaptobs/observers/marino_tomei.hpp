@@ -54,11 +54,10 @@ struct MarinoTomei {
 
   MarinoTomei(StaticTransform<D> transform, Vector gamma_vector, typename D::GainMatrix gain)
       : static_transform(std::move(transform)),
-        dynamic_transform(make_dynamic_transform(gamma_vector)),
+        dynamic_transform(make_dynamic_transform(static_transform, gamma_vector)),
         gamma(std::move(gamma_vector)),
         k(std::move(gain)) {
     const Index n = static_transform.T().rows();
-    detail::require_finite_shape(gamma, n, 1, name, "gamma");
     detail::require(gamma(0) == Scalar(1), name, "gamma", "must have a first entry equal to 1");
     detail::require(n == 1 || is_hurwitz_polynomial(Polynomial<Scalar>(gamma)), name, "gamma",
                     "must hold the coefficients of a Hurwitz polynomial (F must be Hurwitz)");
@@ -87,8 +86,10 @@ struct MarinoTomei {
   }
 
  private:
-  static DynamicTransform<Scalar, D::nx, filter_rows> make_dynamic_transform(const Vector& gamma) {
-    const Index n = gamma.rows(), r = n - 1;
+  static DynamicTransform<Scalar, D::nx, filter_rows> make_dynamic_transform(const StaticTransform<D>& transform,
+                                                                             const Vector& gamma) {
+    const Index r = detail::unmeasured_states(transform.T().rows(), 1, name, "transform"), n = r + 1;
+    detail::require_finite_shape(gamma, n, 1, name, "gamma");
     const Eigen::Matrix<Scalar, filter_rows, 1> g = gamma.tail(r);
     Eigen::Matrix<Scalar, filter_rows, filter_rows> f = Eigen::Matrix<Scalar, filter_rows, filter_rows>::Zero(r, r);
     f.col(0) = -g;

@@ -202,10 +202,25 @@ class UnifiedAdaptiveObserver
   [[nodiscard]] const Model& model() const noexcept { return model_; }
 
   /// Output injection K of the static transform from now on (e.g. the gain of a
-  /// `RiccatiDifferentialEquation` at the current sample).
+  /// `RiccatiDifferentialEquation` at the current sample). With a time-invariant
+  /// model the algorithm's conditions are checked again, as at construction: a K
+  /// that breaks them (e.g. A − KC not Hurwitz) throws `ConfigurationError` and
+  /// the observer keeps its previous K.
   void set_output_injection(const GainMatrix& K) {
-    algorithm_.static_transform.set_output_injection(K);
-    refresh_time_invariant_system();
+    if constexpr (Model::time_invariant) {
+      const GainMatrix previous = algorithm_.static_transform.K();
+      algorithm_.static_transform.set_output_injection(K);
+      refresh_time_invariant_system();
+      try {
+        algorithm_.check(so_, sizes_, true);
+      } catch (...) {
+        algorithm_.static_transform.set_output_injection(previous);
+        refresh_time_invariant_system();
+        throw;
+      }
+    } else {
+      algorithm_.static_transform.set_output_injection(K);
+    }
   }
 
   /// Excitation level over the last window: the smallest eigenvalue of the
