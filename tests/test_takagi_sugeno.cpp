@@ -465,7 +465,7 @@ TEST(TakagiSugeno, BadConfigurationNamesTheArgument) {
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::TakagiSugenoObserver(model, gains, x0, th0), "gains.L");
   gains = wwtp::paper_gains<double>();
   gains.K[2](0) = std::numeric_limits<double>::infinity();
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::TakagiSugenoObserver(model, gains, x0, th0), "gains.K");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::TakagiSugenoObserver(model, gains, x0, th0), "gains.K[2]");
   gains = wwtp::paper_gains<double>();
   gains.K_theta = wwtp::Vector1<double>(std::nan(""));
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::TakagiSugenoObserver(model, gains, x0, th0), "gains.K_theta");

@@ -44,6 +44,7 @@
 
 #include <optional>
 #include <sstream>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -77,7 +78,7 @@ class TakagiSugenoObserver
     constexpr std::string_view who = "TakagiSugenoObserver";
     const Sizes s = model_.sizes();
     detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
-    set_gains(gains);
+    assign_gains(gains, who);
     weights_.setZero(model_.vertex_count());
     premises_.setZero(model_.premise_count());
     this->output_error_.setZero(s.ny);
@@ -97,9 +98,13 @@ class TakagiSugenoObserver
   /// True for the time-varying-parameter observer (eq. (21), \f$K_\theta\f$ set).
   [[nodiscard]] bool has_leakage() const noexcept { return gains_.K_theta.has_value(); }
 
-  /// Replaces the gains (checked as at construction) from the next update on.
-  void set_gains(const Gains& gains) {
-    constexpr std::string_view who = "TakagiSugenoObserver";
+  /// Replaces the gains (checked as at construction) from the next update on;
+  /// bad gains throw `ConfigurationError` naming the vertex (`gains.L[i]`) and
+  /// change nothing.
+  void set_gains(const Gains& gains) { assign_gains(gains, "TakagiSugenoObserver::set_gains"); }
+
+ private:
+  void assign_gains(const Gains& gains, std::string_view who) {
     const Sizes s = model_.sizes();
     const Index r = model_.vertex_count();
     const auto require_count = [&](std::size_t count, std::string_view argument) {
@@ -111,11 +116,9 @@ class TakagiSugenoObserver
     };
     require_count(gains.L.size(), "gains.L");
     require_count(gains.K.size(), "gains.K");
-    for (const auto& l : gains.L) {
-      detail::require_finite_shape(l, s.nx, s.ny, who, "gains.L");
-    }
-    for (const auto& k : gains.K) {
-      detail::require_finite_shape(k, s.np, s.ny, who, "gains.K");
+    for (std::size_t i = 0; i < gains.L.size(); ++i) {
+      detail::require_finite_shape(gains.L[i], s.nx, s.ny, who, "gains.L[" + std::to_string(i) + "]");
+      detail::require_finite_shape(gains.K[i], s.np, s.ny, who, "gains.K[" + std::to_string(i) + "]");
     }
     if (gains.K_theta) {
       detail::require_finite_shape(*gains.K_theta, s.np, s.np, who, "gains.K_theta");
@@ -134,7 +137,6 @@ class TakagiSugenoObserver
     }
   }
 
- private:
   // The rest of `reset`: no weights or premises yet.
   void restart(const State& x0, const Parameters& theta0) {
     x_ = x0;
