@@ -82,7 +82,9 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
     information_ = Matrix::Identity(ny, ny);
     factor.solve_in_place(information_);
     information_ = Scalar(0.5) * (information_ + information_.transpose()).eval();
-    const double dof = options.degrees_of_freedom > 0 ? options.degrees_of_freedom : static_cast<double>(window) * static_cast<double>(ny);
+    // In floating point: window × outputs may not fit an Index.
+    const double dof = options.degrees_of_freedom > 0 ? options.degrees_of_freedom
+                                                      : static_cast<double>(window) * static_cast<double>(ny);
     this->threshold_ = static_cast<Scalar>(options.scale * chi_square_upper_quantile(dof, static_cast<double>(false_alarm_probability)));
   }
 
