@@ -131,6 +131,26 @@ TEST(KalmanBucy, ConvergesExponentiallyWithParameterNoise) {
   EXPECT_GT(trace.theta_decay_rate(6.0, 10.0), 0.24);
 }
 
+TEST(KalmanBucy, SetInternalStateRefusesWhatAnUpdateWouldAndChangesNothing) {
+  auto filter = kalman_bucy_filter<double>(1.0);
+  const auto before = filter.internal_state();  // [x̂; θ̂; vec P], n = 5
+  const Index n = 5;
+  ASSERT_EQ(before.size(), n + n * n);
+  auto nan = before;
+  nan(1) = std::nan("");
+  EXPECT_FALSE(filter.set_internal_state(nan));
+  EXPECT_TRUE(filter.internal_state() == before);
+  auto indefinite = before;
+  indefinite(n + 2 * n + 2) = -1;  // P(2, 2) < 0
+  EXPECT_FALSE(filter.set_internal_state(indefinite));
+  EXPECT_TRUE(filter.internal_state() == before);
+  auto moved = before;
+  moved(0) += 1;
+  EXPECT_TRUE(filter.set_internal_state(moved));
+  EXPECT_TRUE(filter.internal_state() == moved);
+  EXPECT_EQ(filter.state()(0), before(0) + 1);
+}
+
 // ---------------------------------------------------------------------------
 // A flipped update law θ̂' = −ΓRᵀε makes every observer diverge.
 

@@ -75,13 +75,21 @@ class ContinuousUpdate : public SizedBy<Dims> {
   /// driving `derivative`, see `odeint_system`).
   [[nodiscard]] const auto& internal_state() const noexcept { return self().internal_; }
   /// Replaces the internal state. Returns false, changing nothing, when `s`
-  /// holds NaN or Inf; a wrong size throws `ConfigurationError`.
+  /// holds NaN or Inf or fails the observer's own check of an integrated step
+  /// (the Kalman–Bucy filter's: a covariance that is not positive definite,
+  /// which every later update would reject); a wrong size throws `ConfigurationError`.
   template <class O = Observer>
   bool set_internal_state(const typename O::InternalState& s) {
     Observer& o = self();
     detail::require_shape(s, o.internal_.rows(), 1, Observer::name, "s");
     if (!detail::all_finite(s)) return false;
-    o.internal_ = s;
+    if constexpr (requires(typename O::InternalState& c) { o.check_step(c); }) {
+      typename O::InternalState candidate = s;  // the check may adjust it (symmetrize P)
+      if (o.check_step(candidate) != UpdateStatus::accepted) return false;
+      o.internal_ = candidate;
+    } else {
+      o.internal_ = s;
+    }
     o.refresh_estimates();
     return true;
   }
