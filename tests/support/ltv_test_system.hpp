@@ -30,10 +30,6 @@ inline Eigen::Matrix3d rotating_ltv_dynamics(Index k) {
   return a;
 }
 
-}  // namespace adaptobs::testing
-
-namespace adaptobs::testing {
-
 /// A two-state, one-input, one-output system of run-time sizes whose matrix
 /// `wrong` ('A', 'B' or 'C') has one row too many from step 1 on: what a
 /// time-varying model with a bug returns. Stable and observable at step 0.

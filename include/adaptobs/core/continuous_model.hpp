@@ -106,7 +106,7 @@ class ContinuousLtiModel : public SizedBy<D> {
       : system_{std::move(A), std::move(B), std::move(C)}, phi_(std::move(Phi)) {
     constexpr std::string_view who = "ContinuousLtiModel";
     detail::validate_state_space(system_, who);
-    detail::require_parameter_count<D>(np, who, "np");
+    detail::require_size<D::np>(np, who, "np");
     sizes_ = {system_.A.rows(), system_.B.cols(), system_.C.rows(), np};
     detail::validate_regressor<D>(phi_, sizes_, who);
   }
@@ -139,7 +139,7 @@ class ContinuousLtvModel : public SizedBy<D> {
                     "must be non-negative (dynamic dimensions need explicit sizes)");
     const ContinuousSystem<D> first = matrices_at_(typename D::Scalar(0));
     detail::validate_state_space(first, who);
-    detail::require_parameter_count<D>(sizes_.np, who, "sizes.np");
+    detail::require_size<D::np>(sizes_.np, who, "sizes.np");
     detail::require(first.sizes().nx == sizes_.nx && first.sizes().nu == sizes_.nu && first.sizes().ny == sizes_.ny,
                     who, "matrices_at", "returns matrices whose sizes differ from 'sizes'");
     detail::validate_regressor<D>(phi_, sizes_, who);

@@ -83,13 +83,9 @@ class ContinuousUpdate : public SizedBy<Dims> {
     Observer& o = self();
     detail::require_shape(s, o.internal_.rows(), 1, Observer::name, "s");
     if (!detail::all_finite(s)) return false;
-    if constexpr (requires(typename O::InternalState& c) { o.check_step(c); }) {
-      typename O::InternalState candidate = s;  // the check may adjust it (symmetrize P)
-      if (o.check_step(candidate) != UpdateStatus::accepted) return false;
-      o.internal_ = candidate;
-    } else {
-      o.internal_ = s;
-    }
+    typename O::InternalState candidate = s;  // the check may adjust it (symmetrize P)
+    if (check_step(o, candidate) != UpdateStatus::accepted) return false;
+    o.internal_ = candidate;
     o.refresh_estimates();
     return true;
   }

@@ -96,7 +96,7 @@ namespace detail {
 template <StateSpace D>
 void validate_system(const DiscreteSystem<D>& s, Index np, std::string_view who, std::string_view np_name) {
   validate_state_space(s, who);
-  require_parameter_count<D>(np, who, np_name);
+  require_size<D::np>(np, who, np_name);
 }
 }  // namespace detail
 

@@ -106,12 +106,13 @@ Index require_siso_triple(const Eigen::EigenBase<DA>& A, const Eigen::EigenBase<
   return A.rows();
 }
 
-/// A parameter count given at run time: non-negative, and `D::np` itself when
-/// that is fixed (a different count would size θ̂ against the compile-time type).
-template <StateSpace D>
-void require_parameter_count(Index np, std::string_view who, std::string_view argument) {
-  require(np >= 0, who, argument, "must be non-negative");
-  if constexpr (D::np != Eigen::Dynamic) require(np == D::np, who, argument, "must equal the compile-time count D::np");
+/// A size given at run time for a dimension of compile-time size `N`:
+/// non-negative, and N itself unless N is `Eigen::Dynamic` (another size would
+/// contradict the fixed-size types it is used with).
+template <int N>
+void require_size(Index n, std::string_view who, std::string_view argument) {
+  require(n >= 0, who, argument, "must be non-negative");
+  if constexpr (N != Eigen::Dynamic) require(n == N, who, argument, "must equal the compile-time size");
 }
 
 /// The matrices (A, B, C) of a state-space system, discrete or continuous: A

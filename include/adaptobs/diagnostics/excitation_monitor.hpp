@@ -37,9 +37,7 @@ class ExcitationMonitor {
   /// compile-time NP it must be NP).
   explicit ExcitationMonitor(Index window, Index np = NP) : window_(window) {
     detail::require(window >= 1, "ExcitationMonitor", "window", "must be at least 1");
-    detail::require(np >= 0, "ExcitationMonitor", "np", "must be non-negative");
-    detail::require(NP == Eigen::Dynamic || np == NP, "ExcitationMonitor", "np",
-                    "must equal the compile-time parameter count NP");
+    detail::require_size<NP>(np, "ExcitationMonitor", "np");
     ring_.assign(static_cast<std::size_t>(window), Gramian::Zero(np, np));
     sum_.setZero(np, np);
   }
