@@ -5,6 +5,7 @@
 #include <adaptobs/diagnostics/excitation_monitor.hpp>
 #include <adaptobs/design/riccati_recursion.hpp>
 #include <adaptobs/design/stability.hpp>
+#include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 
 
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace {
 
@@ -236,6 +238,30 @@ TEST(SymmetricEigenvalues, PrescribedSpectrumAndGradedMatrix) {
   EXPECT_NEAR(lambda(0) / 1e-20, 1.0, 1e-14);
   EXPECT_NEAR(lambda(1), 1.0, 1e-15);
   EXPECT_NEAR(lambda(2) / 1e20, 1.0, 1e-15);
+}
+
+// A non-finite entry anywhere in the lower triangle gives NaN eigenvalues, never
+// the diagonal of a matrix whose coupling is unknown: a NaN coupling fails every
+// rotation test, so without the check the answer would be the finite diagonal.
+TEST(SymmetricEigenvalues, NonFiniteEntryGivesNaN) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (const double bad : {nan, inf, -inf}) {
+    for (const auto& [i, j] : {std::pair{1, 0}, std::pair{2, 1}, std::pair{0, 0}, std::pair{2, 2}}) {
+      Eigen::Matrix3d m = Eigen::Vector3d(1, 2, 3).asDiagonal();
+      m(i, j) = bad;
+      const Eigen::Vector3d lambda = adaptobs::symmetric_eigenvalues(m);
+      EXPECT_TRUE(lambda.array().isNaN().all()) << "entry (" << i << ", " << j << ") = " << bad << ": "
+                                                 << lambda.transpose();
+    }
+  }
+  // The strict upper triangle is not read.
+  Eigen::Matrix2d upper_nan;
+  upper_nan << 1, nan, 0, 2;
+  EXPECT_MATRIX_NEAR(adaptobs::symmetric_eigenvalues(upper_nan), Eigen::Vector2d(1, 2), 0.0, 0.0);
+  // Through the spectral norm, whatever the order of the largest-magnitude scan.
+  Eigen::Matrix2d coupled_nan;
+  coupled_nan << 1, 0, nan, 2;
+  EXPECT_TRUE(std::isnan(adaptobs::spectral_norm(coupled_nan)));
 }
 
 TEST(Validation, PositiveSemidefiniteToleratesRoundingOnly) {

@@ -27,13 +27,19 @@ namespace adaptobs {
 /// \f$|a_{pq}| \le \varepsilon\sqrt{|a_{pp}a_{qq}|}\f$, or is below the
 /// smallest normal number. Each sweep costs about \f$4n^3\f$ flops, and
 /// convergence is quadratic: a handful of sweeps for the sizes observers use.
-/// A non-finite entry gives non-finite eigenvalues.
+/// A non-finite entry in the lower triangle gives NaN for every eigenvalue.
 template <class Derived>
 [[nodiscard]] Eigen::Matrix<typename Derived::Scalar, Derived::RowsAtCompileTime, 1> symmetric_eigenvalues(
     const Eigen::MatrixBase<Derived>& m) {
   using Scalar = typename Derived::Scalar;
   constexpr int N = Derived::RowsAtCompileTime;
   const Index n = m.rows();
+  // Checked first: a NaN off the diagonal fails every rotation test below and
+  // would leave the diagonal standing as the answer, and sorting NaNs is undefined.
+  for (Index j = 0; j < n; ++j)
+    for (Index i = j; i < n; ++i)
+      if (!std::isfinite(m(i, j)))
+        return Eigen::Matrix<Scalar, N, 1>::Constant(n, std::numeric_limits<Scalar>::quiet_NaN());
   Eigen::Matrix<Scalar, N, N> a = m.template triangularView<Eigen::Lower>();
   a.template triangularView<Eigen::StrictlyUpper>() = a.transpose();
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
