@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -251,6 +252,18 @@ TEST(CanonicalForms, BesanconFormOfRandomMimoSystems) {
   EXPECT_NE(configuration_error_of([&] { (void)adaptobs::besancon_form<D>(a, Eigen::RowVector4d(1, 0, 0, 0), 0.5); })
                 .find("'C'"),
             std::string::npos);
+  // A C without full row rank, or not finite, is refused naming C (with
+  // assertions on, a refusal inside the transform's comma initializer aborted).
+  Eigen::Matrix<double, 2, 4> dependent_rows;
+  dependent_rows << 1, 0, 0, 0, 2, 0, 0, 0;
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::besancon_form<D>(a, dependent_rows, 0.5), "C");
+  Eigen::Matrix<double, 2, 4> not_finite = Eigen::Matrix<double, 2, 4>::Identity();
+  not_finite(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::besancon_form<D>(a, not_finite, 0.5), "C");
+  Eigen::Matrix4d a_not_finite = a;
+  a_not_finite(3, 0) = std::numeric_limits<double>::infinity();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::besancon_form<D>(a_not_finite, Eigen::Matrix<double, 2, 4>::Identity(), 0.5),
+                                   "A");
 }
 
 TEST(SprDesign, GainsOfAlgorithmsOneAndTwo) {
@@ -317,6 +330,22 @@ TEST(Riccati, CareAndKalmanBucyGainOnRandomSystems) {
                                          Eigen::Matrix2d::Identity(), Eigen::Matrix<double, 1, 1>(1));
             }).find("'A, B'"),
             std::string::npos);
+}
+
+// Q = R near the largest number: X = r(a + √(a² + 1)) for b = 1 is found in
+// scaled form. For a = 1 it is beyond the floating-point range, and the
+// solvers refuse, naming Q and R, instead of returning X = ∞ as a solution; for
+// a = −0.001 it is just inside, and is returned to full accuracy.
+TEST(ContinuousRiccati, ASolutionBeyondTheFloatingPointRangeIsRefusedNamingQAndR) {
+  using Scalar1 = Eigen::Matrix<double, 1, 1>;
+  const Scalar1 one(1), huge(1e308);
+  const auto message = configuration_error_of([&] { (void)adaptobs::solve_care(one, one, huge, huge); });
+  EXPECT_NE(message.find("'Q, R'"), std::string::npos) << message;
+  EXPECT_NE(message.find("floating-point range"), std::string::npos) << message;
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::kalman_bucy_gain(one, one, huge, huge), "Q, R");
+  const double a = -0.001, r = 1.2e308;
+  const auto inside = adaptobs::solve_care(Scalar1(a), one, Scalar1(r), Scalar1(r));
+  EXPECT_NEAR(inside.X(0, 0) / (r * (a + std::sqrt(a * a + 1))), 1.0, 1e-13);
 }
 
 TEST(Riccati, LyapunovSolverResidual) {
@@ -389,6 +418,45 @@ TEST(LtvStability, FloquetExponents) {
   };
   EXPECT_NEAR(adaptobs::floquet_exponents(closed, periodic::period)(0), -1.98, 0.01);
   EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic(closed, periodic::period, 1.9));
+}
+
+// A solution that grows like e^{800 t} leaves the floating-point range within
+// one period: no exponent can be told, and stability is not certified (the
+// eigen-solver's failure on the infinite monodromy matrix once returned
+// unwritten storage, read here as exponents −1, −2, −712 and "stable"). At
+// e^{700 t} the monodromy matrix is still finite and the exponent is found.
+TEST(LtvStability, AMonodromyMatrixBeyondTheFloatingPointRangeIsNotCertifiedStable) {
+  for (const double growth : {700.0, 800.0}) {
+    const auto a = [growth](double) {
+      Eigen::Matrix3d m;
+      m << growth, 1, 0, 0, -1, 1, 0, 0, -2;
+      return m;
+    };
+    const Eigen::VectorXd exponents = adaptobs::floquet_exponents(a, 1.0);
+    EXPECT_FALSE(adaptobs::is_exponentially_stable_periodic(a, 1.0)) << growth;
+    if (growth < 709) {
+      EXPECT_NEAR(exponents(0), growth, 1.0);
+      EXPECT_MATRIX_NEAR(exponents.tail(2), Eigen::Vector2d(-1, -2), 1e-6, 0);
+    } else {
+      EXPECT_TRUE(exponents.array().isNaN().all()) << exponents.transpose();
+    }
+  }
+}
+
+// The frequency sweep refuses what it cannot evaluate instead of skipping it:
+// at ω_max = ∞ every point of the grid was NaN, and G = (s² + 0.01s + 1)/(s + 1)³,
+// which is not strictly positive real, was certified.
+TEST(SprDesign, FrequencySweepRefusesAnInfiniteRangeOrNonFiniteSystem) {
+  Eigen::Matrix3d a;  // companion form of (s + 1)³
+  a << 0, 1, 0, 0, 0, 1, -1, -3, -3;
+  const Eigen::Vector3d b(0, 0, 1);
+  const Eigen::RowVector3d c(1, 0.01, 1);
+  EXPECT_FALSE(adaptobs::spr_frequency_sweep(a, b, c).strictly_positive_real);
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::spr_frequency_sweep(a, b, c, 1e-4, std::numeric_limits<double>::infinity()), "omega_min, omega_max, points");
+  Eigen::Matrix3d a_not_finite = a;
+  a_not_finite(2, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::spr_frequency_sweep(a_not_finite, b, c), "A");
 }
 
 }  // namespace

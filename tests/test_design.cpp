@@ -121,6 +121,23 @@ TEST(Dare, RefusesUnstabilizablePairAndBadWeights) {
   EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, asymmetric_q, r); }).find("symmetric"), std::string::npos);
 }
 
+// Q = R near the largest number. X of (A, B) = (0.99, 1) is found in scaled
+// form but is beyond the floating-point range: refused, naming Q and R, where
+// X = ∞ was returned as a solution. The filter's P of (0.9, 1) is just inside,
+// and its gain, which does not change when Q and R are scaled together, equals
+// the gain at Q = R = 1 (S = CPCᵀ + R overflowed, and K = 0 was returned).
+TEST(Dare, ASolutionBeyondTheFloatingPointRangeIsRefusedAndAGainNearItIsExact) {
+  using Scalar1 = Eigen::Matrix<double, 1, 1>;
+  const Scalar1 one(1);
+  const auto message = configuration_error_of([&] { (void)adaptobs::solve_dare(Scalar1(0.99), one, Scalar1(1.2e308), Scalar1(1.2e308)); });
+  EXPECT_NE(message.find("'Q, R'"), std::string::npos) << message;
+  EXPECT_NE(message.find("floating-point range"), std::string::npos) << message;
+  const auto near_limit = adaptobs::steady_state_kalman_gain(Scalar1(0.9), one, Scalar1(1e308), Scalar1(1e308));
+  const auto unit = adaptobs::steady_state_kalman_gain(Scalar1(0.9), one, one, one);
+  EXPECT_NEAR(near_limit.P(0, 0) / (1e308 * unit.P(0, 0)), 1.0, 1e-13);
+  EXPECT_NEAR(near_limit.K(0, 0), unit.K(0, 0), 1e-14);
+}
+
 using Dims3 = adaptobs::Dimensions<double, 3, 1, 1, 1>;
 
 TEST(KalmanGainRecursion, ConvergesToSteadyStateGainForLti) {

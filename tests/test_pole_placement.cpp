@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -104,6 +105,15 @@ TEST(Observability, StaircaseFindsHiddenModesThatEigenvalueTestsMiss) {
   // The exact PBH test at the known mode sees it too; at another point it does not.
   EXPECT_LT(adaptobs::pbh_margin(MatrixXd(q.transpose() * a * q), MatrixXd(c * q), 0.7), 1e-14);
   EXPECT_GT(adaptobs::pbh_margin(MatrixXd(q.transpose() * a * q), MatrixXd(c * q), 0.2), 1e-3);
+  // Non-finite data is refused by name: the SVD of a NaN matrix fails, and its
+  // unwritten singular values were read as the margin.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  MatrixXd a_nan = a, c_inf = c;
+  a_nan(4, 1) = nan;
+  c_inf(1, 0) = std::numeric_limits<double>::infinity();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::pbh_margin(a_nan, c, 0.7), "A");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::pbh_margin(a, c_inf, 0.7), "C");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::pbh_margin(a, c, nan), "mu");
 }
 
 // ---- Output injection ----------------------------------------------------------------
@@ -168,6 +178,10 @@ TEST(PolePlacement, RepeatedPolesAndDeadbeat) {
   const ComplexVector twice = (Eigen::Vector4cd() << z, std::conj(z), z, std::conj(z)).finished();
   const auto placed = adaptobs::place_output_injection(a, c, twice);
   EXPECT_LE(adaptobs::cayley_hamilton_residual(MatrixXd(a - placed.L * c), twice), 1e-11);
+  // A matrix with a NaN has no known spectrum: an infinite residual, never 0.
+  MatrixXd not_finite = a - placed.L * c;
+  not_finite(2, 3) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(adaptobs::cayley_hamilton_residual(not_finite, twice), std::numeric_limits<double>::infinity());
 }
 
 // A requested pole equal to an eigenvalue of A makes the Sylvester equation

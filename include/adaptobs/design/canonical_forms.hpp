@@ -132,11 +132,15 @@ template <typename Scalar>
   using Matrix = DynamicMatrix<Scalar>;
   constexpr std::string_view who = "besancon_form";
   require_square(a, who, "A");
+  require_finite(a, who, "A");
   const Index n = a.rows(), m = cc.rows();
-  require_shape(cc, m, n, who, "C");
+  require_finite_shape(cc, m, n, who, "C");
   require(decay >= 0 && std::isfinite(decay), who, "decay", "must be non-negative");
+  // The kernel first: it may refuse C, which must not happen inside an open
+  // comma initializer (its destructor would then assert on the missing rows).
+  const Matrix kernel = kernel_basis<Scalar>(cc, who);
   Matrix t0(n, n);
-  t0 << cc, kernel_basis<Scalar>(cc, who).transpose();
+  t0 << cc, kernel.transpose();
   const Matrix at = t0 * a * t0.inverse();
   const Index r = n - m;
   Matrix t = t0;

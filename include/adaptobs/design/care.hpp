@@ -241,6 +241,7 @@ CareSolution<Scalar, Eigen::Dynamic> solve_care(const DynamicMatrix<Scalar>& A, 
   const auto e = care_newton_refinement<Scalar>(x, a, g, q, result.iterations);
   if (e.relative <= tolerance && is_hurwitz_with_margin(e.closed_loop)) {
     result.X = sigma * unbalance(x, d);
+    if (!result.X.allFinite()) fail_out_of_range(roles);
     result.relative_residual = e.relative;
     return result;
   }

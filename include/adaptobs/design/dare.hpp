@@ -235,6 +235,7 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   }
   if (e.valid && e.relative <= residual_tolerance && stabilizing(e.gain, margin)) {
     result.X = sigma * x;
+    if (!result.X.allFinite()) fail_out_of_range(roles);
     result.relative_residual = e.relative;
     return result;
   }
@@ -333,9 +334,20 @@ KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> steady_state_kalman_gain(cons
   KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> result;
   result.P = dual.X;
   result.relative_residual = dual.relative_residual;
-  const CholeskyFactorization<Scalar> s(congruence(ct, result.P) + R);  // S = C P Cᵀ + R
-  // K = A P Cᵀ S⁻¹  ⇔  Kᵀ = S⁻¹ C P Aᵀ (S and P symmetric).
-  result.K = s.solve(multiply_transposed(ct, multiply(result.P, at))).transpose();
+  // K = A P Cᵀ S⁻¹ with S = C P Cᵀ + R is unchanged when P and R are divided by
+  // the same power of two, which keeps S in range when P and R are near the
+  // largest number (P, already refused if it overflowed, may still be close).
+  // An even power: the Cholesky factor then scales by a power of two as well,
+  // and K comes out bit for bit as without the scaling.
+  const Scalar largest = std::max(result.P.size() ? result.P.cwiseAbs().maxCoeff() : Scalar(0),
+                                  R.size() ? R.cwiseAbs().maxCoeff() : Scalar(0));
+  const Scalar scale = largest > Scalar(1) ? std::ldexp(Scalar(1), 2 * (std::ilogb(largest) / 2)) : Scalar(1);
+  const DynamicMatrix<Scalar> p_scaled = result.P / scale;
+  const CholeskyFactorization<Scalar> s(DynamicMatrix<Scalar>(congruence(ct, p_scaled) + R / scale));
+  if (!s.positive_definite) fail_out_of_range(roles);
+  // Kᵀ = S⁻¹ C P Aᵀ (S and P symmetric).
+  result.K = s.solve(multiply_transposed(ct, multiply(p_scaled, at))).transpose();
+  if (!result.K.allFinite()) fail_out_of_range(roles);
   return result;
 }
 }  // namespace detail

@@ -10,12 +10,19 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
+#include <limits>
+
 namespace adaptobs::detail {
 
-/// Eigenvalues of a square matrix (real Schur form, no eigenvectors), in the solver's order.
+/// Eigenvalues of a square matrix (real Schur form, no eigenvectors), in the
+/// solver's order; every entry NaN when the solver fails (a non-finite `m`),
+/// whose eigenvalue storage is then never written.
 template <typename Scalar>
 [[nodiscard]] ComplexVector<Scalar> dense_eigenvalues(const DynamicMatrix<Scalar>& m) {
-  return Eigen::EigenSolver<DynamicMatrix<Scalar>>(m, /*computeEigenvectors=*/false).eigenvalues();
+  const Eigen::EigenSolver<DynamicMatrix<Scalar>> solver(m, /*computeEigenvectors=*/false);
+  if (solver.info() != Eigen::Success)
+    return ComplexVector<Scalar>::Constant(m.rows(), std::numeric_limits<Scalar>::quiet_NaN());
+  return solver.eigenvalues();
 }
 #ifdef ADAPTOBS_PRECOMPILED
 ADAPTOBS_INSTANTIATE ComplexVector<double> dense_eigenvalues<double>(const DynamicMatrix<double>&);

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <limits>
 
 namespace adaptobs {
 
@@ -39,18 +40,23 @@ template <class AFn, typename Scalar = double>
 }
 
 /// Floquet exponents \f$\log|\mu_i|/T\f$ of a `period`-periodic \f$\dot e = A(t)e\f$, largest first.
+/// All NaN when the monodromy matrix is not finite: the solution left the
+/// floating-point range within one period (or A(t) was not finite), and no
+/// exponent can be told; `is_exponentially_stable_periodic` is then false.
 template <class AFn, typename Scalar = double>
 [[nodiscard]] Eigen::Matrix<Scalar, Eigen::Dynamic, 1> floquet_exponents(const AFn& A, Scalar period,
                                                                          int steps = 2000) {
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   detail::require_positive(period, "floquet_exponents", "period");
   const auto m = transition_matrix(A, Scalar(0), period, steps);
-  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> exponents =
-      detail::dense_eigenvalues(detail::dynamic_copy(m)).cwiseAbs().array().log() / period;
+  if (!m.allFinite()) return Vector::Constant(m.rows(), std::numeric_limits<Scalar>::quiet_NaN());
+  Vector exponents = detail::dense_eigenvalues(detail::dynamic_copy(m)).cwiseAbs().array().log() / period;
   std::sort(exponents.begin(), exponents.end(), [](Scalar a, Scalar b) { return a > b; });
   return exponents;
 }
 
-/// Exponential stability of a periodic \f$\dot e = A(t)e\f$: every Floquet exponent below −margin.
+/// Exponential stability of a periodic \f$\dot e = A(t)e\f$: every Floquet exponent below −margin
+/// (false when they are NaN).
 template <class AFn, typename Scalar = double>
 [[nodiscard]] bool is_exponentially_stable_periodic(const AFn& A, Scalar period, Scalar margin = 0,
                                                     int steps = 2000) {

@@ -23,6 +23,7 @@
 #include <Eigen/SVD>
 
 #include <algorithm>
+#include <cmath>
 #include <complex>
 #include <limits>
 
@@ -92,7 +93,9 @@ template <class DA, class DC>
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "pbh_margin";
   detail::require_square(A, who, "A");
-  detail::require_shape(C, C.rows(), A.rows(), who, "C");
+  detail::require_finite(A, who, "A");
+  detail::require_finite_shape(C, C.rows(), A.rows(), who, "C");
+  detail::require(std::isfinite(mu), who, "mu", "must be finite");
   const Index n = A.rows();
   if (n == 0) return Scalar(1);
   Matrix stacked(n + C.rows(), n);

@@ -45,6 +45,7 @@
 #include <Eigen/SVD>
 
 #include <algorithm>
+#include <cmath>
 #include <complex>
 #include <cstdint>
 #include <limits>
@@ -194,6 +195,7 @@ template <class DM, class DP>
     r.diagonal().array() += q(i);
     scale += std::abs(q(i)) * std::pow(norm, Scalar(n - i));
   }
+  if (!std::isfinite(scale)) return std::numeric_limits<Scalar>::infinity();  // M or the poles not finite
   return scale > 0 ? r.norm() / scale : Scalar(0);
 }
 

@@ -74,9 +74,16 @@ template <typename Scalar>
   using ComplexMatrix = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "spr_frequency_sweep";
   const Index n = require_siso_triple(A, b, c, who);
-  require(omega_min > 0 && omega_max > omega_min && points >= 2, who, "omega_min, omega_max, points",
-          "must satisfy 0 < omega_min < omega_max and points ≥ 2");
+  require_finite(A, who, "A");
+  require_finite(b, who, "b");
+  require_finite(c, who, "c");
+  require(omega_min > 0 && omega_max > omega_min && std::isfinite(omega_max) && points >= 2, who,
+          "omega_min, omega_max, points", "must satisfy 0 < omega_min < omega_max < ∞ and points ≥ 2");
   SprSweep<Scalar> r;
+  if (n == 0) {  // G = 0: not strictly positive real; an empty A has no unstable mode
+    r.hurwitz = true;
+    return r;
+  }
   r.hurwitz = is_hurwitz_stable(A);
   r.high_frequency_limit = -(c * A * b)(0, 0);
   const ComplexMatrix a = A.template cast<Complex>();
@@ -89,7 +96,9 @@ template <typename Scalar>
     const ComplexMatrix m = Complex(0, w) * ComplexMatrix::Identity(n, n) - a;
     const Complex g = (cc * m.partialPivLu().solve(bb))(0, 0);
     const Scalar weighted = (Scalar(1) + w * w) * g.real();
-    if (weighted < r.min_weighted_real_part) {
+    // A NaN (jω an eigenvalue of A within rounding) becomes the minimum and
+    // fails the test below, instead of being skipped by the comparison.
+    if (!(weighted >= r.min_weighted_real_part)) {
       r.min_weighted_real_part = weighted;
       r.at_frequency = w;
     }

@@ -146,6 +146,14 @@ void validate_riccati_data(const DynamicMatrix<Scalar>& A, const DynamicMatrix<S
   fail_argument(roles.who, "A, Q", roles.unreached_mode);
 }
 
+/// Refusal of a solution found in scaled form whose scale-back \f$X = \sigma\tilde X\f$
+/// leaves the floating-point range. X is proportional to (Q, R) scaled together,
+/// so the caller can scale them down and the result back up.
+[[noreturn]] inline void fail_out_of_range(const RiccatiRoles& roles) {
+  fail_argument(roles.who, "Q, R",
+                "give a solution X beyond the floating-point range (X scales with Q and R: scale both down)");
+}
+
 /// Refusal of a well-posed equation that the precision cannot solve to the
 /// stated accuracy: the figures reached and those required.
 template <typename Scalar>
