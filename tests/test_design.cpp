@@ -271,6 +271,16 @@ TEST(SymmetricEigenvalues, NonFiniteEntryGivesNaN) {
                                                  << lambda.transpose();
     }
   }
+  // Entries near the ends of the range: the rotation test once multiplied two
+  // diagonal entries, whose product overflowed beyond 10^154 (no rotation was
+  // made, and the diagonal came back as the eigenvalues).
+  for (const double scale : {1e-200, 1e155, 1e200}) {
+    Eigen::Matrix2d m;
+    m << 1, 2, 2, 1;
+    EXPECT_MATRIX_NEAR(adaptobs::symmetric_eigenvalues(Eigen::Matrix2d(scale * m)), Eigen::Vector2d(-scale, 3 * scale),
+                       0.0, 1e-15)
+        << scale;
+  }
   // The strict upper triangle is not read.
   Eigen::Matrix2d upper_nan;
   upper_nan << 1, nan, 0, 2;

@@ -189,6 +189,17 @@ TEST(MatrixExponential, OverflowIsRefusedNamingA) {
             1e-12);
 }
 
+// Finite entries whose column sums overflow: ‖A‖₁ = ∞ once ran the choice of
+// the Padé degree and the squarings on infinities (an int cast of ∞ and about
+// 2³¹ squarings). Every eigenvalue is below −10³⁰⁷, so e^A is 0 to the last bit.
+TEST(MatrixExponential, ANormBeyondTheFloatingPointRangeStillGivesTheExponential) {
+  Eigen::Matrix2d triangular, full;
+  triangular << -1e308, 1e308, 0, -1e308;
+  full << -1.5e308, 1e308, 1e308, -1.5e308;  // eigenvalues −0.5e308 and −2.5e308
+  EXPECT_MATRIX_NEAR(matrix_exponential(triangular), Eigen::Matrix2d::Zero(), 0.0, 0.0);
+  EXPECT_MATRIX_NEAR(matrix_exponential(full), Eigen::Matrix2d::Zero(), 0.0, 0.0);
+}
+
 TEST(ZeroOrderHold, StiffPoleBesideAnIntegrator) {
   for (double k : {1e4, 1e8, 1e16}) {
     // ẋ₁ = −k x₁ + u, ẋ₂ = u over one second: A_d = diag(e^{−k}, 1), B_d = ((1 − e^{−k})/k, 1).
@@ -303,6 +314,9 @@ TEST(ZeroOrderHold, BadConfigurationNamesTheArgument) {
   Eigen::Matrix2d nan_a = Eigen::Matrix2d::Identity();
   nan_a(0, 1) = std::nan("");
   EXPECT_NE(configuration_error_of([&] { (void)matrix_exponential(nan_a); }).find("'A'"), std::string::npos);
+  // discretize_zoh names itself, not the exponential it calls.
+  const std::string zoh_message = configuration_error_of([&] { (void)discretize_zoh(nan_a, b, 0.1); });
+  EXPECT_NE(zoh_message.find("discretize_zoh: argument 'A'"), std::string::npos) << zoh_message;
 }
 
 }  // namespace

@@ -338,6 +338,23 @@ TEST(CusumCalibration, RefusesCorrelatedValuesNamingTheStride) {
                     "stride"));
 }
 
+// Every limit is checked at entry: each is compared with `>`, which a NaN passes,
+// so a NaN max_bias accepted runs biased by 0.3 scales.
+TEST(CusumCalibration, BadOptionsAreRefusedByName) {
+  std::vector<std::vector<Eigen::Matrix<double, 1, 1>>> runs(1);
+  for (int k = 0; k < 1000; ++k) runs[0].push_back(Eigen::Matrix<double, 1, 1>(k % 2 ? 0.3 : -0.3));
+  const Eigen::Matrix<double, 1, 1> nominal(0.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto refusal = [&](adaptobs::CusumCalibrationOptions options) {
+    return configuration_error_of([&] { (void)adaptobs::calibrate_cusum(runs, nominal, 0.5, 100.0, 1, options); });
+  };
+  EXPECT_TRUE(names(refusal({.max_lag_correlation = nan}), "options.max_lag_correlation"));
+  EXPECT_TRUE(names(refusal({.max_long_run_excess = -1}), "options.max_long_run_excess"));
+  EXPECT_TRUE(names(refusal({.max_bias = nan}), "options.max_bias"));
+  EXPECT_TRUE(names(refusal({.rate_tolerance = 0.5}), "options.rate_tolerance"));
+  EXPECT_TRUE(names(refusal({.rate_tolerance = nan}), "options.rate_tolerance"));
+}
+
 // ---------------------------------------------------------------- χ² test
 
 TEST(ChiSquareTest, FalseAlarmsAtTheDesignedRateOnCorrelatedChannels) {
@@ -376,6 +393,50 @@ TEST(ChiSquareTest, RejectsNonFiniteErrorsUnchangedAndNamesBadArguments) {
   EXPECT_TRUE(names(configuration_error_of([&] { Test(I, 0, 0.1); }), "window"));
   EXPECT_TRUE(names(configuration_error_of([&] { Test(Eigen::Matrix2d(Eigen::Vector2d(1, -1).asDiagonal()), 5, 0.1); }),
                     "covariance"));
+}
+
+// An observer whose estimates have other sizes than the monitor's design is
+// refused before any test moves (the χ² test was fed before the GLR refused).
+struct EstimatesOnly {
+  using Dims = adaptobs::Dimensions<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>;
+  using Scalar = double;
+  using State = Eigen::VectorXd;
+  using Parameters = Eigen::VectorXd;
+  struct Sample {};
+  State x = State::Zero(1);
+  Parameters theta;
+  Eigen::VectorXd error;
+  const State& state() const { return x; }
+  const Parameters& parameters() const { return theta; }
+  const Eigen::VectorXd& output_error() const { return error; }
+  adaptobs::UpdateStatus update(const Sample&) { return adaptobs::UpdateStatus::accepted; }
+  void reset(const State&, const Parameters&) {}
+};
+
+TEST(FaultMonitor, EstimatesOfTheWrongSizeAreRefusedWithEveryTestUnchanged) {
+  constexpr int D = Eigen::Dynamic;
+  adaptobs::FaultMonitorDesign<double, D, D> design;
+  design.nominal = Eigen::VectorXd::Zero(2);
+  design.cusum.scale = Eigen::VectorXd::Ones(2);
+  design.cusum.drift = 0.5;
+  design.cusum.threshold = 5;
+  design.glr_window = 5;
+  design.glr_threshold = 5;
+  design.output_error_covariance = Eigen::MatrixXd::Identity(1, 1);
+  design.window = 3;
+  design.false_alarm_probability = 0.01;
+  adaptobs::FaultMonitor<double, D, D> monitor(design);
+  EstimatesOnly observer{.theta = Eigen::VectorXd::Ones(3), .error = Eigen::VectorXd::Constant(1, 2.0)};
+  EXPECT_TRUE(names(configuration_error_of([&] { (void)monitor.observe(observer); }), "observer.parameters()"));
+  observer.theta = Eigen::VectorXd::Ones(2);
+  observer.error = Eigen::VectorXd::Constant(2, 2.0);
+  EXPECT_TRUE(names(configuration_error_of([&] { (void)monitor.observe(observer); }), "observer.output_error()"));
+  EXPECT_EQ(monitor.chi_square().statistic(), 0.0);
+  EXPECT_EQ(monitor.glr().statistic(), 0.0);
+  EXPECT_EQ(monitor.cusum().statistic(), 0.0);
+  observer.error = Eigen::VectorXd::Constant(1, 2.0);
+  EXPECT_TRUE(adaptobs::accepted(monitor.observe(observer)));
+  EXPECT_EQ(monitor.chi_square().statistic(), 4.0);
 }
 
 TEST(ChiSquareTest, TwoMomentCorrectionRestoresTheRateOnCorrelatedErrors) {

@@ -36,6 +36,7 @@ template <class DerivedA, class DerivedB>
   constexpr int block = sum_of_sizes(n, m);
   constexpr std::string_view who = "discretize_zoh";
   detail::require_square(A, who, "A");
+  detail::require_finite(A, who, "A");
   detail::require_finite_shape(B, A.rows(), B.cols(), who, "B");
   detail::require_positive(ts, who, "ts");
 

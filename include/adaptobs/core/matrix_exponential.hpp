@@ -325,6 +325,15 @@ template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> scaling_and_squaring(const DynamicMatrix<Scalar>& a, bool triangular) {
   using Bounds = PadeBounds<Scalar>;
   const Scalar norm = one_norm(a);
+  if (!std::isfinite(norm)) {
+    // Finite entries whose column sums overflow (‖A‖₁ ≤ n · the largest number):
+    // e^A = (e^{A/2})², halving until the norm is finite, at most log₂ n + 1 times.
+    // The choice of m and s below would otherwise run on infinities.
+    DynamicMatrix<Scalar> x = scaling_and_squaring(DynamicMatrix<Scalar>(a / Scalar(2)), triangular);
+    x = (x * x).eval();
+    if (triangular) set_exact_triangular_bands(x, a, 0);
+    return x;
+  }
   const std::array<double, 4> log_d = log2_power_roots(a);  // log₂ d_4, d_6, d_8, d_10
   // AMH Theorem 4.2 with p(p − 1) ≤ m: η for p = 2 serves m ≥ 2, p = 3 serves m ≥ 6, p = 4 serves m ≥ 12.
   const auto log2_eta = [&](int m) {

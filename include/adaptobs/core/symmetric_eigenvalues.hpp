@@ -50,7 +50,10 @@ template <class Derived>
     for (Index p = 0; p + 1 < n; ++p) {
       for (Index q = p + 1; q < n; ++q) {
         const Scalar apq = a(q, p);
-        if (!(std::abs(apq) > std::max(eps * std::sqrt(std::abs(a(p, p) * a(q, q))), tiny))) continue;
+        // √|a_pp| √|a_qq|, not √|a_pp a_qq|: the product overflows (or underflows)
+        // for entries beyond about 10^±154, and no rotation would then be made.
+        const Scalar pair = std::sqrt(std::abs(a(p, p))) * std::sqrt(std::abs(a(q, q)));
+        if (!(std::abs(apq) > std::max(eps * pair, tiny))) continue;
         rotated = true;
         // Rotation that annihilates a(q, p): t = tan φ is the smaller root of
         // t² + 2τt − 1 = 0 with τ = (a_qq − a_pp) / (2 a_pq).

@@ -109,6 +109,12 @@ template <typename Scalar, int N>
   constexpr int max_lag = 5;
   detail::require_finite(nominal, who, "nominal");
   detail::require(stride >= 1, who, "stride", "must be at least 1");
+  // Each limit is compared with `>`, which a NaN would silently pass.
+  detail::require_positive(options.max_lag_correlation, who, "options.max_lag_correlation");
+  detail::require_positive(options.max_long_run_excess, who, "options.max_long_run_excess");
+  detail::require_positive(options.max_bias, who, "options.max_bias");
+  detail::require(options.rate_tolerance >= 1 && std::isfinite(options.rate_tolerance), who, "options.rate_tolerance",
+                  "must be finite and at least 1");
   const Index n = nominal.size();
   const auto step = static_cast<std::size_t>(stride);
   CusumCalibration<Scalar, N> result;

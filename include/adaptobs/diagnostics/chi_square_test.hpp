@@ -115,6 +115,8 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
   /// The sum of the last completed window.
   [[nodiscard]] Scalar decision_statistic() const noexcept { return decision_; }
   [[nodiscard]] Index window() const noexcept { return window_; }
+  /// Number of output channels the output errors must have.
+  [[nodiscard]] Index outputs() const noexcept { return information_.rows(); }
   [[nodiscard]] Index decisions() const noexcept { return decisions_; }
   /// Designed mean number of samples between false alarms, W/α.
   [[nodiscard]] Scalar mean_samples_between_false_alarms() const noexcept {

@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 namespace adaptobs {
@@ -157,9 +158,14 @@ class FaultMonitor {
                     design.chi_square_options) {}
 
   /// Feeds the observer's estimates after an accepted update to the three tests.
-  /// Returns `nonfinite_input`, with every test unchanged, when one would reject them.
+  /// Returns `nonfinite_input`, with every test unchanged, when one would reject them;
+  /// estimates of sizes other than the design's are a `ConfigurationError`, also
+  /// with every test unchanged (both sizes are checked before any test moves).
   template <DiagnosableObserver O>
   [[nodiscard]] UpdateStatus observe(const O& observer) {
+    constexpr std::string_view who = "FaultMonitor::observe";
+    detail::require_shape(observer.parameters(), cusum_.nominal().size(), 1, who, "observer.parameters()");
+    detail::require_shape(observer.output_error(), chi_square_.outputs(), 1, who, "observer.output_error()");
     if (!observer.parameters().allFinite() || !observer.output_error().allFinite()) return UpdateStatus::nonfinite_input;
     const UpdateStatus chi = chi_square_.update(observer.output_error());
     if (!accepted(chi)) return chi;  // an overflowing weighted error: the others have not moved either
