@@ -318,6 +318,28 @@ TEST(NormalizedGradient, ErrorNeverGrowsAndConvergesWithExcitation) {
   EXPECT_LT(previous, 1e-8);
 }
 
+// A regressor beyond about 10^154, whose ‖φ‖² overflows, still takes the step
+// p + μφ(z − φᵀp)/(c + ‖φ‖²) (the step factor once underflowed to 0, and the
+// proposal stood still while reported accepted). With z = φᵀp* and c ≪ ‖φ‖²,
+// the step reaches p* along φ.
+TEST(NormalizedGradient, ARegressorWhoseNormOverflowsStillTakesTheStep) {
+  using ScalarLaw = adaptobs::NormalizedGradient<double, 1, 1>;
+  using One = Eigen::Matrix<double, 1, 1>;
+  for (const double scale : {1e100, 1e160, 1e300}) {
+    ScalarLaw law(One::Zero(), {.mu = 1, .offset = 1});
+    ASSERT_TRUE(law.propose(One(scale), One(2 * scale)));
+    EXPECT_NEAR(law.proposal()(0), 2.0, 1e-15) << scale;
+  }
+  Gradient law(Vector4::Zero(), {.mu = 0.5, .offset = 1});
+  Regressor phi = Regressor::Zero();
+  phi(0, 0) = 3e200;
+  phi(2, 1) = -4e200;
+  const Vector4 target(1, -2, 3, 0.5);
+  ASSERT_TRUE(law.propose(phi, Vector2(phi.transpose() * target)));
+  // φ(φᵀp*)/‖φ‖² = (9/25·1, 0, 16/25·3, 0) for these two orthogonal columns.
+  EXPECT_MATRIX_NEAR(law.proposal(), Vector4(0.5 * 9.0 / 25, 0, 0.5 * 16.0 / 25 * 3, 0), 1e-15, 1e-14);
+}
+
 // propose() leaves everything as it was until commit(); a NaN measurement is refused.
 template <class Law>
 void check_compute_then_commit(Law& law, const Regressor& phi, const Vector2& z) {

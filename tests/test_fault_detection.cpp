@@ -70,6 +70,18 @@ TEST(ChiSquareDistribution, RefusesBadArguments) {
   EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(3, 1.0); }), "p"));
   EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(0, 0.5); }),
                     "degrees_of_freedom"));
+  // Beyond 1e7 degrees of freedom the tail loses its accuracy (at 1e12 it read
+  // 0.4986 for 0.4999998, at 1e18 ∞, and an iteration count overflowed an int).
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_tail(1e12, 1e12); }),
+                    "degrees_of_freedom"));
+  // At the limit, the median of χ²_ν, ν(1 − 2/(9ν))³ to O(ν^{-1}), has a tail of 1/2.
+  const double nu = adaptobs::chi_square_max_degrees_of_freedom;
+  EXPECT_NEAR(adaptobs::chi_square_upper_tail(nu, nu * std::pow(1 - 2 / (9 * nu), 3)), 0.5, 1e-7);
+  using Test = adaptobs::ChiSquareTest<double, 2>;
+  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+  EXPECT_TRUE(names(configuration_error_of([&] { Test(I, 10'000'000, 0.01); }), "window"));
+  EXPECT_TRUE(names(configuration_error_of([&] { Test(I, 5, 0.01, {.degrees_of_freedom = 2e7}); }),
+                    "options.degrees_of_freedom"));
 }
 
 // ---------------------------------------------------------------- CUSUM design

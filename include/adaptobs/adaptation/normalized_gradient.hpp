@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string_view>
 #include <utility>
 
@@ -72,9 +73,20 @@ class NormalizedGradient : public RegressionLaw<NormalizedGradient<S, NP, NZ>, R
     const int next = 1 - current_;
     innovation_ = z;
     innovation_.noalias() -= phi.transpose() * p_[current_];
-    innovation_ *= options_.mu / (options_.offset + phi.squaredNorm());
     p_[next] = p_[current_];
-    p_[next].noalias() += phi * innovation_;
+    const Scalar norm2 = phi.squaredNorm();
+    if (std::isfinite(norm2)) {
+      innovation_ *= options_.mu / (options_.offset + norm2);
+      p_[next].noalias() += phi * innovation_;
+    } else {
+      // ‖φ‖² overflows for entries beyond about 10^154 (and the factor μ/(c + ‖φ‖²)
+      // would underflow): with φ = sφ̃, s a power of two near its largest entry,
+      // μφe/(c + ‖φ‖²) = μφ̃(e/s)/(c/s² + ‖φ̃‖²), every factor in range.
+      const Scalar s = std::ldexp(Scalar(1), std::ilogb(phi.cwiseAbs().maxCoeff()));
+      const Scalar inverse = Scalar(1) / s;
+      innovation_ *= inverse * options_.mu / (options_.offset * inverse * inverse + (inverse * phi).squaredNorm());
+      p_[next].noalias() += (inverse * phi) * innovation_;
+    }
     return detail::all_finite(p_[next]);
   }
 
