@@ -170,6 +170,10 @@ TEST(PositiveReal, KypResidualsOfAKnownCertificate) {
   EXPECT_NEAR(k.min_eigenvalue_P, 0.5, 1e-13);
   EXPECT_NEAR(k.max_eigenvalue_lyapunov, -1.0, 1e-13);
   EXPECT_NEAR(k.equality_residual, 1e-3, 1e-13);
+  // A NaN in P shows in every figure (the largest-entry scan once skipped it: 0).
+  Matrix p_nan = p;
+  p_nan(1, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(adaptobs::kyp_residuals(p_nan, Matrix(-Matrix::Identity(3, 3)), b, c).equality_residual));
 }
 
 // Transform of Algorithm 1 with ν = (s + 1)(s + 3) and ker C spanned by

@@ -138,6 +138,29 @@ TEST(Dare, ASolutionBeyondTheFloatingPointRangeIsRefusedAndAGainNearItIsExact) {
   EXPECT_NEAR(near_limit.K(0, 0), unit.K(0, 0), 1e-14);
 }
 
+// Bad limits are refused by name: with too few doubling steps allowed, a
+// controllable pair was called unstabilizable, and a margin of 1.5 was blamed on
+// conditioning.
+TEST(Dare, BadOptionsAreRefusedByName) {
+  Eigen::Matrix2d a;
+  a << 1.1, 1, 0, 0.9;
+  const Eigen::Vector2d b(0, 1);
+  const Eigen::Matrix2d q = Eigen::Matrix2d::Identity();
+  const Eigen::Matrix<double, 1, 1> r(1);
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_dare(a, b, q, r, {.max_iterations = 0}), "options.max_iterations");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_dare(a, b, q, r, {.stability_margin = 1.5}),
+                                   "options.stability_margin");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::solve_dare(a, b, q, r, {.tolerance = std::numeric_limits<double>::quiet_NaN()}), "options.tolerance");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::steady_state_kalman_gain(Eigen::Matrix2d(a.transpose()), Eigen::RowVector2d(b.transpose()), q, r,
+                                         {.residual_tolerance = -1}),
+      "options.residual_tolerance");
+  // A limit too small to reach a stabilizing start is named as the reason, not the pair.
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_dare(a, b, q, r, {.max_iterations = 1}), "options.max_iterations");
+  EXPECT_LE(adaptobs::solve_dare(a, b, q, r).relative_residual, 1e-10);
+}
+
 using Dims3 = adaptobs::Dimensions<double, 3, 1, 1, 1>;
 
 TEST(KalmanGainRecursion, ConvergesToSteadyStateGainForLti) {

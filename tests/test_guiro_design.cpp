@@ -234,6 +234,16 @@ TEST(GuiroDesign, CasesWithoutSolutionAreNamed) {
               (void)adaptobs::design_guiro_gains(paper.E, paper.C, paper.H0, Eigen::Vector2d(0.5, 0.6));
             }).find("n + p = 3"),
             std::string::npos);
+  // A NaN tolerance is refused by name (every comparison with it failed, and the
+  // refusal blamed Hbar or the poles).
+  adaptobs::GuiroDesignOptions nan_rank, negative_singularity;
+  nan_rank.rank_tolerance = std::numeric_limits<double>::quiet_NaN();
+  negative_singularity.singularity_tolerance = -1;
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::design_guiro_gains(paper.E, paper.C, paper.H0, g::requested_poles(), nan_rank), "options.rank_tolerance");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::design_guiro_gains(paper.E, paper.C, paper.H0, g::requested_poles(), negative_singularity),
+      "options.singularity_tolerance");
 }
 
 // ---- Proposition 2.2 -----------------------------------------------------------------

@@ -74,6 +74,19 @@ TEST(Sylvester, SharedEigenvalueOfAAndMinusBIsRejected) {
             std::string::npos);
 }
 
+// Entries beyond 10^154: ‖A‖_F once overflowed, the separation read 0, and a
+// well-posed equation was refused as singular. X = C/(2s) for A = B = s·I.
+TEST(Sylvester, EntriesBeyondTheSquareRootOfTheRangeAreSolved) {
+  for (const double s : {1e160, 1e200}) {
+    const Eigen::Matrix2d a = s * Eigen::Vector2d(1, 2).asDiagonal();
+    const Eigen::Matrix2d c = s * Eigen::Matrix2d::Ones();
+    const Eigen::Matrix2d x = adaptobs::solve_sylvester(a, a, c);
+    Eigen::Matrix2d expected;
+    expected << 0.5, 1.0 / 3, 1.0 / 3, 0.25;
+    EXPECT_MATRIX_NEAR(x, expected, 0.0, 1e-14) << s;
+  }
+}
+
 // ---- Observability ---------------------------------------------------------------
 
 TEST(Observability, RandomPairsAreObservable) {
@@ -223,6 +236,9 @@ TEST(PolePlacement, StateFeedbackByDuality) {
       configuration_error_of([&] { (void)adaptobs::place_state_feedback(a3, b3, Eigen::Vector3d(0.1, 0.2, 0.3)); });
   EXPECT_NE(message.find("'A, B' is not controllable"), std::string::npos) << message;
   EXPECT_NE(message.find("0.9"), std::string::npos) << message;
+  // A non-finite B is named B, not the C of the dual problem solved for it.
+  b3(2, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::place_state_feedback(a3, b3, Eigen::Vector3d(0.1, 0.2, 0.3)), "B");
 }
 
 TEST(PolePlacement, BadArgumentsAreNamed) {

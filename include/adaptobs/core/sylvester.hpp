@@ -55,7 +55,8 @@ class SylvesterSolver {
     Scalar gap = std::numeric_limits<Scalar>::infinity();
     for (Index i = 0; i < n_; ++i)
       for (Index j = 0; j < m_; ++j) gap = std::min(gap, std::abs(ta_(i, i) + tb_(j, j)));
-    const Scalar scale = std::max({Scalar(1), A.norm(), B.norm()});
+    // stableNorm: the plain norm sums squares, which overflow beyond about 10^154.
+    const Scalar scale = std::max({Scalar(1), A.stableNorm(), B.stableNorm()});
     separation_ = gap / scale;
   }
 

@@ -183,6 +183,16 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
                                                 DareOptions options, const RiccatiRoles& roles = control_dare_roles) {
   using Square = DynamicMatrix<Scalar>;
   validate_riccati_data(A, B, Q, R, roles);
+  // Checked first: a bad limit would otherwise surface as a refusal of the data
+  // (with no doubling step allowed no stabilizing gain is found, and the pair
+  // would be called unstabilizable).
+  require(options.max_iterations >= 1, roles.who, "options.max_iterations", "must be at least 1");
+  require(options.tolerance >= 0 && std::isfinite(options.tolerance), roles.who, "options.tolerance",
+          "must be non-negative and finite (0: the default)");
+  require(options.residual_tolerance >= 0 && std::isfinite(options.residual_tolerance), roles.who,
+          "options.residual_tolerance", "must be non-negative and finite (0: the default)");
+  require(options.stability_margin >= 0 && options.stability_margin < 1, roles.who, "options.stability_margin",
+          "must lie in [0, 1) (0: the default)");
   DareSolution<Scalar, Eigen::Dynamic> result;
   if (A.rows() == 0) return result;
 
@@ -211,7 +221,16 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   }
   if (!start) {
     const auto k0 = stabilizing_gain<Scalar>(A, B, options.max_iterations, sda_tolerance, result.iterations);
-    if (!k0) fail_not_stabilizable(roles);
+    if (!k0) {
+      // Not found within the caller's limit: the pair is unstabilizable only if
+      // the default limit finds no gain either.
+      int ignored = 0;
+      if (options.max_iterations < DareOptions{}.max_iterations &&
+          stabilizing_gain<Scalar>(A, B, DareOptions{}.max_iterations, sda_tolerance, ignored))
+        fail_argument(roles.who, "options.max_iterations",
+                      "is too small for the doubling to reach a stabilizing start (the default limit reaches one)");
+      fail_not_stabilizable(roles);
+    }
     stabilizable = true;
     const Square closed = A - multiply(B, *k0);
     start = solve_stein_doubling<Scalar>(closed, Square(q + congruence(*k0, r)));

@@ -434,7 +434,9 @@ template <class DA, class DB, class DP>
   using Scalar = typename DA::Scalar;
   constexpr std::string_view who = "place_state_feedback";
   detail::require_square(A, who, "A");
-  detail::require_shape(B, A.rows(), B.cols(), who, "B");
+  detail::require_finite(A, who, "A");
+  // Checked before the dual problem, which would name Bᵀ as its C.
+  detail::require_finite_shape(B, A.rows(), B.cols(), who, "B");
   const auto dual = detail::place_injection<Scalar>(detail::dynamic_copy(A.transpose()),
                                                     detail::dynamic_copy(B.transpose()),
                                                     detail::complex_poles<Scalar>(poles, who), options, who, "A, B",

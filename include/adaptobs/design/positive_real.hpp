@@ -117,7 +117,7 @@ template <typename Scalar>
   using Matrix = DynamicMatrix<Scalar>;
   KypCertificate<Scalar, Eigen::Dynamic> k;
   k.P = P;
-  k.equality_residual = (P * b - c.transpose()).cwiseAbs().maxCoeff();
+  k.equality_residual = (P * b - c.transpose()).cwiseAbs().template maxCoeff<Eigen::PropagateNaN>();
   const Matrix lyap = A.transpose() * P + P * A;
   k.min_eigenvalue_P = symmetric_eigenvalues(Matrix(0.5 * (P + P.transpose())))(0);
   k.max_eigenvalue_lyapunov = symmetric_eigenvalues(Matrix(0.5 * (lyap + lyap.transpose())))(P.rows() - 1);
