@@ -176,6 +176,27 @@ TEST(KalmanGainRecursion, ConvergesToSteadyStateGainForLti) {
   EXPECT_MATRIX_NEAR(recursion.gain(), steady.K, 1e-10, 1e-9);
 }
 
+// A step with a non-finite (or, at run-time sizes, misshapen) system is refused
+// by name with the covariance unchanged, and the recursion goes on from there;
+// a NaN once stayed in P for every later step.
+TEST(KalmanGainRecursion, ANonFiniteSystemIsRefusedWithTheCovarianceUnchanged) {
+  const Eigen::Matrix3d q = Eigen::Matrix3d::Identity() * 0.1;
+  const Eigen::Matrix<double, 1, 1> r(0.5);
+  adaptobs::KalmanGainRecursion<Dims3> recursion(Eigen::Matrix3d::Identity() * 10, q, r);
+  const adaptobs::DiscreteSystem<Dims3> system{Eigen::Matrix3d::Identity() * 0.9, Eigen::Vector3d::Zero(),
+                                               Eigen::RowVector3d(1, 0, 0)};
+  (void)recursion.next_gain(system);
+  const Eigen::Matrix3d before = recursion.covariance();
+  adaptobs::DiscreteSystem<Dims3> bad = system;
+  bad.A(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_CONFIGURATION_ERROR_NAMES(recursion.next_gain(bad), "system.A");
+  bad = system;
+  bad.C(0, 1) = std::numeric_limits<double>::infinity();
+  EXPECT_CONFIGURATION_ERROR_NAMES(recursion.next_gain(bad), "system.C");
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(recursion.covariance(), before));
+  EXPECT_TRUE(recursion.next_gain(system).allFinite());
+}
+
 TEST(KalmanGainRecursion, TimeVaryingGainsMakeErrorDynamicsExponentiallyStable) {
   // A_k rotates and stretches with k; C_k alternates its direction. Each frozen
   // A_k is unstable (spectral radius 1.05), the pair is uniformly observable.

@@ -47,9 +47,13 @@ class KalmanGainRecursion : public KalmanCovariances<D> {
   }
 
   /// Gain \f$K_k\f$ for the matrices of step k; advances the covariance to \f$P_{k+1}\f$.
+  /// A non-finite A or C throws `ConfigurationError` naming it, with nothing
+  /// changed: a NaN would otherwise stay in P for every later step.
   const GainMatrix& next_gain(const DiscreteSystem<D>& system) {
     const auto& A = system.A;
     const auto& C = system.C;
+    detail::require_finite_shape(A, p_.rows(), p_.rows(), "KalmanGainRecursion::next_gain", "system.A");
+    detail::require_finite_shape(C, r_.rows(), p_.rows(), "KalmanGainRecursion::next_gain", "system.C");
     cp_.noalias() = C * p_;
     s_ = r_;
     s_.noalias() += cp_ * C.transpose();
