@@ -26,6 +26,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <string_view>
 
 namespace adaptobs {
 
@@ -37,6 +38,16 @@ struct ObservabilityReport {
   [[nodiscard]] bool observable() const noexcept { return unobservable_modes.size() == 0; }
 };
 
+namespace detail {
+/// The data of an observability question: A square and finite, C finite with A's columns.
+template <class DA, class DC>
+void require_output_pair(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C, std::string_view who) {
+  require_square(A, who, "A");
+  require_finite(A, who, "A");
+  require_finite_shape(C, C.rows(), A.rows(), who, "C");
+}
+}  // namespace detail
+
 /// Staircase observability analysis of (A, C) (see file comment). A singular
 /// value counts as zero below `relative_tolerance` × max(1, ‖A‖_F, ‖C‖_F);
 /// 0 selects \f$10^6\varepsilon\f$.
@@ -47,9 +58,7 @@ template <class DA, class DC>
   using Scalar = typename DA::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "observability";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
-  detail::require_finite_shape(C, C.rows(), A.rows(), who, "C");
+  detail::require_output_pair(A, C, who);
   const Index n = A.rows();
   const Scalar rel = relative_tolerance > 0 ? relative_tolerance
                                             : Scalar(1e6) * std::numeric_limits<Scalar>::epsilon();
@@ -92,9 +101,7 @@ template <class DA, class DC>
   using Scalar = typename DA::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "pbh_margin";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
-  detail::require_finite_shape(C, C.rows(), A.rows(), who, "C");
+  detail::require_output_pair(A, C, who);
   detail::require(std::isfinite(mu), who, "mu", "must be finite");
   const Index n = A.rows();
   if (n == 0) return Scalar(1);
