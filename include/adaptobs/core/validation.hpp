@@ -44,13 +44,25 @@ inline void require(bool condition, std::string_view who, std::string_view argum
   if (!condition) fail_argument(who, argument, problem);
 }
 
+/// A finite scalar of the sign `what` names ("positive", "non-negative").
 template <typename Scalar>
-void require_positive(Scalar value, std::string_view who, std::string_view argument) {
-  if (!(value > Scalar(0)) || !std::isfinite(value)) {
+void require_finite_with_sign(bool sign_holds, Scalar value, std::string_view who, std::string_view argument,
+                              std::string_view what) {
+  if (!sign_holds || !std::isfinite(value)) {
     std::ostringstream os;
-    os << "must be positive and finite (got " << value << ")";
+    os << "must be " << what << " and finite (got " << value << ")";
     fail_argument(who, argument, os.str());
   }
+}
+
+template <typename Scalar>
+void require_positive(Scalar value, std::string_view who, std::string_view argument) {
+  require_finite_with_sign(value > Scalar(0), value, who, argument, "positive");
+}
+
+template <typename Scalar>
+void require_non_negative(Scalar value, std::string_view who, std::string_view argument) {
+  require_finite_with_sign(value >= Scalar(0), value, who, argument, "non-negative");
 }
 
 template <class Derived>

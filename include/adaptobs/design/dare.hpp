@@ -187,10 +187,8 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   // (with no doubling step allowed no stabilizing gain is found, and the pair
   // would be called unstabilizable).
   require(options.max_iterations >= 1, roles.who, "options.max_iterations", "must be at least 1");
-  require(options.tolerance >= 0 && std::isfinite(options.tolerance), roles.who, "options.tolerance",
-          "must be non-negative and finite (0: the default)");
-  require(options.residual_tolerance >= 0 && std::isfinite(options.residual_tolerance), roles.who,
-          "options.residual_tolerance", "must be non-negative and finite (0: the default)");
+  require_non_negative(options.tolerance, roles.who, "options.tolerance");
+  require_non_negative(options.residual_tolerance, roles.who, "options.residual_tolerance");
   require(options.stability_margin >= 0 && options.stability_margin < 1, roles.who, "options.stability_margin",
           "must lie in [0, 1) (0: the default)");
   DareSolution<Scalar, Eigen::Dynamic> result;

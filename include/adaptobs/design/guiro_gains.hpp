@@ -124,10 +124,8 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
   require(m >= 1, who, "C", "must have at least one row (output)");
   require_finite_shape(Hbar, n, p, who, "Hbar");
   // Compared with `>` below, which a NaN fails: the refusal would blame the data.
-  require(options.rank_tolerance >= 0 && std::isfinite(options.rank_tolerance), who, "options.rank_tolerance",
-          "must be non-negative and finite");
-  require(options.singularity_tolerance >= 0 && std::isfinite(options.singularity_tolerance), who,
-          "options.singularity_tolerance", "must be non-negative and finite");
+  require_non_negative(options.rank_tolerance, who, "options.rank_tolerance");
+  require_non_negative(options.singularity_tolerance, who, "options.singularity_tolerance");
   if (target.size() != na) {
     std::ostringstream os;
     os << "must hold n + p = " << na << " values (got " << target.size() << ")";
