@@ -399,6 +399,41 @@ TEST(ExcitationMonitor, AnOverflowingContributionMakesTheLevelUnavailableUntilIt
   EXPECT_DOUBLE_EQ(monitor.level(), 1.0 / 3);
 }
 
+TEST(ExcitationMonitor, AHugeContributionLeavingTheWindowTakesNoSmallOneWithIt) {
+  // While ΦᵀΦ = 1e200·I is in the window, the unit contributions are below the
+  // sum's rounding; once it leaves, the level must again be theirs, not 0.
+  adaptobs::ExcitationMonitor<double, 2> monitor(5);
+  const Eigen::Matrix2d identity = Eigen::Matrix2d::Identity();
+  monitor.add(identity);
+  monitor.add(1e100 * identity);
+  for (int i = 0; i < 5; ++i) monitor.add(identity);  // the huge one has left: window of five I
+  EXPECT_MATRIX_NEAR(monitor.average(), identity, 1e-15, 0.0);
+  EXPECT_DOUBLE_EQ(monitor.level(), 1.0);
+
+  // Two terms of 1e308·I overflow the sum; the level is back as soon as both have left.
+  adaptobs::ExcitationMonitor<double, 2> overflowing(10);
+  for (int i = 0; i < 2; ++i) overflowing.add(1e154 * identity);
+  EXPECT_FALSE(overflowing.available());
+  for (int i = 0; i < 10; ++i) overflowing.add(identity);
+  ASSERT_TRUE(overflowing.available());
+  EXPECT_DOUBLE_EQ(overflowing.level(), 1.0);
+
+  // Excitation dying out geometrically: at every step the oldest term is 10¹⁰
+  // times the newest; the level must follow the window, relative error ≤ 1e-12.
+  adaptobs::ExcitationMonitor<double, 2> decaying(6);
+  std::vector<Eigen::Matrix2d> last;
+  for (int k = 0; k < 40; ++k) {
+    const Eigen::Matrix2d phi = std::pow(0.1, k) * Eigen::Vector2d(1, 1 + 0.01 * k).asDiagonal().toDenseMatrix();
+    decaying.add(phi);
+    last.push_back(phi.transpose() * phi);
+    if (last.size() > 6) last.erase(last.begin());
+    Eigen::Matrix2d expected = Eigen::Matrix2d::Zero();
+    for (const auto& g : last) expected += g;
+    expected /= double(last.size());
+    EXPECT_NEAR(decaying.level(), expected.diagonal().minCoeff(), 1e-12 * expected.diagonal().minCoeff()) << "k = " << k;
+  }
+}
+
 TEST(ExcitationMonitor, RefusesWrongColumnsNonFiniteEntriesAndBadWeightsAddingNothing) {
   adaptobs::ExcitationMonitor<double, Eigen::Dynamic> monitor(3, 2);
   monitor.add(Eigen::RowVector2d(1, 0));

@@ -14,6 +14,11 @@
 /// 10^154) cannot enter the average: while it is in the window the level is
 /// unavailable (`available()` false, `level()` NaN), and it comes back once the
 /// window has moved past it.
+///
+/// The sum is kept by adding the new term and subtracting the one that leaves,
+/// O(p²) per sample. It is rebuilt from the window, O(Lp²), once per window and
+/// whenever the subtracted terms outweigh what remains, so that a large term
+/// leaving, or excitation dying out, cannot leave its rounding in the level.
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
@@ -52,6 +57,13 @@ class ExcitationMonitor {
     detail::require(weight >= Scalar(0) && std::isfinite(weight), who, "weight", "must be non-negative and finite");
     Gramian& slot = ring_[next_];
     sum_ -= slot;
+    // The sum carries a rounding error of about ε times the terms it ever held;
+    // once the terms removed outweigh what remains (a huge Φ leaving, or
+    // excitation dying out), that error is no longer small beside the sum.
+    // A sum that overflowed stays infinite under subtraction: rebuild it too.
+    removed_trace_ += slot.trace();
+    const Scalar remaining = sum_.trace();
+    const bool cancelled = removed_trace_ > Scalar(4) * remaining || !std::isfinite(remaining);
     slot.noalias() = weight * phi.transpose() * phi;
     if (slot.allFinite()) {
       if (adds_since_overflow_ < window_) ++adds_since_overflow_;
@@ -62,10 +74,12 @@ class ExcitationMonitor {
     sum_ += slot;
     next_ = (next_ + 1) % ring_.size();
     if (count_ < window_) ++count_;
-    // Subtracting old terms accumulates rounding: rebuild the sum once per window.
-    if (next_ == 0) {
+    // Rebuild the sum from the window once per window, and whenever the
+    // subtractions have cancelled most of it.
+    if (next_ == 0 || cancelled) {
       sum_.setZero();
       for (const Gramian& g : ring_) sum_ += g;
+      removed_trace_ = Scalar(0);
     }
   }
 
@@ -93,6 +107,7 @@ class ExcitationMonitor {
     for (Gramian& g : ring_) g.setZero();
     adds_since_overflow_ = window_;
     sum_.setZero();
+    removed_trace_ = Scalar(0);
     next_ = 0;
     count_ = 0;
   }
@@ -100,6 +115,7 @@ class ExcitationMonitor {
  private:
   std::vector<Gramian> ring_;
   Gramian sum_;
+  Scalar removed_trace_ = Scalar(0);  // traces of the terms subtracted from sum_ since it was last rebuilt
   std::size_t next_ = 0;
   Index count_ = 0;
   Index window_;
