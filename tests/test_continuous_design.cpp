@@ -402,6 +402,31 @@ TEST(Riccati, DifferentialEquationSubstepsALongIntervalOfAStiffSystem) {
   EXPECT_GT(bounded.covariance().determinant(), 0.0);
 }
 
+// A model that turns non-finite inside an interval, where only an RK4 stage
+// sees it, is refused by name, and P stays as it was, bit for bit.
+TEST(Riccati, DifferentialEquationRefusesANonFiniteModelWithinTheIntervalLeavingPUnchanged) {
+  using D = adaptobs::Dimensions<double, 2, 1, 1, 0>;
+  const auto matrices_at = [](double t) {
+    Eigen::Matrix2d a;
+    a << -1, 1, 0, t < 0.3 ? -2 : std::numeric_limits<double>::quiet_NaN();
+    return adaptobs::ContinuousSystem<D>{a, Eigen::Vector2d(0, 1), Eigen::RowVector2d(1, 0)};
+  };
+  const auto model =
+      adaptobs::make_continuous_ltv_model<D>(matrices_at, [](double) { return Eigen::Matrix<double, 2, 0>(); });
+  adaptobs::RiccatiDifferentialEquation<D> rde(Eigen::Matrix2d::Identity(), Eigen::Matrix2d::Identity(),
+                                               Eigen::Matrix<double, 1, 1>(0.5));
+  rde.advance(model, 0, 0.1);
+  const Eigen::Matrix2d before = rde.covariance();
+  // One step over [0.1, 0.5]: its start is finite, its stages at 0.3 and 0.5 are not.
+  EXPECT_NE(configuration_error_of([&] { rde.advance(model, 0.1, 0.5); }).find("'model'"), std::string::npos);
+  EXPECT_TRUE(rde.covariance() == before);
+  // Ten steps: the first two are finite, the third reaches 0.3.
+  EXPECT_NE(configuration_error_of([&] { rde.advance(model, 0.1, 0.5, 10); }).find("'model'"), std::string::npos);
+  EXPECT_TRUE(rde.covariance() == before);
+  EXPECT_EQ(rde.advance(model, 0.1, 0.2, 4), 4);
+  EXPECT_TRUE(rde.covariance().allFinite());
+}
+
 TEST(LtvStability, FloquetExponents) {
   // Markus–Yamabe: frozen eigenvalues −1/4 ± 0.66i at every t, yet a Floquet exponent of +1/2.
   const auto markus_yamabe = [](double t) {

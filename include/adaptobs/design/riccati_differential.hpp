@@ -52,11 +52,15 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
     r_inv_cp_.setZero(r_.rows(), p_.rows());
     gain_.setZero(p_.rows(), r_.rows());
     closed_loop_.setZero(p_.rows(), p_.rows());
+    trial_.setZero(p_.rows(), p_.rows());
   }
 
   /// Advances P from t0 to t1 along the model's (A(t), C(t)) with at least
   /// `min_steps` RK4 steps, more where the stability bound of the file comment
   /// asks for shorter ones. Returns the number of steps taken.
+  /// A model giving non-finite matrices anywhere on the way (at a step's start
+  /// or at an RK4 stage), or a P that leaves the floating-point range, throws a
+  /// `ConfigurationError` naming `model` and leaves P as it was.
   template <ContinuousModel Model>
   int advance(const Model& model, Scalar t0, Scalar t1, int min_steps = 1) {
     constexpr std::string_view who = "RiccatiDifferentialEquation::advance";
@@ -67,11 +71,12 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
       derivative(s.A, s.C, p, dp);
     };
     const Scalar nominal = (t1 - t0) / Scalar(min_steps);
+    trial_ = p_;  // P moves only once the whole interval is crossed
     int steps = 0;
     for (Scalar t = t0; t < t1; ++steps) {
       decltype(auto) s = model.at(t);
       closed_loop_ = s.A;
-      closed_loop_.noalias() -= gain(s.C) * s.C;
+      closed_loop_.noalias() -= gain_of(s.C, trial_) * s.C;
       const Scalar rate = Scalar(2) * closed_loop_.norm();
       if (!std::isfinite(rate)) detail::fail_argument(who, "model", "gives a non-finite A - KC (or P is not finite)");
       Scalar h = std::min(nominal, t1 - t);
@@ -81,10 +86,14 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
       const Scalar slack = std::max(Scalar(1e-6), Scalar(1000) * std::numeric_limits<Scalar>::epsilon()) * h;
       const Scalar next = t1 - t <= h + slack ? t1 : t + h;
       if (!(next > t)) detail::fail_argument(who, "model", "gives a Riccati equation too stiff for a step to advance t");
-      rk4_.integrate(field, p_, t, next, 1);
-      p_ = Scalar(0.5) * (p_ + p_.transpose()).eval();
+      rk4_.integrate(field, trial_, t, next, 1);
+      trial_ = Scalar(0.5) * (trial_ + trial_.transpose()).eval();
+      if (!trial_.allFinite()) {
+        detail::fail_argument(who, "model", "gives a non-finite A or C within the step, or P leaves the floating-point range");
+      }
       t = next;
     }
+    p_.swap(trial_);
     return steps;
   }
 
@@ -104,17 +113,23 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
   /// \f$K = PC^TR^{-1}\f$ for the output matrix C of the current instant.
   template <class DC>
   const GainMatrix& gain(const Eigen::MatrixBase<DC>& C) {
-    cp_.noalias() = C * p_;
+    return gain_of(C, p_);
+  }
+
+ private:
+  template <class DC>
+  const GainMatrix& gain_of(const Eigen::MatrixBase<DC>& C, const StateMatrix& p) {
+    cp_.noalias() = C * p;
     gain_ = cp_.transpose();
     r_factor_.solve_on_the_right_in_place(gain_);  // K = P Cᵀ R⁻¹
     return gain_;
   }
 
- private:
   detail::CholeskyFactor<OutputCovariance> r_factor_;  // of R
   RungeKutta4<StateMatrix> rk4_;
   mutable typename D::OutputMatrix cp_, r_inv_cp_;
   GainMatrix gain_;
+  StateMatrix trial_;        ///< P along the interval being crossed
   StateMatrix closed_loop_;  ///< A − KC at the start of a step
 };
 
