@@ -220,6 +220,40 @@ TEST(CanonicalForms, BastinGeversFormOfTheThirdOrderPlant) {
             std::string::npos);
 }
 
+// Non-finite data gets the reason "not finite" under its own name, not a
+// verdict on observability or on the polynomial, and never a NaN gain.
+TEST(CanonicalForms, NonFiniteDataOfTheSisoDesignsIsRefusedByName) {
+  using D = siso::Dims<double>;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const Eigen::Matrix3d a = siso::dynamics<double>();
+  const Eigen::RowVector3d c = siso::output_matrix<double>();
+  Eigen::Matrix3d a_nan = a;
+  a_nan(1, 2) = nan;
+  const Eigen::RowVector3d c_inf(1, inf, 0);
+  const auto refused_as_not_finite = [](const std::string& message, const std::string& argument) {
+    EXPECT_NE(message.find("'" + argument + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find("finite"), std::string::npos) << message;
+  };
+  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(a_nan, c, poly({1, 4, 3})); }),
+                        "A");
+  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(a, c_inf, poly({1, 4, 3})); }),
+                        "c");
+  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(a, c, poly({1, nan, 3})); }),
+                        "zeros");
+  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::marino_tomei_form<D>(a_nan, c); }), "A");
+  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::marino_tomei_form<D>(a, c_inf); }), "c");
+  const Eigen::Vector3d gamma(1, 3, 2);
+  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::spr_injection_gain(a_nan, c, gamma, 2.0); }), "A");
+  refused_as_not_finite(
+      configuration_error_of([&] { (void)adaptobs::spr_injection_gain(a, c, Eigen::Vector3d(1, nan, 2), 2.0); }), "gamma");
+  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::ackermann_observer_gain(a, c_inf, poly({1, 6, 11, 6})); }),
+                        "c");
+  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::ackermann_observer_gain(a, c, poly({1, 6, nan, 6})); }),
+                        "p");
+  refused_as_not_finite(
+      configuration_error_of([&] { (void)adaptobs::transfer_function(a, Eigen::Vector3d(0, nan, 1), c); }), "b");
+}
+
 TEST(CanonicalForms, MarinoTomeiFormOfTheThirdOrderPlant) {
   using D = siso::Dims<double>;
   const auto st = adaptobs::marino_tomei_form<D>(siso::dynamics<double>(), siso::output_matrix<double>());

@@ -241,6 +241,19 @@ TEST(Stability, SchurAndHurwitzChecks) {
   EXPECT_NEAR(adaptobs::spectral_abscissa(damped), -0.1, 1e-15);
   EXPECT_TRUE(adaptobs::is_hurwitz_stable(damped));
   EXPECT_FALSE(adaptobs::is_hurwitz_stable(damped, 0.2));
+
+  // A matrix that is not square or not finite is refused under the name of the function called.
+  Eigen::Matrix2d not_finite = damped;
+  not_finite(0, 1) = std::numeric_limits<double>::quiet_NaN();
+  const Eigen::MatrixXd wide = Eigen::MatrixXd::Zero(2, 3);
+  for (const auto& [message, who] : std::vector<std::pair<std::string, std::string>>{
+           {configuration_error_of([&] { (void)adaptobs::spectral_radius(not_finite); }), "spectral_radius"},
+           {configuration_error_of([&] { (void)adaptobs::spectral_abscissa(wide); }), "spectral_abscissa"},
+           {configuration_error_of([&] { (void)adaptobs::is_hurwitz_stable(not_finite); }), "is_hurwitz_stable"},
+           {configuration_error_of([&] { (void)adaptobs::eigenvalues(wide); }), "eigenvalues"}}) {
+    EXPECT_EQ(message.rfind(who + ":", 0), 0u) << message;
+    EXPECT_NE(message.find("'M'"), std::string::npos) << message;
+  }
 }
 
 // ρ(M) ≤ the squaring bound, and the bound reaches ρ(M): checked against the

@@ -578,4 +578,35 @@ TEST(RiccatiHostile, EmptyStateAndNoInput) {
             std::string::npos);
 }
 
+// The Hamiltonian solver takes an indefinite Q (and G): X = I is the stabilizing
+// solution of AᵀX + XA − XGX + Q = 0 for Q = −(Aᵀ + A − G), here indefinite,
+// since A − G has the double eigenvalue −1.
+TEST(RiccatiHostile, HamiltonianSolverTakesIndefiniteQ) {
+  const Matrix a = rows(2, 2, {1, 2, 0, -1}), g = Matrix::Ones(2, 2);
+  const Matrix q = -(a.transpose() + a - g);
+  ASSERT_LT(q.determinant(), 0);  // indefinite
+  const auto x = adaptobs::solve_riccati_hamiltonian(a, g, q);
+  ASSERT_TRUE(x.has_value());
+  EXPECT_MATRIX_NEAR(x->X, Matrix::Identity(2, 2), 1e-13, 0);
+  EXPECT_LE(x->relative_residual, 1e-14);
+  // With G = −I too, a negative quadratic term: the solution is checked by its
+  // residual and by its closed loop A − GX.
+  const Matrix a2 = rows(2, 2, {-3, 1, 0, -2}), g2 = -Matrix::Identity(2, 2), q2 = rows(2, 2, {1, 0.5, 0.5, -0.2});
+  const auto x2 = adaptobs::solve_riccati_hamiltonian(a2, g2, q2);
+  ASSERT_TRUE(x2.has_value());
+  const Matrix residual = a2.transpose() * x2->X + x2->X * a2 - x2->X * g2 * x2->X + q2;
+  EXPECT_LE(residual.norm(), 1e-13);
+  EXPECT_TRUE(adaptobs::is_hurwitz_stable(Matrix(a2 - g2 * x2->X)));
+
+  // Arguments that are not square, finite, of one size or symmetric are refused by name.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_riccati_hamiltonian(Matrix::Zero(2, 3), g, q), "A");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_riccati_hamiltonian(rows(2, 2, {1, nan, 0, -1}), g, q), "A");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_riccati_hamiltonian(a, Matrix::Ones(3, 3), q), "G");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_riccati_hamiltonian(a, rows(2, 2, {1, 2, 0, 1}), q), "G");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_riccati_hamiltonian(a, g, Matrix::Zero(2, 1)), "Q");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_riccati_hamiltonian(a, g, rows(2, 2, {1, 0, 0, nan})), "Q");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_riccati_hamiltonian(a, g, q, 0), "max_iterations");
+}
+
 }  // namespace

@@ -98,24 +98,34 @@ void require_finite_shape(const Eigen::DenseBase<Derived>& m, Index rows, Index 
   require_finite(m, who, argument);
 }
 
-/// A single-output pair (A, c): A square and c one row of its order. Returns
-/// the order n, which the design routines of SISO systems go on with.
+/// The data of an observability question: A square and finite, C finite with
+/// A's columns (`output_matrix` names C). Returns the order n.
 template <class DA, class DC>
-Index require_single_output_pair(const Eigen::EigenBase<DA>& A, const Eigen::EigenBase<DC>& c, std::string_view who) {
+Index require_output_pair(const Eigen::DenseBase<DA>& A, const Eigen::DenseBase<DC>& C, std::string_view who,
+                          std::string_view output_matrix = "C") {
   require_square(A, who, "A");
-  require_shape(c, 1, A.rows(), who, "c");
+  require_finite(A, who, "A");
+  require_finite_shape(C, C.rows(), A.rows(), who, output_matrix);
   return A.rows();
 }
 
+/// A single-output pair (A, c): `require_output_pair` with c one row. Returns
+/// the order n, which the design routines of SISO systems go on with.
+template <class DA, class DC>
+Index require_single_output_pair(const Eigen::DenseBase<DA>& A, const Eigen::DenseBase<DC>& c, std::string_view who) {
+  const Index n = require_output_pair(A, c, who, "c");
+  require_shape(c, 1, n, who, "c");
+  return n;
+}
+
 /// A single-input single-output triple (A, b, c): A square, b one column and
-/// c one row of its order. Returns the order n.
+/// c one row of its order, all finite. Returns the order n.
 template <class DA, class DB, class DC>
-Index require_siso_triple(const Eigen::EigenBase<DA>& A, const Eigen::EigenBase<DB>& b, const Eigen::EigenBase<DC>& c,
+Index require_siso_triple(const Eigen::DenseBase<DA>& A, const Eigen::DenseBase<DB>& b, const Eigen::DenseBase<DC>& c,
                           std::string_view who) {
-  require_square(A, who, "A");
-  require_shape(b, A.rows(), 1, who, "b");
-  require_shape(c, 1, A.rows(), who, "c");
-  return A.rows();
+  const Index n = require_single_output_pair(A, c, who);
+  require_finite_shape(b, n, 1, who, "b");
+  return n;
 }
 
 /// A size given at run time for a dimension of compile-time size `N`:

@@ -85,6 +85,7 @@ template <typename Scalar>
   constexpr std::string_view who = "bastin_gevers_form";
   const Index n = require_single_output_pair(a, cc, who);
   require(zeros.size() == n && zeros(0) == Scalar(1), who, "zeros", "must be monic of degree n - 1");
+  require_finite(zeros, who, "zeros");
   require(n == 1 || is_hurwitz_polynomial(zeros), who, "zeros", "must be Hurwitz (A22 is the zero dynamics)");
   // Rows c B_k of the Faddeev–LeVerrier adjugate: C adj(sI − A) v has coefficients M v.
   const Polynomial<Scalar> den = characteristic_polynomial(a);
@@ -131,10 +132,7 @@ template <typename Scalar>
                                                                const DynamicMatrix<Scalar>& cc, Scalar decay) {
   using Matrix = DynamicMatrix<Scalar>;
   constexpr std::string_view who = "besancon_form";
-  require_square(a, who, "A");
-  require_finite(a, who, "A");
-  const Index n = a.rows(), m = cc.rows();
-  require_finite_shape(cc, m, n, who, "C");
+  const Index n = require_output_pair(a, cc, who), m = cc.rows();
   require(decay >= 0 && std::isfinite(decay), who, "decay", "must be non-negative");
   // The kernel first: it may refuse C, which must not happen inside an open
   // comma initializer (its destructor would then assert on the missing rows).

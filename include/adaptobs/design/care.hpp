@@ -278,16 +278,26 @@ ADAPTOBS_INSTANTIATE CareEvaluation<double> care_newton_refinement<double>(Dynam
 
 }  // namespace detail
 
-/// Stabilizing solution of \f$A^TX + XA - XGX + Q = 0\f$ (G, Q symmetric, G possibly
-/// indefinite): the sign-function start refined by Newton's method, or nothing
+/// Stabilizing solution of \f$A^TX + XA - XGX + Q = 0\f$ (G, Q symmetric, either
+/// possibly indefinite): the sign-function start refined by Newton's method, or nothing
 /// when the Hamiltonian has eigenvalues on the imaginary axis or the result
-/// fails its residual (√ε) or stability check.
+/// fails its residual (√ε) or stability check. A, G, Q not square, finite and
+/// of one size, G or Q not symmetric, or `max_iterations` < 1 throw a
+/// `ConfigurationError` naming the argument.
 template <class DA, class DG, class DQ>
 [[nodiscard]] std::optional<CareSolution<typename DA::Scalar, DA::RowsAtCompileTime>> solve_riccati_hamiltonian(
     const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DG>& G, const Eigen::MatrixBase<DQ>& Q,
     int max_iterations = 100) {
   using Scalar = typename DA::Scalar;
   using Matrix = detail::DynamicMatrix<Scalar>;
+  constexpr std::string_view who = "solve_riccati_hamiltonian";
+  detail::require_square(A, who, "A");
+  detail::require_finite(A, who, "A");
+  detail::require_finite_shape(G, A.rows(), A.rows(), who, "G");
+  detail::require_symmetric(G, who, "G");
+  detail::require_finite_shape(Q, A.rows(), A.rows(), who, "Q");
+  detail::require_symmetric(Q, who, "Q");
+  detail::require(max_iterations >= 1, who, "max_iterations", "must be at least 1");
   const Matrix a = detail::dynamic_copy(A), g = detail::dynamic_copy(G), q = detail::dynamic_copy(Q);
   CareSolution<Scalar, DA::RowsAtCompileTime> result;
   if (a.rows() == 0) return result;

@@ -38,16 +38,6 @@ struct ObservabilityReport {
   [[nodiscard]] bool observable() const noexcept { return unobservable_modes.size() == 0; }
 };
 
-namespace detail {
-/// The data of an observability question: A square and finite, C finite with A's columns.
-template <class DA, class DC>
-void require_output_pair(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C, std::string_view who) {
-  require_square(A, who, "A");
-  require_finite(A, who, "A");
-  require_finite_shape(C, C.rows(), A.rows(), who, "C");
-}
-}  // namespace detail
-
 /// Staircase observability analysis of (A, C) (see file comment). A singular
 /// value counts as zero below `relative_tolerance` × max(1, ‖A‖_F, ‖C‖_F);
 /// 0 selects \f$10^6\varepsilon\f$.

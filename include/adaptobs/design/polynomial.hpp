@@ -217,6 +217,7 @@ template <class DA, class DC>
   constexpr std::string_view who = "ackermann_observer_gain";
   const Index n = detail::require_single_output_pair(A, c, who);
   detail::require(p.size() == n + 1 && p(0) == Scalar(1), who, "p", "must be monic of degree n");
+  detail::require_finite(p, who, "p");
   const auto o = observability_matrix(A, c);
   const Eigen::FullPivLU<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> lu(o);
   detail::require(lu.rank() == n, who, "A, c", "must be an observable pair");

@@ -74,9 +74,6 @@ template <typename Scalar>
   using ComplexMatrix = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "spr_frequency_sweep";
   const Index n = require_siso_triple(A, b, c, who);
-  require_finite(A, who, "A");
-  require_finite(b, who, "b");
-  require_finite(c, who, "c");
   require(omega_min > 0 && omega_max > omega_min && std::isfinite(omega_max) && points >= 2, who,
           "omega_min, omega_max, points", "must satisfy 0 < omega_min < omega_max < ∞ and points ≥ 2");
   SprSweep<Scalar> r;
@@ -131,7 +128,6 @@ template <typename Scalar>
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   constexpr std::string_view who = "kyp_certificate";
   const Index n = require_siso_triple(A, b, c, who);
-  require_finite(A, who, "A");
   const Scalar cb = (c * b)(0, 0);
   if (!(cb > 0)) return std::nullopt;
 
@@ -175,6 +171,7 @@ template <typename Scalar>
   Scalar eps = 1;
   for (int attempt = 0; attempt < 40; ++attempt, eps /= 2) {
     const Matrix q_quad = (p11 * p11 / delta) * q * q.transpose() + eps * Matrix::Identity(n - 1, n - 1);
+    if (!q_quad.allFinite() || !r_quad.allFinite()) return std::nullopt;  // c b or a beyond the range: no certificate
     // Ãᵀ X + X Ã − X(−R)X + Q = 0.
     const auto x = solve_riccati_hamiltonian(a_tilde, Matrix(-r_quad), q_quad);
     if (!x) continue;
@@ -259,9 +256,10 @@ template <class DA, class DC, class DG>
     typename DA::Scalar lambda) {
   using Scalar = typename DA::Scalar;
   constexpr std::string_view who = "spr_injection_gain";
+  const Index n = detail::require_single_output_pair(A, c, who);
+  detail::require_finite_shape(gamma, n, 1, who, "gamma");
   detail::require_positive(lambda, who, "lambda");
   const auto g = transfer_function(A, gamma, c);
-  const Index n = A.rows();
   const Scalar cg = (c * gamma)(0, 0);
   detail::require(cg > 0, who, "gamma", "must satisfy c gamma > 0 (relative degree one, positive gain)");
   const Polynomial<Scalar> zeros = g.numerator / cg;  // monic, degree n − 1 since cγ = N's leading coefficient

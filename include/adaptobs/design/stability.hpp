@@ -11,8 +11,29 @@
 
 #include <complex>
 #include <limits>
+#include <string_view>
 
 namespace adaptobs {
+
+namespace detail {
+/// The eigenvalues of a square finite M, refused otherwise under the caller's name `who`.
+template <class Derived>
+[[nodiscard]] ComplexVector<typename Derived::Scalar> checked_eigenvalues(const Eigen::MatrixBase<Derived>& m,
+                                                                         std::string_view who) {
+  require_square(m, who, "M");
+  require_finite(m, who, "M");
+  if (m.size() == 0) return {};
+  return dense_eigenvalues(dynamic_copy(m));
+}
+
+template <class Derived>
+[[nodiscard]] typename Derived::Scalar checked_spectral_abscissa(const Eigen::MatrixBase<Derived>& m,
+                                                                std::string_view who) {
+  const auto lambda = checked_eigenvalues(m, who);
+  if (lambda.size() == 0) return -std::numeric_limits<typename Derived::Scalar>::infinity();
+  return lambda.real().maxCoeff();
+}
+}  // namespace detail
 
 /// Eigenvalues of a real square matrix.
 ///
@@ -21,29 +42,26 @@ namespace adaptobs {
 /// scalar type serves every matrix size (see core/precompiled.hpp).
 template <class Derived>
 [[nodiscard]] ComplexVector<typename Derived::Scalar> eigenvalues(const Eigen::MatrixBase<Derived>& m) {
-  detail::require_square(m, "eigenvalues", "M");
-  detail::require_finite(m, "eigenvalues", "M");
-  return detail::dense_eigenvalues(detail::dynamic_copy(m));
+  return detail::checked_eigenvalues(m, "eigenvalues");
 }
 
 /// Spectral radius \f$\rho(M) = \max_i |\lambda_i(M)|\f$.
 template <class Derived>
 [[nodiscard]] typename Derived::Scalar spectral_radius(const Eigen::MatrixBase<Derived>& m) {
-  if (m.size() == 0) return typename Derived::Scalar(0);
-  return eigenvalues(m).cwiseAbs().maxCoeff();
+  const auto lambda = detail::checked_eigenvalues(m, "spectral_radius");
+  return lambda.size() == 0 ? typename Derived::Scalar(0) : lambda.cwiseAbs().maxCoeff();
 }
 
 /// Largest real part of the eigenvalues (the continuous-time stability abscissa).
 template <class Derived>
 [[nodiscard]] typename Derived::Scalar spectral_abscissa(const Eigen::MatrixBase<Derived>& m) {
-  if (m.size() == 0) return -std::numeric_limits<typename Derived::Scalar>::infinity();
-  return eigenvalues(m).real().maxCoeff();
+  return detail::checked_spectral_abscissa(m, "spectral_abscissa");
 }
 
 /// Hurwitz stability: every eigenvalue has real part below −margin.
 template <class Derived>
 [[nodiscard]] bool is_hurwitz_stable(const Eigen::MatrixBase<Derived>& m, typename Derived::Scalar margin = 0) {
-  return spectral_abscissa(m) < -margin;
+  return detail::checked_spectral_abscissa(m, "is_hurwitz_stable") < -margin;
 }
 
 }  // namespace adaptobs
