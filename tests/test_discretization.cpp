@@ -317,6 +317,14 @@ TEST(ZeroOrderHold, BadConfigurationNamesTheArgument) {
   // discretize_zoh names itself, not the exponential it calls.
   const std::string zoh_message = configuration_error_of([&] { (void)discretize_zoh(nan_a, b, 0.1); });
   EXPECT_NE(zoh_message.find("discretize_zoh: argument 'A'"), std::string::npos) << zoh_message;
+  // A ts overflowing (e^{A ts} would be 0 here, but A ts is not representable),
+  // and e^{A ts} overflowing: both refused under discretize_zoh's name, naming A and ts.
+  const Eigen::Matrix<double, 1, 1> one(1.0);
+  for (const auto& [a_value, ts] : {std::pair{-1e300, 1e10}, std::pair{1000.0, 1.0}}) {
+    const std::string message =
+        configuration_error_of([&] { (void)discretize_zoh(Eigen::Matrix<double, 1, 1>(a_value), one, ts); });
+    EXPECT_EQ(message.rfind("discretize_zoh: argument 'A, ts'", 0), 0u) << message;
+  }
 }
 
 }  // namespace

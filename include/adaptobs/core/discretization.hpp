@@ -17,6 +17,8 @@
 
 #include <Eigen/Core>
 
+#include <string_view>
+
 namespace adaptobs {
 
 /// Discrete matrices of a continuous system sampled with a zero-order hold.
@@ -27,6 +29,10 @@ struct ZeroOrderHold {
 };
 
 /// Zero-order-hold discretization of \f$(A, B)\f$ with period `ts` (Van Loan block form).
+/// Throws a `ConfigurationError` naming the argument for a non-square or
+/// non-finite A, a B of other rows or non-finite, a `ts` not positive, and
+/// naming `A, ts` when \f$A T_s\f$, \f$B T_s\f$ or \f$e^{A T_s}\f$ lies beyond the
+/// floating-point range.
 template <class DerivedA, class DerivedB>
 [[nodiscard]] auto discretize_zoh(const Eigen::MatrixBase<DerivedA>& A, const Eigen::MatrixBase<DerivedB>& B,
                                   typename DerivedA::Scalar ts) {
@@ -45,7 +51,14 @@ template <class DerivedA, class DerivedB>
   Eigen::Matrix<Scalar, block, block> van_loan = Eigen::Matrix<Scalar, block, block>::Zero(nn + mm, nn + mm);
   van_loan.topLeftCorner(nn, nn) = A * ts;
   van_loan.topRightCorner(nn, mm) = B * ts;
-  const Eigen::Matrix<Scalar, block, block> e = matrix_exponential(van_loan);
+  constexpr std::string_view too_long = "give a sampled system beyond the floating-point range: shorten ts";
+  detail::require(van_loan.allFinite(), who, "A, ts", too_long);
+  Eigen::Matrix<Scalar, block, block> e;
+  try {
+    e = matrix_exponential(van_loan);
+  } catch (const ConfigurationError&) {  // the only refusal left for a finite square argument: overflow
+    detail::fail_argument(who, "A, ts", too_long);
+  }
   return ZeroOrderHold<Scalar, n, m>{e.topLeftCorner(nn, nn), e.topRightCorner(nn, mm)};
 }
 
