@@ -346,6 +346,18 @@ TEST(SymmetricEigenvalues, NonFiniteEntryGivesNaN) {
   Eigen::Matrix2d coupled_nan;
   coupled_nan << 1, 0, nan, 2;
   EXPECT_TRUE(std::isnan(adaptobs::spectral_norm(coupled_nan)));
+  // NaN beside ∞ is NaN, at fixed and at dynamic size, wherever each one stands.
+  for (int nan_at = 0; nan_at < 8; ++nan_at) {
+    for (int inf_at = 0; inf_at < 8; ++inf_at) {
+      if (nan_at == inf_at) continue;
+      Eigen::Matrix<double, 2, 4> m = Eigen::Matrix<double, 2, 4>::Ones();
+      m(nan_at) = nan;
+      m(inf_at) = inf;
+      EXPECT_TRUE(std::isnan(adaptobs::spectral_norm(m))) << nan_at << " " << inf_at;
+      EXPECT_TRUE(std::isnan(adaptobs::spectral_norm(Eigen::MatrixXd(m)))) << nan_at << " " << inf_at;
+    }
+  }
+  EXPECT_EQ(adaptobs::spectral_norm(Eigen::Vector3d(1, -inf, 2)), inf);
 }
 
 TEST(Validation, PositiveSemidefiniteToleratesRoundingOnly) {

@@ -16,14 +16,16 @@ namespace adaptobs {
 /// monitor), whose eigenvalues come from `symmetric_eigenvalues` (Jacobi).
 /// Dividing by s first keeps the Gram matrix from overflowing (or underflowing)
 /// for entries beyond about 10^154 (or below 10^−154): the norm of any finite M
-/// is finite unless it exceeds the floating-point range itself.
+/// is finite unless it exceeds the floating-point range itself. An M with a NaN
+/// entry has norm NaN; one with ∞ and no NaN, ∞.
 template <class Derived>
 [[nodiscard]] typename Derived::Scalar spectral_norm(const Eigen::MatrixBase<Derived>& m) {
   using Scalar = typename Derived::Scalar;
   if (m.size() == 0) return Scalar(0);
   constexpr int R = Derived::RowsAtCompileTime;
   constexpr int C = Derived::ColsAtCompileTime;
-  const Scalar scale = m.cwiseAbs().maxCoeff();
+  // NaN wins over ∞ (a plain maxCoeff keeps whichever its scan order meets).
+  const Scalar scale = m.cwiseAbs().template maxCoeff<Eigen::PropagateNaN>();
   if (!(scale > Scalar(0)) || !std::isfinite(scale)) return scale;
   const typename Derived::PlainObject scaled = m / scale;
   Scalar largest;
