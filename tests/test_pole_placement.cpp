@@ -75,9 +75,11 @@ TEST(Sylvester, SharedEigenvalueOfAAndMinusBIsRejected) {
 }
 
 // Entries beyond 10^154: ‖A‖_F once overflowed, the separation read 0, and a
-// well-posed equation was refused as singular. X = C/(2s) for A = B = s·I.
-TEST(Sylvester, EntriesBeyondTheSquareRootOfTheRangeAreSolved) {
-  for (const double s : {1e160, 1e200}) {
+// well-posed equation was refused as singular. Small entries: the separation
+// was once measured against max(1, ‖A‖_F), and read 0 below 10^-15. The
+// equation is the same at every scale s: X = [[1/2, 1/3], [1/3, 1/4]].
+TEST(Sylvester, EntriesAtEitherEndOfTheRangeAreSolved) {
+  for (const double s : {1e-200, 1e-20, 1e160, 1e200}) {
     const Eigen::Matrix2d a = s * Eigen::Vector2d(1, 2).asDiagonal();
     const Eigen::Matrix2d c = s * Eigen::Matrix2d::Ones();
     const Eigen::Matrix2d x = adaptobs::solve_sylvester(a, a, c);

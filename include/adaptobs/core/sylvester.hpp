@@ -55,13 +55,18 @@ class SylvesterSolver {
     Scalar gap = std::numeric_limits<Scalar>::infinity();
     for (Index i = 0; i < n_; ++i)
       for (Index j = 0; j < m_; ++j) gap = std::min(gap, std::abs(ta_(i, i) + tb_(j, j)));
-    // stableNorm: the plain norm sums squares, which overflow beyond about 10^154.
-    const Scalar scale = std::max({Scalar(1), A.stableNorm(), B.stableNorm()});
-    separation_ = gap / scale;
+    // Relative to the data's own scale, so that an equation scaled by any power
+    // of ten keeps its separation. stableNorm: the plain norm sums squares,
+    // which overflow beyond about 10^154 and underflow below 10^-154.
+    const Scalar scale = std::max(A.stableNorm(), B.stableNorm());
+    separation_ = n_ == 0 || m_ == 0 ? std::numeric_limits<Scalar>::infinity()
+                  : scale > Scalar(0)  ? gap / scale
+                                       : Scalar(0);
   }
 
-  /// \f$\min_{i,j}|\lambda_i(A) + \mu_j(B)| / \max(1, \|A\|_F, \|B\|_F)\f$: 0 when
-  /// the solution is not unique, small when it is ill conditioned.
+  /// \f$\min_{i,j}|\lambda_i(A) + \mu_j(B)| / \max(\|A\|_F, \|B\|_F)\f$ (∞ when A
+  /// or B is empty, 0 when both are zero): 0 when the solution is not unique,
+  /// small when it is ill conditioned. Unchanged when A and B are scaled together.
   [[nodiscard]] Scalar separation() const noexcept { return separation_; }
 
   /// X with \f$AX + XB = C\f$ (real part of the complex computation; exact for
