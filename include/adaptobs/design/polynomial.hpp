@@ -209,7 +209,7 @@ template <class DA, class DB, class DC>
 
 /// Output-injection gain k with \f$\det(sI - A + kc) = p(s)\f$ (observer form of
 /// Ackermann's formula, \f$k = p(A)\,\mathcal O^{-1}e_n\f$). Throws when (A, c)
-/// is not observable or p is not monic of degree n.
+/// is not observable, p is not monic of degree n, or any of them is not finite.
 template <class DA, class DC>
 [[nodiscard]] Eigen::Matrix<typename DA::Scalar, DA::RowsAtCompileTime, 1> ackermann_observer_gain(
     const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Polynomial<typename DA::Scalar>& p) {

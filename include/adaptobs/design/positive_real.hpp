@@ -249,7 +249,8 @@ template <class DA, class DB, class DC>
 /// Output-injection gain k making \f$c(sI - A + kc)^{-1}\gamma = c\gamma/(s + \lambda)\f$
 /// (SPR): the poles are placed at \f$(s + \lambda)N_\gamma(s)/(c\gamma)\f$, cancelling the zeros.
 /// Throws when \f$c\gamma \le 0\f$ or \f$N_\gamma\f$ is not Hurwitz (then no k makes
-/// the function SPR), when λ ≤ 0, or when (A, c) is not observable.
+/// the function SPR), when λ ≤ 0, when (A, c) is not observable, or when A, c or
+/// γ is not finite.
 template <class DA, class DC, class DG>
 [[nodiscard]] Eigen::Matrix<typename DA::Scalar, DA::RowsAtCompileTime, 1> spr_injection_gain(
     const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Eigen::MatrixBase<DG>& gamma,
