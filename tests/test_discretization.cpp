@@ -320,9 +320,10 @@ TEST(ZeroOrderHold, BadConfigurationNamesTheArgument) {
   // A ts overflowing (e^{A ts} would be 0 here, but A ts is not representable),
   // and e^{A ts} overflowing: both refused under discretize_zoh's name, naming A and ts.
   const Eigen::Matrix<double, 1, 1> one(1.0);
-  for (const auto& [a_value, ts] : {std::pair{-1e300, 1e10}, std::pair{1000.0, 1.0}}) {
-    const std::string message =
-        configuration_error_of([&] { (void)discretize_zoh(Eigen::Matrix<double, 1, 1>(a_value), one, ts); });
+  for (const auto& [a_value, period] : {std::pair{-1e300, 1e10}, std::pair{1000.0, 1.0}}) {
+    const Eigen::Matrix<double, 1, 1> a_scalar(a_value);
+    const double ts = period;
+    const std::string message = configuration_error_of([&] { (void)discretize_zoh(a_scalar, one, ts); });
     EXPECT_EQ(message.rfind("discretize_zoh: argument 'A, ts'", 0), 0u) << message;
   }
 }
