@@ -371,6 +371,23 @@ TEST(DeyBhasinMissing, RunTimeSizedMaskOfTheWrongLengthNamesPresent) {
   EXPECT_EQ(dynamic.step(), 0);
 }
 
+// A sample of the user's own type may hold run-time-sized vectors even for a
+// fixed-size observer: a wrong length is refused naming it, nothing read past it.
+TEST(DeyBhasinMissing, ASampleOfAnyTypeWithVectorsOfTheWrongLengthIsRefusedByName) {
+  auto observer = mimo::make_observer();
+  struct RunTimeSample {
+    Eigen::VectorXd u, y;
+  };
+  const auto readings = [&] { return std::pair{Eigen::VectorXd(observer.state()), observer.step()}; };
+  const auto before = readings();
+  EXPECT_CONFIGURATION_ERROR_NAMES((void)observer.update(RunTimeSample{Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1)}),
+                                   "sample.y");
+  EXPECT_CONFIGURATION_ERROR_NAMES((void)observer.update(RunTimeSample{Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(2)}),
+                                   "sample.u");
+  EXPECT_TRUE(readings() == before);
+  EXPECT_EQ(observer.update(RunTimeSample{Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2)}), UpdateStatus::accepted);
+}
+
 // output_error(): the a-priori error z_t − φ_tᵀ p̂_{t−1} that RLS (22) corrects
 // with, equal to y_t − C x̂_{t|t−1} (the state() before the update), not the
 // a-posteriori error; zero in an absent channel (the rest of its contract:

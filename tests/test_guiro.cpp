@@ -145,6 +145,24 @@ static_assert(adaptobs::PartialOutputObserver<PaperObserver<double>>);
 
 // The example of §4, noise free: the observer uses the quadrature's Ψ_k, the
 // plant the closed form.
+// With run-time sizes, a φ(t) of the wrong shape, or one whose column count
+// changes within a period, is refused naming it: nothing is read past A's columns.
+TEST(GuiroRegressor, ARegressorOfTheWrongShapeIsRefusedByName) {
+  using Dynamic = adaptobs::RegressorIntegral<double, Eigen::Dynamic, Eigen::Dynamic>;
+  Dynamic integral(Eigen::MatrixXd(Eigen::Matrix3d::Identity() * -1.0), 0.5);
+  EXPECT_CONFIGURATION_ERROR_NAMES(integral.integrate([](double) { return Eigen::MatrixXd::Ones(2, 1); }, 0.0),
+                                   "phi(t)");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      integral.integrate([](double t) { return Eigen::MatrixXd::Ones(3, t < 0.25 ? 1 : 2); }, 0.0), "phi(t)");
+  // φ = 1 (3 × 1): H = ∫₀^T e^{s} ds = e^T − 1 in each entry, for A = −I.
+  const auto good = integral.integrate([](double) { return Eigen::MatrixXd::Ones(3, 1); }, 0.0);
+  EXPECT_MATRIX_NEAR(good.H, Eigen::MatrixXd::Constant(3, 1, std::expm1(0.5)), 1e-14, 0);
+  const adaptobs::PolynomialRegressorIntegral<double, Eigen::Dynamic, Eigen::Dynamic> polynomial(
+      Eigen::MatrixXd(Eigen::Matrix3d::Identity() * -1.0), 0.5, 1);
+  const std::vector<Eigen::MatrixXd> mixed{Eigen::MatrixXd::Ones(3, 1), Eigen::MatrixXd::Ones(2, 1)};
+  EXPECT_CONFIGURATION_ERROR_NAMES(polynomial.integrate(mixed), "coefficients");
+}
+
 TEST(Guiro, PaperExampleConvergesWithinSixtySamples) {
   auto observer = make_observer<double>();
   auto plant = g::make_plant<double>();

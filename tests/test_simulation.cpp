@@ -52,6 +52,51 @@ TEST(SeriesTable, RejectsRowsThatDoNotMatchTheHeader) {
   EXPECT_THROW(short_row.begin_row(), std::logic_error);
 }
 
+// With dynamic sizes, what the plant's callables return is checked at every
+// step: a time-varying model whose matrices change size, an input or a
+// regressor of the wrong size is refused by name before anything is written.
+TEST(DiscreteLinearPlant, WrongSizesFromItsCallablesAndNonFiniteStartsAreRefusedByName) {
+  using DD = adaptobs::DynamicDimensions<double>;
+  const auto matrices_at = [](Index k) {
+    const Index n = k == 0 ? 2 : 40;  // grows after the first step
+    return adaptobs::DiscreteSystem<DD>{0.5 * Eigen::MatrixXd::Identity(n, n), Eigen::MatrixXd::Ones(n, 1),
+                                        Eigen::MatrixXd::Ones(1, n)};
+  };
+  const auto model = adaptobs::make_discrete_ltv_model<DD>(matrices_at, {2, 1, 1, 1});
+  const auto input = [](Index) { return Eigen::VectorXd::Ones(1); };
+  const auto regressor = [](Index, const Eigen::VectorXd&) { return Eigen::MatrixXd::Ones(2, 1); };
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Ones(2), theta = Eigen::VectorXd::Ones(1);
+  adaptobs::DiscreteLinearPlant growing(model, x0, theta, input, regressor);
+  EXPECT_CONFIGURATION_ERROR_NAMES(growing.advance(), "matrices_at(k)");
+  EXPECT_TRUE(growing.state() == x0);
+  EXPECT_CONFIGURATION_ERROR_NAMES(model.at(3), "matrices_at(k)");
+
+  const auto steady = adaptobs::make_discrete_ltv_model<DD>(
+      [](Index) {
+        return adaptobs::DiscreteSystem<DD>{0.5 * Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Ones(2, 1),
+                                            Eigen::MatrixXd::Ones(1, 2)};
+      },
+      {2, 1, 1, 1});
+  const auto wide_input = [](Index k) { return Eigen::VectorXd::Ones(k == 0 ? 1 : 50); };
+  adaptobs::DiscreteLinearPlant wide(steady, x0, theta, wide_input, regressor);
+  EXPECT_CONFIGURATION_ERROR_NAMES(wide.advance(), "input(k)");
+  const auto tall_regressor = [](Index, const Eigen::VectorXd&) { return Eigen::MatrixXd::Ones(3, 1); };
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::DiscreteLinearPlant(steady, x0, theta, input, tall_regressor),
+                                   "regressor(k, u)");
+
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::DiscreteLinearPlant(steady, x0, Eigen::VectorXd::Constant(1, nan), input,
+                                                                 regressor),
+                                   "theta");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::DiscreteLinearPlant(steady, Eigen::VectorXd::Constant(2, inf), theta, input,
+                                                                 regressor),
+                                   "x0");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::DiscreteLinearPlant(steady, x0, theta, input, regressor, {.output = inf}), "noise.output");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::DiscreteLinearPlant(steady, x0, theta, input, regressor, {.parameter = -1}), "noise.parameter");
+}
+
 TEST(Simulation, RecordsTruthAndEveryObserverInSchemaOrder) {
   auto plant = satellite::make_plant<double>();
   adaptobs::GuyaderZhangObserver observer(satellite::model<double>(), satellite::paper_gain<double>(), satellite::mu,

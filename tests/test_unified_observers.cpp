@@ -361,7 +361,7 @@ TEST(ZhangContinuous, WrongRunTimeSizesAreRefusedNamingTheArgumentAndChangeNothi
                                                         theta0),
                "gamma");
 
-  for (const auto& [bad_matrices, argument] : {std::pair{true, "matrices_at(t).A"}, std::pair{false, "Phi"}}) {
+  for (const auto& [bad_matrices, argument] : {std::pair{true, "matrices_at(t)"}, std::pair{false, "Phi"}}) {
     auto observer =
         adaptobs::make_zhang_continuous_observer(model_of(bad_matrices, !bad_matrices), K, gamma, eta0, theta0);
     auto plant = periodic::make_plant<double>();

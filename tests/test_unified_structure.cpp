@@ -18,12 +18,14 @@
 
 #include "models/periodic_mimo.hpp"
 #include "models/siso_third_order.hpp"
+#include "support/eigen_testing.hpp"
 #include "unified_fixtures.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace {
@@ -143,6 +145,36 @@ TEST(ZhangContinuous, JointIntegrationConvergesToMachinePrecision) {
   for (int k = 0; k < 4000; ++k) joint.step(0.01);
   EXPECT_LT((observer.parameters() - plant.parameters()).norm() / plant.parameters().norm(), 1e-12);
   EXPECT_LT((observer.state() - plant.state()).norm() / plant.state().norm(), 1e-12);
+}
+
+// A step length that is not finite and positive is refused by name; a step
+// that overflows changes neither side and says so; the next good step goes on.
+TEST(JointIntegration, BadStepsChangeNeitherThePlantNorTheObserver) {
+  auto observer = zhang_observer<double>(50.0);
+  auto plant = periodic::make_plant<double>();
+  adaptobs::JointIntegration joint(plant, observer);
+  ASSERT_EQ(joint.step(0.01), UpdateStatus::accepted);
+  const auto plant_state = plant.state();
+  const auto internal = observer.internal_state();
+  const double time = joint.time();
+  for (const double h : {std::nan(""), -0.5, 0.0, std::numeric_limits<double>::infinity()}) {
+    EXPECT_CONFIGURATION_ERROR_NAMES(joint.step(h), "h");
+  }
+  EXPECT_EQ(joint.step(1e300), UpdateStatus::nonfinite_result);
+  EXPECT_TRUE(plant.state() == plant_state);
+  EXPECT_TRUE(observer.internal_state() == internal);
+  EXPECT_EQ(joint.time(), time);
+  EXPECT_EQ(plant.time(), time);
+  EXPECT_EQ(joint.step(0.01), UpdateStatus::accepted);
+  EXPECT_DOUBLE_EQ(plant.time(), 0.02);
+}
+
+// The plant's clock counts periods: in float, 20000 periods of 0.01 read 200
+// to within the rounding of one product, not a sum that drifts.
+TEST(ContinuousLinearPlant, ItsClockDoesNotDriftOverManyPeriods) {
+  auto plant = siso::make_plant<float>();
+  for (int k = 0; k < 20000; ++k) plant.advance();
+  EXPECT_NEAR(plant.sample().t, 200.0f, 2e-5f);
 }
 
 // V = eᵀPe + θ̃ᵀΓ⁻¹θ̃ (P from the KYP certificate) never increases (Alg. 1–2);

@@ -43,16 +43,24 @@ inline DiscreteSystem<DynamicDimensions<double>> resizing_system(Index k, char w
   return s;
 }
 
+/// A time-varying model of the user's that serves `resizing_system` without
+/// checking it (`DiscreteLtvModel` would refuse the wrong size itself).
+struct UncheckedResizingModel : SizedBy<DynamicDimensions<double>> {
+  static constexpr bool time_invariant = false;
+  char wrong;
+  [[nodiscard]] DiscreteSystem<DynamicDimensions<double>> at(Index k) const { return resizing_system(k, wrong); }
+  [[nodiscard]] Sizes sizes() const noexcept { return {2, 1, 1, 1}; }
+};
+
 /// For each matrix of `resizing_system`: an observer built by `make(model)` on
 /// it accepts the step-0 sample, then refuses the step-1 one with a
-/// `ConfigurationError` naming `model.at(k).<matrix>`, every reading unchanged
-/// (a wrong size would otherwise be read out of bounds).
+/// `ConfigurationError` naming `model.at(k)`, every reading unchanged (a wrong
+/// size would otherwise be read out of bounds).
 template <class Make>
 void expect_resized_step_refused(Make make) {
   for (const char wrong : {'A', 'B', 'C'}) {
     SCOPED_TRACE(std::string("wrong ") + wrong);
-    auto observer = make(make_discrete_ltv_model<DynamicDimensions<double>>(
-        [wrong](Index k) { return resizing_system(k, wrong); }, Sizes{2, 1, 1, 1}));
+    auto observer = make(UncheckedResizingModel{{}, wrong});
     const DiscreteSample<DynamicDimensions<double>> sample{Eigen::VectorXd::Ones(1), Eigen::VectorXd::Ones(1),
                                                            Eigen::MatrixXd::Ones(2, 1)};
     ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
@@ -61,7 +69,7 @@ void expect_resized_step_refused(Make make) {
                         Eigen::VectorXd(observer.output_error()), observer.step()};
     };
     const auto before = readings();
-    EXPECT_CONFIGURATION_ERROR_NAMES((void)observer.update(sample), std::string("model.at(k).") + wrong);
+    EXPECT_CONFIGURATION_ERROR_NAMES((void)observer.update(sample), "model.at(k)");
     EXPECT_TRUE(readings() == before);
   }
 }

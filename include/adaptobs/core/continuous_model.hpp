@@ -149,12 +149,7 @@ class ContinuousLtvModel : public SizedBy<D> {
   /// `sizes` throw a `ConfigurationError` naming `matrices_at`, at any t.
   [[nodiscard]] ContinuousSystem<D> at(typename D::Scalar t) const {
     ContinuousSystem<D> system = matrices_at_(t);
-    if constexpr (!D::is_fixed) {
-      constexpr std::string_view who = "ContinuousLtvModel";
-      detail::require_shape(system.A, sizes_.nx, sizes_.nx, who, "matrices_at(t).A");
-      detail::require_shape(system.B, sizes_.nx, sizes_.nu, who, "matrices_at(t).B");
-      detail::require_shape(system.C, sizes_.ny, sizes_.nx, who, "matrices_at(t).C");
-    }
+    if constexpr (!D::is_fixed) detail::require_system_sizes(system, sizes_, "ContinuousLtvModel", "matrices_at(t)");
     return system;
   }
   [[nodiscard]] decltype(auto) regressor(typename D::Scalar t, const typename D::Input& u,

@@ -143,7 +143,13 @@ class DiscreteLtvModel : public SizedBy<D> {
                     "matrices_at", "returns matrices whose sizes differ from 'sizes'");
   }
 
-  [[nodiscard]] DiscreteSystem<D> at(Index k) const { return matrices_at_(k); }
+  /// \f$(A_k, B_k, C_k)\f$; with dynamic sizes, matrices of other sizes than
+  /// `sizes` throw a `ConfigurationError` naming `matrices_at(k)`, at any k.
+  [[nodiscard]] DiscreteSystem<D> at(Index k) const {
+    DiscreteSystem<D> system = matrices_at_(k);
+    if constexpr (!D::is_fixed) detail::require_system_sizes(system, sizes_, "DiscreteLtvModel", "matrices_at(k)");
+    return system;
+  }
   [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
 
  private:

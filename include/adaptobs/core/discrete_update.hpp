@@ -83,19 +83,14 @@ class DiscreteUpdate : public SizedBy<Dims> {
   /// Checks the matrices the model gives for the current step against its
   /// sizes, before the step reads them: with run-time sizes a time-varying
   /// model can return anything, and a wrong size would be read out of bounds.
-  /// Throws `ConfigurationError` naming `model.at(k).A`, `.B` or `.C`, with
-  /// nothing changed. Free for fixed sizes or a time-invariant model (checked
-  /// at construction).
+  /// Throws `ConfigurationError` naming `model.at(k)`, with nothing changed.
+  /// Free for fixed sizes or a time-invariant model (checked at construction).
+  /// (`DiscreteLtvModel` checks its own; a model of the user's may not.)
   template <class System>
   void check_system_sizes(const System& system) const {
     using Model = std::remove_cvref_t<decltype(self().model_)>;
-    if constexpr (!Dims::is_fixed && !Model::time_invariant) {
-      constexpr std::string_view who = Observer::name_update;
-      const Sizes s = sizes();
-      detail::require_shape(system.A, s.nx, s.nx, who, "model.at(k).A");
-      detail::require_shape(system.B, s.nx, s.nu, who, "model.at(k).B");
-      detail::require_shape(system.C, s.ny, s.nx, who, "model.at(k).C");
-    }
+    if constexpr (!Dims::is_fixed && !Model::time_invariant)
+      detail::require_system_sizes(system, sizes(), Observer::name_update, "model.at(k)");
   }
 
  private:

@@ -147,6 +147,23 @@ void validate_state_space(const System& s, std::string_view who) {
   require_finite_shape(s.C, s.C.rows(), s.A.rows(), who, "C");
 }
 
+/// The matrices a time-varying model's callable returned, checked against the
+/// model's sizes at every call when they are dynamic (fixed sizes are checked
+/// by the type): with `Eigen::Dynamic` sizes nothing else would stop an
+/// observer or a plant from writing past its vectors. `callable` names the
+/// callable and its argument, e.g. "matrices_at(t)".
+template <class System>
+void require_system_sizes(const System& s, const Sizes& sizes, std::string_view who, std::string_view callable) {
+  if (s.A.rows() == sizes.nx && s.A.cols() == sizes.nx && s.B.rows() == sizes.nx && s.B.cols() == sizes.nu &&
+      s.C.rows() == sizes.ny && s.C.cols() == sizes.nx)
+    return;
+  std::ostringstream os;
+  os << "returns A " << s.A.rows() << "x" << s.A.cols() << ", B " << s.B.rows() << "x" << s.B.cols() << ", C "
+     << s.C.rows() << "x" << s.C.cols() << " where the model's sizes give A " << sizes.nx << "x" << sizes.nx << ", B "
+     << sizes.nx << "x" << sizes.nu << ", C " << sizes.ny << "x" << sizes.nx;
+  fail_argument(who, callable, os.str());
+}
+
 /// The initial estimates of an observer: a finite state column of nx entries
 /// and a finite parameter column of np entries, named in the error as given.
 template <class X, class Theta>

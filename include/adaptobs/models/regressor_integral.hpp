@@ -174,6 +174,8 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
   }
 
   /// \f$H_k\f$ and \f$\Psi_k\f$ over \f$[t_0, t_0 + T]\f$; `phi(t)` returns \f$\varphi(t)\f$ (n × p).
+  /// A φ of other than n rows, or (p of run-time size) of columns that change
+  /// within the call, throws a `ConfigurationError` naming `phi(t)`.
   template <class Phi>
     requires std::invocable<const Phi&, Scalar>
   [[nodiscard]] Result integrate(const Phi& phi, Scalar t0) {
@@ -186,6 +188,7 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
   template <class Phi>
     requires std::invocable<const Phi&, Scalar>
   bool integrate(const Phi& phi, Scalar t0, Result& out) {
+    columns_ = NP;  // with a run-time p, set by the first value of φ
     Regressor gauss;
     Panel& first = panels_[0];
     first.shift.setIdentity(n_, n_);
@@ -250,7 +253,7 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
 
   // 15-point Kronrod and 7-point Gauss sums over the panel, relative to its start.
   template <class Phi>
-  void evaluate(const Phi& phi, Panel& panel, Regressor& gauss) const {
+  void evaluate(const Phi& phi, Panel& panel, Regressor& gauss) {
     using Rule = detail::GaussKronrod15;
     const Level& level = levels_[std::size_t(panel.depth)];
     const Scalar half_width = std::ldexp(this->period_, -panel.depth) / 2;
@@ -258,7 +261,10 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
     Scalar magnitude = 0;
     for (std::size_t i = 0; i < 15; ++i) {
       const Scalar sigma = half_width * (Scalar(1) + Scalar(Rule::nodes[i]));
-      term.noalias() = level.kernel[i] * phi(panel.start + sigma);
+      decltype(auto) value = phi(panel.start + sigma);
+      if (columns_ == Eigen::Dynamic) columns_ = value.cols();
+      detail::require_shape(value, n_, columns_, "RegressorIntegral::integrate", "phi(t)");
+      term.noalias() = level.kernel[i] * value;
       if (i == 0) {
         panel.integral = Scalar(Rule::kronrod_weights[i]) * term;
         gauss.setZero(term.rows(), term.cols());
@@ -280,6 +286,7 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
   RegressorIntegralOptions options_;
   Scalar relative_tolerance_ = 0;
   Index n_ = 0;
+  Index columns_ = NP;  ///< p, of the current call's φ when NP is dynamic
   std::vector<Level> levels_;
   std::vector<Panel> panels_;
 };
@@ -344,8 +351,11 @@ class PolynomialRegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP>
   }
 
   void integrate(std::span<const Regressor> coefficients, Result& out) const {
-    detail::require(!coefficients.empty() && coefficients.size() <= psi_moments_.size(),
-                    "PolynomialRegressorIntegral::integrate", "coefficients", "must hold 1 to degree + 1 matrices");
+    constexpr std::string_view who = "PolynomialRegressorIntegral::integrate";
+    detail::require(!coefficients.empty() && coefficients.size() <= psi_moments_.size(), who, "coefficients",
+                    "must hold 1 to degree + 1 matrices");
+    for (const Regressor& p : coefficients)
+      detail::require_shape(p, this->transition_.rows(), coefficients[0].cols(), who, "coefficients");
     out.H.noalias() = h_moments_[0] * coefficients[0];
     out.Psi.noalias() = psi_moments_[0] * coefficients[0];
     for (std::size_t j = 1; j < coefficients.size(); ++j) {

@@ -254,10 +254,10 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   // `present` is null when every channel is.
   template <class U, class Y>
   UpdateStatus step_with(const U& u, const Y& y, const OutputMask<Dims>* present) {
-    if constexpr (!Dims::is_fixed) {
-      detail::require_shape(u, filters_.inputs(), 1, "DeyBhasinObserver::update", "sample.u");
-      detail::require_shape(y, filters_.outputs(), 1, "DeyBhasinObserver::update", "sample.y");
-    }
+    // At every size: a sample of any type may hold vectors of run-time size
+    // even when the observer's are fixed (free when both are fixed).
+    detail::require_shape(u, filters_.inputs(), 1, "DeyBhasinObserver::update", "sample.u");
+    detail::require_shape(y, filters_.outputs(), 1, "DeyBhasinObserver::update", "sample.y");
     return work_.run([&](Workspace& w) { return advance(u, y, present, w); });
   }
 

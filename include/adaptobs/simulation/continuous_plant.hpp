@@ -16,6 +16,7 @@
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/simulation/plant_state.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <utility>
@@ -55,9 +56,10 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
     detail::require_plant_start(eta_, s.nx, theta_, s.np, who, "eta0");
     detail::require_positive(options.period, who, "options.period");
     detail::require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
-    detail::require(options.output_noise >= 0, who, "options.output_noise", "must be non-negative");
+    detail::require_non_negative(options.output_noise, who, "options.output_noise");
+    detail::require(std::isfinite(options.start_time), who, "options.start_time", "must be finite");
     sample_.t = t_;
-    sample_.u = input_(t_);
+    sample_.u = input_at(t_);
     sample_.y = measure(t_, eta_);
   }
 
@@ -74,11 +76,14 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
     const Scalar t0 = t_;
     const auto f = [this](const State& x, State& dx, Scalar t) { derivative(x, dx, t); };
     rk4_.integrate(f, eta_, t0, t0 + half, options_.substeps);
-    typename Sample::Midpoint mid{input_(t0 + half), measure(t0 + half, eta_)};
+    typename Sample::Midpoint mid{input_at(t0 + half), measure(t0 + half, eta_)};
     rk4_.integrate(f, eta_, t0 + half, t0 + options_.period, options_.substeps);
-    t_ = t0 + options_.period;
+    // The clock counts periods from its origin: adding the period at each step
+    // would accumulate its rounding (a float clock would drift by a period in 10⁵ steps).
+    ++periods_;
+    t_ = origin_ + Scalar(periods_) * options_.period;
     sample_.t = t_;
-    sample_.u = input_(t_);
+    sample_.u = input_at(t_);
     sample_.y = measure(t_, eta_);
     sample_.midpoint = std::move(mid);
   }
@@ -86,7 +91,7 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
   /// \f$\dot\eta = A(t)\eta + B(t)u(t) + \Phi\theta\f$.
   void derivative(const State& eta, State& deta, Scalar t) const {
     decltype(auto) s = model_.at(t);
-    const Input u = input_(t);
+    const Input u = input_at(t);
     const Output y = s.C * eta;
     deta.noalias() = s.A * eta;
     detail::add_product(deta, s.B, u);
@@ -95,7 +100,7 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
 
   /// Noise-free input and output at time t for the state η (for joint integration).
   void signals(Scalar t, const State& eta, Input& u, Output& y) const {
-    u = input_(t);
+    u = input_at(t);
     y.noalias() = model_.at(t).C * eta;
   }
 
@@ -103,13 +108,20 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
   void set_state(const State& eta, Scalar t) {
     eta_ = eta;
     t_ = t;
+    origin_ = t;
+    periods_ = 0;
     sample_.t = t_;
-    sample_.u = input_(t_);
+    sample_.u = input_at(t_);
     sample_.y = measure(t_, eta_);
     sample_.midpoint.reset();
   }
 
  private:
+  /// u(t), its size checked: a wrong one would be read past B's columns.
+  Input input_at(Scalar t) const {
+    return detail::require_returned_shape(input_(t), model_.sizes().nu, 1, "ContinuousLinearPlant", "input(t)");
+  }
+
   Output measure(Scalar t, const State& eta) {
     Output y = model_.at(t).C * eta;
     if (options_.output_noise > 0) {
@@ -125,6 +137,8 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
   InputFn input_;
   ContinuousPlantOptions<Scalar> options_;
   Scalar t_;
+  Scalar origin_ = t_;     ///< start time, or the time of the last `set_state`
+  long long periods_ = 0;  ///< periods advanced since origin_
   RungeKutta4<State> rk4_;
   std::mt19937_64 rng_;
   Sample sample_;

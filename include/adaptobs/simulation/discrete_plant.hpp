@@ -37,7 +37,7 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
   using Base::x_, Base::theta_, Base::sample_, Base::k_;
 
  public:
-  using typename Base::Scalar, typename Base::State, typename Base::Parameters;
+  using typename Base::Scalar, typename Base::State, typename Base::Parameters, typename Base::Sample;
 
   DiscreteLinearPlant(Model model, State x0, Parameters theta, InputFn input, RegressorFn regressor,
                       PlantNoise<Scalar> noise = {}, Scalar sampling_period = Scalar(1))
@@ -50,8 +50,9 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
     constexpr std::string_view who = "DiscreteLinearPlant";
     const Sizes s = model_.sizes();
     detail::require_plant_start(x_, s.nx, theta_, s.np, who, "x0");
-    detail::require(noise.output >= 0 && noise.state >= 0 && noise.parameter >= 0, who, "noise",
-                    "standard deviations must be non-negative");
+    detail::require_non_negative(noise.output, who, "noise.output");
+    detail::require_non_negative(noise.state, who, "noise.state");
+    detail::require_non_negative(noise.parameter, who, "noise.parameter");
     detail::require_positive(sampling_period, who, "sampling_period");
     make_sample();
   }
@@ -65,24 +66,47 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
     theta_ = theta;
   }
 
-  /// Moves to step k + 1.
+  /// Moves to step k + 1. An input, regressor or model matrix of the wrong
+  /// size throws a `ConfigurationError` naming the callable, and the plant
+  /// stays at step k.
   void advance() {
-    const auto& system = model_.at(k_);
+    const Index k = k_ + 1;
+    // What may throw comes first: the callables of step k + 1.
+    decltype(auto) following = model_.at(k);
+    Sample next_sample;
+    signals_at(k, next_sample);
+    decltype(auto) system = model_.at(k_);
     State next = system.A * x_;
     detail::add_product(next, system.B, sample_.u);
     detail::add_product(next, sample_.Psi, theta_);
     add_noise(next, noise_.state);
     x_ = next;
     add_noise(theta_, noise_.parameter);
-    ++k_;
-    make_sample();
+    k_ = k;
+    sample_.u = std::move(next_sample.u);
+    sample_.Psi = std::move(next_sample.Psi);
+    measure(following);
   }
 
  private:
+
   void make_sample() {
-    sample_.u = input_(k_);
-    sample_.Psi = regressor_(k_, std::as_const(sample_.u));
-    sample_.y = model_.at(k_).C * x_;
+    signals_at(k_, sample_);
+    measure(model_.at(k_));
+  }
+
+  /// \f$u_k\f$ and \f$\Psi_k\f$ from the callables, their sizes checked.
+  void signals_at(Index k, Sample& sample) {
+    constexpr std::string_view who = "DiscreteLinearPlant";
+    const Sizes s = model_.sizes();
+    sample.u = detail::require_returned_shape(input_(k), s.nu, 1, who, "input(k)");
+    sample.Psi = detail::require_returned_shape(regressor_(k, std::as_const(sample.u)), s.nx, s.np, who,
+                                                "regressor(k, u)");
+  }
+
+  template <class System>
+  void measure(const System& system) {
+    sample_.y = system.C * x_;
     add_noise(sample_.y, noise_.output);
   }
 

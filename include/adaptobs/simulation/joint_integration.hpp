@@ -12,6 +12,8 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
 
@@ -36,8 +38,13 @@ class JointIntegration {
     ds_.setZero(observer.internal_state().rows());
   }
 
-  /// One RK4 step of length h for the joint state; plant and observer are updated.
-  void step(Scalar h) {
+  /// One RK4 step of length h for the joint state; plant and observer are
+  /// updated together. A step that leaves the floating-point range, or that
+  /// the observer refuses (`set_internal_state`), changes neither and returns
+  /// `UpdateStatus::nonfinite_result`. An h not finite and positive throws a
+  /// `ConfigurationError` naming `h`.
+  UpdateStatus step(Scalar h) {
+    detail::require_positive(h, "JointIntegration::step", "h");
     const Index n = plant_.state().rows();
     const auto f = [&](const JointState& x, JointState& dx, Scalar t) {
       eta_ = x.head(n);
@@ -48,10 +55,13 @@ class JointIntegration {
       dx.head(n) = deta_;
       dx.tail(x.rows() - n) = ds_;
     };
-    rk4_.step(f, x_, t_, h, x_);
+    rk4_.step(f, x_, t_, h, trial_);
+    if (!trial_.allFinite() || !observer_.set_internal_state(trial_.tail(trial_.rows() - n)))
+      return UpdateStatus::nonfinite_result;
+    x_ = trial_;
     t_ += h;
     plant_.set_state(x_.head(n), t_);
-    observer_.set_internal_state(x_.tail(x_.rows() - n));
+    return UpdateStatus::accepted;
   }
 
   [[nodiscard]] Scalar time() const noexcept { return t_; }
@@ -69,6 +79,7 @@ class JointIntegration {
   Plant& plant_;
   Observer& observer_;
   JointState x_;
+  JointState trial_ = x_;  ///< the step's result, kept only once both sides accept it
   RungeKutta4<JointState> rk4_;
   Scalar t_;
   typename Plant::Input u_;

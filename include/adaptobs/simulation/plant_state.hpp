@@ -13,14 +13,25 @@ namespace adaptobs {
 
 namespace detail {
 
-/// The initial true state and parameters of a simulated plant: columns of nx
-/// and np entries, named in the error as given (the state's name differs
+/// The initial true state and parameters of a simulated plant: finite columns
+/// of nx and np entries, named in the error as given (the state's name differs
 /// between the discrete and the continuous plants).
 template <class X, class Theta>
 void require_plant_start(const Eigen::DenseBase<X>& x0, Index nx, const Eigen::DenseBase<Theta>& theta, Index np,
                          std::string_view who, std::string_view x_name) {
-  require_shape(x0, nx, 1, who, x_name);
-  require_shape(theta, np, 1, who, "theta");
+  require_finite_shape(x0, nx, 1, who, x_name);
+  require_finite_shape(theta, np, 1, who, "theta");
+}
+
+/// What a user callable of a plant returned (an input, a regressor, a next
+/// state), checked to be rows × cols before the plant stores or multiplies it:
+/// with `Eigen::Dynamic` sizes nothing else would stop a wrong size from
+/// writing past the plant's vectors. The error names the callable.
+template <class Value>
+Value&& require_returned_shape(Value&& value, Index rows, Index cols, std::string_view who,
+                               std::string_view callable) {
+  require_shape(value, rows, cols, who, callable);
+  return std::forward<Value>(value);
 }
 
 }  // namespace detail
