@@ -33,6 +33,22 @@ static_assert(adaptobs::Observer<siso::Suzuki<double>>);
 // §5, figures 4–5: without a persistently exciting regressor exponential forgetting
 // (λ = √0.5) winds its covariance up by 1/λ per step until it overflows, while
 // covariance resetting keeps everything bounded.
+// A first sample whose measurement z = y − C F⁰ x̂₀ overflows (y and x̂₀ near
+// the range's ends with opposite signs): the step is refused, not accepted
+// with an infinite output error, and later samples are still accepted.
+TEST(DeyBhasinSiso, AStepWhoseMeasurementOverflowsIsRefusedWithNothingChanged) {
+  using Observer = adaptobs::DeyBhasinObserver<double, 2, 1, 1>;
+  const Eigen::Vector2d f(0.5, -0.06);
+  Observer observer(f, Eigen::Vector2d(-1.5e308, 0), f, Eigen::Vector2d::Zero(),
+                    {.k0 = 100, .kmin = 1e-4, .R = Eigen::Matrix<double, 1, 1>::Identity()});
+  using Vector1 = Eigen::Matrix<double, 1, 1>;
+  EXPECT_EQ(observer.update(Observer::Sample{Vector1(0), Vector1(1.5e308)}), UpdateStatus::nonfinite_result);
+  EXPECT_EQ(observer.step(), 0);
+  EXPECT_TRUE(observer.output_error().allFinite());
+  EXPECT_TRUE(observer.measurement().allFinite());
+  EXPECT_EQ(observer.update(Observer::Sample{Vector1(0), Vector1(1)}), UpdateStatus::accepted);
+}
+
 TEST(DeyBhasinSiso, SuzukiBaselineLosesBoundednessWhileResettingDoesNot) {
   constexpr Index steps = 2500;
   auto resetting = siso::make_observer();

@@ -303,7 +303,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
           w.error(i) = 0;
         }
     filters_.predict(w.x, *p, w.y, u, w.next);
-    if (!detail::all_finite(w.x, w.next, w.bank, w.phi)) return UpdateStatus::nonfinite_result;
+    if (!detail::all_finite(w.x, w.next, w.bank, w.phi, w.z, w.error)) return UpdateStatus::nonfinite_result;
 
     if (adapt) law_.commit();
     detail::commit(bank_, w.bank);
