@@ -228,6 +228,32 @@ struct ReferenceStep {
   }
 };
 
+// A regressor spike of 10^200 makes ‖C̄Υ‖²_F overflow at the next steps: the
+// normalized step must still move θ̂ on the error the spike left, with √μ_k‖C̄Υ‖₂ = ‖C̄Υ‖₂/‖C̄Υ‖_F in
+// [1/√2, 1], and its excitation contribution must stay in range.
+TEST(GuyaderZhangMissing, TheNormalizedStepHoldsForARegressorBeyondTheSquareRootOfTheRange) {
+  auto observer = make_observer({.excitation_window = 5, .normalized_step = true});
+  auto plant = satellite::make_plant<double>();
+  for (Index k = 0; k < 50; ++k, plant.advance()) ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+  auto spike = plant.sample();
+  spike.Psi.setConstant(1e200);
+  ASSERT_EQ(observer.update(spike), UpdateStatus::accepted);
+  plant.advance();
+  for (int k = 0; k < 5; ++k, plant.advance()) {
+    const Eigen::Vector2d before = observer.parameters();
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    ASSERT_GT(observer.upsilon().cwiseAbs().maxCoeff(), 1e154);  // ‖C̄Υ‖² beyond the range
+    if (k == 0) {
+      EXPECT_GT((observer.parameters() - before).norm(), 1e-3);  // the spike's error acts on θ̂
+    }
+    EXPECT_GE(observer.assumption2_norm(), std::sqrt(0.5) - 1e-12) << k;
+    EXPECT_LE(observer.assumption2_norm(), 1.0 + 1e-12) << k;
+  }
+  const auto level = observer.excitation_level();
+  ASSERT_TRUE(level.has_value());
+  EXPECT_TRUE(std::isfinite(*level));
+}
+
 TEST(GuyaderZhangMissing, TimeVaryingModelStaysInPhaseThroughDroppedSamplesAndChannels) {
   const auto model = adaptobs::make_discrete_ltv_model<TwoOutputLtv>(two_output_system);
   auto input = [](Index k) { return Eigen::Matrix<double, 1, 1>(std::sin(0.02 * double(k))); };

@@ -130,7 +130,9 @@ class GuyaderZhangObserver
   }
 
   /// \f$\|\sqrt{\mu_k}C_k\Upsilon_k\|_2\f$ of the last accepted step (0 before the first).
-  [[nodiscard]] Scalar assumption2_norm() const { return std::sqrt(last_mu_) * spectral_norm(last_c_upsilon_); }
+  [[nodiscard]] Scalar assumption2_norm() const {
+    return (last_root_mu_ < Scalar(0) ? std::sqrt(last_mu_) : last_root_mu_) * spectral_norm(last_c_upsilon_);
+  }
 
   /// Assumption 2 (eq. (3)) held at the last accepted step: \f$\|\sqrt{\mu_k}C_k\Upsilon_k\| \le 1\f$.
   [[nodiscard]] bool assumption2_holds() const { return assumption2_norm() <= Scalar(1); }
@@ -152,6 +154,7 @@ class GuyaderZhangObserver
     upsilon_.setZero();
     last_c_upsilon_.setZero();
     last_mu_ = Scalar(0);
+    last_root_mu_ = Scalar(-1);
     if (excitation_) excitation_->reset();
   }
 
@@ -189,11 +192,20 @@ class GuyaderZhangObserver
 
     /// (2b) \f$\hat\theta_{k+1} = \hat\theta_k + \mu_k\Upsilon_k^TC_k^T(y_k - C_k\hat x_k)\f$
     Scalar mu_k = mu_;
+    Scalar root_mu_k = Scalar(-1);  // √μ_k, set when μ_k itself is not representable
     if (normalized_step_) {
       const Scalar energy = mu_ * w.c_upsilon.squaredNorm();
       if (energy > Scalar(1)) mu_k = mu_ / energy;
+      // Beyond about 10^154, ‖C̄Υ‖²_F overflows and μ_k = 1/‖C̄Υ‖²_F underflows
+      // to 0, which would freeze θ̂: the step is then taken as
+      // (√μ_k C̄Υ)ᵀ(√μ_k ε) with √μ_k = 1/‖C̄Υ‖_F from a scaled norm.
+      if (!(mu_k > Scalar(0))) root_mu_k = Scalar(1) / w.c_upsilon.stableNorm();
     }
-    w.theta_step.noalias() = mu_k * (w.c_upsilon.transpose() * w.innovation);
+    if (root_mu_k < Scalar(0)) {
+      w.theta_step.noalias() = mu_k * (w.c_upsilon.transpose() * w.innovation);
+    } else {
+      w.theta_step.noalias() = (root_mu_k * w.c_upsilon).transpose() * (root_mu_k * w.innovation);
+    }
     w.theta = theta_ + w.theta_step;
 
     /// (2a) \f$\Upsilon_{k+1} = (A_k - K_kC_k)\Upsilon_k + \Psi_k\f$; for an LTV model or a
@@ -226,7 +238,13 @@ class GuyaderZhangObserver
     detail::commit(last_c_upsilon_, w.c_upsilon);
     detail::commit(this->output_error_, w.innovation);
     last_mu_ = mu_k;
-    if (excitation_) excitation_->add(last_c_upsilon_, last_mu_);
+    last_root_mu_ = root_mu_k;
+    if (root_mu_k < Scalar(0)) {
+      if (excitation_) excitation_->add(last_c_upsilon_, mu_k);
+    } else {
+      w.c_upsilon *= root_mu_k;  // committed above: the workspace is free
+      if (excitation_) excitation_->add(w.c_upsilon);
+    }
     return UpdateStatus::accepted;
   }
 
@@ -245,6 +263,7 @@ class GuyaderZhangObserver
   typename Dims::StateMatrix closed_loop_;  // A − K C, cached for a time-invariant model
   typename Dims::OutputRegressor last_c_upsilon_;
   Scalar last_mu_ = Scalar(0);
+  Scalar last_root_mu_ = Scalar(-1);  // √μ_k of the last step when μ_k itself underflowed, else −1
   bool normalized_step_;
   std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;
   // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
