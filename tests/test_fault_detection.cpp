@@ -365,6 +365,36 @@ TEST(CusumCalibration, BadOptionsAreRefusedByName) {
   EXPECT_TRUE(names(refusal({.max_bias = nan}), "options.max_bias"));
   EXPECT_TRUE(names(refusal({.rate_tolerance = 0.5}), "options.rate_tolerance"));
   EXPECT_TRUE(names(refusal({.rate_tolerance = nan}), "options.rate_tolerance"));
+  // The arguments too, before any work, under calibrate_cusum's own name; an
+  // empty nominal once read an empty vector's first entry.
+  const auto calibration = [&](const auto& nominal_value, double drift, double mean_evaluations) {
+    return configuration_error_of([&] { (void)adaptobs::calibrate_cusum(runs, nominal_value, drift, mean_evaluations, 1); });
+  };
+  const std::vector<std::vector<Eigen::VectorXd>> empty_runs(1, std::vector<Eigen::VectorXd>(600, Eigen::VectorXd()));
+  const std::string empty = configuration_error_of(
+      [&] { (void)adaptobs::calibrate_cusum(empty_runs, Eigen::VectorXd(), 0.5, 100.0, 1); });
+  EXPECT_TRUE(names(empty, "nominal")) << empty;
+  for (const auto& [message, argument] : {std::pair{calibration(nominal, -1.0, 100.0), "drift"},
+                                          std::pair{calibration(nominal, 0.5, -5.0), "mean_evaluations"}}) {
+    EXPECT_TRUE(names(message, argument)) << message;
+    EXPECT_EQ(message.rfind("calibrate_cusum:", 0), 0u) << message;
+  }
+}
+
+// design_fault_monitor names its own arguments: a bad glr_window was once
+// reported as 'window', another argument of the same call.
+TEST(FaultMonitorDesign, BadArgumentsAreRefusedUnderTheirOwnNames) {
+  adaptobs::FaultFreeRecord<double, 1, 1> record;
+  record.new_run();
+  const Eigen::Matrix<double, 1, 1> nominal(0.0);
+  const auto design = [&](double drift, Index glr_window) {
+    return configuration_error_of([&] {
+      (void)adaptobs::design_fault_monitor(record, nominal, drift, 4000.0, Index{1}, Index{20}, glr_window);
+    });
+  };
+  for (const Index glr_window : {Index{0}, Index{-3}}) EXPECT_TRUE(names(design(1.0, glr_window), "glr_window"));
+  EXPECT_TRUE(names(design(-1.0, 10), "drift"));
+  EXPECT_EQ(design(-1.0, 10).rfind("design_fault_monitor:", 0), 0u);
 }
 
 // ---------------------------------------------------------------- χ² test

@@ -107,7 +107,10 @@ template <typename Scalar, int N>
   constexpr std::string_view who = "calibrate_cusum";
   using Vector = Eigen::Matrix<Scalar, N, 1>;
   constexpr int max_lag = 5;
+  detail::require(nominal.size() >= 1, who, "nominal", "must have at least one component");
   detail::require_finite(nominal, who, "nominal");
+  detail::require_positive(drift, who, "drift");
+  detail::require_positive(mean_evaluations, who, "mean_evaluations");
   detail::require(stride >= 1, who, "stride", "must be at least 1");
   // Each limit is compared with `>`, which a NaN would silently pass.
   detail::require_positive(options.max_lag_correlation, who, "options.max_lag_correlation");

@@ -94,6 +94,8 @@ template <typename Scalar, int NY, int NP>
   detail::require(window >= 1 && Scalar(window) < mean_samples_between_false_alarms, who, "window",
                   "must be at least 1 and shorter than mean_samples_between_false_alarms");
   detail::require(stride >= 1, who, "stride", "must be at least 1");
+  detail::require_positive(drift, who, "drift");
+  detail::require(glr_window >= 1, who, "glr_window", "must be at least 1");
   const double evaluations_between = static_cast<double>(mean_samples_between_false_alarms) / static_cast<double>(stride);
   detail::require(evaluations_between >= 2 && evaluations_between <= 1e5, who, "mean_samples_between_false_alarms",
                   "must lie between 2 and 1e5 strides (the GLR's threshold is simulated over 50 times as many)");
