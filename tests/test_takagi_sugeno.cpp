@@ -456,6 +456,12 @@ TEST(TakagiSugeno, BadConfigurationNamesTheArgument) {
   auto reversed = tb;
   std::swap(reversed.lower, reversed.upper);
   EXPECT_CONFIGURATION_ERROR_NAMES(Model(vertices, C, {}, zb, reversed), "parameter_bounds");
+  // A sector as wide as the whole range: upper − lower overflows, and the
+  // memberships would read (1, 0) at its centre instead of (½, ½).
+  auto unbounded = tb;
+  unbounded.lower(0) = std::numeric_limits<double>::lowest();
+  unbounded.upper(0) = std::numeric_limits<double>::max();
+  EXPECT_CONFIGURATION_ERROR_NAMES(Model(vertices, C, {}, zb, unbounded), "parameter_bounds");
 
   const Model model(vertices, C, {}, zb, tb);
   const Eigen::Vector2d x0(3, 0.6);

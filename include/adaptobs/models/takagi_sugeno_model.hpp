@@ -33,6 +33,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <cmath>
 #include <concepts>
 #include <cstdint>
 #include <optional>
@@ -89,10 +90,11 @@ void validate_sectors(const SectorBounds<S, N>& bounds, Index expected_size, std
   require_finite_shape(bounds.lower, expected_size, 1, who, argument);
   require_finite_shape(bounds.upper, expected_size, 1, who, argument);
   for (Index j = 0; j < expected_size; ++j) {
-    if (!(bounds.lower(j) < bounds.upper(j))) {
+    // The memberships divide by upper − lower, which must be representable.
+    if (!(bounds.lower(j) < bounds.upper(j)) || !std::isfinite(bounds.upper(j) - bounds.lower(j))) {
       std::ostringstream os;
-      os << "must have lower < upper in every entry (entry " << j << ": [" << bounds.lower(j) << ", "
-         << bounds.upper(j) << "])";
+      os << "must have lower < upper, with upper - lower finite, in every entry (entry " << j << ": ["
+         << bounds.lower(j) << ", " << bounds.upper(j) << "])";
       fail_argument(who, argument, os.str());
     }
   }
