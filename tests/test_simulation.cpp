@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -50,6 +51,28 @@ TEST(SeriesTable, RejectsRowsThatDoNotMatchTheHeader) {
   short_row.begin_row().add("a", 1.0).add("b", 2.0);
   short_row.begin_row().add("a", 1.0);
   EXPECT_THROW(short_row.begin_row(), std::logic_error);
+}
+
+// Names the CSV header could not hold as one field, or that repeat, are refused
+// (a comma shifted every later column; a repeat hid the second series from
+// `at`); a row past the complete ones is out of range, not another row's value.
+TEST(SeriesTable, RefusesAmbiguousNamesAndRowsOutOfRange) {
+  adaptobs::SeriesTable table;
+  table.begin_row();
+  EXPECT_THROW(table.add("x,y", 1.0), std::invalid_argument);
+  EXPECT_THROW(table.add("line\nbreak", 1.0), std::invalid_argument);
+  EXPECT_THROW(table.add("", 1.0), std::invalid_argument);
+  table.add("a", 11.0);
+  EXPECT_THROW(table.add("a", 2.0), std::invalid_argument);
+  EXPECT_THROW(table.add("a", Eigen::Vector2d(1, 2)).add("a", Eigen::Vector2d(3, 4)), std::invalid_argument);
+  table.begin_row().add("a", 12.0).add("a_1", 1.0).add("a_2", 2.0);
+  EXPECT_EQ(table.at(1, "a"), 12.0);
+  EXPECT_THROW((void)table.at(2, "a"), std::out_of_range);
+  EXPECT_THROW((void)table.at(std::size_t(1) << 63, "a"), std::out_of_range);
+  // A file that cannot take the data says so when written, not never.
+  if (std::ofstream("/dev/full")) {
+    EXPECT_THROW(table.write_csv(std::string("/dev/full")), std::runtime_error);
+  }
 }
 
 // With dynamic sizes, what the plant's callables return is checked at every

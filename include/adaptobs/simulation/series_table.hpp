@@ -61,9 +61,14 @@ class SeriesTable {
   [[nodiscard]] std::size_t columns() const noexcept { return names_.size(); }
   [[nodiscard]] const std::vector<std::string>& names() const noexcept { return names_; }
 
-  /// Value of `column` in `row`; throws if the column does not exist.
+  /// Value of `column` in `row`; throws `std::out_of_range` if the column does
+  /// not exist or the row is not a complete one.
   [[nodiscard]] double at(std::size_t row, std::string_view column) const {
-    return values_.at(row * names_.size() + index_of(column));
+    const std::size_t c = index_of(column);
+    if (row >= complete_rows())
+      throw std::out_of_range("SeriesTable: no row " + std::to_string(row) + " (" + std::to_string(complete_rows()) +
+                              " complete rows)");
+    return values_[row * names_.size() + c];
   }
 
   /// All values of one column.
@@ -92,6 +97,7 @@ class SeriesTable {
     std::ofstream file(path);
     if (!file) throw std::runtime_error("SeriesTable: cannot open '" + path + "' for writing");
     write_csv(file);
+    file.close();  // flushes: a full disk shows here, not in a destructor that cannot report it
     if (!file) throw std::runtime_error("SeriesTable: failed writing '" + path + "'");
   }
 
@@ -99,6 +105,15 @@ class SeriesTable {
   void push(std::string_view name, double value) {
     if (rows_ == 0) throw std::logic_error("SeriesTable: add() before begin_row()");
     if (rows_ == 1) {
+      // A name the CSV header cannot hold as one field, or one already taken,
+      // would shift or hide columns.
+      if (name.empty() || name.find_first_of(",\"\r\n") != std::string_view::npos)
+        throw std::invalid_argument("SeriesTable: column name '" + std::string(name) +
+                                    "' must be non-empty, without comma, quote or line break");
+      for (const std::string& taken : names_)
+        if (taken == name)
+          throw std::invalid_argument("SeriesTable: column '" + std::string(name) +
+                                      "' appears twice in the header (give each series its own name)");
       names_.emplace_back(name);
     } else if (cursor_ >= names_.size() || names_[cursor_] != name) {
       throw std::logic_error("SeriesTable: column '" + std::string(name) + "' does not match the header at position " +
