@@ -227,4 +227,23 @@ TEST(OutputLoss, OneChannelLossAndBadConfiguration) {
             std::string::npos);
 }
 
+// The runner's arguments are checked before the first row: a negative count,
+// and a lost channel the plant does not have (once found only at the first
+// loss, after rows were written, or never when no loss came).
+TEST(Simulation, BadArgumentsAreRefusedBeforeAnyRow) {
+  auto plant = satellite::make_plant<double>();
+  adaptobs::GuyaderZhangObserver observer(satellite::model<double>(), satellite::paper_gain<double>(), satellite::mu,
+                                          satellite::initial_state_estimate<double>(),
+                                          satellite::initial_parameter_estimate<double>());
+  adaptobs::SeriesTable table;
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::simulate(plant, -5, table, adaptobs::track(observer)), "steps");
+  adaptobs::OutputLoss channel_seven({.drop = 0.001, .channel = 7});
+  const auto no_columns = [](adaptobs::SeriesTable&, const auto&) {};
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::simulate(plant, 10, table, channel_seven, no_columns, adaptobs::track(observer)), "loss");
+  EXPECT_EQ(table.rows(), 0u);
+  EXPECT_EQ(plant.step(), 0);
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::record_samples(plant, -1), "n");
+}
+
 }  // namespace
