@@ -758,4 +758,23 @@ TEST(DetectionEvaluation, SameSummaryOnOneAndTwoThreads) {
   EXPECT_THROW((void)adaptobs::evaluate_detection(failing, fault, 1, 40, 2), std::runtime_error);
 }
 
+// A NaN fault time scored every run as undetected and none as quiet; runs whose
+// interval or alarms are not finite and in order were scored as they came.
+TEST(DetectionEvaluation, BadFaultsAndRunsAreRefusedByName) {
+  const auto runs_with = [](double start, double end, double alarm_time) {
+    return [=](std::uint64_t, bool) {
+      return adaptobs::MonitoredRun{.start = start, .end = end, .alarms = {{alarm_time, -1}}};
+    };
+  };
+  const auto good = runs_with(0, 100, 60);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_detection(good, {.time = nan}, 1, 4, 1), "fault.time");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_detection(good, {.time = 10, .parameter = -2}, 1, 4, 1),
+                                   "fault.parameter");
+  for (const auto& scenario : {runs_with(100, 0, 60), runs_with(0, nan, 60), runs_with(0, 100, 500),
+                               runs_with(0, 100, nan)})
+    EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_detection(scenario, {.time = 10}, 1, 4, 1), "scenario");
+  EXPECT_EQ(adaptobs::evaluate_detection(good, {.time = 10}, 1, 4, 1).detection_rate, 1.0);
+}
+
 }  // namespace

@@ -74,7 +74,10 @@ template <class Scenario>
            std::same_as<std::invoke_result_t<const Scenario&, std::uint64_t, bool>, MonitoredRun>
 [[nodiscard]] DetectionSummary evaluate_detection(const Scenario& scenario, const FaultDescription& fault,
                                                   std::uint64_t first_seed, Index seeds, unsigned threads = 0) {
-  detail::require(seeds >= 1, "evaluate_detection", "seeds", "must be at least 1");
+  constexpr std::string_view who = "evaluate_detection";
+  detail::require(seeds >= 1, who, "seeds", "must be at least 1");
+  detail::require(std::isfinite(fault.time), who, "fault.time", "must be finite");
+  detail::require(fault.parameter >= -1, who, "fault.parameter", "must be -1 (not scored) or a parameter index");
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   threads = static_cast<unsigned>(std::min<Index>(threads, seeds));
 
@@ -101,6 +104,15 @@ template <class Scenario>
     work();
   }  // joins
   if (failure) std::rethrow_exception(failure);  // the first scenario that threw
+  // A run's interval and alarm times must be finite and in order: a NaN or an
+  // alarm outside [start, end] would be scored as a detection or a quiet start.
+  for (const std::vector<MonitoredRun>* runs : {&faulty, &twins})
+    for (const MonitoredRun& run : *runs) {
+      bool valid = std::isfinite(run.start) && std::isfinite(run.end) && run.start <= run.end;
+      for (const Alarm& alarm : run.alarms) valid = valid && alarm.time >= run.start && alarm.time <= run.end;
+      detail::require(valid, who, "scenario",
+                      "must return runs with finite start <= end and every alarm time within [start, end]");
+    }
 
   DetectionSummary summary;
   summary.seeds = seeds;
