@@ -2,6 +2,7 @@
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
+#include <adaptobs/simulation/discrete_nonlinear_plant.hpp>
 #include <adaptobs/simulation/runner.hpp>
 #include <adaptobs/simulation/series_table.hpp>
 
@@ -118,6 +119,19 @@ TEST(DiscreteLinearPlant, WrongSizesFromItsCallablesAndNonFiniteStartsAreRefused
       adaptobs::DiscreteLinearPlant(steady, x0, theta, input, regressor, {.output = inf}), "noise.output");
   EXPECT_CONFIGURATION_ERROR_NAMES(
       adaptobs::DiscreteLinearPlant(steady, x0, theta, input, regressor, {.parameter = -1}), "noise.parameter");
+}
+
+TEST(DiscreteNonlinearPlant, ATransitionOfAnotherSizeIsRefusedByName) {
+  using DD = adaptobs::DynamicDimensions<double>;
+  const auto transition = [](const Eigen::VectorXd& x, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+    return Eigen::VectorXd(Eigen::VectorXd::Constant(x(0) > 0.6 ? 3 : 2, 0.5 * x(0)));
+  };
+  auto plant = adaptobs::make_discrete_nonlinear_plant<DD>(
+      transition, Eigen::MatrixXd::Ones(1, 2), Eigen::VectorXd::Ones(2), [](Index) { return Eigen::VectorXd::Ones(1); },
+      [](Index) { return Eigen::VectorXd::Ones(1); });
+  EXPECT_CONFIGURATION_ERROR_NAMES(plant.advance(), "transition(x, u, theta)");
+  EXPECT_TRUE(plant.state() == Eigen::VectorXd::Ones(2));
+  EXPECT_EQ(plant.step(), 0);
 }
 
 TEST(Simulation, RecordsTruthAndEveryObserverInSchemaOrder) {

@@ -92,7 +92,10 @@ class ContinuousUpdate : public SizedBy<Dims> {
 
   /// Keeps every estimate but forgets the previous sample: the next one sets a
   /// new time origin. For resuming after an interval rejected as
-  /// `UpdateStatus::interval_too_long`.
+  /// `UpdateStatus::interval_too_long`, or after intervals rejected as
+  /// `nonfinite_result` because of the previous sample itself: its held input
+  /// or output acts over the next interval, so an accepted but extreme sample
+  /// (say u = 1e308) makes every later interval overflow until it is forgotten.
   void resynchronize() noexcept { self().integrator_.resynchronize(); }
 
   /// Restarts from \f$\hat\eta_0, \hat\theta_0\f$ as after construction; the next

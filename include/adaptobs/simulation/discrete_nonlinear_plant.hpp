@@ -43,9 +43,11 @@ class DiscreteNonlinearPlant : public DiscretePlantState<D, InputOutputSample<D>
     make_sample();
   }
 
-  /// Moves to step k + 1.
+  /// Moves to step k + 1. A transition returning a state of another size
+  /// throws a `ConfigurationError` naming it, with the plant at step k.
   void advance() {
-    x_ = transition_(std::as_const(x_), std::as_const(sample_.u), std::as_const(theta_));
+    x_ = detail::require_returned_shape(transition_(std::as_const(x_), std::as_const(sample_.u), std::as_const(theta_)),
+                                        x_.rows(), 1, "DiscreteNonlinearPlant", "transition(x, u, theta)");
     ++k_;
     make_sample();
   }
