@@ -52,8 +52,7 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
         rk4_(eta_),
         rng_(options.seed) {
     constexpr std::string_view who = "ContinuousLinearPlant";
-    const Sizes s = model_.sizes();
-    detail::require_plant_start(eta_, s.nx, theta_, s.np, who, "eta0");
+    detail::require_plant_start(eta_, theta_, model_.sizes(), who, "eta0");
     detail::require_positive(options.period, who, "options.period");
     detail::require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
     detail::require_non_negative(options.output_noise, who, "options.output_noise");

@@ -48,8 +48,7 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
         noise_(noise),
         rng_(noise.seed) {
     constexpr std::string_view who = "DiscreteLinearPlant";
-    const Sizes s = model_.sizes();
-    detail::require_plant_start(x_, s.nx, theta_, s.np, who, "x0");
+    detail::require_plant_start(x_, theta_, model_.sizes(), who, "x0");
     detail::require_non_negative(noise.output, who, "noise.output");
     detail::require_non_negative(noise.state, who, "noise.state");
     detail::require_non_negative(noise.parameter, who, "noise.parameter");

@@ -17,10 +17,10 @@ namespace detail {
 /// of nx and np entries, named in the error as given (the state's name differs
 /// between the discrete and the continuous plants).
 template <class X, class Theta>
-void require_plant_start(const Eigen::DenseBase<X>& x0, Index nx, const Eigen::DenseBase<Theta>& theta, Index np,
+void require_plant_start(const Eigen::DenseBase<X>& x0, const Eigen::DenseBase<Theta>& theta, const Sizes& sizes,
                          std::string_view who, std::string_view x_name) {
-  require_finite_shape(x0, nx, 1, who, x_name);
-  require_finite_shape(theta, np, 1, who, "theta");
+  require_finite_shape(x0, sizes.nx, 1, who, x_name);
+  require_finite_shape(theta, sizes.np, 1, who, "theta");
 }
 
 /// What a user callable of a plant returned (an input, a regressor, a next
