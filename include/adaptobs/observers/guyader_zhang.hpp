@@ -199,7 +199,10 @@ class GuyaderZhangObserver
       // Beyond about 10^154, ‖C̄Υ‖²_F overflows and μ_k = 1/‖C̄Υ‖²_F underflows
       // to 0, which would freeze θ̂: the step is then taken as
       // (√μ_k C̄Υ)ᵀ(√μ_k ε) with √μ_k = 1/‖C̄Υ‖_F from a scaled norm.
-      if (!(mu_k > Scalar(0))) root_mu_k = Scalar(1) / w.c_upsilon.stableNorm();
+      if (!(mu_k > Scalar(0))) {
+        const Scalar scale = w.c_upsilon.cwiseAbs().maxCoeff();  // > 0: the squared norm overflowed
+        root_mu_k = Scalar(1) / (scale * (w.c_upsilon / scale).norm());
+      }
     }
     if (root_mu_k < Scalar(0)) {
       w.theta_step.noalias() = mu_k * (w.c_upsilon.transpose() * w.innovation);
