@@ -131,7 +131,10 @@ class GuyaderZhangObserver
 
   /// \f$\|\sqrt{\mu_k}C_k\Upsilon_k\|_2\f$ of the last accepted step (0 before the first).
   [[nodiscard]] Scalar assumption2_norm() const {
-    return (last_root_mu_ < Scalar(0) ? std::sqrt(last_mu_) : last_root_mu_) * spectral_norm(last_c_upsilon_);
+    const Scalar norm = spectral_norm(last_c_upsilon_);
+    // A normalized μ_k that underflowed to 0 is 1/‖C̄Υ‖²_F (see `advance`).
+    if (last_mu_ > Scalar(0) || norm == Scalar(0)) return std::sqrt(last_mu_) * norm;
+    return norm * inverse_frobenius_norm(last_c_upsilon_);
   }
 
   /// Assumption 2 (eq. (3)) held at the last accepted step: \f$\|\sqrt{\mu_k}C_k\Upsilon_k\| \le 1\f$.
@@ -154,7 +157,6 @@ class GuyaderZhangObserver
     upsilon_.setZero();
     last_c_upsilon_.setZero();
     last_mu_ = Scalar(0);
-    last_root_mu_ = Scalar(-1);
     if (excitation_) excitation_->reset();
   }
 
@@ -192,23 +194,15 @@ class GuyaderZhangObserver
 
     /// (2b) \f$\hat\theta_{k+1} = \hat\theta_k + \mu_k\Upsilon_k^TC_k^T(y_k - C_k\hat x_k)\f$
     Scalar mu_k = mu_;
-    Scalar root_mu_k = Scalar(-1);  // √μ_k, set when μ_k itself is not representable
+    Scalar error_scale = Scalar(1);
     if (normalized_step_) {
       const Scalar energy = mu_ * w.c_upsilon.squaredNorm();
       if (energy > Scalar(1)) mu_k = mu_ / energy;
-      // Beyond about 10^154, ‖C̄Υ‖²_F overflows and μ_k = 1/‖C̄Υ‖²_F underflows
-      // to 0, which would freeze θ̂: the step is then taken as
-      // (√μ_k C̄Υ)ᵀ(√μ_k ε) with √μ_k = 1/‖C̄Υ‖_F from a scaled norm.
-      if (!(mu_k > Scalar(0))) {
-        const Scalar scale = w.c_upsilon.cwiseAbs().maxCoeff();  // > 0: the squared norm overflowed
-        root_mu_k = Scalar(1) / (scale * (w.c_upsilon / scale).norm());
-      }
+      // Beyond about 10^154, ‖C̄Υ‖²_F overflows and μ_k underflows to 0, which
+      // would freeze θ̂: the step is then taken as √μ_k C̄Υᵀ(√μ_k ε).
+      if (!(mu_k > Scalar(0))) mu_k = error_scale = inverse_frobenius_norm(w.c_upsilon);
     }
-    if (root_mu_k < Scalar(0)) {
-      w.theta_step.noalias() = mu_k * (w.c_upsilon.transpose() * w.innovation);
-    } else {
-      w.theta_step.noalias() = (root_mu_k * w.c_upsilon).transpose() * (root_mu_k * w.innovation);
-    }
+    w.theta_step.noalias() = mu_k * (w.c_upsilon.transpose() * (error_scale * w.innovation));
     w.theta = theta_ + w.theta_step;
 
     /// (2a) \f$\Upsilon_{k+1} = (A_k - K_kC_k)\Upsilon_k + \Psi_k\f$; for an LTV model or a
@@ -240,15 +234,23 @@ class GuyaderZhangObserver
     detail::commit(upsilon_, w.upsilon);
     detail::commit(last_c_upsilon_, w.c_upsilon);
     detail::commit(this->output_error_, w.innovation);
-    last_mu_ = mu_k;
-    last_root_mu_ = root_mu_k;
-    if (root_mu_k < Scalar(0)) {
-      if (excitation_) excitation_->add(last_c_upsilon_, mu_k);
-    } else {
-      w.c_upsilon *= root_mu_k;  // committed above: the workspace is free
-      if (excitation_) excitation_->add(w.c_upsilon);
+    last_mu_ = mu_k * error_scale;  // μ_k, 0 when it underflowed
+    if (excitation_) {
+      if (last_mu_ > Scalar(0)) [[likely]] {
+        excitation_->add(last_c_upsilon_, last_mu_);
+      } else {
+        w.c_upsilon *= inverse_frobenius_norm(w.c_upsilon);  // committed above: the workspace is free
+        excitation_->add(w.c_upsilon);
+      }
     }
     return UpdateStatus::accepted;
+  }
+
+  // 1/‖M‖_F from the scaled entries, for an M whose squared norm overflows
+  // (then √μ_k of the normalized step: μ_k = 1/‖C̄Υ‖²_F itself underflows).
+  static Scalar inverse_frobenius_norm(const typename Dims::OutputRegressor& m) {
+    const Scalar scale = m.cwiseAbs().maxCoeff();
+    return Scalar(1) / (scale * (m / scale).norm());
   }
 
   void update_closed_loop() {
@@ -266,7 +268,6 @@ class GuyaderZhangObserver
   typename Dims::StateMatrix closed_loop_;  // A − K C, cached for a time-invariant model
   typename Dims::OutputRegressor last_c_upsilon_;
   Scalar last_mu_ = Scalar(0);
-  Scalar last_root_mu_ = Scalar(-1);  // √μ_k of the last step when μ_k itself underflowed, else −1
   bool normalized_step_;
   std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;
   // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
