@@ -177,6 +177,23 @@ TEST(ContinuousLinearPlant, ItsClockDoesNotDriftOverManyPeriods) {
   EXPECT_NEAR(plant.sample().t, 200.0f, 2e-5f);
 }
 
+// The input callable's result is checked before it is stored or multiplied,
+// and a start that is not finite is refused by name.
+TEST(ContinuousLinearPlant, AnInputOfAnotherSizeAndNonFiniteStartsAreRefusedByName) {
+  const auto model = siso::model<double>();
+  const auto eta0 = siso::initial_state<double>();
+  const auto theta = siso::true_parameters<double>();
+  const auto wide_input = [](double t) { return Eigen::VectorXd::Constant(t > 0 ? 2 : 1, 1.0); };
+  adaptobs::ContinuousLinearPlant plant(model, eta0, theta, wide_input);
+  EXPECT_CONFIGURATION_ERROR_NAMES(plant.advance(), "input(t)");
+  const auto input = [](double) { return Eigen::VectorXd::Ones(1); };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::ContinuousLinearPlant(model, eta0, theta, input, {.start_time = nan}),
+                                   "options.start_time");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::ContinuousLinearPlant(model, decltype(eta0)::Constant(nan), theta, input),
+                                   "eta0");
+}
+
 // V = eᵀPe + θ̃ᵀΓ⁻¹θ̃ (P from the KYP certificate) never increases (Alg. 1–2);
 // V = |e|² + θ̃ᵀΓ⁻¹θ̃ never increases for Alg. 3 on the periodic plant.
 template <class Observer, class Plant, class Weight>
