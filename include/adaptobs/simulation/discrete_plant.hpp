@@ -88,7 +88,6 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
   }
 
  private:
-
   void make_sample() {
     signals_at(k_, sample_);
     measure(model_.at(k_));
