@@ -239,7 +239,7 @@ class GuyaderZhangObserver
       if (last_mu_ > Scalar(0)) [[likely]] {
         excitation_->add(last_c_upsilon_, last_mu_);
       } else {
-        w.c_upsilon *= inverse_frobenius_norm(w.c_upsilon);  // committed above: the workspace is free
+        w.c_upsilon *= error_scale;  // √μ_k (committed above: the workspace is free)
         excitation_->add(w.c_upsilon);
       }
     }

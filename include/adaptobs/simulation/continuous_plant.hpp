@@ -48,7 +48,7 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
         theta_(std::move(theta)),
         input_(std::move(input)),
         options_(options),
-        t_(options.start_time),
+        origin_(options.start_time),
         rk4_(eta_),
         rng_(options.seed) {
     constexpr std::string_view who = "ContinuousLinearPlant";
@@ -57,22 +57,22 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
     detail::require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
     detail::require_non_negative(options.output_noise, who, "options.output_noise");
     detail::require(std::isfinite(options.start_time), who, "options.start_time", "must be finite");
-    sample_.t = t_;
-    sample_.u = input_at(t_);
-    sample_.y = measure(t_, eta_);
+    sample_.t = origin_;
+    sample_.u = input_at(sample_.t);
+    sample_.y = measure(sample_.t, eta_);
   }
 
   /// Measured sample at the current time (with the midpoint of the last interval after the first advance).
   [[nodiscard]] const Sample& sample() const noexcept { return sample_; }
   [[nodiscard]] const State& state() const noexcept { return eta_; }
   [[nodiscard]] const Parameters& parameters() const noexcept { return theta_; }
-  [[nodiscard]] double time() const noexcept { return static_cast<double>(t_); }
+  [[nodiscard]] double time() const noexcept { return static_cast<double>(sample_.t); }
   [[nodiscard]] const Model& model() const noexcept { return model_; }
 
   /// Moves one period forward.
   void advance() {
     const Scalar half = options_.period / Scalar(2);
-    const Scalar t0 = t_;
+    const Scalar t0 = sample_.t;
     const auto f = [this](const State& x, State& dx, Scalar t) { derivative(x, dx, t); };
     rk4_.integrate(f, eta_, t0, t0 + half, options_.substeps);
     typename Sample::Midpoint mid{input_at(t0 + half), measure(t0 + half, eta_)};
@@ -80,10 +80,9 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
     // The clock counts periods from its origin: adding the period at each step
     // would accumulate its rounding (a float clock would drift by a period in 10⁵ steps).
     ++periods_;
-    t_ = origin_ + Scalar(periods_) * options_.period;
-    sample_.t = t_;
-    sample_.u = input_at(t_);
-    sample_.y = measure(t_, eta_);
+    sample_.t = origin_ + Scalar(periods_) * options_.period;
+    sample_.u = input_at(sample_.t);
+    sample_.y = measure(sample_.t, eta_);
     sample_.midpoint = std::move(mid);
   }
 
@@ -106,12 +105,11 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
   /// Places the plant at (η, t) (after a joint integration step); the sample is re-measured without midpoint.
   void set_state(const State& eta, Scalar t) {
     eta_ = eta;
-    t_ = t;
     origin_ = t;
     periods_ = 0;
-    sample_.t = t_;
-    sample_.u = input_at(t_);
-    sample_.y = measure(t_, eta_);
+    sample_.t = t;
+    sample_.u = input_at(t);
+    sample_.y = measure(t, eta_);
     sample_.midpoint.reset();
   }
 
@@ -135,8 +133,7 @@ class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
   Parameters theta_;
   InputFn input_;
   ContinuousPlantOptions<Scalar> options_;
-  Scalar t_;
-  Scalar origin_ = t_;     ///< start time, or the time of the last `set_state`
+  Scalar origin_;          ///< start time, or the time of the last `set_state`
   long long periods_ = 0;  ///< periods advanced since origin_
   RungeKutta4<State> rk4_;
   std::mt19937_64 rng_;
