@@ -771,6 +771,9 @@ TEST(DetectionEvaluation, BadFaultsAndRunsAreRefusedByName) {
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_detection(good, {.time = nan}, 1, 4, 1), "fault.time");
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_detection(good, {.time = 10, .parameter = -2}, 1, 4, 1),
                                    "fault.parameter");
+  // A count no vector can hold was a std::length_error from inside.
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_detection(good, {.time = 10}, 1, adaptobs::Index{1} << 60, 1),
+                                   "seeds");
   for (const auto& scenario : {runs_with(100, 0, 60), runs_with(0, nan, 60), runs_with(0, 100, 500),
                                runs_with(0, 100, nan)})
     EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_detection(scenario, {.time = 10}, 1, 4, 1), "scenario");

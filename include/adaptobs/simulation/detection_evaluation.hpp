@@ -76,6 +76,10 @@ template <class Scenario>
                                                   std::uint64_t first_seed, Index seeds, unsigned threads = 0) {
   constexpr std::string_view who = "evaluate_detection";
   detail::require(seeds >= 1, who, "seeds", "must be at least 1");
+  // Both runs of every seed are kept until scoring: a count past what a
+  // vector can hold would only fail later, as std::length_error.
+  detail::require(static_cast<std::size_t>(seeds) <= std::vector<MonitoredRun>().max_size(), who, "seeds",
+                  "must be at most std::vector<MonitoredRun>::max_size() (each seed's runs are kept for scoring)");
   detail::require(std::isfinite(fault.time), who, "fault.time", "must be finite");
   detail::require(fault.parameter >= -1, who, "fault.parameter", "must be -1 (not scored) or a parameter index");
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
