@@ -134,6 +134,41 @@ TEST(DiscreteNonlinearPlant, ATransitionOfAnotherSizeIsRefusedByName) {
   EXPECT_EQ(plant.step(), 0);
 }
 
+// The plant has no model to size u and θ: a run-time-sized input or
+// parameter vector that changed size was stored as returned, and a throwing
+// callable of step k + 1 left the state moved and the sample stale.
+TEST(DiscreteNonlinearPlant, InputsAndParametersKeepTheirStepZeroSizes) {
+  using DD = adaptobs::DynamicDimensions<double>;
+  const auto transition = [](const Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& theta) {
+    return Eigen::VectorXd(0.5 * x + Eigen::VectorXd::Constant(2, u(0) + theta(0)));
+  };
+  const auto sized_from = [](Index k_changed) {
+    return [=](Index k) { return Eigen::VectorXd(Eigen::VectorXd::Ones(k >= k_changed ? 2 : 1)); };
+  };
+  const auto make = [&](auto input, auto parameters) {
+    return adaptobs::make_discrete_nonlinear_plant<DD>(transition, Eigen::MatrixXd::Ones(1, 2),
+                                                       Eigen::VectorXd::Ones(2), input, parameters);
+  };
+  auto growing_input = make(sized_from(2), sized_from(100));
+  growing_input.advance();
+  const Eigen::VectorXd x1 = growing_input.state();
+  EXPECT_TRUE(x1.isApprox(Eigen::VectorXd::Constant(2, 2.5), 1e-15));
+  EXPECT_CONFIGURATION_ERROR_NAMES(growing_input.advance(), "input(k)");
+  EXPECT_EQ(growing_input.step(), 1);
+  EXPECT_TRUE(growing_input.state() == x1);
+  EXPECT_EQ(growing_input.sample().u.size(), 1);
+
+  auto growing_theta = make(sized_from(100), sized_from(1));
+  EXPECT_CONFIGURATION_ERROR_NAMES(growing_theta.advance(), "parameters_at(k)");
+  EXPECT_EQ(growing_theta.step(), 0);
+  EXPECT_TRUE(growing_theta.state() == Eigen::VectorXd::Ones(2));
+
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      make(sized_from(100), [=](Index) { return Eigen::VectorXd(Eigen::VectorXd::Constant(1, nan)); }),
+      "parameters_at(k)");
+}
+
 TEST(Simulation, RecordsTruthAndEveryObserverInSchemaOrder) {
   auto plant = satellite::make_plant<double>();
   adaptobs::GuyaderZhangObserver observer(satellite::model<double>(), satellite::paper_gain<double>(), satellite::mu,

@@ -40,24 +40,34 @@ class DiscreteNonlinearPlant : public DiscretePlantState<D, InputOutputSample<D>
     detail::require_finite_shape(C_, C_.rows(), x_.rows(), who, "C");
     detail::require_finite(x_, who, "x0");
     detail::require_positive(sampling_period, who, "sampling_period");
-    make_sample();
+    // The plant has no model to give nu and np: step 0's input and parameters
+    // set them (with run-time sizes), and every later step must keep them.
+    sample_.u = input_(Index{0});
+    theta_ = parameters_at_(Index{0});
+    detail::require_shape(sample_.u, sample_.u.rows(), 1, who, "input(k)");
+    detail::require_finite(theta_, who, "parameters_at(k)");
+    sample_.y.noalias() = C_ * x_;
   }
 
-  /// Moves to step k + 1. A transition returning a state of another size
-  /// throws a `ConfigurationError` naming it, with the plant at step k.
+  /// Moves to step k + 1. An input or parameters of another size than at
+  /// step 0, non-finite parameters, or a transition returning a state of another size, throws a
+  /// `ConfigurationError` naming the callable, with the plant at step k.
   void advance() {
+    constexpr std::string_view who = "DiscreteNonlinearPlant";
+    const Index k = k_ + 1;
+    // What may throw comes first, before anything moves.
+    typename D::Input u = detail::require_returned_shape(input_(k), sample_.u.rows(), 1, who, "input(k)");
+    Parameters theta = detail::require_returned_shape(parameters_at_(k), theta_.rows(), 1, who, "parameters_at(k)");
+    detail::require_finite(theta, who, "parameters_at(k)");
     x_ = detail::require_returned_shape(transition_(std::as_const(x_), std::as_const(sample_.u), std::as_const(theta_)),
-                                        x_.rows(), 1, "DiscreteNonlinearPlant", "transition(x, u, theta)");
-    ++k_;
-    make_sample();
+                                        x_.rows(), 1, who, "transition(x, u, theta)");
+    k_ = k;
+    sample_.u = std::move(u);
+    theta_ = std::move(theta);
+    sample_.y.noalias() = C_ * x_;
   }
 
  private:
-  void make_sample() {
-    theta_ = parameters_at_(k_);
-    sample_.u = input_(k_);
-    sample_.y.noalias() = C_ * x_;
-  }
 
   TransitionFn transition_;
   typename D::OutputMatrix C_;
