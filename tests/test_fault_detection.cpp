@@ -53,6 +53,11 @@ TEST(ChiSquareDistribution, QuantilesMatchTables) {
     EXPECT_NEAR(adaptobs::chi_square_upper_quantile(2, p), -2 * std::log(p), 1e-10 * (1 - 2 * std::log(p))) << p;
   EXPECT_NEAR(adaptobs::chi_square_upper_tail(2, 3.0), std::exp(-1.5), 1e-14);
   EXPECT_NEAR(adaptobs::chi_square_upper_tail(2, 7.0), std::exp(-3.5), 1e-14);
+  // Few degrees of freedom and p near 1: the quantile is 2(Γ(ν/2 + 1)(1 − p))^{2/ν}
+  // to a relative O(x). A bracket searched upward only stopped its bisection at
+  // 3e-60, three times this one.
+  const double few = 2 * std::pow(std::tgamma(1.05) * 1e-3, 20);
+  EXPECT_NEAR(adaptobs::chi_square_upper_quantile(0.1, 0.999), few, 1e-10 * few);
 }
 
 TEST(ChiSquareDistribution, LogGammaMatchesTheStandardLibrary) {
@@ -74,6 +79,11 @@ TEST(ChiSquareDistribution, RefusesBadArguments) {
   // 0.4986 for 0.4999998, at 1e18 ∞, and an iteration count overflowed an int).
   EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_tail(1e12, 1e12); }),
                     "degrees_of_freedom"));
+  // Below 1e-2 degrees of freedom 1 − P cancels (at 1e-300 it read 3.5e-14 for
+  // 2.8e-301, at 1e-308 NaN); a quantile below the normal doubles is refused.
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_tail(1e-300, 1); }),
+                    "degrees_of_freedom"));
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(0.02, 1 - 1e-6); }), "p"));
   // At the limit, the median of χ²_ν, ν(1 − 2/(9ν))³ to O(ν^{-1}), has a tail of 1/2.
   const double nu = adaptobs::chi_square_max_degrees_of_freedom;
   EXPECT_NEAR(adaptobs::chi_square_upper_tail(nu, nu * std::pow(1 - 2 / (9 * nu), 3)), 0.5, 1e-7);
@@ -226,6 +236,42 @@ TEST(CusumDetector, ReanchorsAfterTheHoldOff) {
   EXPECT_EQ(detector.direction(), -1);
 }
 
+// What every sequential test shows through its accessors, and its own
+// statistics (`statistics_of`).
+template <class Detector, class Statistics>
+void expect_same_sequential_test(const Detector& a, const Detector& b, Statistics statistics_of) {
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(a.nominal(), b.nominal()));
+  EXPECT_EQ(a.isolated(), b.isolated());
+  EXPECT_EQ(a.direction(), b.direction());
+  EXPECT_EQ(a.alarm_statistic(), b.alarm_statistic());
+  EXPECT_EQ(a.alarm(), b.alarm());
+  EXPECT_EQ(a.alarm_count(), b.alarm_count());
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(statistics_of(a), statistics_of(b)));
+}
+
+// A reset kept the re-anchored nominal and the last alarm's component, sign
+// and statistic: the reset test alarmed on values equal to the nominal it was built with.
+TEST(SequentialTests, ResetReturnsToTheStateAfterConstruction) {
+  const auto check = [](auto fresh, auto statistics_of) {
+    auto used = fresh;
+    for (int k = 0; k < 12; ++k) (void)used.update(Eigen::Vector2d(0.5 * k, -7.0));
+    ASSERT_GE(used.alarm_count(), 1);
+    ASSERT_NE(used.nominal()(1), 0.0);  // re-anchored
+    used.reset();
+    expect_same_sequential_test(used, fresh, statistics_of);
+    for (int k = 0; k < 6; ++k) {
+      (void)used.update(Eigen::Vector2d(0.3 * k, 0.0));
+      (void)fresh.update(Eigen::Vector2d(0.3 * k, 0.0));
+      expect_same_sequential_test(used, fresh, statistics_of);
+    }
+  };
+  const adaptobs::SequentialTestOptions reanchoring{.hold_off = 1, .reanchor = true};
+  check(adaptobs::CusumDetector<double, 2>(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), 0.5, 3.0, reanchoring),
+        [](const auto& d) { return Eigen::Vector4d(d.upper()(0), d.upper()(1), d.lower()(0), d.lower()(1)); });
+  check(adaptobs::GlrDetector<double, 2>(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(), 3, 8.0, reanchoring),
+        [](const auto& d) { return d.statistics(); });
+}
+
 TEST(CusumDetector, RejectsNonFiniteValuesUnchanged) {
   const Eigen::Vector2d nominal(0, 0), scale(1, 1);
   adaptobs::CusumDetector<double, 2> detector(nominal, scale, 0.5, 3.0, {.stride = 2});
@@ -249,6 +295,8 @@ TEST(CusumDetector, BadConfigurationNamesTheArgument) {
   const Eigen::Vector2d nominal(1, 1), scale(1, 1);
   using Detector = adaptobs::CusumDetector<double, 2>;
   EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, Eigen::Vector2d(1, 0), 0.5, 3.0); }), "scale"));
+  // A subnormal scale has no finite reciprocal: every deviation read ∞ and alarmed.
+  EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, Eigen::Vector2d(1, 1e-310), 0.5, 3.0); }), "scale"));
   EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, scale, 0.0, 3.0); }), "drift"));
   EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, scale, 0.5, -1.0); }), "threshold"));
   EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, scale, 0.5, 3.0, {.stride = 0}); }),
@@ -421,7 +469,8 @@ TEST(ChiSquareTest, RejectsNonFiniteErrorsUnchangedAndNamesBadArguments) {
   ASSERT_TRUE(adaptobs::accepted(test.update(Eigen::Vector2d(1, 2))));
   const double before = test.statistic();
   EXPECT_EQ(test.update(Eigen::Vector2d(NAN, 0)), adaptobs::UpdateStatus::nonfinite_input);
-  EXPECT_EQ(test.update(Eigen::Vector2d(1e200, 0)), adaptobs::UpdateStatus::nonfinite_input);  // overflows
+  EXPECT_EQ(test.update(Eigen::Vector2d(0, -std::numeric_limits<double>::infinity())),
+            adaptobs::UpdateStatus::nonfinite_input);
   EXPECT_EQ(test.statistic(), before);
   ASSERT_TRUE(adaptobs::accepted(test.update(Eigen::Vector2d(0, 1))));
   ASSERT_TRUE(adaptobs::accepted(test.update(Eigen::Vector2d(3, 0))));
@@ -435,6 +484,29 @@ TEST(ChiSquareTest, RejectsNonFiniteErrorsUnchangedAndNamesBadArguments) {
   EXPECT_TRUE(names(configuration_error_of([&] { Test(I, 0, 0.1); }), "window"));
   EXPECT_TRUE(names(configuration_error_of([&] { Test(Eigen::Matrix2d(Eigen::Vector2d(1, -1).asDiagonal()), 5, 0.1); }),
                     "covariance"));
+}
+
+// A finite error whose weighted square overflowed was rejected as non-finite
+// and never alarmed, while a smaller one that overflowed only the window's sum
+// did; and an S whose inverse overflows rejected every error, even zero.
+TEST(ChiSquareTest, AnErrorWhoseWeightedSquareOverflowsEndsItsWindowInAnAlarm) {
+  Eigen::Matrix2d S;
+  S << 1, 0.5, 0.5, 1;
+  adaptobs::ChiSquareTest<double, 2> test(S, 2, 0.01);
+  // ε₁(S⁻¹ε)₁ = +∞ and ε₂(S⁻¹ε)₂ = −∞ unscaled; εᵀS⁻¹ε = 1.01e400.
+  ASSERT_TRUE(adaptobs::accepted(test.update(Eigen::Vector2d(1e200, 4e199))));
+  EXPECT_EQ(test.statistic(), std::numeric_limits<double>::infinity());
+  ASSERT_TRUE(adaptobs::accepted(test.update(Eigen::Vector2d(0, 0))));
+  EXPECT_TRUE(test.alarm());
+  EXPECT_EQ(test.alarm_count(), 1);
+  // Below the overflow: (1e150)²·(S⁻¹)₁₁ = 1e300·4/3.
+  ASSERT_TRUE(adaptobs::accepted(test.update(Eigen::Vector2d(1e150, 0))));
+  EXPECT_NEAR(test.statistic(), 1e300 * 4.0 / 3.0, 1e286);
+  ASSERT_TRUE(adaptobs::accepted(test.update(Eigen::Vector2d(0, 0))));
+  EXPECT_EQ(test.alarm_count(), 2);
+
+  const Eigen::Matrix2d tiny = 1e-310 * Eigen::Matrix2d::Identity();
+  EXPECT_TRUE(names(configuration_error_of([&] { adaptobs::ChiSquareTest<double, 2>(tiny, 5, 0.1); }), "covariance"));
 }
 
 // An observer whose estimates have other sizes than the monitor's design is

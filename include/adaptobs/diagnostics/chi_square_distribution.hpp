@@ -86,17 +86,26 @@ inline double upper_gamma_fraction(double a, double x) {
 /// leaves a relative error of about \f$10^{-8}\f$ at \f$\nu = 10^7\f$ (\f$10^{-10}\f$ at
 /// \f$10^6\f$) and grows with ν; beyond, the distribution functions refuse.
 inline constexpr double chi_square_max_degrees_of_freedom = 1e7;
+/// Fewest degrees of freedom the tail is computed for. Below 1/2 the series
+/// gives \f$Q = 1 - P\f$ with P near 1, and the cancellation costs
+/// \f$\log_{10}(1/\nu)\f$ digits more than elsewhere (the term 1/a overflows at
+/// \f$\nu \approx 10^{-308}\f$); at \f$\nu = 10^{-2}\f$ the relative error is
+/// still about \f$10^{-13}\f$. A χ² test's ν, W n_y or Satterthwaite's
+/// \f$2(\mathrm{E}\,T)^2/\mathrm{Var}\,T\f$ of a sum of squares, is at least 1.
+inline constexpr double chi_square_min_degrees_of_freedom = 1e-2;
 
 namespace detail {
 inline void require_chi_square_degrees_of_freedom(double degrees_of_freedom, std::string_view who,
                                                   std::string_view argument) {
-  require_positive(degrees_of_freedom, who, argument);
+  require(degrees_of_freedom >= chi_square_min_degrees_of_freedom, who, argument,
+          "must be at least 1e-2 (chi_square_min_degrees_of_freedom): below, the tail loses its accuracy");
   require(degrees_of_freedom <= chi_square_max_degrees_of_freedom, who, argument,
           "must be at most 1e7 (chi_square_max_degrees_of_freedom): beyond, the tail loses its accuracy");
 }
 }  // namespace detail
 
-/// \f$\Pr[\chi^2_\nu > x]\f$ for \f$0 < \nu \le\f$ `chi_square_max_degrees_of_freedom`.
+/// \f$\Pr[\chi^2_\nu > x]\f$ for `chi_square_min_degrees_of_freedom`
+/// \f$\le \nu \le\f$ `chi_square_max_degrees_of_freedom`.
 [[nodiscard]] inline double chi_square_upper_tail(double degrees_of_freedom, double x) {
   detail::require_chi_square_degrees_of_freedom(degrees_of_freedom, "chi_square_upper_tail", "degrees_of_freedom");
   detail::require(!std::isnan(x), "chi_square_upper_tail", "x", "must not be NaN");
@@ -115,8 +124,13 @@ inline void require_chi_square_degrees_of_freedom(double degrees_of_freedom, std
   detail::require_chi_square_degrees_of_freedom(degrees_of_freedom, who, "degrees_of_freedom");
   detail::require(p > 0 && p < 1, who, "p", "must lie in (0, 1)");
   // The tail falls from 1 to 0 as x grows.
-  return detail::boundary_by_bisection([&](double x) { return chi_square_upper_tail(degrees_of_freedom, x) > p; },
-                                       degrees_of_freedom + 10);
+  const double x = detail::boundary_by_bisection(
+      [&](double x) { return chi_square_upper_tail(degrees_of_freedom, x) > p; }, degrees_of_freedom + 10);
+  // With few degrees of freedom and p near 1 the quantile, about
+  // \f$2(\Gamma(\nu/2+1)(1-p))^{2/\nu}\f$, can fall below the normal doubles.
+  detail::require(x >= std::numeric_limits<double>::min(), who, "p",
+                  "is so close to 1 that the quantile at these degrees of freedom is below the smallest normal double");
+  return x;
 }
 
 }  // namespace adaptobs

@@ -82,6 +82,8 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
     information_ = Matrix::Identity(ny, ny);
     factor.solve_in_place(information_);
     information_ = Scalar(0.5) * (information_ + information_.transpose()).eval();
+    detail::require(information_.allFinite(), who, "covariance",
+                    "has an inverse that overflows: rescale the output errors");
     // In floating point: window × outputs may not fit an Index.
     const double dof = options.degrees_of_freedom > 0 ? options.degrees_of_freedom
                                                       : static_cast<double>(window) * static_cast<double>(ny);
@@ -92,14 +94,20 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
 
   /// Takes the output error of one sample. Returns `nonfinite_input`, with the
   /// test unchanged, for a NaN or Inf in it; a wrong size is a `ConfigurationError`.
+  /// A finite error whose \f$\varepsilon^TS^{-1}\varepsilon\f$ overflows counts as +∞:
+  /// its window ends in an alarm.
   [[nodiscard]] UpdateStatus update(const Vector& output_error) {
     if constexpr (NY == Eigen::Dynamic)
       detail::require_shape(output_error, information_.rows(), 1, "ChiSquareTest::update", "output_error");
     if (!output_error.allFinite()) return UpdateStatus::nonfinite_input;
-    // εᵀS⁻¹ε column by column: no temporary, whatever the sizes.
-    Scalar term = 0;
-    for (Index j = 0; j < information_.cols(); ++j) term += output_error(j) * information_.col(j).dot(output_error);
-    if (!std::isfinite(term)) return UpdateStatus::nonfinite_input;
+    Scalar term = weighted_square(output_error);
+    if (!std::isfinite(term)) {
+      // Overflow in the products (∞, or ∞ − ∞ across the off-diagonal terms):
+      // εᵀS⁻¹ε = m² ε̂ᵀS⁻¹ε̂ with ε̂ = ε/m of largest entry 1, m² ε̂ᵀS⁻¹ε̂ positive.
+      const Scalar largest = output_error.cwiseAbs().maxCoeff();
+      term = largest * (largest * weighted_square(output_error / largest));
+      if (std::isnan(term)) return UpdateStatus::nonfinite_result;
+    }
     sum_ += term;
     this->clear_alarm();
     if (++filled_ == window_) {
@@ -133,6 +141,14 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
   }
 
  private:
+  /// \f$v^TS^{-1}v\f$ column by column: no temporary, whatever the sizes.
+  template <class V>
+  [[nodiscard]] Scalar weighted_square(const V& v) const {
+    Scalar sum = 0;
+    for (Index j = 0; j < information_.cols(); ++j) sum += v(j) * information_.col(j).dot(v);
+    return sum;
+  }
+
   Index window_;
   Scalar false_alarm_probability_;
   Matrix information_;

@@ -88,7 +88,8 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   [[nodiscard]] const Vector& nominal() const noexcept { return nominal_; }
 
   /// Re-anchors on a new nominal value (after a confirmed change) and restarts
-  /// the statistics, the stride and the hold-off; the alarm count is kept.
+  /// the statistics, the stride and the hold-off; the alarm count and what the
+  /// last alarm named are kept.
   void rearm(const Vector& nominal) {
     const std::string who = std::string(name_) + "::rearm";
     require_finite_shape(nominal, nominal_.size(), 1, who, "nominal");
@@ -96,27 +97,35 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
     restart();
   }
 
-  /// Back to the state after construction, alarm count included.
+  /// Back to the state after construction: the nominal value it was built
+  /// with, no alarm counted or named.
   void reset() {
+    nominal_ = initial_nominal_;
     restart();
     this->clear_alarms();
+    isolated_ = 0;
+    direction_ = 0;
+    alarm_statistic_ = 0;
   }
 
  protected:
   /// \param who the class's name, a string literal (kept for later messages).
   SequentialTest(std::string_view who, Vector nominal, const Vector& scale, Scalar threshold,
                  SequentialTestOptions options)
-      : ThresholdAlarm<Scalar>(threshold), name_(who), nominal_(std::move(nominal)), options_(options) {
+      : ThresholdAlarm<Scalar>(threshold), name_(who), nominal_(std::move(nominal)), initial_nominal_(nominal_),
+        options_(options) {
     const Index n = nominal_.size();
     require(n >= 1, who, "nominal", "must have at least one component");
     require_finite(nominal_, who, "nominal");
     require_shape(scale, n, 1, who, "scale");
     require(((scale.array() > Scalar(0)) && scale.array().isFinite()).all(), who, "scale",
             "must be positive and finite");
+    inverse_scale_ = scale.cwiseInverse();
+    // A subnormal scale has no finite reciprocal: every deviation would read ∞.
+    require(inverse_scale_.allFinite(), who, "scale", "must have finite reciprocals (no subnormal entries)");
     require_positive(threshold, who, "threshold");
     require(options.stride >= 1, who, "options.stride", "must be at least 1");
     require(options.hold_off >= 0, who, "options.hold_off", "must be non-negative");
-    inverse_scale_ = scale.cwiseInverse();
     z_.setZero(n);
   }
 
@@ -135,6 +144,7 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
 
   std::string_view name_;  // the class's name, a string literal
   Vector nominal_;
+  Vector initial_nominal_;  // what `reset` returns to
   Vector inverse_scale_;
   Vector z_;  // the normalized value being evaluated
   SequentialTestOptions options_;
