@@ -115,15 +115,20 @@ TEST(MatrixExponential, StiffTriangularMatchesDividedDifferences) {
     EXPECT_LE(worst_relative_error(matrix_exponential(Eigen::Matrix3d(a.transpose())), expected.transpose()), 1e-12)
         << "lower triangular, b = " << b;
   }
-  for (double b : {1e16, 1e100, 1e300}) {
-    // A Jordan block: e^A = e^{−1}(I + N). Its ‖Aᵏ‖^{1/k} ≈ (kb)^{1/k} asks for
-    // hundreds of squarings, each of which would double the error of the diagonal.
-    Eigen::Matrix2d a;
-    a << -1, b, 0, -1;
-    Eigen::Matrix2d expected;
-    expected << 1, b, 0, 1;
-    EXPECT_LE(worst_relative_error(matrix_exponential(a), std::exp(-1.0) * expected), 1e-12) << "Jordan, b = " << b;
-  }
+  for (double b : {1e16, 1e100, 1e300})
+    for (double lambda : {-1.0, -10.0, -400.0}) {
+      // A Jordan block: e^A = e^λ(I + N). Its ‖Aᵏ‖^{1/k} ≈ (kb)^{1/k} asks for
+      // hundreds of squarings, each of which would double the error of the
+      // diagonal. With b = 1e300 and |λ| > 1 the powers of A / ‖A‖ underflow to
+      // zero while A² overflows, which was once taken for nilpotency
+      // (e^A(0, 0) read 1342.59 for 4.54e-5 at λ = −10).
+      Eigen::Matrix2d a;
+      a << lambda, b, 0, lambda;
+      Eigen::Matrix2d expected;
+      expected << 1, b, 0, 1;
+      EXPECT_LE(worst_relative_error(matrix_exponential(a), std::exp(lambda) * expected), 1e-12)
+          << "Jordan, λ = " << lambda << ", b = " << b;
+    }
   for (double k : {1e3, 1e10, 1e16, 1e300}) {
     const Eigen::Matrix2d a = Eigen::Vector2d(-k, 0).asDiagonal();
     EXPECT_LE(worst_relative_error(matrix_exponential(a), Eigen::Vector2d(std::exp(-k), 1).asDiagonal()), 1e-12)
@@ -158,6 +163,20 @@ TEST(MatrixExponential, BadlyScaledSimilarityIsBalanced) {
     const Eigen::DiagonalMatrix<double, 2> d(1, s), d_inverse(1, 1 / s);
     const Eigen::Matrix2d a = d * m * d_inverse;
     EXPECT_LE(worst_relative_error(matrix_exponential(a), Eigen::Matrix2d(d * em * d_inverse)), 1e-12) << "s = " << s;
+  }
+  // A² = 2⁻⁵¹I, so e^A = cosh(w)I + sinh(w)/w A with w = 2^{−25.5}: its (2, 1) entry,
+  // 9e307, is representable, but the balancing's ratio 2^1049 of D's entries is
+  // not, which once refused the result as beyond the floating-point range.
+  {
+    const double tiny = std::ldexp(1.0, -1074), huge = std::ldexp(1.0, 1023);
+    Eigen::Matrix2d a;
+    a << 0, tiny, huge, 0;
+    const double w = std::sqrt(tiny * huge);  // tiny · huge = 2⁻⁵¹ exactly
+    const double cosh = std::cosh(w), sinh_over = std::sinh(w) / w;
+    const Eigen::Matrix2d e = matrix_exponential(a);
+    EXPECT_NEAR(e(0, 0), cosh, 1e-15);
+    EXPECT_NEAR(e(1, 1), cosh, 1e-15);
+    EXPECT_NEAR(e(1, 0) / huge, sinh_over, 1e-15);
   }
   // Symmetric M = Q Λ Qᵀ, so e^M = Q e^Λ Qᵀ independently of the exponential; seen through
   // D = diag(1, s, s²) its entries span up to 1e32 in magnitude.

@@ -378,11 +378,35 @@ template <typename Scalar>
   return x;
 }
 
+/// pq, and whether a product of two nonzero entries fell below the normal
+/// range on the way: a zero entry of pq then need not be a true zero.
+template <typename Scalar>
+bool multiply_noting_underflow(const DynamicMatrix<Scalar>& p, const DynamicMatrix<Scalar>& q,
+                               DynamicMatrix<Scalar>& pq) {
+  constexpr Scalar smallest_normal = std::numeric_limits<Scalar>::min();
+  bool underflow = false;
+  pq.setZero(p.rows(), q.cols());
+  for (Index j = 0; j < q.cols(); ++j)
+    for (Index k = 0; k < p.cols(); ++k) {
+      const Scalar qkj = q(k, j);
+      if (qkj == Scalar(0)) continue;
+      for (Index i = 0; i < p.rows(); ++i) {
+        const Scalar term = p(i, k) * qkj;
+        underflow = underflow || (p(i, k) != Scalar(0) && std::abs(term) < smallest_normal);
+        pq(i, j) += term;
+      }
+    }
+  return underflow;
+}
+
 /// I + A + … + A^{k−1}/(k−1)! when A^k = 0 exactly in floating point for some k ≤ 10;
 /// false otherwise. A nilpotent A has this finite series as its exponential, while
 /// scaling and squaring, for a nonnormal nilpotent A such as [[b, −b], [b, −b]],
 /// loses ‖A‖·u of accuracy that the series keeps. Where A^k overflows, the test for
-/// zero uses (A / 2^e)^k, 2^e ≈ ‖A‖₁, instead (a power of two keeps it exact).
+/// zero uses (A / 2^e)^k, 2^e ≈ ‖A‖₁, instead (a power of two keeps it exact). A
+/// zero reached through an underflowing product proves nothing (the powers of
+/// [[−10, 10³⁰⁰], [0, −10]] / 2^e underflow to zero long before A^k overflows),
+/// so the series is then not used.
 template <typename Scalar>
 bool nilpotent_series(const DynamicMatrix<Scalar>& a, DynamicMatrix<Scalar>& out) {
   const Index n = a.rows();
@@ -390,13 +414,19 @@ bool nilpotent_series(const DynamicMatrix<Scalar>& a, DynamicMatrix<Scalar>& out
   const DynamicMatrix<Scalar> normalized = a * std::ldexp(Scalar(1), -e);
   DynamicMatrix<Scalar> power = a;
   DynamicMatrix<Scalar> normalized_power = normalized;
+  DynamicMatrix<Scalar> product;
   DynamicMatrix<Scalar> sum = DynamicMatrix<Scalar>::Identity(n, n) + a;
+  bool power_underflowed = false, normalized_underflowed = false;
   Scalar factorial(1);
   for (int k = 2; k <= 10; ++k) {
-    power = (power * a).eval();
-    normalized_power = (normalized_power * normalized).eval();
+    power_underflowed = multiply_noting_underflow(power, a, product) || power_underflowed;
+    power.swap(product);
+    normalized_underflowed = multiply_noting_underflow(normalized_power, normalized, product) || normalized_underflowed;
+    normalized_power.swap(product);
     const bool finite = power.allFinite();
-    if (finite ? power.isZero(Scalar(0)) : normalized_power.isZero(Scalar(0))) {
+    const bool zero = finite ? power.isZero(Scalar(0)) && !power_underflowed
+                             : normalized_power.isZero(Scalar(0)) && !normalized_underflowed;
+    if (zero) {
       out = std::move(sum);
       return true;
     }
@@ -442,9 +472,10 @@ template <typename Scalar>
   Matrix x;
   if (!nilpotent_series(a, x)) x = scaling_and_squaring(a, triangular);
 
-  // Undo the balancing: e^A = D e^B D⁻¹, exact with powers of two.
+  // Undo the balancing: e^A = D e^B D⁻¹, exact with powers of two. By their
+  // exponents: d(row)/d(col) itself may be out of range while the entry is not.
   for (Index col = 0; col < n; ++col)
-    for (Index row = 0; row < n; ++row) x(row, col) *= d(row) / d(col);
+    for (Index row = 0; row < n; ++row) x(row, col) = std::ldexp(x(row, col), std::ilogb(d(row)) - std::ilogb(d(col)));
   if (!x.allFinite()) {
     std::ostringstream os;
     os << "has an exponential beyond the floating-point range (‖A‖₁ = " << one_norm(a_in)
