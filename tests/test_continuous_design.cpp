@@ -128,6 +128,22 @@ std::vector<SprCase> spr_cases() {
   };
 }
 
+// The polynomial helpers took matrices of any shape: a C of the wrong width or
+// a non-square m read outside them, and a NaN came back as coefficients.
+TEST(Polynomials, HelpersRefuseDataOfTheWrongShapeOrNotFiniteByName) {
+  const Eigen::Matrix3d a = siso::dynamics<double>();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::observability_matrix(a, Eigen::RowVector2d(1, 0)), "C");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_polynomial(poly({1, 2}), Eigen::MatrixXd::Ones(2, 3)), "m");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_polynomial(poly({1, nan}), a), "p");
+  Eigen::Matrix3d a_nan = a;
+  a_nan(1, 2) = nan;
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::characteristic_polynomial(a_nan), "A");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::count_real_roots_above(poly({1, nan, 1}), -1.0), "p");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::count_real_roots_above(poly({1, 0, -1}), nan), "a");
+  EXPECT_EQ(adaptobs::observability_matrix(a, Eigen::RowVector3d(1, 0, 0)).rows(), 3);
+}
+
 TEST(PositiveReal, ExactTestSweepAndKypAgreeOnReferenceFunctions) {
   RandomMatrices rng(1);
   for (const SprCase& k : spr_cases()) {

@@ -273,4 +273,43 @@ TEST(TakagiSugenoLmi, BadOptionsNameTheArgument) {
   expect_names(o, "options.variable_bound");
 }
 
+// The checking helpers took any data and index: a vertex index past the last,
+// an R of the wrong size, a C of the wrong width or a y too short for the
+// problem read or wrote outside their matrices.
+TEST(TakagiSugenoLmi, CheckingHelpersRefuseDataOfTheWrongShapeByName) {
+  const auto model = wwtp::model<double>(0.05);
+  const auto data = adaptobs::takagi_sugeno_lmi_data(model, remark6_options());
+  const Index r = data.vertex_count(), nx = data.nx(), ny = data.ny(), np = data.np(), nu = data.nu();
+  adaptobs::TakagiSugenoCertificate certificate{.P0 = MatrixXd::Identity(nx, nx),
+                                                .P1 = MatrixXd::Identity(np, np),
+                                                .R = std::vector<MatrixXd>(std::size_t(r), MatrixXd::Zero(nx, ny)),
+                                                .F = std::vector<MatrixXd>(std::size_t(r), MatrixXd::Zero(np, ny)),
+                                                .lambda = {1, 1, 1, 1},
+                                                .Gamma_x = MatrixXd::Identity(nx, nx),
+                                                .Gamma_u = MatrixXd::Identity(nu, nu),
+                                                .Gamma_theta = {},
+                                                .Gamma_dtheta = {}};
+  EXPECT_EQ(adaptobs::takagi_sugeno_vertex_lmi(data, certificate, r - 1).rows(), data.vertex_lmi_size());
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::takagi_sugeno_vertex_lmi(data, certificate, r), "i");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::takagi_sugeno_vertex_lmi(data, certificate, -1), "i");
+  auto short_r = certificate;
+  short_r.R.back() = MatrixXd::Zero(nx + 1, ny);
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::takagi_sugeno_vertex_lmi(data, short_r, 0), "certificate.R");
+  auto wide_c = data;
+  wide_c.C = MatrixXd::Ones(ny, nx + 1);
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::check_takagi_sugeno_certificate(wide_c, certificate), "data.C");
+
+  lmi::LmiProblem problem;
+  const auto p = problem.symmetric("P", 2);
+  problem.require_positive_definite("P > 0", p);
+  EXPECT_CONFIGURATION_ERROR_NAMES(problem.largest_eigenvalue(Eigen::VectorXd::Ones(2)), "y");
+  EXPECT_CONFIGURATION_ERROR_NAMES(p.value(Eigen::VectorXd::Ones(2)), "y");
+  EXPECT_CONFIGURATION_ERROR_NAMES(lmi::AffineMatrix::variable(-1), "k");
+  auto block = lmi::AffineMatrix::zero(3, 3);
+  EXPECT_CONFIGURATION_ERROR_NAMES(block.add_block(2, 0, p), "row, col");
+  block.add_block(1, 1, p);
+  EXPECT_MATRIX_NEAR(block.value(Eigen::Vector3d(1, 2, 3)).bottomRightCorner(2, 2), p.value(Eigen::Vector3d(1, 2, 3)),
+                     0.0, 0.0);
+}
+
 }  // namespace

@@ -32,6 +32,7 @@ template <class Derived>
 [[nodiscard]] Polynomial<typename Derived::Scalar> characteristic_polynomial(const Eigen::MatrixBase<Derived>& A) {
   using Scalar = typename Derived::Scalar;
   detail::require_square(A, "characteristic_polynomial", "A");
+  detail::require_finite(A, "characteristic_polynomial", "A");
   const Index n = A.rows();
   const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a = A;
   Polynomial<Scalar> p(n + 1);
@@ -89,6 +90,8 @@ template <class Derived>
 template <typename Scalar>
 [[nodiscard]] Index count_real_roots_above(const Polynomial<Scalar>& p, Scalar a,
                                            Scalar relative_tolerance = Scalar(1e-10)) {
+  detail::require_finite(p, "count_real_roots_above", "p");
+  detail::require(std::isfinite(a), "count_real_roots_above", "a", "must be finite");
   const auto trimmed = [&](Polynomial<Scalar> q) {
     const Scalar scale = q.size() == 0 ? Scalar(0) : q.cwiseAbs().maxCoeff();
     Index first = 0;
@@ -155,6 +158,9 @@ template <class Derived>
 [[nodiscard]] Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic> evaluate_polynomial(
     const Polynomial<typename Derived::Scalar>& p, const Eigen::MatrixBase<Derived>& m) {
   using Matrix = Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  detail::require_finite(p, "evaluate_polynomial", "p");
+  detail::require_square(m, "evaluate_polynomial", "m");
+  detail::require_finite(m, "evaluate_polynomial", "m");
   const Index n = m.rows();
   Matrix result = Matrix::Zero(n, n);
   for (Index i = 0; i < p.size(); ++i) {
@@ -169,7 +175,7 @@ template <class DA, class DC>
 [[nodiscard]] Eigen::Matrix<typename DA::Scalar, Eigen::Dynamic, Eigen::Dynamic> observability_matrix(
     const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C) {
   using Matrix = Eigen::Matrix<typename DA::Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  const Index n = A.rows(), m = C.rows();
+  const Index n = detail::require_output_pair(A, C, "observability_matrix"), m = C.rows();
   Matrix o(n * m, n);
   Matrix row = C;
   for (Index k = 0; k < n; ++k) {

@@ -158,13 +158,17 @@ struct TakagiSugenoCertificate {
 namespace detail {
 inline void validate_lmi_data(const TakagiSugenoLmiData& data, std::string_view who) {
   const Index r = data.vertex_count();
-  require(r > 0 && data.B.size() == data.A.size(), who, "data.B", "must hold one matrix per vertex of data.A");
+  require(r > 0, who, "data.A", "must hold at least one vertex");
+  require(data.B.size() == data.A.size(), who, "data.B", "must hold one matrix per vertex of data.A");
+  // n_x is C's column count: C is checked against A first, so that a C of the
+  // wrong width is named, not every A.
+  require_square(data.A.front(), who, "data.A");
+  require_finite_shape(data.C, data.C.rows(), data.A.front().rows(), who, "data.C");
   const Index nx = data.nx(), nu = data.nu();
   for (std::size_t i = 0; i < data.A.size(); ++i) {
     require_finite_shape(data.A[i], nx, nx, who, "data.A");
     require_finite_shape(data.B[i], nx, nu, who, "data.B");
   }
-  require_finite(data.C, who, "data.C");
   require_shape(data.Q_x, nx, nx, who, "data.Q_x");
   require_positive_semidefinite(data.Q_x, who, "data.Q_x");
   require_shape(data.Q_theta, data.Q_theta.rows(), data.Q_theta.rows(), who, "data.Q_theta");
@@ -185,11 +189,28 @@ inline void validate_lmi_data(const TakagiSugenoLmiData& data, std::string_view 
 [[nodiscard]] inline double smallest_symmetric_eigenvalue(const Eigen::MatrixXd& m) {
   return m.size() == 0 ? std::numeric_limits<double>::infinity() : -largest_symmetric_eigenvalue(-m);
 }
-}  // namespace detail
 
-/// \f$M_i\f$ of (29) / (71) at a candidate solution, vertex i (0-based), assembled block by block.
-[[nodiscard]] inline Eigen::MatrixXd takagi_sugeno_vertex_lmi(const TakagiSugenoLmiData& data,
-                                                              const TakagiSugenoCertificate& s, Index i) {
+/// The candidate's blocks have the sizes the data give them.
+inline void validate_certificate(const TakagiSugenoLmiData& data, const TakagiSugenoCertificate& s,
+                                 std::string_view who) {
+  const Index r = data.vertex_count(), nx = data.nx(), nu = data.nu(), ny = data.ny(), np = data.np();
+  require_shape(s.P0, nx, nx, who, "certificate.P0");
+  require_shape(s.P1, np, np, who, "certificate.P1");
+  require(static_cast<Index>(s.R.size()) == r, who, "certificate.R", "must hold one matrix per vertex");
+  require(static_cast<Index>(s.F.size()) == r, who, "certificate.F", "must hold one matrix per vertex");
+  for (const auto& m : s.R) require_shape(m, nx, ny, who, "certificate.R");
+  for (const auto& m : s.F) require_shape(m, np, ny, who, "certificate.F");
+  require_shape(s.Gamma_x, nx, nx, who, "certificate.Gamma_x");
+  require_shape(s.Gamma_u, nu, nu, who, "certificate.Gamma_u");
+  if (data.theorem == TakagiSugenoTheorem::time_varying_parameters) {
+    require_shape(s.Gamma_theta, np, np, who, "certificate.Gamma_theta");
+    require_shape(s.Gamma_dtheta, np, np, who, "certificate.Gamma_dtheta");
+  }
+}
+
+/// \f$M_i\f$ of valid data and candidate (`takagi_sugeno_vertex_lmi` without the checks).
+[[nodiscard]] inline Eigen::MatrixXd vertex_lmi(const TakagiSugenoLmiData& data, const TakagiSugenoCertificate& s,
+                                                Index i) {
   const Index r = data.vertex_count(), nx = data.nx(), nu = data.nu(), np = data.np();
   const Index n1 = nx + np, nut = data.perturbation_size(), n5 = 2 * r * (nx + nu);
   const bool theorem1 = data.theorem == TakagiSugenoTheorem::time_varying_parameters;
@@ -252,6 +273,17 @@ inline void validate_lmi_data(const TakagiSugenoLmiData& data, std::string_view 
   M.triangularView<Eigen::StrictlyLower>() = M.transpose().eval();
   return M;
 }
+}  // namespace detail
+
+/// \f$M_i\f$ of (29) / (71) at a candidate solution, vertex i (0-based), assembled block by block.
+[[nodiscard]] inline Eigen::MatrixXd takagi_sugeno_vertex_lmi(const TakagiSugenoLmiData& data,
+                                                              const TakagiSugenoCertificate& s, Index i) {
+  constexpr std::string_view who = "takagi_sugeno_vertex_lmi";
+  detail::validate_lmi_data(data, who);
+  detail::validate_certificate(data, s, who);
+  detail::require(i >= 0 && i < data.vertex_count(), who, "i", "must be a vertex index in [0, data.A.size())");
+  return detail::vertex_lmi(data, s, i);
+}
 
 /// Outcome of checking a candidate solution against theorem 1 or 2.
 struct TakagiSugenoCertificateCheck {
@@ -273,26 +305,15 @@ struct TakagiSugenoCertificateCheck {
     const TakagiSugenoLmiData& data, const TakagiSugenoCertificate& s) {
   constexpr std::string_view who = "check_takagi_sugeno_certificate";
   detail::validate_lmi_data(data, who);
-  const Index r = data.vertex_count(), nx = data.nx(), nu = data.nu(), ny = data.ny(), np = data.np();
+  detail::validate_certificate(data, s, who);
+  const Index r = data.vertex_count();
   const bool theorem1 = data.theorem == TakagiSugenoTheorem::time_varying_parameters;
-  detail::require_shape(s.P0, nx, nx, who, "certificate.P0");
-  detail::require_shape(s.P1, np, np, who, "certificate.P1");
-  detail::require(static_cast<Index>(s.R.size()) == r, who, "certificate.R", "must hold one matrix per vertex");
-  detail::require(static_cast<Index>(s.F.size()) == r, who, "certificate.F", "must hold one matrix per vertex");
-  for (const auto& m : s.R) detail::require_shape(m, nx, ny, who, "certificate.R");
-  for (const auto& m : s.F) detail::require_shape(m, np, ny, who, "certificate.F");
-  detail::require_shape(s.Gamma_x, nx, nx, who, "certificate.Gamma_x");
-  detail::require_shape(s.Gamma_u, nu, nu, who, "certificate.Gamma_u");
-  if (theorem1) {
-    detail::require_shape(s.Gamma_theta, np, np, who, "certificate.Gamma_theta");
-    detail::require_shape(s.Gamma_dtheta, np, np, who, "certificate.Gamma_dtheta");
-  }
 
   TakagiSugenoCertificateCheck check;
   check.max_vertex_eigenvalue = -std::numeric_limits<double>::infinity();
   for (Index i = 0; i < r; ++i)
     check.max_vertex_eigenvalue =
-        std::max(check.max_vertex_eigenvalue, detail::largest_symmetric_eigenvalue(takagi_sugeno_vertex_lmi(data, s, i)));
+        std::max(check.max_vertex_eigenvalue, detail::largest_symmetric_eigenvalue(detail::vertex_lmi(data, s, i)));
   check.min_eigenvalue_P0 = detail::smallest_symmetric_eigenvalue(s.P0);
   check.min_eigenvalue_P1 = detail::smallest_symmetric_eigenvalue(s.P1);
   check.min_lambda = std::numeric_limits<double>::infinity();

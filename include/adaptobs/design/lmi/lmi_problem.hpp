@@ -42,6 +42,7 @@ class AffineMatrix {
   [[nodiscard]] static AffineMatrix identity(Index n) { return AffineMatrix(Eigen::MatrixXd::Identity(n, n)); }
   /// The single decision variable k as a 1 × 1 expression, or with coefficient matrix E.
   [[nodiscard]] static AffineMatrix variable(Index k, Eigen::MatrixXd coefficient = Eigen::MatrixXd::Ones(1, 1)) {
+    detail::require(k >= 0, "AffineMatrix::variable", "k", "must be a non-negative variable index");
     AffineMatrix a(Eigen::MatrixXd::Zero(coefficient.rows(), coefficient.cols()));
     a.terms_.push_back({k, std::move(coefficient)});
     return a;
@@ -53,8 +54,11 @@ class AffineMatrix {
   [[nodiscard]] const Eigen::MatrixXd& constant() const noexcept { return constant_; }
   [[nodiscard]] const std::vector<Term>& terms() const noexcept { return terms_; }
 
-  /// \f$G(y)\f$ at a point.
+  /// \f$G(y)\f$ at a point; y needs an entry for every variable the expression uses.
   [[nodiscard]] Eigen::MatrixXd value(const Eigen::VectorXd& y) const {
+    // The terms are sorted by variable: the last one has the largest index.
+    detail::require(terms_.empty() || terms_.back().variable < y.size(), "AffineMatrix::value", "y",
+                    "must have an entry for every variable of the expression");
     Eigen::MatrixXd m = constant_;
     for (const Term& t : terms_) m += y(t.variable) * t.coefficient;
     return m;
@@ -128,6 +132,8 @@ class AffineMatrix {
   /// Adds `block` into the rectangle at (row, col) of this expression.
   void add_block(Index row, Index col, const AffineMatrix& block) {
     if (block.empty()) return;
+    detail::require(row >= 0 && col >= 0 && row + block.rows() <= rows() && col + block.cols() <= cols(),
+                    "AffineMatrix::add_block", "row, col", "must place the block inside the expression");
     constant_.block(row, col, block.rows(), block.cols()) += block.constant_;
     for (const Term& t : block.terms_) {
       auto it = std::lower_bound(terms_.begin(), terms_.end(), t.variable,
@@ -276,6 +282,7 @@ class LmiProblem {
   /// \f$\max_j \lambda_{\max}(G_j(y))\f$: negative iff y satisfies every constraint strictly (the
   /// margins ε only help a solver land strictly inside).
   [[nodiscard]] double largest_eigenvalue(const Eigen::VectorXd& y) const {
+    detail::require_shape(y, variable_count_, 1, "LmiProblem::largest_eigenvalue", "y");
     double worst = -std::numeric_limits<double>::infinity();
     for (const Constraint& c : constraints_) {
       const Eigen::MatrixXd g = c.G.value(y);
