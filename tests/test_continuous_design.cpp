@@ -413,6 +413,17 @@ TEST(Riccati, LyapunovSolverResidual) {
     EXPECT_LE((a.transpose() * x + x * a + q).norm(), 1e-11 * std::max(1.0, x.norm()));
     EXPECT_GE(adaptobs::symmetric_eigenvalues(x)(0), -1e-12);
   }
+  // A slow Hurwitz A is as regular as a fast one: with eigenvalues −1e-20 and
+  // −3e-20 it was refused as sharing an eigenvalue with −A. X = diag(1/(2·1e-20), 1/(2·3e-20)).
+  const Eigen::Matrix2d slow = Eigen::Vector2d(-1e-20, -3e-20).asDiagonal();
+  const Eigen::Matrix2d x_slow = adaptobs::solve_continuous_lyapunov(slow, Eigen::Matrix2d::Identity());
+  EXPECT_NEAR(x_slow(0, 0) * 2e-20, 1.0, 1e-14);
+  EXPECT_NEAR(x_slow(1, 1) * 6e-20, 1.0, 1e-14);
+  // The solution is symmetrized: a non-symmetric Q gave an X that solves nothing.
+  Eigen::Matrix2d q_skewed;
+  q_skewed << 1, 2, 0, 1;
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_continuous_lyapunov(Eigen::Matrix2d(-Eigen::Matrix2d::Identity()), q_skewed),
+                                   "Q");
 }
 
 // P of the Riccati differential equation tends to the CARE solution for a constant system.

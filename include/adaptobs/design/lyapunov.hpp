@@ -36,7 +36,9 @@ template <typename Scalar>
   const ComplexMatrix& U = schur.matrixU();
   const ComplexMatrix C = U.adjoint() * Q.template cast<Complex>() * U;
   ComplexMatrix Y = ComplexMatrix::Zero(n, n);
-  const Scalar scale = std::max(Scalar(1), T.cwiseAbs().maxCoeff());
+  // Relative to A's own scale: a slow Hurwitz A (eigenvalues near 1e-20) is as
+  // regular as a fast one; only a pivot small against the largest |t_ij| is singular.
+  const Scalar scale = T.cwiseAbs().maxCoeff();
   for (Index j = 0; j < n; ++j) {
     for (Index i = 0; i < n; ++i) {
       Complex rhs = -C(i, j);
@@ -67,6 +69,8 @@ solve_continuous_lyapunov(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBas
   detail::require_finite(A, who, "A");
   const Index n = A.rows();
   detail::require_finite_shape(Q, n, n, who, "Q");
+  // The solution is symmetrized, which is only right for a symmetric Q.
+  detail::require_symmetric(Q, who, "Q");
   Eigen::Matrix<Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime> X(n, n);
   if (n == 0) return X;
   X = detail::solve_continuous_lyapunov_dense(detail::dynamic_copy(A), detail::dynamic_copy(Q));
