@@ -533,6 +533,65 @@ TEST(LtvStability, AMonodromyMatrixBeyondTheFloatingPointRangeIsNotCertifiedStab
   }
 }
 
+// RK4 damps an oscillatory mode z = iωh by |R(z)| = 1 − (ωh)⁶/144: at 2000 fixed
+// steps over ωT ≈ 1005 rad, e' = [[ε, ω(t)], [−ω(t), ε]] e (exponents exactly
+// ε = +0.01, A(t) = εI + ω(t)J with commuting terms) read −0.0132 and was
+// certified stable. The step count now follows h·max‖A(t)‖ and is confirmed by
+// step doubling.
+TEST(LtvStability, AnUnstableFastOscillatorKeepsItsPositiveExponent) {
+  const double eps = 0.01, omega = 100.0, period = 2 * std::numbers::pi / omega * 160;
+  const auto a = [&](double t) {
+    const double w = omega * (1 + 0.1 * std::sin(omega * t / 160));
+    Eigen::Matrix2d m;
+    m << eps, w, -w, eps;
+    return m;
+  };
+  EXPECT_MATRIX_NEAR(adaptobs::floquet_exponents(a, period), Eigen::Vector2d(eps, eps), 1e-5, 0);
+  EXPECT_FALSE(adaptobs::is_exponentially_stable_periodic(a, period));
+  // The same oscillator with ε = −0.01 is stable.
+  const auto stable = [&](double t) { return Eigen::Matrix2d(a(t) - 2 * eps * Eigen::Matrix2d::Identity()); };
+  EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic(stable, period));
+}
+
+// A stiff stable mode: at 2000 fixed steps h·1000 = 5 lies outside RK4's
+// stability region, the monodromy matrix overflowed and e' = −1000e read NaN,
+// "not stable". Over a period where e^{−1000T} is representable the exponent is
+// found; where it underflows (T = 10: e^{−10⁴}) it cannot be told and is refused;
+// the stability of diag(−1, −1000) needs only its largest exponent, −1.
+TEST(LtvStability, AStiffStableModeIsFoundOrRefusedNotReportedUnstable) {
+  const auto a = [](double) { return Eigen::Matrix<double, 1, 1>(-1000); };
+  EXPECT_NEAR(adaptobs::floquet_exponents(a, 0.5)(0), -1000, 1e-3);
+  EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic(a, 0.5, 999.0));
+  const std::string refused = configuration_error_of([&] { (void)adaptobs::floquet_exponents(a, 10.0); });
+  EXPECT_NE(refused.find("'A'"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("underflows"), std::string::npos) << refused;
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::is_exponentially_stable_periodic(a, 10.0), "A");
+  const auto two_rates = [](double) { return Eigen::Matrix2d(Eigen::Vector2d(-1, -1000).asDiagonal()); };
+  EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic(two_rates, 10.0));
+  EXPECT_FALSE(adaptobs::is_exponentially_stable_periodic(two_rates, 10.0, 1.5));
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::floquet_exponents(two_rates, 10.0), "A");
+}
+
+// A(t) is checked at every evaluation, not only at t0: a later A(t) of another
+// size overran the heap of the dynamic-size transition matrix, and a later NaN
+// reached the exponents.
+TEST(LtvStability, ADynamicsCallableChangingShapeOrNotFiniteIsRefusedByName) {
+  const auto resized = [](double t) {
+    return t < 0.5 ? Matrix(-Matrix::Identity(2, 2)) : Matrix(-Matrix::Identity(3, 3));
+  };
+  const std::string message = configuration_error_of([&] { (void)adaptobs::transition_matrix(resized, 0.0, 1.0); });
+  EXPECT_NE(message.find("'A'"), std::string::npos) << message;
+  EXPECT_NE(message.find("3x3"), std::string::npos) << message;
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::floquet_exponents(resized, 1.0), "A");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::is_exponentially_stable_periodic(resized, 1.0), "A");
+  const auto not_finite = [](double t) {
+    return Matrix(Matrix::Constant(1, 1, t < 0.7 ? -1.0 : std::numeric_limits<double>::quiet_NaN()));
+  };
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::transition_matrix(not_finite, 0.0, 1.0), "A");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::floquet_exponents(not_finite, 1.0), "A");
+  EXPECT_NEAR(adaptobs::transition_matrix(not_finite, 0.0, 0.5)(0, 0), std::exp(-0.5), 1e-12);
+}
+
 // The frequency sweep refuses what it cannot evaluate instead of skipping it:
 // at ω_max = ∞ every point of the grid was NaN, and G = (s² + 0.01s + 1)/(s + 1)³,
 // which is not strictly positive real, was certified.
