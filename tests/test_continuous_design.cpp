@@ -559,7 +559,7 @@ TEST(LtvStability, AnUnstableFastOscillatorKeepsItsPositiveExponent) {
 // found; where it underflows (T = 10: e^{−10⁴}) it cannot be told and is refused;
 // the stability of diag(−1, −1000) needs only its largest exponent, −1.
 TEST(LtvStability, AStiffStableModeIsFoundOrRefusedNotReportedUnstable) {
-  const auto a = [](double) { return Eigen::Matrix<double, 1, 1>(-1000); };
+  const auto a = [](double) { return Eigen::MatrixXd(Eigen::MatrixXd::Constant(1, 1, -1000)); };
   EXPECT_NEAR(adaptobs::floquet_exponents(a, 0.5)(0), -1000, 1e-3);
   EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic(a, 0.5, 999.0));
   const std::string refused = configuration_error_of([&] { (void)adaptobs::floquet_exponents(a, 10.0); });
