@@ -99,16 +99,38 @@ TEST_F(SampledIntegration, AnIntervalBeyondTheStepBudgetIsRejectedUntilResynchro
   EXPECT_EQ(evaluations, 0);
   EXPECT_EQ(x, before);
   EXPECT_EQ(integrator.time(), 0.6);
-  // Resynchronized, the next sample is a new time origin; the step limit stays.
+  // Resynchronized, the next sample is a new time origin, and the interval
+  // after it sets the step limit anew.
   integrator.resynchronize();
+  EXPECT_EQ(integrator.max_step(), 0.0);
   ASSERT_EQ(advance_to(1.3), UpdateStatus::accepted);
   EXPECT_EQ(steps, 0);
   EXPECT_EQ(x, before);
-  ASSERT_EQ(advance_to(1.34), UpdateStatus::accepted);  // ⌈0.04 / 0.0125⌉
+  ASSERT_EQ(advance_to(1.31), UpdateStatus::accepted);
+  EXPECT_EQ(steps, 1);
+  EXPECT_NEAR(integrator.max_step(), 1.25 * 0.01, 1e-15);
+  ASSERT_EQ(advance_to(1.35), UpdateStatus::accepted);  // ⌈0.04 / 0.0125⌉
   EXPECT_EQ(steps, 4);
   // restart() forgets the limit as well: the next first interval sets it anew.
   integrator.restart();
   EXPECT_EQ(integrator.max_step(), 0.0);
+}
+
+// A repeated time stamp made the first interval 1e-9: every later 10-ms
+// interval needed 8e6 steps and was rejected, and resynchronizing kept the
+// limit, so the observer never moved again.
+TEST_F(SampledIntegration, ALimitLearnedFromATinyFirstIntervalIsLearnedAgainAfterResynchronizing) {
+  make({.substeps = 1});
+  ASSERT_EQ(advance_to(0.0), UpdateStatus::accepted);
+  ASSERT_EQ(advance_to(1e-9), UpdateStatus::accepted);
+  EXPECT_EQ(advance_to(0.01), UpdateStatus::interval_too_long);
+  integrator.resynchronize();
+  ASSERT_EQ(advance_to(0.01), UpdateStatus::accepted);  // the new origin
+  for (int k = 2; k <= 5; ++k) {
+    ASSERT_EQ(advance_to(0.01 * k), UpdateStatus::accepted) << k;
+    EXPECT_EQ(steps, 1);
+  }
+  EXPECT_NEAR(integrator.max_step(), 1.25 * 0.01, 1e-15);
 }
 
 TEST_F(SampledIntegration, AValidatorCanRejectTheStepAndNothingIsCommitted) {

@@ -91,7 +91,8 @@ class ContinuousUpdate : public SizedBy<Dims> {
   }
 
   /// Keeps every estimate but forgets the previous sample: the next one sets a
-  /// new time origin. For resuming after an interval rejected as
+  /// new time origin (and a learned step limit is learned again from the
+  /// interval after it, core/sampled_integration.hpp). For resuming after an interval rejected as
   /// `UpdateStatus::interval_too_long`, or after intervals rejected as
   /// `nonfinite_result` because of the previous sample itself: its held input
   /// or output acts over the next interval, so an accepted but extreme sample

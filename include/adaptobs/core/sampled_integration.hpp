@@ -34,7 +34,12 @@
 /// An interval that would need more than `max_substeps` steps is rejected
 /// (`UpdateStatus::interval_too_long`), keeping the cost of one update bounded;
 /// `resynchronize()` then restarts the time origin at the next sample without
-/// touching the estimates.
+/// touching the estimates, and a learned limit is learned again from the
+/// interval after it. A learned limit is only as good as the interval it comes
+/// from: a first interval that is itself a gap runs with `substeps` steps
+/// whatever its length, and a tiny one (a repeated time stamp) makes every
+/// later interval too long until `resynchronize()`. Where the first interval
+/// cannot be trusted, give `max_step`.
 
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
@@ -107,9 +112,14 @@ class SampledIntegrator {
     previous_.u.setZero();
     previous_.y.setZero();
   }
-  /// Forgets the previous sample only: the next sample sets a new time origin,
-  /// and the step limit stays what it was.
-  void resynchronize() noexcept { started_ = false; }
+  /// Forgets the previous sample: the next sample sets a new time origin. A
+  /// learned step limit is learned again from the interval after it (one
+  /// learned from an unrepresentative interval would otherwise reject every
+  /// later one); `options.max_step` stays.
+  void resynchronize() noexcept {
+    started_ = false;
+    learned_step_ = 0;
+  }
   /// Longest RK4 step from now on: `options.max_step`, or the learned limit (0 until the first interval).
   [[nodiscard]] Scalar max_step() const noexcept {
     return options_.max_step > 0 ? Scalar(options_.max_step) : learned_step_;
