@@ -161,6 +161,21 @@ TEST(GuiroRegressor, ARegressorOfTheWrongShapeIsRefusedByName) {
       Eigen::MatrixXd(Eigen::Matrix3d::Identity() * -1.0), 0.5, 1);
   const std::vector<Eigen::MatrixXd> mixed{Eigen::MatrixXd::Ones(3, 1), Eigen::MatrixXd::Ones(2, 1)};
   EXPECT_CONFIGURATION_ERROR_NAMES(polynomial.integrate(mixed), "coefficients");
+  // Non-finite values gave NaN integrals, reported converged by the polynomial
+  // rule and as merely unconverged by the quadrature.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<Eigen::MatrixXd> not_finite{Eigen::MatrixXd::Ones(3, 1), Eigen::MatrixXd::Constant(3, 1, nan)};
+  EXPECT_CONFIGURATION_ERROR_NAMES(polynomial.integrate(not_finite), "coefficients");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      integral.integrate([=](double t) { return Eigen::MatrixXd::Constant(3, 1, t < 0.25 ? 1.0 : nan); }, 0.0),
+      "phi(t)");
+  // An exponential e^{±At} that overflows over the period is refused under the
+  // caller's arguments, not as the argument 'A' of matrix_exponential with
+  // the norm of an internal −σA.
+  const Eigen::MatrixXd stiff = Eigen::Vector2d(-1, -2).asDiagonal();
+  EXPECT_CONFIGURATION_ERROR_NAMES(Dynamic(stiff, 1000.0), "A, period");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      (adaptobs::PolynomialRegressorIntegral<double, Eigen::Dynamic, Eigen::Dynamic>(stiff, 1000.0, 1)), "A, period");
 }
 
 TEST(Guiro, PaperExampleConvergesWithinSixtySamples) {

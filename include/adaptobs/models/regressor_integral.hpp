@@ -124,6 +124,19 @@ class RegressorIntegralBase {
     detail::require_positive(period, who, "period");
   }
 
+  /// e^M of one of the integral's exponentials (of ±σA with σ up to T): an
+  /// overflow is refused naming what the caller gave, (A, period), not M.
+  static Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> exponential(
+      const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& m, std::string_view who) {
+    try {
+      return matrix_exponential(m);
+    } catch (const ConfigurationError&) {  // the only refusal left for a finite square argument: overflow
+      detail::fail_argument(who, "A, period",
+                            "give exponentials e^{±A t}, 0 <= t <= period, beyond the floating-point range: shorten "
+                            "period");
+    }
+  }
+
   Scalar period_;
   StateMatrix transition_;  // computed by the integral's constructor
 };
@@ -158,15 +171,15 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
     using Dynamic = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
     const Dynamic a = A;
     n_ = A.rows();
-    this->transition_ = matrix_exponential(Dynamic(a * period));
+    this->transition_ = Base::exponential(a * period, who);
     levels_.resize(std::size_t(options.max_depth) + 1);
     Scalar h = period;
     for (Level& level : levels_) {
       for (std::size_t i = 0; i < 15; ++i) {
         const Scalar sigma = h / 2 * (Scalar(1) + Scalar(detail::GaussKronrod15::nodes[i]));
-        level.kernel[i] = matrix_exponential(Dynamic(-sigma * a));
+        level.kernel[i] = Base::exponential(-sigma * a, who);
       }
-      level.half = matrix_exponential(Dynamic(-h / 2 * a));
+      level.half = Base::exponential(-h / 2 * a, who);
       h /= 2;
     }
     panels_.resize(std::size_t(options.max_panels));
@@ -263,7 +276,7 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
       const Scalar sigma = half_width * (Scalar(1) + Scalar(Rule::nodes[i]));
       decltype(auto) value = phi(panel.start + sigma);
       if (columns_ == Eigen::Dynamic) columns_ = value.cols();
-      detail::require_shape(value, n_, columns_, "RegressorIntegral::integrate", "phi(t)");
+      detail::require_finite_shape(value, n_, columns_, "RegressorIntegral::integrate", "phi(t)");
       term.noalias() = level.kernel[i] * value;
       if (i == 0) {
         panel.integral = Scalar(Rule::kronrod_weights[i]) * term;
@@ -313,7 +326,7 @@ class PolynomialRegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP>
       Dynamic z = Dynamic::Zero(n * blocks, n * blocks);
       z.topLeftCorner(n, n) = sign * period * A;
       for (Index b = 0; b + 1 < blocks; ++b) z.block(b * n, (b + 1) * n, n, n).setIdentity() *= period;
-      return Dynamic(matrix_exponential(z).topRows(n));
+      return Dynamic(Base::exponential(z, who).topRows(n));
     };
     const Dynamic forward = moments(Scalar(1));
     const Dynamic backward = moments(Scalar(-1));
@@ -355,7 +368,7 @@ class PolynomialRegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP>
     detail::require(!coefficients.empty() && coefficients.size() <= psi_moments_.size(), who, "coefficients",
                     "must hold 1 to degree + 1 matrices");
     for (const Regressor& p : coefficients)
-      detail::require_shape(p, this->transition_.rows(), coefficients[0].cols(), who, "coefficients");
+      detail::require_finite_shape(p, this->transition_.rows(), coefficients[0].cols(), who, "coefficients");
     out.H.noalias() = h_moments_[0] * coefficients[0];
     out.Psi.noalias() = psi_moments_[0] * coefficients[0];
     for (std::size_t j = 1; j < coefficients.size(); ++j) {
