@@ -108,6 +108,17 @@ TEST(CusumDesign, SiegmundMatchesPublishedRunLengths) {
   // The threshold inverts the run length, shared among 2 × components sums.
   const double h = adaptobs::cusum_threshold(0.5, 1000.0, 3);
   EXPECT_NEAR(adaptobs::cusum_mean_run_length(0.5, h), 6000, 1e-6);
+  // Near Δ = 0 the formula cancels: just past the series' range e^{−x} + x − 1
+  // lost four digits (26.6839 for 26.687545 at x = 1.24e-6). Reference: the
+  // series b²(1 − x/3 + x²/12 − x³/60 + x⁴/360), exact to x⁵ ≈ 1e-14 here.
+  for (const double mean : {0.50000012, 0.5001, 0.5004}) {
+    const double b = 4 + adaptobs::siegmund_overshoot, x = 2 * (mean - 0.5) * b;
+    const double series = b * b * (1 - x / 3 + x * x / 12 - x * x * x / 60 + x * x * x * x / 360);
+    EXPECT_NEAR(adaptobs::cusum_mean_run_length(0.5, 4.0, mean), series, 1e-12 * series) << mean;
+  }
+  // A mean run length beyond the doubles has no threshold: the component count
+  // was ignored once the product overflowed.
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::cusum_threshold(0.5, 1e308, 4); }), "mean_evaluations"));
 }
 
 // Mean spacing of the alarms of a CUSUM fed independent N(shift, 1) draws in every component.
@@ -427,6 +438,26 @@ TEST(CusumCalibration, BadOptionsAreRefusedByName) {
     EXPECT_TRUE(names(message, argument)) << message;
     EXPECT_EQ(message.rfind("calibrate_cusum:", 0), 0u) << message;
   }
+  // Values between the strides were not checked: a NaN there was accepted, a
+  // wrong size refused as CusumDetector::update's 'value'. And runs too short
+  // for the drift's 50-alarm check were refused as cusum_threshold's 'mean_evaluations'.
+  std::vector<std::vector<Eigen::VectorXd>> strided(1);
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> normal(0, 1);
+  for (int k = 0; k < 1200; ++k) strided[0].push_back(Eigen::VectorXd::Constant(1, normal(rng)));
+  const Eigen::VectorXd value_7 = strided[0][7];
+  const auto strided_refusal = [&](double drift) {
+    return configuration_error_of(
+        [&] { (void)adaptobs::calibrate_cusum(strided, Eigen::VectorXd(Eigen::VectorXd::Zero(1)), drift, 100.0, 2); });
+  };
+  strided[0][7] = Eigen::VectorXd::Constant(1, nan);
+  EXPECT_EQ(strided_refusal(0.5).rfind("calibrate_cusum: argument 'runs'", 0), 0u) << strided_refusal(0.5);
+  strided[0][7] = Eigen::VectorXd::Zero(3);
+  EXPECT_EQ(strided_refusal(0.5).rfind("calibrate_cusum: argument 'runs'", 0), 0u) << strided_refusal(0.5);
+  strided[0][7] = value_7;
+  const std::string short_runs = strided_refusal(2.5);
+  EXPECT_EQ(short_runs.rfind("calibrate_cusum: argument 'runs'", 0), 0u) << short_runs;
+  EXPECT_NE(short_runs.find("too few values"), std::string::npos) << short_runs;
 }
 
 // design_fault_monitor names its own arguments: a bad glr_window was once
@@ -847,9 +878,13 @@ TEST(DetectionEvaluation, BadFaultsAndRunsAreRefusedByName) {
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_detection(good, {.time = 10}, 1, adaptobs::Index{1} << 60, 1),
                                    "seeds");
   for (const auto& scenario : {runs_with(100, 0, 60), runs_with(0, nan, 60), runs_with(0, 100, 500),
-                               runs_with(0, 100, nan)})
+                               runs_with(0, 100, nan), runs_with(-1e308, 1e308, 0)})
     EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::evaluate_detection(scenario, {.time = 10}, 1, 4, 1), "scenario");
   EXPECT_EQ(adaptobs::evaluate_detection(good, {.time = 10}, 1, 4, 1).detection_rate, 1.0);
+  // Alarms in no monitored time have no rate (it read 0).
+  const auto instant = adaptobs::evaluate_detection(runs_with(5, 5, 5), {.time = 1}, 1, 4, 1);
+  EXPECT_EQ(instant.false_alarms, 4);
+  EXPECT_TRUE(std::isnan(instant.false_alarm_rate));
 }
 
 }  // namespace

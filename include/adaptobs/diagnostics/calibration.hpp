@@ -125,9 +125,12 @@ template <typename Scalar, int N>
 
   // Mean and RMS deviation from nominal over the evaluated values.
   Vector sum = Vector::Zero(n), squares = Vector::Zero(n);
+  // Every value is checked, not only those at the stride: the replays below
+  // feed them all to a detector.
   for (const auto& run : runs)
-    for (std::size_t k = 0; k < run.size(); k += step) {
+    for (std::size_t k = 0; k < run.size(); ++k) {
       detail::require_finite_shape(run[k], n, 1, who, "runs");
+      if (k % step != 0) continue;
       sum += run[k] - nominal;
       squares += (run[k] - nominal).cwiseAbs2();
       ++result.evaluations;
@@ -189,6 +192,14 @@ template <typename Scalar, int N>
     return detector.alarm_count();
   };
   result.checked_mean_evaluations = count / Scalar(50);
+  // The check needs a threshold whose sums alarm less often than at h = 0.
+  if (!(2 * static_cast<double>(result.checked_mean_evaluations) * static_cast<double>(n) >
+        cusum_mean_run_length(static_cast<double>(drift), 0.0))) {
+    std::ostringstream os;
+    os << "hold too few values at the stride (" << result.evaluations << ") for drift " << drift
+       << ": a check expecting 50 false alarms on them needs a threshold below 0; give longer runs or lower the drift";
+    detail::fail_argument(who, "runs", os.str());
+  }
   const double check_threshold =
       cusum_threshold(static_cast<double>(drift), static_cast<double>(result.checked_mean_evaluations), n);
   result.checked_alarms = alarms_of(static_cast<Scalar>(check_threshold));

@@ -61,8 +61,11 @@ inline constexpr double siegmund_overshoot = 1.166;
   const double delta = mean - drift;
   const double b = threshold + siegmund_overshoot;
   const double x = 2 * delta * b;
-  if (std::abs(x) < 1e-6) return b * b * (1 - x / 3);  // series of the formula about Δ = 0
-  return (std::exp(-x) + x - 1) / (2 * delta * delta);
+  // e^{−x} + x − 1 loses the digits of x²/2 to cancellation for small x:
+  // its series (L = b²(1 − x/3 + x²/12 − x³/60 + …)) below 1e-3, where the
+  // truncation is below x⁴/360 ≈ 3e-15, and expm1 above, relative error ≈ 2u/x.
+  if (std::abs(x) < 1e-3) return b * b * (1 - x / 3 + x * x / 12 - x * x * x / 60);
+  return (std::expm1(-x) + x) / (2 * delta * delta);
 }
 
 /// The threshold h at which \f$2\times\f$`components` one-sided sums, each fed
@@ -75,6 +78,8 @@ inline constexpr double siegmund_overshoot = 1.166;
   detail::require_positive(mean_evaluations, who, "mean_evaluations");
   detail::require(components >= 1, who, "components", "must be at least 1");
   const double per_sum = mean_evaluations * 2 * static_cast<double>(components);
+  detail::require(std::isfinite(per_sum), who, "mean_evaluations",
+                  "times 2 x components must be finite (no threshold reaches an infinite run length)");
   // The run length at h = 0 is the least any threshold achieves.
   detail::require(per_sum > cusum_mean_run_length(drift, 0.0), who, "mean_evaluations",
                   "is shorter than the run length at threshold 0: lower the drift");

@@ -63,7 +63,8 @@ struct DetectionSummary {
   double quiet_before_fault_rate = 0;  ///< faulty runs without an alarm up to the fault's time
   Index false_alarms = 0;            ///< alarms of the fault-free twins
   double fault_free_time = 0;        ///< their monitored time
-  double false_alarm_rate = 0;       ///< false_alarms / fault_free_time
+  /// false_alarms / fault_free_time; NaN when no fault-free time was monitored
+  double false_alarm_rate = 0;
   std::vector<double> delays;        ///< per detected seed, in seed order
 };
 
@@ -112,10 +113,10 @@ template <class Scenario>
   // alarm outside [start, end] would be scored as a detection or a quiet start.
   for (const std::vector<MonitoredRun>* runs : {&faulty, &twins})
     for (const MonitoredRun& run : *runs) {
-      bool valid = std::isfinite(run.start) && std::isfinite(run.end) && run.start <= run.end;
+      bool valid = std::isfinite(run.end - run.start) && run.start <= run.end;
       for (const Alarm& alarm : run.alarms) valid = valid && alarm.time >= run.start && alarm.time <= run.end;
       detail::require(valid, who, "scenario",
-                      "must return runs with finite start <= end and every alarm time within [start, end]");
+                      "must return runs with finite start <= end, a finite span, and every alarm time within [start, end]");
     }
 
   DetectionSummary summary;
@@ -147,8 +148,11 @@ template <class Scenario>
     const auto rank = static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(sorted.size())));
     summary.p95_detection_delay = sorted[std::max<std::size_t>(rank, 1) - 1];
   }
-  if (summary.fault_free_time > 0)
-    summary.false_alarm_rate = static_cast<double>(summary.false_alarms) / summary.fault_free_time;
+  detail::require(std::isfinite(summary.fault_free_time), who, "scenario",
+                  "must return fault-free runs whose monitored time sums to a finite number");
+  summary.false_alarm_rate = summary.fault_free_time > 0
+                                 ? static_cast<double>(summary.false_alarms) / summary.fault_free_time
+                                 : std::numeric_limits<double>::quiet_NaN();
   return summary;
 }
 
