@@ -376,6 +376,16 @@ TEST(GlrDetector, StatisticIsTheBestWindowAndIsolates) {
                     }),
                     "threshold"));
   EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::glr_threshold(10, 1e9); }), "mean_evaluations"));
+  // A window past 2^20 was std::bad_alloc, and one of 1000 with 1e5 evaluations
+  // simulated for a minute and a half.
+  EXPECT_TRUE(names(configuration_error_of([] {
+                      adaptobs::GlrDetector<double, 2>(Eigen::Vector2d::Zero(), Eigen::Vector2d::Ones(),
+                                                       adaptobs::Index{1} << 40, 8.0);
+                    }),
+                    "window"));
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::glr_threshold(adaptobs::Index{1} << 40, 100.0); }),
+                    "window"));
+  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::glr_threshold(1000, 1e5); }), "window"));
 }
 
 TEST(CusumCalibration, RefusesCorrelatedValuesNamingTheStride) {
@@ -458,6 +468,18 @@ TEST(CusumCalibration, BadOptionsAreRefusedByName) {
   const std::string short_runs = strided_refusal(2.5);
   EXPECT_EQ(short_runs.rfind("calibrate_cusum: argument 'runs'", 0), 0u) << short_runs;
   EXPECT_NE(short_runs.find("too few values"), std::string::npos) << short_runs;
+}
+
+// A sum of outer products overflowed on finite data whose covariance is finite.
+TEST(SampleCovariance, ScalesDataNearTheTopOfTheRange) {
+  std::vector<std::vector<Eigen::Vector2d>> runs(1);
+  for (int k = 0; k < 10; ++k) runs[0].push_back(Eigen::Vector2d(k % 2 ? 1e154 : -1e154, k % 2 ? 1.0 : -1.0));
+  const Eigen::Matrix2d s = adaptobs::sample_covariance(runs);
+  EXPECT_NEAR(s(0, 0) / 1e308, 1.0, 1e-15);
+  EXPECT_NEAR(s(0, 1) / 1e154, 1.0, 1e-15);
+  EXPECT_NEAR(s(1, 1), 1.0, 1e-15);
+  runs[0][3] = Eigen::Vector2d(1e300, 0);
+  EXPECT_TRUE(names(configuration_error_of([&] { (void)adaptobs::sample_covariance(runs); }), "runs"));
 }
 
 // design_fault_monitor names its own arguments: a bad glr_window was once

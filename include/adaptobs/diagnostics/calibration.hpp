@@ -29,24 +29,33 @@
 namespace adaptobs {
 
 /// Sample covariance \f$\frac1n\sum_k v_kv_k^T\f$ of zero-mean vectors (e.g. the
-/// output errors of fault-free runs), over every vector of every run.
+/// output errors of fault-free runs), over every vector of every run. Vectors
+/// with entries beyond 1e150 are summed scaled by a power of two (exactly), so
+/// that only a covariance itself beyond the doubles is refused.
 template <typename Scalar, int N>
 [[nodiscard]] Eigen::Matrix<Scalar, N, N> sample_covariance(const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs) {
   constexpr std::string_view who = "sample_covariance";
   Index n = -1, count = 0;
-  Eigen::Matrix<Scalar, N, N> sum;
+  Scalar largest = 0;
   for (const auto& run : runs)
     for (const auto& v : run) {
-      if (n < 0) {
-        n = v.size();
-        sum.setZero(n, n);
-      }
+      if (n < 0) n = v.size();
       detail::require_finite_shape(v, n, 1, who, "runs");
-      sum.noalias() += v * v.transpose();
+      if (v.size() > 0) largest = std::max(largest, v.cwiseAbs().maxCoeff());
       ++count;
     }
   detail::require(count >= 2, who, "runs", "must hold at least two vectors");
-  return sum / static_cast<Scalar>(count);
+  const int exponent = largest > Scalar(1e150) ? std::ilogb(largest) : 0;
+  const Scalar down = std::ldexp(Scalar(1), -exponent);
+  Eigen::Matrix<Scalar, N, N> sum = Eigen::Matrix<Scalar, N, N>::Zero(n, n);
+  for (const auto& run : runs)
+    for (const auto& v : run) sum.noalias() += (down * v) * (down * v).transpose();
+  Eigen::Matrix<Scalar, N, N> covariance = sum / static_cast<Scalar>(count);
+  const Scalar up = std::ldexp(Scalar(1), exponent);
+  covariance *= up;  // twice: 2^{2·exponent} itself may be beyond the doubles
+  covariance *= up;
+  detail::require(covariance.allFinite(), who, "runs", "have a covariance beyond the floating-point range");
+  return covariance;
 }
 
 /// What `calibrate_cusum` designed, and what it measured on the runs.

@@ -108,6 +108,9 @@ template <typename Scalar, int NY, int NP>
   design.glr_threshold = static_cast<Scalar>(glr_threshold(glr_window, evaluations_between, nominal.size()));
   {
     const double checked = static_cast<double>(design.cusum.evaluations) / 50;
+    // The check simulates its own threshold, within glr_threshold's range.
+    detail::require(checked <= 1e5, who, "record",
+                    "is too long for the GLR's check: it holds more than 5e6 estimates at the stride; give fewer runs");
     GlrDetector<Scalar, NP> glr(nominal, design.cusum.scale, glr_window,
                                 static_cast<Scalar>(glr_threshold(glr_window, checked, nominal.size())), {.stride = stride});
     for (const auto& run : record.parameters) {
@@ -146,6 +149,14 @@ template <typename Scalar, int NY, int NP>
   const double variance = (squares - sum * mean) / static_cast<double>(windows - 1);
   detail::require(variance > 0, who, "record", "must have output errors that vary");
   design.chi_square_options = {.scale = variance / (2 * mean), .degrees_of_freedom = 2 * mean * mean / variance};
+  // Window sums that hardly vary have a ν beyond what the χ² tail is computed for.
+  const double dof = design.chi_square_options.degrees_of_freedom;
+  if (!(dof >= chi_square_min_degrees_of_freedom && dof <= chi_square_max_degrees_of_freedom)) {
+    std::ostringstream os;
+    os << "has window sums of the output errors with mean " << mean << " and variance " << variance
+       << ": their matched χ² has " << dof << " degrees of freedom, outside [1e-2, 1e7]";
+    detail::fail_argument(who, "record", os.str());
+  }
   design.chi_square_windows = windows;
   return design;
 }

@@ -41,6 +41,9 @@
 
 namespace adaptobs {
 
+/// Longest window a GLR searches: each evaluation costs O(window) per component.
+inline constexpr Index glr_max_window = Index{1} << 20;
+
 template <typename Scalar, int N = Eigen::Dynamic>
 class GlrDetector : public detail::SequentialTest<GlrDetector<Scalar, N>, Scalar, N> {
   using Base = detail::SequentialTest<GlrDetector<Scalar, N>, Scalar, N>;
@@ -56,7 +59,8 @@ class GlrDetector : public detail::SequentialTest<GlrDetector<Scalar, N>, Scalar
   /// \param options stride, hold-off and re-anchoring as for the CUSUM.
   GlrDetector(Vector nominal, const Vector& scale, Index window, Scalar threshold, SequentialTestOptions options = {})
       : Base("GlrDetector", std::move(nominal), scale, threshold, options), window_(window) {
-    detail::require(window >= 1, "GlrDetector", "window", "must be at least 1");
+    detail::require(window >= 1 && window <= glr_max_window, "GlrDetector", "window",
+                    "must lie in [1, 2^20] (each evaluation costs O(window))");
     history_.setZero(this->components(), window);
     statistic_.setZero(this->components());
     half_inverse_.resize(window);
@@ -187,14 +191,18 @@ namespace detail {
 /// alarm count is within one of its target. With about 50 alarms at the answer,
 /// the rate it gives carries a relative Monte-Carlo error of about
 /// \f$1/\sqrt{50} \approx 14\,\%\f$ (which the tests' tolerances allow for).
-/// Refuses, naming 'mean_evaluations', a target outside [2, 10⁵] evaluations
-/// (beyond, the simulation would take seconds).
+/// Refuses, naming 'mean_evaluations', a target outside [2, 10⁵] evaluations,
+/// and naming 'window' one whose simulation would cost more than 10⁷
+/// window × component × evaluation products per candidate (about ten seconds
+/// in all; each evaluation costs O(window) per component).
 [[nodiscard]] inline double glr_threshold(Index window, double mean_evaluations, Index components = 1) {
   constexpr std::string_view who = "glr_threshold";
-  detail::require(window >= 1, who, "window", "must be at least 1");
+  detail::require(window >= 1 && window <= glr_max_window, who, "window", "must lie in [1, 2^20]");
   detail::require(components >= 1, who, "components", "must be at least 1");
   detail::require(mean_evaluations >= 2 && mean_evaluations <= 1e5, who, "mean_evaluations",
                   "must lie in [2, 1e5] evaluations");
+  detail::require(static_cast<double>(window) * static_cast<double>(components) * mean_evaluations <= 1e7, who,
+                  "window", "times components times mean_evaluations must be at most 1e7 (the simulation's cost)");
   return detail::glr_threshold_search(window, mean_evaluations, components, Index{1} << 22);
 }
 
