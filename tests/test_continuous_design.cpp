@@ -97,6 +97,13 @@ TEST(Polynomials, RouthHurwitzAndSturmCounts) {
   const Vector lightly = adaptobs::multiply_polynomials<double>(
       adaptobs::multiply_polynomials<double>(poly({1, 2, 1}), poly({1, 0.02, 1.0001})), poly({1, 4}));
   EXPECT_TRUE(is_hurwitz_polynomial<double>(lightly));
+  // Scale invariance: the roots scaled by 1e-10 or 1e15 are judged as the
+  // unscaled ones (an absolute tolerance refused the first pair and the last).
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 2e-10, 1e-20})));        // -1e-10 (double)
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 1e10, 1e30})));          // Re = -5e9, |s| = 1e15
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 1e-20})));               // -1e-20
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, -2e-10, 1e-20})));      // +1e-10 (double)
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1e-30, 1e-30, 4e-30, 4e-30})));  // -1, ±2j, scaled
   EXPECT_TRUE(adaptobs::has_hurwitz_characteristic_polynomial(siso::dynamics<double>()));
   EXPECT_FALSE(adaptobs::has_hurwitz_characteristic_polynomial(Eigen::Matrix2d(Eigen::Matrix2d::Identity())));
 

@@ -53,16 +53,28 @@ template <class Derived>
 /// must keep one sign. Each row is \f$r_{k+1,j} = r_{k-1,j+1} - (r_{k-1,0}/r_{k,0})\,r_{k,j+1}\f$;
 /// a zero (relative to the coefficients) in the first column means a root on
 /// or to the right of the imaginary axis, so the polynomial is not Hurwitz.
+/// The test is scale invariant: p(s) is first written as q(z) = p(2^e z)
+/// scaled by a power of two (both exact), with 2^e near the geometric mean
+/// \f$|p_d/p_0|^{1/d}\f$ of the roots' magnitudes, so that (s + 10⁻¹⁰)² or
+/// s² + 10¹⁰s + 10³⁰ is judged as (z + 1)² or z² + 10⁻⁵z + 1.
 template <typename Scalar>
 [[nodiscard]] bool is_hurwitz_polynomial(const Polynomial<Scalar>& p) {
   if (p.size() == 0 || p(0) == Scalar(0) || !p.allFinite()) return false;
   const Index degree = p.size() - 1;
   if (degree == 0) return true;
-  const Scalar sign = p(0) > 0 ? Scalar(1) : Scalar(-1);
-  const Scalar tol = Scalar(64) * std::numeric_limits<Scalar>::epsilon() * p.cwiseAbs().maxCoeff();
+  if (p(degree) == Scalar(0)) return false;  // a root at 0
+  const auto root_exponent = static_cast<int>(
+      std::lround(static_cast<double>(std::ilogb(p(degree)) - std::ilogb(p(0))) / static_cast<double>(degree)));
+  int top = std::numeric_limits<int>::min();
+  for (Index i = 0; i <= degree; ++i)
+    if (p(i) != Scalar(0)) top = std::max(top, std::ilogb(p(i)) + static_cast<int>(degree - i) * root_exponent);
+  Polynomial<Scalar> q(p.size());
+  for (Index i = 0; i <= degree; ++i) q(i) = std::ldexp(p(i), static_cast<int>(degree - i) * root_exponent - top);
+  const Scalar sign = q(0) > 0 ? Scalar(1) : Scalar(-1);
+  const Scalar tol = Scalar(64) * std::numeric_limits<Scalar>::epsilon() * q.cwiseAbs().maxCoeff();
   const Index width = degree / 2 + 1;
   Polynomial<Scalar> upper = Polynomial<Scalar>::Zero(width), lower = Polynomial<Scalar>::Zero(width);
-  for (Index i = 0; i <= degree; ++i) (i % 2 == 0 ? upper : lower)(i / 2) = sign * p(i);
+  for (Index i = 0; i <= degree; ++i) (i % 2 == 0 ? upper : lower)(i / 2) = sign * q(i);
   for (Index row = 1; row <= degree; ++row) {
     if (!(lower(0) > tol)) return false;
     const Scalar ratio = upper(0) / lower(0);
