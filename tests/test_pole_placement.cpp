@@ -212,6 +212,60 @@ TEST(PolePlacement, PoleOnAnOpenLoopEigenvalue) {
   EXPECT_LE(adaptobs::eigenvalue_mismatch(Eigen::Matrix3d(a - placed.L * c), poles.cast<std::complex<double>>()), 1e-12);
 }
 
+// Ten poles 0.01 apart for a pair with ‖A‖_F ≈ 100 (n = 10, m = 2): the
+// Sylvester transformation has cond(X) ≈ 10¹³, and the rounding of L moves
+// these eigenvalues by up to 0.1, out of the unit circle for the discrete set.
+// The Cayley–Hamilton residual cannot see it: its normalizer
+// Σ|q_i|‖A − LC‖_F^{N−i} is about 10²⁰. A returned gain keeps the requested
+// stability region and places each simple pole within √ε‖A − LC‖_F; the other
+// requests are refused as too clustered for the pair.
+TEST(PolePlacement, PolesTooClusteredForThePairAreRefused) {
+  RandomMatrices rng(400);
+  const double tolerance = std::sqrt(std::numeric_limits<double>::epsilon());
+  int refused_as_clustered = 0;
+  for (int draw = 0; draw < 4; ++draw) {
+    const MatrixXd a = rng.uniform<MatrixXd>(10, 10) * 17, c = rng.uniform<MatrixXd>(2, 10);
+    for (const bool discrete : {true, false}) {
+      VectorXd poles(10);
+      for (int i = 0; i < 10; ++i) poles(i) = discrete ? 0.90 + 0.01 * i : -1.0 - 0.01 * i;
+      const std::string message = configuration_error_of([&] {
+        const auto placed = adaptobs::place_output_injection(a, c, poles);
+        const MatrixXd closed = a - placed.L * c;
+        if (discrete)
+          EXPECT_LT(adaptobs::spectral_radius(closed), 1.0) << "draw " << draw << ": every pole is inside the unit circle";
+        else
+          EXPECT_LT(adaptobs::spectral_abscissa(closed), 0.0) << "draw " << draw << ": every pole is in the left half-plane";
+        EXPECT_LE(placed.eigenvalue_mismatch, tolerance * closed.norm()) << "draw " << draw << (discrete ? " (discrete)" : " (continuous)");
+      });
+      if (message == "<no exception>") continue;
+      EXPECT_NE(message.find("'poles'"), std::string::npos) << message;
+      if (message.find("too clustered") != std::string::npos) ++refused_as_clustered;
+    }
+  }
+  EXPECT_GE(refused_as_clustered, 4);
+}
+
+// A tenfold pole is only placed to about τ^(1/10)‖A − LC‖_F (here 0.165‖A − LC‖_F,
+// wider than the distance 0.05 from 0.95 to the unit circle): for this pair the
+// eigenvalues of A − LC spread to a spectral radius near 1.1. A repeated pole
+// inside the unit circle is refused when its placed eigenvalues leave it; the
+// same pole at −1, whose spread stays in the left half-plane, is placed.
+TEST(PolePlacement, RepeatedPoleLeavingItsStabilityRegionIsRefused) {
+  RandomMatrices rng(400);
+  const MatrixXd a = rng.uniform<MatrixXd>(10, 10) * 17, c = rng.uniform<MatrixXd>(2, 10);
+  const std::string message = configuration_error_of([&] {
+    const auto placed = adaptobs::place_output_injection(a, c, VectorXd::Constant(10, 0.95));
+    EXPECT_LT(adaptobs::spectral_radius(MatrixXd(a - placed.L * c)), 1.0) << "every pole is inside the unit circle";
+  });
+  EXPECT_NE(message.find("'poles'"), std::string::npos) << message;
+  EXPECT_NE(message.find("spectral radius"), std::string::npos) << message;
+  const auto hurwitz = adaptobs::place_output_injection(a, c, VectorXd::Constant(10, -1.0));
+  const MatrixXd closed = a - hurwitz.L * c;
+  EXPECT_LT(adaptobs::spectral_abscissa(closed), 0.0);
+  EXPECT_LE(hurwitz.eigenvalue_mismatch,
+            std::pow(std::sqrt(std::numeric_limits<double>::epsilon()), 0.1) * closed.norm());
+}
+
 TEST(PolePlacement, FixedAndDynamicSizesAgree) {
   RandomMatrices rng(407);
   const Eigen::Matrix<double, 4, 4> a = rng.uniform<Eigen::Matrix<double, 4, 4>>();
@@ -261,6 +315,12 @@ TEST(PolePlacement, BadArgumentsAreNamed) {
                 [&] { (void)adaptobs::place_output_injection(a, c, Eigen::Vector2d(0.1, std::nan(""))); })
                 .find("'poles'"),
             std::string::npos);
+  for (const double tau : {-1e-3, 1.0, std::nan("")}) {
+    const std::string message = configuration_error_of([&] {
+      (void)adaptobs::place_output_injection(a, c, Eigen::Vector2d(0.1, 0.2), {.eigenvalue_tolerance = tau});
+    });
+    EXPECT_NE(message.find("'options.eigenvalue_tolerance'"), std::string::npos) << message;
+  }
 }
 
 // ---- Power bounds ------------------------------------------------------------------

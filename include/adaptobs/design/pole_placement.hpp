@@ -23,13 +23,46 @@
 /// an eigenvalue of A, the Sylvester equation is ill conditioned; A is then
 /// first moved by a random injection \f$L_0\f$.
 ///
-/// The result is verified, not trusted: the normalized Cayley–Hamilton
-/// residual \f$\|q(A - LC)\|_F / \sum_i |q_i|\,\|A - LC\|_F^{N-i}\f$ of the
-/// requested characteristic polynomial q is a backward error that stays
-/// meaningful for repeated poles (deadbeat designs), where computed
-/// eigenvalues are only accurate to \f$\varepsilon^{1/k}\f$. An unobservable pair,
-/// a singular transformation or a failed verification throws
-/// `ConfigurationError`: no gain is ever returned that does not do its job.
+/// The result is verified, not trusted. With \f$M = A - LC\f$, q the requested
+/// characteristic polynomial and λ(M) the eigenvalues of M computed by the
+/// QR algorithm (`dense_eigenvalues`), a gain is returned only if
+/// 1. the normalized Cayley–Hamilton residual
+///    \f$\|q(M)\|_F / \sum_i |q_i|\,\|M\|_F^{N-i}\f$ is at most
+///    `verification_tolerance` (default \f$10^5\varepsilon\f$);
+/// 2. the stability region of the request is kept: if every requested pole has
+///    \f$|p_i| < 1\f$, then \f$\max|\lambda(M)| < 1\f$; if every requested pole has
+///    \f$\operatorname{Re} p_i < 0\f$, then \f$\max\operatorname{Re}\lambda(M) < 0\f$;
+/// 3. each requested pole \f$p_i\f$, matched greedily to a distinct computed
+///    eigenvalue (`eigenvalue_mismatch`), lies within
+///    \f$\tau^{1/k_i}\,\|M\|_F\f$ of it, where τ is `eigenvalue_tolerance`
+///    (default \f$\sqrt\varepsilon\f$) and \f$k_i\f$ the multiplicity of
+///    \f$p_i\f$ in the request (poles within \f$\sqrt\varepsilon\max(1, |p_i|)\f$ of
+///    each other count as one repeated pole, as in F).
+///
+/// Test 1 alone is not enough: its normalizer grows like \f$\|M\|_F^N\f$,
+/// and with \f$\|M\|_F\f$ far above the poles (a large gain, or a large A) it
+/// reaches \f$10^{20}\f$ for N = 10: ten poles 0.90, 0.91, …, 0.99 requested
+/// for a pair with \f$\|A\|_F \approx 100\f$ can pass it with a residual below
+/// \f$10^{-20}\f$ while M has an eigenvalue 1.07. The roots of a polynomial are
+/// that sensitive to its coefficients when they are clustered (J. H. Wilkinson,
+/// *Rounding Errors in Algebraic Processes*, 1963, ch. 2). Equally, M has the
+/// eigenvectors of F mapped by \f$X^{-1}\f$ (orthonormal ones for F, which is
+/// normal when the poles are distinct), so a perturbation E of M moves its
+/// eigenvalues by up to \f$\operatorname{cond}(X)\|E\|_2\f$ (F. L. Bauer,
+/// C. T. Fike, "Norms and exclusion theorems", Numer. Math. 2, 1960), and
+/// cond(X) grows without bound as the poles cluster; rounding L alone is such an E.
+/// Test 3 states what can be asked: a simple eigenvalue to the relative
+/// accuracy τ of \f$\|M\|_F\f$ (about half the digits by default), a k-fold
+/// one to \f$\tau^{1/k}\|M\|_F\f$, since a Jordan block of size k perturbed by
+/// δ in its corner has its eigenvalues at distance \f$\delta^{1/k}\f$
+/// (J. H. Wilkinson, *The Algebraic Eigenvalue Problem*, 1965, ch. 2). For a
+/// many-fold pole with \f$\|M\|_F\f$ large that bound is wide, and test 2 is
+/// what keeps a stable request stable.
+///
+/// An unobservable pair, a singular transformation or a failed verification
+/// throws `ConfigurationError` naming the argument: failing tests 2 or 3 means
+/// that the requested poles are too clustered for the conditioning of the pair.
+/// No gain is ever returned that does not do its job.
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
@@ -69,6 +102,10 @@ struct PolePlacementOptions {
   double observability_tolerance = 0;
   /// Largest accepted Cayley–Hamilton residual; 0 selects \f$10^5\varepsilon\f$.
   double verification_tolerance = 0;
+  /// Relative accuracy τ of the placed eigenvalues, a value in (0, 1); 0 selects
+  /// \f$\sqrt\varepsilon\f$. A requested pole of multiplicity k must be matched by
+  /// an eigenvalue within \f$\tau^{1/k}\|A - LC\|_F\f$ (see the file comment).
+  double eigenvalue_tolerance = 0;
 };
 
 namespace detail {
@@ -76,6 +113,44 @@ namespace detail {
 template <typename Scalar>
 Scalar default_verification_tolerance(double requested) {
   return requested > 0 ? Scalar(requested) : Scalar(1e5) * std::numeric_limits<Scalar>::epsilon();
+}
+
+template <typename Scalar>
+Scalar default_eigenvalue_tolerance(double requested) {
+  return requested > 0 ? Scalar(requested) : std::sqrt(std::numeric_limits<Scalar>::epsilon());
+}
+
+/// For each pole, how many poles of the list (itself included) lie within
+/// \f$\sqrt\varepsilon\max(1, |p_i|)\f$ of it: its multiplicity as a repeated
+/// pole (the tolerance with which `real_matrix_with_spectrum` chains blocks).
+template <typename Scalar>
+std::vector<Index> pole_multiplicities(const ComplexVector<Scalar>& poles) {
+  const Scalar tol = std::sqrt(std::numeric_limits<Scalar>::epsilon());
+  std::vector<Index> k(std::size_t(poles.size()), 0);
+  for (Index i = 0; i < poles.size(); ++i)
+    for (Index j = 0; j < poles.size(); ++j)
+      if (std::abs(poles(j) - poles(i)) <= tol * std::max(Scalar(1), std::abs(poles(i)))) ++k[std::size_t(i)];
+  return k;
+}
+
+/// For each pole, its distance to the nearest eigenvalue not taken by an
+/// earlier pole (greedy matching, in the order of `poles`).
+template <typename Scalar>
+std::vector<Scalar> matched_eigenvalue_distances(const ComplexVector<Scalar>& eig, const ComplexVector<Scalar>& poles) {
+  std::vector<bool> taken(std::size_t(eig.size()), false);
+  std::vector<Scalar> distance(std::size_t(poles.size()), std::numeric_limits<Scalar>::infinity());
+  for (Index i = 0; i < poles.size(); ++i) {
+    Index best = -1;
+    for (Index j = 0; j < eig.size(); ++j) {
+      const Scalar d = std::abs(eig(j) - poles(i));
+      if (!taken[std::size_t(j)] && d < distance[std::size_t(i)]) {
+        distance[std::size_t(i)] = d;
+        best = j;
+      }
+    }
+    if (best >= 0) taken[std::size_t(best)] = true;
+  }
+  return distance;
 }
 
 template <typename Scalar>
@@ -175,8 +250,12 @@ template <class DP>
 }
 
 /// Normalized Cayley–Hamilton residual \f$\|q(M)\|_F / \sum_i |q_i|\,\|M\|_F^{N-i}\f$
-/// of the polynomial q with roots `poles`: a backward error, small exactly when
-/// M has (nearly) the requested spectrum.
+/// of the polynomial q with roots `poles`: a backward error, 0 when M has
+/// exactly the spectrum `poles`. It bounds the eigenvalues only through the
+/// sensitivity of the roots of q: when \f$\|M\|_F\f$ is much larger than the
+/// poles, the normalizer is huge and a tiny residual allows clustered
+/// eigenvalues to be far from `poles` (see the file comment; `eigenvalue_mismatch`
+/// measures the eigenvalues themselves).
 template <class DM, class DP>
 [[nodiscard]] typename DM::Scalar cayley_hamilton_residual(const Eigen::MatrixBase<DM>& M,
                                                            const Eigen::MatrixBase<DP>& poles) {
@@ -219,21 +298,8 @@ template <class DM>
   using Scalar = typename DM::Scalar;
   if (M.rows() == 0) return Scalar(0);
   const ComplexVector<Scalar> eig = detail::dense_eigenvalues(detail::dynamic_copy(M));
-  std::vector<bool> taken(std::size_t(eig.size()), false);
   Scalar worst = 0;
-  for (Index i = 0; i < poles.size(); ++i) {
-    Index best = -1;
-    Scalar best_distance = std::numeric_limits<Scalar>::infinity();
-    for (Index j = 0; j < eig.size(); ++j) {
-      const Scalar d = std::abs(eig(j) - poles(i));
-      if (!taken[std::size_t(j)] && d < best_distance) {
-        best_distance = d;
-        best = j;
-      }
-    }
-    if (best >= 0) taken[std::size_t(best)] = true;
-    worst = std::max(worst, best_distance);
-  }
+  for (const Scalar d : detail::matched_eigenvalue_distances(eig, poles)) worst = std::max(worst, d);
   return worst;
 }
 
@@ -353,10 +419,12 @@ class PolePlacer {
 /// Output-injection gain L with the certificate of its placement.
 template <typename Scalar, int N, int M>
 struct OutputInjectionGain {
-  Eigen::Matrix<Scalar, N, M> L;       ///< \f$A - LC\f$ has the requested spectrum
-  Scalar cayley_hamilton_residual = 0; ///< verified below the tolerance
+  Eigen::Matrix<Scalar, N, M> L;       ///< \f$A - LC\f$ has the requested spectrum (file comment: tests 1–3)
+  Scalar cayley_hamilton_residual = 0; ///< verified below `verification_tolerance`
   Scalar transformation_condition = 0; ///< cond₂(X): sensitivity of the placed eigenvalues
-  Scalar eigenvalue_mismatch = 0;      ///< largest |computed − requested| eigenvalue (greedy matching)
+  /// Largest |computed − requested| eigenvalue (greedy matching); each pole of
+  /// multiplicity k verified within \f$\tau^{1/k}\|A - LC\|_F\f$.
+  Scalar eigenvalue_mismatch = 0;
 };
 
 namespace detail {
@@ -366,8 +434,12 @@ OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(cons
                                                                            const ComplexVector<Scalar>& poles,
                                                                            const PolePlacementOptions& options,
                                                                            std::string_view who, std::string_view pair,
-                                                                           std::string_view property) {
+                                                                           std::string_view property,
+                                                                           std::string_view closed_loop) {
   using Matrix = DynamicMatrix<Scalar>;
+  const Scalar eig_tol = default_eigenvalue_tolerance<Scalar>(options.eigenvalue_tolerance);
+  if (!(options.eigenvalue_tolerance >= 0 && eig_tol < Scalar(1)))
+    fail_argument(who, "options.eigenvalue_tolerance", "must be in [0, 1) (0 selects the default)");
   PolePlacer<Scalar> placer(A, C, poles, options, who, pair, property);
   std::optional<typename PolePlacer<Scalar>::Candidate> best;
   for (int t = 0; t < placer.draws(); ++t) {
@@ -380,7 +452,6 @@ OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(cons
   result.L = best->L;
   result.transformation_condition = best->x_condition;
   result.cayley_hamilton_residual = cayley_hamilton_residual(closed, poles);
-  result.eigenvalue_mismatch = eigenvalue_mismatch(closed, poles);
   const Scalar tol = default_verification_tolerance<Scalar>(options.verification_tolerance);
   if (!(result.cayley_hamilton_residual <= tol)) {
     std::ostringstream os;
@@ -388,18 +459,70 @@ OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(cons
        << result.cayley_hamilton_residual << " > " << tol << "): the pair is nearly not " << property;
     fail_argument(who, "poles", os.str());
   }
+  const Index n = A.rows();
+  if (n == 0) return result;
+  const auto too_clustered = [&](std::ostringstream& os) {
+    os << ": the requested poles are too clustered for the conditioning of the pair '" << pair
+       << "' (the transformation that places them has condition number " << result.transformation_condition << ")";
+    fail_argument(who, "poles", os.str());
+  };
+  const ComplexVector<Scalar> eig = dense_eigenvalues(closed);
+  // Test 2: the stability region of the request is kept.
+  if ((poles.array().abs() < Scalar(1)).all() && !(eig.array().abs().maxCoeff() < Scalar(1))) {
+    std::ostringstream os;
+    os << "could not be placed: every requested pole lies inside the unit circle, but " << closed_loop
+       << " has spectral radius " << eig.array().abs().maxCoeff();
+    too_clustered(os);
+  }
+  if ((poles.array().real() < Scalar(0)).all() && !(eig.array().real().maxCoeff() < Scalar(0))) {
+    std::ostringstream os;
+    os << "could not be placed: every requested pole lies in the open left half-plane, but " << closed_loop
+       << " has an eigenvalue with real part " << eig.array().real().maxCoeff();
+    too_clustered(os);
+  }
+  // Test 3: each pole of multiplicity k within τ^(1/k)‖A − LC‖_F of its matched eigenvalue.
+  const Scalar scale = closed.norm();
+  const std::vector<Scalar> distance = matched_eigenvalue_distances(eig, poles);
+  const std::vector<Index> multiplicity = pole_multiplicities(poles);
+  Scalar worst = 0;
+  for (const Scalar d : distance) worst = std::max(worst, d);
+  result.eigenvalue_mismatch = worst;
+  Index violated = -1;  // the pole farthest beyond its bound, relative to it
+  Scalar violated_ratio = 0;
+  for (Index i = 0; i < n; ++i) {
+    const Scalar bound = std::pow(eig_tol, Scalar(1) / Scalar(multiplicity[std::size_t(i)])) * scale;
+    const Scalar ratio = distance[std::size_t(i)] / bound;
+    if (!(distance[std::size_t(i)] <= bound) && (violated < 0 || !(ratio <= violated_ratio))) {
+      violated = i;
+      violated_ratio = ratio;
+    }
+  }
+  if (violated >= 0) {
+    const Index i = violated;
+    const Index k = multiplicity[std::size_t(i)];
+    std::ostringstream os;
+    os << "could not be placed to the required accuracy: the eigenvalue of " << closed_loop
+       << " matched to the requested pole " << format_complex_list<Scalar>(ComplexVector<Scalar>::Constant(1, poles(i)))
+       << " (multiplicity " << k << ") is " << distance[std::size_t(i)] << " away, beyond the tolerance "
+       << std::pow(eig_tol, Scalar(1) / Scalar(k)) * scale << " (eigenvalue tolerance " << eig_tol << " to the power 1/"
+       << k << ", times ||" << closed_loop << "||_F)";
+    too_clustered(os);
+  }
   return result;
 }
 #ifdef ADAPTOBS_PRECOMPILED
 ADAPTOBS_INSTANTIATE OutputInjectionGain<double, Eigen::Dynamic, Eigen::Dynamic> place_injection<double>(
     const DynamicMatrix<double>&, const DynamicMatrix<double>&, const ComplexVector<double>&,
-    const PolePlacementOptions&, std::string_view, std::string_view, std::string_view);
+    const PolePlacementOptions&, std::string_view, std::string_view, std::string_view, std::string_view);
 #endif
 }  // namespace detail
 
 /// Gain L (N × m) such that \f$A - LC\f$ has the spectrum `poles` (real or
 /// complex vector, closed under conjugation). Throws `ConfigurationError` when
-/// (A, C) is not observable or the placement cannot be verified.
+/// (A, C) is not observable or the placement cannot be verified: a returned L
+/// passes the three tests of the file comment (Cayley–Hamilton residual, the
+/// requested stability region kept, each pole of multiplicity k placed within
+/// \f$\tau^{1/k}\|A - LC\|_F\f$).
 template <class DA, class DC, class DP>
 [[nodiscard]] auto place_output_injection(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
                                           const Eigen::MatrixBase<DP>& poles, PolePlacementOptions options = {}) {
@@ -407,7 +530,7 @@ template <class DA, class DC, class DP>
   constexpr std::string_view who = "place_output_injection";
   const auto d = detail::place_injection<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C),
                                                  detail::complex_poles<Scalar>(poles, who), options, who, "A, C",
-                                                 "observable");
+                                                 "observable", "A - LC");
   OutputInjectionGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime> result;
   result.L = d.L;
   result.cayley_hamilton_residual = d.cayley_hamilton_residual;
@@ -427,7 +550,8 @@ struct StateFeedbackGain {
 
 /// Gain K (m × N) such that \f$A - BK\f$ has the spectrum `poles`, by duality
 /// (\f$K^T\f$ places \f$A^T - K^TB^T\f$). Throws `ConfigurationError` when (A, B)
-/// is not controllable or the placement cannot be verified.
+/// is not controllable or the placement cannot be verified (the tests of the
+/// file comment, applied to \f$A^T - K^TB^T\f$, whose spectrum is that of A − BK).
 template <class DA, class DB, class DP>
 [[nodiscard]] auto place_state_feedback(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
                                         const Eigen::MatrixBase<DP>& poles, PolePlacementOptions options = {}) {
@@ -440,7 +564,7 @@ template <class DA, class DB, class DP>
   const auto dual = detail::place_injection<Scalar>(detail::dynamic_copy(A.transpose()),
                                                     detail::dynamic_copy(B.transpose()),
                                                     detail::complex_poles<Scalar>(poles, who), options, who, "A, B",
-                                                    "controllable");
+                                                    "controllable", "A - BK");
   StateFeedbackGain<Scalar, DA::RowsAtCompileTime, DB::ColsAtCompileTime> result;
   result.K = dual.L.transpose();
   result.cayley_hamilton_residual = dual.cayley_hamilton_residual;
