@@ -244,6 +244,15 @@ TEST(GuiroDesign, CasesWithoutSolutionAreNamed) {
   EXPECT_CONFIGURATION_ERROR_NAMES(
       adaptobs::design_guiro_gains(paper.E, paper.C, paper.H0, g::requested_poles(), negative_singularity),
       "options.singularity_tolerance");
+  // A singular E (no sampled e^{AT} is one) was refused as 'I - C K is singular'.
+  Eigen::Matrix2d nilpotent;
+  nilpotent << 0, 1, 0, 0;
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::design_guiro_gains(nilpotent, Eigen::RowVector2d(1, 0),
+                                                                Eigen::Vector2d(0.1, 0.2), Eigen::Vector3d(0.2, 0.3, 0.4)),
+                                   "E");
+  // A NaN in U was refused as spectral_radius's 'M'.
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::best_power_bound(Eigen::Matrix2d(Eigen::Vector2d(0.5, std::nan("")).asDiagonal())), "U");
 }
 
 // ---- Proposition 2.2 -----------------------------------------------------------------

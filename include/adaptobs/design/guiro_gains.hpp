@@ -167,6 +167,10 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
 
   PolePlacer<Scalar> placer(a_bar, c_bar, target, options.placement, who, "E, C", "observable");
   const Eigen::PartialPivLU<Matrix> e_lu(E);
+  // K = E⁻¹L: a singular E (no sampled e^{AT} is) would show only later, as
+  // an I − CK that no draw makes invertible.
+  if (!(e_lu.rcond() > Scalar(100) * std::numeric_limits<Scalar>::epsilon()))
+    fail_argument(who, "E", "must be invertible (the sampled transition e^{AT} always is)");
   const Matrix identity_m = Matrix::Identity(m, m);
   struct Choice {
     Matrix L, K, N;

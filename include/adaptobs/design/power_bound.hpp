@@ -90,6 +90,8 @@ template <class Derived>
   using Scalar = typename Derived::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   detail::require(grid >= 2, "best_power_bound", "grid", "must be at least 2");
+  detail::require_square(U, "best_power_bound", "U");
+  detail::require_finite(U, "best_power_bound", "U");
   const Matrix u = detail::dynamic_copy(U);
   const Scalar rho = spectral_radius(u);
   if (!(rho < Scalar(1))) return std::nullopt;
