@@ -114,6 +114,11 @@ TEST(Polynomials, RouthHurwitzAndSturmCounts) {
   EXPECT_EQ(count_real_roots_above<double>(poly({1, 0, 1}), 0.0), 0);        // ±j
   EXPECT_EQ(count_real_roots_above<double>(poly({1, -2, 1}), 0.0), 1);       // double root 1
   EXPECT_EQ(count_real_roots_above<double>(poly({1, 1, -2}), 0.0), 1);       // 1, -2
+  // Scale invariance: ±1e-6 were taken for a double root (the remainder 1e-12
+  // was trimmed against the leading 1), and so were roots scaled by 1e100.
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, 0, -1e-12}), -1.0), 2);
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, 0, -1e-12}), 0.0), 1);
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, -6e100, 11e200, -6e300}), 1.5e100), 2);
 }
 
 struct SprCase {

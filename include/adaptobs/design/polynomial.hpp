@@ -47,6 +47,33 @@ template <class Derived>
   return p;
 }
 
+namespace detail {
+/// The e with 2^e near the geometric mean magnitude of the nonzero roots of p
+/// (p(0) ≠ 0): \f$|p_j/p_0|^{1/(d-j)}\f$ with \f$p_j\f$ the last nonzero coefficient.
+template <typename Scalar>
+int root_scale_exponent(const Polynomial<Scalar>& p) {
+  Index last = p.size() - 1;
+  while (last > 0 && p(last) == Scalar(0)) --last;
+  if (last == 0) return 0;
+  return static_cast<int>(std::lround(static_cast<double>(std::ilogb(p(last)) - std::ilogb(p(0))) /
+                                      static_cast<double>(last)));
+}
+
+/// \f$q(z) = p(2^e z)\f$ divided by a power of two that brings its largest
+/// coefficient to [1, 2): both exact (short of underflow), with the roots of q
+/// those of p divided by 2^e.
+template <typename Scalar>
+Polynomial<Scalar> with_roots_scaled(const Polynomial<Scalar>& p, int e) {
+  const Index d = p.size() - 1;
+  int top = std::numeric_limits<int>::min();
+  for (Index i = 0; i <= d; ++i)
+    if (p(i) != Scalar(0)) top = std::max(top, std::ilogb(p(i)) + static_cast<int>(d - i) * e);
+  Polynomial<Scalar> q(p.size());
+  for (Index i = 0; i <= d; ++i) q(i) = p(i) == Scalar(0) ? Scalar(0) : std::ldexp(p(i), static_cast<int>(d - i) * e - top);
+  return q;
+}
+}  // namespace detail
+
 /// Every root in the open left half-plane (and a non-zero leading coefficient).
 ///
 /// Routh–Hurwitz test, no root finding: the first column of the Routh array
@@ -63,13 +90,7 @@ template <typename Scalar>
   const Index degree = p.size() - 1;
   if (degree == 0) return true;
   if (p(degree) == Scalar(0)) return false;  // a root at 0
-  const auto root_exponent = static_cast<int>(
-      std::lround(static_cast<double>(std::ilogb(p(degree)) - std::ilogb(p(0))) / static_cast<double>(degree)));
-  int top = std::numeric_limits<int>::min();
-  for (Index i = 0; i <= degree; ++i)
-    if (p(i) != Scalar(0)) top = std::max(top, std::ilogb(p(i)) + static_cast<int>(degree - i) * root_exponent);
-  Polynomial<Scalar> q(p.size());
-  for (Index i = 0; i <= degree; ++i) q(i) = std::ldexp(p(i), static_cast<int>(degree - i) * root_exponent - top);
+  const Polynomial<Scalar> q = detail::with_roots_scaled(p, detail::root_scale_exponent(p));
   const Scalar sign = q(0) > 0 ? Scalar(1) : Scalar(-1);
   const Scalar tol = Scalar(64) * std::numeric_limits<Scalar>::epsilon() * q.cwiseAbs().maxCoeff();
   const Index width = degree / 2 + 1;
@@ -98,7 +119,8 @@ template <class Derived>
 /// Number of distinct real roots of p in the half-open interval (a, ∞), by a
 /// Sturm sequence (signs of \f$p_0 = p,\ p_1 = p',\ p_{k+1} = -\mathrm{rem}(p_{k-1}, p_k)\f$
 /// at a and at +∞); `relative_tolerance` treats remainder coefficients that small
-/// against the largest as zero. No root finding.
+/// against the largest as zero, after the roots are scaled to magnitudes near 1
+/// (as in `is_hurwitz_polynomial`). No root finding.
 template <typename Scalar>
 [[nodiscard]] Index count_real_roots_above(const Polynomial<Scalar>& p, Scalar a,
                                            Scalar relative_tolerance = Scalar(1e-10)) {
@@ -111,7 +133,15 @@ template <typename Scalar>
     return Polynomial<Scalar>(q.tail(q.size() - first));
   };
   std::vector<Polynomial<Scalar>> chain;
-  chain.push_back(trimmed(p));
+  // Scale invariance: the roots (and a) divided by 2^e, near their geometric
+  // mean magnitude, so that the relative trims see x² − 1e-12 as x² − 1.
+  Index lead = 0;
+  while (lead < p.size() && p(lead) == Scalar(0)) ++lead;
+  if (p.size() - lead <= 1) return 0;
+  const Polynomial<Scalar> exact = p.tail(p.size() - lead);
+  const int e = detail::root_scale_exponent(exact);
+  a = std::clamp(std::ldexp(a, -e), std::numeric_limits<Scalar>::lowest(), std::numeric_limits<Scalar>::max());
+  chain.push_back(trimmed(detail::with_roots_scaled(exact, e)));
   if (chain[0].size() <= 1) return 0;
   Polynomial<Scalar> derivative(chain[0].size() - 1);
   const Index d = chain[0].size() - 1;
