@@ -22,6 +22,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -250,6 +251,22 @@ TEST(CanonicalForms, BastinGeversFormOfTheThirdOrderPlant) {
 
 // Non-finite data gets the reason "not finite" under its own name, not a
 // verdict on observability or on the polynomial, and never a NaN gain.
+// Past n ≈ 15 the observability matrix of a random pair has a condition number
+// beyond 1/(n eps): the form was refused as StaticTransform's argument 'T',
+// which the caller never gave.
+TEST(CanonicalForms, APairTooIllConditionedForTheFormIsRefusedAsThePair) {
+  using D = adaptobs::Dimensions<double, Eigen::Dynamic, 1, 1, 1>;
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal;
+  const Eigen::Index n = 20;
+  Eigen::MatrixXd a(n, n), c(1, n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (Eigen::Index i = 0; i < n; ++i) a(i, j) = normal(rng);
+    c(0, j) = normal(rng);
+  }
+  EXPECT_CONFIGURATION_ERROR_NAMES((void)adaptobs::marino_tomei_form<D>(a, c), "A, c");
+}
+
 TEST(CanonicalForms, NonFiniteDataOfTheSisoDesignsIsRefusedByName) {
   using D = siso::Dims<double>;
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();

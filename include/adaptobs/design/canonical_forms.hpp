@@ -34,6 +34,7 @@
 
 #include <cmath>
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace adaptobs {
@@ -54,7 +55,13 @@ template <StateSpace D>
   if constexpr (D::nx != Eigen::Dynamic) require_shape(t.T, D::nx, D::nx, who, "A");
   if constexpr (D::ny != Eigen::Dynamic)
     require(t.K.cols() == D::ny, who, output_matrix, "must have as many rows as the outputs of the dimensions D");
-  return StaticTransform<D>(typename D::StateMatrix(t.T), typename D::GainMatrix(t.K));
+  try {
+    return StaticTransform<D>(typename D::StateMatrix(t.T), typename D::GainMatrix(t.K));
+  } catch (const ConfigurationError&) {  // T (finite, square) not invertible to working accuracy
+    fail_argument(who, "A, " + std::string(output_matrix),
+                  "is too ill-conditioned for the canonical form: its transformation T has a condition number "
+                  "beyond 1/(n eps)");
+  }
 }
 
 // Columns spanning ker C (orthonormal), from a QR factorization of Cᵀ.
