@@ -598,7 +598,23 @@ TEST(LtvStability, AStiffStableModeIsFoundOrRefusedNotReportedUnstable) {
   const auto two_rates = [](double) { return Eigen::Matrix2d(Eigen::Vector2d(-1, -1000).asDiagonal()); };
   EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic(two_rates, 10.0));
   EXPECT_FALSE(adaptobs::is_exponentially_stable_periodic(two_rates, 10.0, 1.5));
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::floquet_exponents(two_rates, 10.0), "A");
+  // The −1000 multiplier is rounding noise beside e^{−10}: its exponent is
+  // reported as the resolution bound −1 + log(2ε)/T, which it lies below.
+  const Eigen::Vector2d both = adaptobs::floquet_exponents(two_rates, 10.0);
+  const double bound = -1 + std::log(2 * std::numeric_limits<double>::epsilon()) / 10;
+  EXPECT_NEAR(both(0), -1, 1e-5);
+  EXPECT_NEAR(both(1), bound, 1e-5);
+  // Nor does a fast mode need to underflow: −50 beside −1 over T = 1 (a
+  // multiplier 2e-22 beside 0.37) was refused as underflowing.
+  Eigen::Matrix2d coupled;
+  coupled << -25.5, 24.5, 24.5, -25.5;  // eigenvalues −1 and −50
+  const Eigen::Vector2d fast = adaptobs::floquet_exponents([&](double) { return coupled; }, 1.0);
+  EXPECT_NEAR(fast(0), -1, 1e-5);
+  EXPECT_NEAR(fast(1), -1 + std::log(2 * std::numeric_limits<double>::epsilon()), 1e-5);
+  EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic([&](double) { return coupled; }, 1.0, 0.9));
+  // The period is checked whatever the order.
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::floquet_exponents([](double) { return Eigen::MatrixXd(0, 0); }, -1.0), "period");
 }
 
 // A(t) is checked at every evaluation, not only at t0: a later A(t) of another

@@ -165,12 +165,12 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
                   "cannot be moved by any K and Gamma");
   }
 
-  PolePlacer<Scalar> placer(a_bar, c_bar, target, options.placement, who, "E, C", "observable");
+  // K = E⁻¹L: an E singular to working accuracy would show only later, as an
+  // I − CK that no draw makes invertible.
   const Eigen::PartialPivLU<Matrix> e_lu(E);
-  // K = E⁻¹L: a singular E (no sampled e^{AT} is) would show only later, as
-  // an I − CK that no draw makes invertible.
   if (!(e_lu.rcond() > Scalar(100) * std::numeric_limits<Scalar>::epsilon()))
-    fail_argument(who, "E", "must be invertible (the sampled transition e^{AT} always is)");
+    fail_argument(who, "E", "is too ill-conditioned to invert (reciprocal condition number at most 100 eps)");
+  PolePlacer<Scalar> placer(a_bar, c_bar, target, options.placement, who, "E, C", "observable");
   const Matrix identity_m = Matrix::Identity(m, m);
   struct Choice {
     Matrix L, K, N;

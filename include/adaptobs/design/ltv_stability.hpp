@@ -91,6 +91,13 @@ inline constexpr int floquet_max_steps = 1 << 22;
 /// The tolerance: this fraction of \f$\max(\max_t\|A(t)\|_\infty, 1/T)\f$.
 inline constexpr double floquet_relative_tolerance = 1e-6;
 
+/// The period and the step count of a Floquet computation.
+template <typename Scalar>
+void require_floquet_arguments(Scalar period, int steps, std::string_view who) {
+  require_positive(period, who, "period");
+  require(steps >= 1 && steps <= floquet_max_steps / 2, who, "steps", "must be between 1 and 2^21");
+}
+
 /// The Floquet exponents, error-controlled by step doubling. `count` leading
 /// exponents (largest first) must agree between N and 2N steps within the
 /// tolerance; the others are returned as computed. See `floquet_exponents`.
@@ -98,8 +105,6 @@ template <class AFn, typename Scalar>
 Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn& A, Scalar period, int steps,
                                                                       Index count, std::string_view who) {
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
-  require_positive(period, who, "period");
-  require(steps >= 1 && steps <= floquet_max_steps / 2, who, "steps", "must be between 1 and 2^21");
   // max_t ||A(t)|| from a uniform sample of the period; the RK4 passes raise it
   // with every evaluation they make.
   Scalar norm = 0;
@@ -107,7 +112,7 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn&
   const int samples = std::max(steps, 256);
   for (int k = 0; k < samples; ++k) (void)checked_dynamics(A, period * Scalar(k) / Scalar(samples), n, who, norm);
   const Scalar wanted = std::ceil(period * norm / Scalar(floquet_first_step_scale));
-  if (!(wanted <= Scalar(floquet_max_steps))) {
+  if (!(wanted <= Scalar(floquet_max_steps / 2))) {  // the first doubling takes twice as many
     std::ostringstream os;
     os << "varies too fast for its period: period * max ||A(t)|| = " << period * norm << " needs more than "
        << floquet_max_steps << " RK4 steps for the stated accuracy";
@@ -122,24 +127,33 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn&
          << " RK4 steps";
       fail_argument(who, "A", os.str());
     }
-    const Vector fine =
-        exponents_of_monodromy(checked_transition(A, Scalar(0), period, 2 * n_steps, who, norm), period);
+    Vector fine = exponents_of_monodromy(checked_transition(A, Scalar(0), period, 2 * n_steps, who, norm), period);
     // A solution beyond the floating-point range: no exponent can be told.
     if (coarse.array().isNaN().any() || fine.array().isNaN().any()) return fine;
-    // A multiplier in the subnormal range has lost its relative precision: its
-    // exponent is below log(DBL_MIN / eps) / T and is not resolved.
+    // A largest multiplier in the subnormal range has lost its relative
+    // precision: its exponent is below log(DBL_MIN / eps) / T and no exponent can be told.
     const Scalar smallest_resolved =
         std::log(std::numeric_limits<Scalar>::min() / std::numeric_limits<Scalar>::epsilon()) / period;
-    for (Index i = 0; i < count; ++i) {
-      if (!(fine(i) >= smallest_resolved)) {
-        std::ostringstream os;
-        os << "contracts solutions beyond the floating-point range over one period: the Floquet exponent "
-           << (i + 1) << " is below log(" << std::numeric_limits<Scalar>::min() << " / eps) / period = "
-           << smallest_resolved << " (its multiplier underflows) and cannot be told";
-        fail_argument(who, "A", os.str());
-      }
+    if (!(fine(0) >= smallest_resolved)) {
+      std::ostringstream os;
+      os << "contracts solutions beyond the floating-point range over one period: its largest Floquet exponent "
+         << "is below log(" << std::numeric_limits<Scalar>::min() << " / eps) / period = " << smallest_resolved
+         << " (the multiplier underflows) and cannot be told";
+      fail_argument(who, "A", os.str());
     }
     const Scalar tolerance = Scalar(floquet_relative_tolerance) * std::max(norm, Scalar(1) / period);
+    // The others are computed to about n·eps·|μ_max| in general: a multiplier
+    // below that may be rounding noise. Its exponent is kept when both passes
+    // agree on it (a triangular monodromy matrix has its multipliers exactly on
+    // the diagonal), and reported as the bound log(n·eps·|μ_max|)/T otherwise
+    // (the true exponent lies at or below it).
+    const Scalar bound = fine(0) + std::log(Scalar(n) * std::numeric_limits<Scalar>::epsilon()) / period;
+    for (Index i = 1; i < fine.size(); ++i) {
+      const bool agreed = std::isfinite(fine(i)) && std::isfinite(coarse(i)) && std::abs(fine(i) - coarse(i)) <= tolerance;
+      if (!(fine(i) >= bound) && !agreed) fine(i) = coarse(i) = bound;
+    }
+    std::sort(fine.begin(), fine.end(), [](Scalar a, Scalar b) { return a > b; });
+    std::sort(coarse.begin(), coarse.end(), [](Scalar a, Scalar b) { return a > b; });
     Scalar difference = 0;
     Index worst = 0;
     for (Index i = 0; i < count; ++i) {
@@ -204,10 +218,17 @@ template <class AFn, typename Scalar = double>
 /// Refusals (`ConfigurationError` naming 'A'): A(t) not square, of another
 /// shape than A(0), or not finite at a time evaluated; more than \f$2^{22}\f$
 /// steps needed; exponents that do not agree within τ after six doublings (an
-/// exponent whose multiplier is within rounding of the largest one, or an A(t)
-/// discontinuous within the period); an exponent whose multiplier underflows,
-/// i.e. below \f$\log(\text{DBL\_MIN}/\varepsilon)/T\f$ (a stiff stable mode over
-/// a long period), which cannot be told in floating point.
+/// exponent whose multiplier is within rounding of another, or an A(t)
+/// discontinuous within the period); a largest exponent whose multiplier
+/// underflows, i.e. below \f$\log(\text{DBL\_MIN}/\varepsilon)/T\f$ (every
+/// mode contracting beyond the floating-point range over one period).
+///
+/// Resolution. The multipliers are computed to about \f$n\varepsilon|\mu_{\max}|\f$
+/// in general: an exponent below \f$\lambda_{\max} + \log(n\varepsilon)/T\f$ (a fast
+/// stable mode beside a slow one, e.g. −50 beside −1 over T = 1) is kept when
+/// two passes agree on it within τ (a triangular A(t) has its multipliers
+/// exactly on the diagonal), and otherwise reported as that bound, which the
+/// true exponent does not exceed.
 ///
 /// All NaN when the monodromy matrix is not finite: the solution left the
 /// floating-point range within one period and no exponent can be told;
@@ -217,6 +238,7 @@ template <class AFn, typename Scalar = double>
                                                                          int steps = 2000) {
   const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a0 = A(Scalar(0));
   detail::require_square(a0, "floquet_exponents", "A");
+  detail::require_floquet_arguments(period, steps, "floquet_exponents");
   if (a0.rows() == 0) return Eigen::Matrix<Scalar, Eigen::Dynamic, 1>();
   return detail::controlled_floquet_exponents(A, period, steps, a0.rows(), "floquet_exponents");
 }
@@ -235,6 +257,7 @@ template <class AFn, typename Scalar = double>
   const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a0 = A(Scalar(0));
   detail::require_square(a0, "is_exponentially_stable_periodic", "A");
   detail::require(std::isfinite(margin), "is_exponentially_stable_periodic", "margin", "must be finite");
+  detail::require_floquet_arguments(period, steps, "is_exponentially_stable_periodic");
   if (a0.rows() == 0) return true;
   return detail::controlled_floquet_exponents(A, period, steps, 1, "is_exponentially_stable_periodic")(0) <
          -margin;

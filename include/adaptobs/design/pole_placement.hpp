@@ -36,8 +36,8 @@
 ///    eigenvalue (`eigenvalue_mismatch`), lies within
 ///    \f$\tau^{1/k_i}\,\|M\|_F\f$ of it, where τ is `eigenvalue_tolerance`
 ///    (default \f$\sqrt\varepsilon\f$) and \f$k_i\f$ the multiplicity of
-///    \f$p_i\f$ in the request (poles within \f$\sqrt\varepsilon\max(1, |p_i|)\f$ of
-///    each other count as one repeated pole, as in F).
+///    \f$p_i\f$ in the request: the number of requested poles within
+///    \f$\sqrt\varepsilon\max(1, |p_i|)\f$ of it.
 ///
 /// Test 1 alone is not enough: its normalizer grows like \f$\|M\|_F^N\f$,
 /// and with \f$\|M\|_F\f$ far above the poles (a large gain, or a large A) it
@@ -121,8 +121,7 @@ Scalar default_eigenvalue_tolerance(double requested) {
 }
 
 /// For each pole, how many poles of the list (itself included) lie within
-/// \f$\sqrt\varepsilon\max(1, |p_i|)\f$ of it: its multiplicity as a repeated
-/// pole (the tolerance with which `real_matrix_with_spectrum` chains blocks).
+/// \f$\sqrt\varepsilon\max(1, |p_i|)\f$ of it: its multiplicity as a repeated pole.
 template <typename Scalar>
 std::vector<Index> pole_multiplicities(const ComplexVector<Scalar>& poles) {
   const Scalar tol = std::sqrt(std::numeric_limits<Scalar>::epsilon());

@@ -201,9 +201,8 @@ template <typename Scalar, int N>
     return detector.alarm_count();
   };
   result.checked_mean_evaluations = count / Scalar(50);
-  // The check needs a threshold whose sums alarm less often than at h = 0.
-  if (!(2 * static_cast<double>(result.checked_mean_evaluations) * static_cast<double>(n) >
-        cusum_mean_run_length(static_cast<double>(drift), 0.0))) {
+  if (!detail::cusum_threshold_exists(static_cast<double>(drift), static_cast<double>(result.checked_mean_evaluations),
+                                      n)) {
     std::ostringstream os;
     os << "hold too few values at the stride (" << result.evaluations << ") for drift " << drift
        << ": a check expecting 50 false alarms on them needs a threshold below 0; give longer runs or lower the drift";

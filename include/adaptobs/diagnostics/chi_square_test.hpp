@@ -95,7 +95,8 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
   /// Takes the output error of one sample. Returns `nonfinite_input`, with the
   /// test unchanged, for a NaN or Inf in it; a wrong size is a `ConfigurationError`.
   /// A finite error whose \f$\varepsilon^TS^{-1}\varepsilon\f$ overflows counts as +∞:
-  /// its window ends in an alarm.
+  /// its window ends in an alarm (`nonfinite_result`, the test unchanged, only
+  /// if even its scaled form is NaN).
   [[nodiscard]] UpdateStatus update(const Vector& output_error) {
     if constexpr (NY == Eigen::Dynamic)
       detail::require_shape(output_error, information_.rows(), 1, "ChiSquareTest::update", "output_error");

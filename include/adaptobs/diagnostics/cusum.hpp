@@ -68,6 +68,14 @@ inline constexpr double siegmund_overshoot = 1.166;
   return (std::expm1(-x) + x) / (2 * delta * delta);
 }
 
+namespace detail {
+/// Whether 2 × `components` sums can raise false alarms as rarely as every
+/// `mean_evaluations` increments: more rarely than at h = 0, the least any threshold achieves.
+[[nodiscard]] inline bool cusum_threshold_exists(double drift, double mean_evaluations, Index components) {
+  return mean_evaluations * 2 * static_cast<double>(components) > cusum_mean_run_length(drift, 0.0);
+}
+}  // namespace detail
+
 /// The threshold h at which \f$2\times\f$`components` one-sided sums, each fed
 /// independent standard normal increments with drift ν, raise false alarms every
 /// `mean_evaluations` increments on average (each sum then every
@@ -80,8 +88,7 @@ inline constexpr double siegmund_overshoot = 1.166;
   const double per_sum = mean_evaluations * 2 * static_cast<double>(components);
   detail::require(std::isfinite(per_sum), who, "mean_evaluations",
                   "times 2 x components must be finite (no threshold reaches an infinite run length)");
-  // The run length at h = 0 is the least any threshold achieves.
-  detail::require(per_sum > cusum_mean_run_length(drift, 0.0), who, "mean_evaluations",
+  detail::require(detail::cusum_threshold_exists(drift, mean_evaluations, components), who, "mean_evaluations",
                   "is shorter than the run length at threshold 0: lower the drift");
   return detail::boundary_by_bisection([&](double h) { return cusum_mean_run_length(drift, h) < per_sum; });
 }

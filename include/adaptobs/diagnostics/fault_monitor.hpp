@@ -99,6 +99,12 @@ template <typename Scalar, int NY, int NP>
   const double evaluations_between = static_cast<double>(mean_samples_between_false_alarms) / static_cast<double>(stride);
   detail::require(evaluations_between >= 2 && evaluations_between <= 1e5, who, "mean_samples_between_false_alarms",
                   "must lie between 2 and 1e5 strides (the GLR's threshold is simulated over 50 times as many)");
+  // The GLR's threshold is simulated (glr_threshold), at a cost of window × parameters × evaluations.
+  const double glr_work_per_evaluation = static_cast<double>(glr_window) * static_cast<double>(nominal.size());
+  detail::require(glr_window <= glr_max_window && glr_work_per_evaluation * evaluations_between <= glr_max_simulation_work,
+                  who, "glr_window",
+                  "times the parameters times mean_samples_between_false_alarms / stride must be at most 1e7 "
+                  "(glr_max_simulation_work: the GLR's threshold is simulated)");
   FaultMonitorDesign<Scalar, NY, NP> design;
   design.nominal = nominal;
   design.cusum = calibrate_cusum(record.parameters, nominal, drift,
@@ -109,8 +115,9 @@ template <typename Scalar, int NY, int NP>
   {
     const double checked = static_cast<double>(design.cusum.evaluations) / 50;
     // The check simulates its own threshold, within glr_threshold's range.
-    detail::require(checked <= 1e5, who, "record",
-                    "is too long for the GLR's check: it holds more than 5e6 estimates at the stride; give fewer runs");
+    detail::require(checked <= 1e5 && glr_work_per_evaluation * checked <= glr_max_simulation_work, who, "record",
+                    "is too long for the GLR's check, whose threshold is simulated for its estimates at the stride / 50 "
+                    "(at most 1e5, and 1e7 / (glr_window x parameters)): give fewer runs");
     GlrDetector<Scalar, NP> glr(nominal, design.cusum.scale, glr_window,
                                 static_cast<Scalar>(glr_threshold(glr_window, checked, nominal.size())), {.stride = stride});
     for (const auto& run : record.parameters) {

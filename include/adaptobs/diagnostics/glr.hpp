@@ -43,6 +43,9 @@ namespace adaptobs {
 
 /// Longest window a GLR searches: each evaluation costs O(window) per component.
 inline constexpr Index glr_max_window = Index{1} << 20;
+/// Most window × components × mean_evaluations products `glr_threshold`
+/// simulates per candidate threshold (about ten seconds in all).
+inline constexpr double glr_max_simulation_work = 1e7;
 
 template <typename Scalar, int N = Eigen::Dynamic>
 class GlrDetector : public detail::SequentialTest<GlrDetector<Scalar, N>, Scalar, N> {
@@ -192,17 +195,17 @@ namespace detail {
 /// the rate it gives carries a relative Monte-Carlo error of about
 /// \f$1/\sqrt{50} \approx 14\,\%\f$ (which the tests' tolerances allow for).
 /// Refuses, naming 'mean_evaluations', a target outside [2, 10⁵] evaluations,
-/// and naming 'window' one whose simulation would cost more than 10⁷
-/// window × component × evaluation products per candidate (about ten seconds
-/// in all; each evaluation costs O(window) per component).
+/// and naming 'window' one whose simulation would cost more than
+/// `glr_max_simulation_work` (each evaluation costs O(window) per component).
 [[nodiscard]] inline double glr_threshold(Index window, double mean_evaluations, Index components = 1) {
   constexpr std::string_view who = "glr_threshold";
   detail::require(window >= 1 && window <= glr_max_window, who, "window", "must lie in [1, 2^20]");
   detail::require(components >= 1, who, "components", "must be at least 1");
   detail::require(mean_evaluations >= 2 && mean_evaluations <= 1e5, who, "mean_evaluations",
                   "must lie in [2, 1e5] evaluations");
-  detail::require(static_cast<double>(window) * static_cast<double>(components) * mean_evaluations <= 1e7, who,
-                  "window", "times components times mean_evaluations must be at most 1e7 (the simulation's cost)");
+  detail::require(static_cast<double>(window) * static_cast<double>(components) * mean_evaluations <=
+                      glr_max_simulation_work,
+                  who, "window", "times components times mean_evaluations must be at most 1e7 (glr_max_simulation_work)");
   return detail::glr_threshold_search(window, mean_evaluations, components, Index{1} << 22);
 }
 
