@@ -563,6 +563,15 @@ TEST(RiccatiHostile, CareOnBadlyScaledStatesAndUndampedOscillators) {
                        rows(2, 1, {0, 1}), Matrix::Identity(2, 2), scalar(1)});
 }
 
+// Smith's doubling stopped once no term exceeded ε·max|X|, so the entries of a
+// small diagonal block were summed to the largest entry's accuracy: with
+// W = diag(1, 1e-20) and F = diag(0.1, 0.999), X(1, 1) read 1.58e-19 for 5.0e-18.
+TEST(RiccatiHostile, SteinDoublingSumsEverySemidefiniteEntryToItsOwnScale) {
+  const Matrix x = adaptobs::detail::solve_stein_doubling<double>(diagonal({0.1, 0.999}), diagonal({1, 1e-20}));
+  EXPECT_NEAR(x(0, 0) * (1 - 0.01), 1.0, 1e-14);
+  EXPECT_NEAR(x(1, 1) * (1 - 0.999 * 0.999) / 1e-20, 1.0, 1e-12);
+}
+
 TEST(RiccatiHostile, EmptyStateAndNoInput) {
   EXPECT_EQ(adaptobs::solve_dare(Matrix(0, 0), Matrix(0, 1), Matrix(0, 0), scalar(1)).X.size(), 0);
   EXPECT_EQ(adaptobs::solve_care(Matrix(0, 0), Matrix(0, 1), Matrix(0, 0), scalar(1)).X.size(), 0);

@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <limits>
 
 namespace adaptobs::detail {
@@ -31,11 +32,23 @@ template <typename Scalar>
   Matrix x = W, f = F;
   if (F.size() == 0) return x;
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
+  const Index n = F.rows();
   for (int j = 0; j < 64; ++j) {
     const Matrix term = congruence(f, x);
     x += term;
-    // The tail left after 2^(j+1) terms is at most about ‖term‖: stop once it is rounding.
-    if (!(term.cwiseAbs().maxCoeff() > eps * x.cwiseAbs().maxCoeff())) return x;
+    // The tail left after 2^(j+1) terms is at most about the term: stop once
+    // it is rounding in every entry. Entry by entry against √(|x_ii x_jj|), the
+    // scale of x_ij for a semidefinite X, so that a small diagonal block (W =
+    // diag(1, 1e-20)) is summed to its own accuracy and not to that of the
+    // largest entry; against the largest |x| where that scale is zero.
+    const Scalar largest = x.cwiseAbs().maxCoeff();
+    bool converged = true;
+    for (Index c = 0; c < n && converged; ++c)
+      for (Index r = 0; r < n && converged; ++r) {
+        const Scalar scale = std::sqrt(std::abs(x(r, r)) * std::abs(x(c, c)));
+        converged = std::abs(term(r, c)) <= eps * (scale > Scalar(0) ? scale : largest);
+      }
+    if (converged) return x;
     f = multiply(f, f);
   }
   return Matrix::Constant(F.rows(), F.cols(), std::numeric_limits<Scalar>::quiet_NaN());
