@@ -32,10 +32,9 @@ namespace detail {
 /// A(t) checked as the integrations need it: an n x n matrix (n the order of
 /// A(t0)) of finite numbers, or the routine `who` refuses naming 'A' and the
 /// time. `norm_seen` is raised to \f$\|A(t)\|_\infty\f$.
-template <class AFn, typename Scalar>
-Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> checked_dynamics(const AFn& A, Scalar t, Index n,
-                                                                       std::string_view who, Scalar& norm_seen) {
-  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a = A(t);
+template <typename Scalar>
+void check_dynamics_value(const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& a, Scalar t, Index n,
+                          std::string_view who, Scalar& norm_seen) {
   if (a.rows() != n || a.cols() != n) {
     std::ostringstream os;
     os << "must return a matrix of A(t0)'s shape " << n << "x" << n << " at every t (got " << a.rows() << "x"
@@ -48,6 +47,14 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> checked_dynamics(const AFn
     fail_argument(who, "A", os.str());
   }
   norm_seen = std::max(norm_seen, a.cwiseAbs().rowwise().sum().maxCoeff());
+}
+
+/// A(t), checked by `check_dynamics_value`.
+template <class AFn, typename Scalar>
+Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> checked_dynamics(const AFn& A, Scalar t, Index n,
+                                                                       std::string_view who, Scalar& norm_seen) {
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a = A(t);
+  check_dynamics_value(a, t, n, who, norm_seen);
   return a;
 }
 
@@ -61,7 +68,7 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> checked_transition(const A
   const Matrix a0 = A(t0);
   require_square(a0, who, "A");
   const Index n = a0.rows();
-  (void)checked_dynamics(A, t0, n, who, norm_seen);
+  check_dynamics_value(a0, t0, n, who, norm_seen);
   Matrix phi = Matrix::Identity(n, n);
   RungeKutta4<Matrix> rk4(phi);
   rk4.integrate(
