@@ -65,24 +65,6 @@ template <typename Scalar>
   return c;
 }
 
-/// \f$ab^T\f$.
-template <typename Scalar>
-[[nodiscard]] DynamicMatrix<Scalar> multiply_by_transpose(const DynamicMatrix<Scalar>& a,
-                                                          const DynamicMatrix<Scalar>& b) {
-  const Index m = a.rows(), n = b.rows(), depth = a.cols();
-  eigen_assert(b.cols() == depth && "multiply_by_transpose: inner dimensions differ");
-  DynamicMatrix<Scalar> c = DynamicMatrix<Scalar>::Zero(m, n);
-  for (Index j = 0; j < n; ++j) {
-    Scalar* cj = c.data() + j * m;
-    for (Index k = 0; k < depth; ++k) {
-      const Scalar bjk = b.data()[j + k * n];
-      const Scalar* ak = a.data() + k * m;
-      for (Index i = 0; i < m; ++i) cj[i] += ak[i] * bjk;
-    }
-  }
-  return c;
-}
-
 /// \f$a^Txa\f$ for a symmetric x, symmetrized so that rounding leaves it exactly symmetric.
 template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> congruence(const DynamicMatrix<Scalar>& a, const DynamicMatrix<Scalar>& x) {

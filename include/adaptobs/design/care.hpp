@@ -190,7 +190,7 @@ std::optional<DynamicMatrix<Scalar>> continuous_stabilizing_gain(const DynamicMa
     if (!is_hurwitz_with_margin(A, stabilizability_margin<Scalar>)) return std::nullopt;
     return Matrix::Zero(B.cols(), n);
   }
-  Matrix a = A, g = multiply_by_transpose(B, B) / b2, q = Matrix::Identity(n, n);
+  Matrix a = A, g = multiply(B, Matrix(B.transpose())) / b2, q = Matrix::Identity(n, n);
   const auto d = balance_hamiltonian<Scalar>(a, g, q);
   auto x = care_sign_function_start<Scalar>(a, g, q, 100, iterations);
   if (!x) return std::nullopt;

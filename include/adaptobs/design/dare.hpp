@@ -148,7 +148,7 @@ std::optional<DynamicMatrix<Scalar>> structure_preserving_doubling(const Dynamic
     const Square w_inv_a = w.solve(a);
     const Square w_inv_g = w.solve(g);
     const Square h_next = h + multiply(multiply_transposed(a, h), w_inv_a);
-    const Square g_next = g + multiply_by_transpose(multiply(a, w_inv_g), a);
+    const Square g_next = g + multiply(multiply(a, w_inv_g), Square(a.transpose()));
     a = multiply(a, w_inv_a);
     const Scalar change = (h_next - h).norm();
     h = Scalar(0.5) * (h_next + h_next.transpose());
