@@ -66,15 +66,8 @@ struct AugmentedKalmanCovariances {
 template <DiscreteModel Model>
 class AugmentedKalmanFilter
     : public DiscreteUpdate<AugmentedKalmanFilter<Model>, typename Model::Dims, DiscreteSample> {
-  friend DiscreteUpdate<AugmentedKalmanFilter, typename Model::Dims, DiscreteSample>;
-
  public:
-  static constexpr std::string_view name_update = "AugmentedKalmanFilter::update";
-  static constexpr std::string_view name_reset = "AugmentedKalmanFilter::reset";
-  using Dims = typename Model::Dims;
-  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
-      typename SizedBy<Dims>::Output;
-  using Sample = DiscreteSample<Dims>;
+  ADAPTOBS_DISCRETE_UPDATE_INTERFACE(AugmentedKalmanFilter, DiscreteSample);
   using Covariances = AugmentedKalmanCovariances<Dims>;
   static constexpr int na = Covariances::na;
   using AugmentedVector = Eigen::Matrix<Scalar, na, 1>;

@@ -16,11 +16,30 @@
 
 namespace adaptobs {
 
+/// The declarations an observer deriving from `DiscreteUpdate` makes, written
+/// once: the friendship the base needs to reach `model_`, `theta_` and the
+/// step; the names its errors give (`Observer::update`, `Observer::reset`);
+/// and the common types. A class template does not see the members of a
+/// dependent base without qualification, so each observer would otherwise
+/// restate them (Eigen's `EIGEN_DENSE_PUBLIC_INTERFACE` answers the same
+/// problem). Use it in a public section of a class template whose parameter
+/// is `Model`:
+/// `ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuyaderZhangObserver, DiscreteSample);`
+#define ADAPTOBS_DISCRETE_UPDATE_INTERFACE(Observer, SampleOf)                                    \
+  friend ::adaptobs::DiscreteUpdate<Observer, typename Model::Dims, SampleOf>;                    \
+  static constexpr std::string_view name_update = #Observer "::update";                           \
+  static constexpr std::string_view name_reset = #Observer "::reset";                             \
+  using Dims = typename Model::Dims;                                                              \
+  using typename ::adaptobs::SizedBy<Dims>::Scalar, typename ::adaptobs::SizedBy<Dims>::State,    \
+      typename ::adaptobs::SizedBy<Dims>::Parameters, typename ::adaptobs::SizedBy<Dims>::Output; \
+  using Sample = SampleOf<Dims>
+
 /// Base of a discrete-time observer with a model (CRTP), not used on its own:
 /// `update(sample)`, its masked form, `reset` and the accessors every discrete
 /// observer has, with the run-time size checks of the sample and the mask. The
 /// observer supplies `model_`, `theta_`, `Observer::name_update` and
-/// `Observer::name_reset` (the names its errors give), `restart(x0, theta0)`
+/// `Observer::name_reset` (the names its errors give; the macro above declares
+/// them with the friendship and the types), `restart(x0, theta0)`
 /// (the rest of `reset`) and its step, which on accepting a sample writes the
 /// base's `output_error_` (sized by the observer's constructor); the base
 /// counts the accepted steps. The step comes in one of two forms, which the

@@ -69,17 +69,11 @@ struct GuiroOptions {
 template <DiscreteModel Model>
 class GuiroObserver
     : public DiscreteUpdate<GuiroObserver<Model>, typename Model::Dims, DiscreteSample> {
-  friend DiscreteUpdate<GuiroObserver, typename Model::Dims, DiscreteSample>;
-
  public:
-  static constexpr std::string_view name_update = "GuiroObserver::update";
-  static constexpr std::string_view name_reset = "GuiroObserver::reset";
+  ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuiroObserver, DiscreteSample);
+  using typename SizedBy<Dims>::GainMatrix;
   static constexpr std::string_view name_initial_state = "z0";
-  using Dims = typename Model::Dims;
-  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
-      typename SizedBy<Dims>::Output, typename SizedBy<Dims>::GainMatrix;
   using ParameterGain = typename Dims::template Matrix<Dims::np, Dims::ny>;  ///< Γ, p × m
-  using Sample = DiscreteSample<Dims>;
 
   /// \param model sampled model \f$(e^{AT}, B_d, C)\f$, e.g. from `sampled_lti_model`;
   /// \param K, Gamma gains, e.g. from `design_guiro_gains`;

@@ -74,15 +74,9 @@ struct GuyaderZhangOptions {
 template <DiscreteModel Model>
 class GuyaderZhangObserver
     : public DiscreteUpdate<GuyaderZhangObserver<Model>, typename Model::Dims, DiscreteSample> {
-  friend DiscreteUpdate<GuyaderZhangObserver, typename Model::Dims, DiscreteSample>;
-
  public:
-  static constexpr std::string_view name_update = "GuyaderZhangObserver::update";
-  static constexpr std::string_view name_reset = "GuyaderZhangObserver::reset";
-  using Dims = typename Model::Dims;
-  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
-      typename SizedBy<Dims>::GainMatrix, typename SizedBy<Dims>::RegressorMatrix, typename SizedBy<Dims>::Output;
-  using Sample = DiscreteSample<Dims>;
+  ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuyaderZhangObserver, DiscreteSample);
+  using typename SizedBy<Dims>::GainMatrix, typename SizedBy<Dims>::RegressorMatrix;
 
   /// \param K output-injection gain making \f$A_k - KC_k\f$ exponentially stable (assumption 1);
   /// \param mu step size \f$\mu > 0\f$ small enough for assumption 2.

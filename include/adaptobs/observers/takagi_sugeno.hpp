@@ -57,15 +57,8 @@ namespace adaptobs {
 template <TakagiSugenoSystem Model>
 class TakagiSugenoObserver
     : public DiscreteUpdate<TakagiSugenoObserver<Model>, typename Model::Dims, InputOutputSample> {
-  friend DiscreteUpdate<TakagiSugenoObserver, typename Model::Dims, InputOutputSample>;
-
  public:
-  static constexpr std::string_view name_update = "TakagiSugenoObserver::update";
-  static constexpr std::string_view name_reset = "TakagiSugenoObserver::reset";
-  using Dims = typename Model::Dims;
-  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
-      typename SizedBy<Dims>::Output;
-  using Sample = InputOutputSample<Dims>;
+  ADAPTOBS_DISCRETE_UPDATE_INTERFACE(TakagiSugenoObserver, InputOutputSample);
   using Gains = TakagiSugenoGains<Dims>;
   using PremiseVector = typename Model::PremiseVector;
   using Weights = typename Model::Weights;
