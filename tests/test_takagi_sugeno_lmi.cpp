@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -117,6 +118,16 @@ TEST(TakagiSugenoLmi, WwtpTheorem2IsFeasibleVerifiedAndTheObserverConverges) {
   EXPECT_TRUE(check.holds());
   EXPECT_LT(check.max_vertex_eigenvalue, 0.0);
   EXPECT_EQ(data.vertex_lmi_size(), 60);
+  // The theorem's P0 is symmetric: a candidate whose P0 is not is no certificate,
+  // even when its symmetric part and every M_i would pass (a skew part of 1e-10).
+  auto skewed = result.certificate;
+  const double skew = 1e-10 * skewed.P0.cwiseAbs().maxCoeff();
+  skewed.P0(0, 1) += skew;
+  skewed.P0(1, 0) -= skew;
+  const auto skewed_check = adaptobs::check_takagi_sugeno_certificate(data, skewed);
+  EXPECT_LT(skewed_check.max_vertex_eigenvalue, 0.0);
+  EXPECT_EQ(skewed_check.min_eigenvalue_P0, -std::numeric_limits<double>::infinity());
+  EXPECT_FALSE(skewed_check.holds());
   const auto lmis = adaptobs::build_takagi_sugeno_lmis(data, options);
   for (Index i = 0; i < 8; ++i) {
     const MatrixXd numeric = adaptobs::takagi_sugeno_vertex_lmi(data, result.certificate, i);

@@ -57,4 +57,12 @@ Eigen::MatrixXd symmetric_exponential(const Eigen::MatrixXd& m) {
 
 Eigen::Index lu_rank(const Eigen::MatrixXd& m) { return Eigen::FullPivLU<Eigen::MatrixXd>(m).rank(); }
 
+::testing::AssertionResult quotes_argument(const std::string& message, std::string_view argument) {
+  std::string quoted;
+  quoted.reserve(argument.size() + 2);
+  quoted.append(1, '\'').append(argument).append(1, '\'');
+  if (message.find(quoted) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "the message does not name " << quoted << ": " << message;
+}
+
 }  // namespace adaptobs::testing

@@ -174,15 +174,22 @@ void require_initial_estimates(const Eigen::DenseBase<X>& x0, Index nx, const Ei
   require_finite_shape(theta0, np, 1, who, theta_name);
 }
 
+/// Square and symmetric to a relative tolerance of 100 ulp of its largest entry.
+template <class Derived>
+[[nodiscard]] bool is_symmetric(const Eigen::MatrixBase<Derived>& m) {
+  using Scalar = typename Derived::Scalar;
+  if (m.rows() != m.cols()) return false;
+  if (m.size() == 0) return true;
+  const Scalar scale = m.cwiseAbs().maxCoeff();
+  const Scalar tol = Scalar(100) * std::numeric_limits<Scalar>::epsilon() * (scale > Scalar(0) ? scale : Scalar(1));
+  return (m - m.transpose()).cwiseAbs().maxCoeff() <= tol;
+}
+
 /// Symmetric to a relative tolerance of 100 ulp of its largest entry.
 template <class Derived>
 void require_symmetric(const Eigen::MatrixBase<Derived>& m, std::string_view who, std::string_view argument) {
-  using Scalar = typename Derived::Scalar;
   require_square(m, who, argument);
-  if (m.size() == 0) return;
-  const Scalar scale = m.cwiseAbs().maxCoeff();
-  const Scalar tol = Scalar(100) * std::numeric_limits<Scalar>::epsilon() * (scale > Scalar(0) ? scale : Scalar(1));
-  if (!((m - m.transpose()).cwiseAbs().maxCoeff() <= tol)) fail_argument(who, argument, "must be symmetric");
+  if (!is_symmetric(m)) fail_argument(who, argument, "must be symmetric");
 }
 
 /// True when the symmetric `m` (lower triangle read) is positive definite: `cholesky_in_place` on a copy.

@@ -185,9 +185,15 @@ inline void validate_lmi_data(const TakagiSugenoLmiData& data, std::string_view 
   const Eigen::MatrixXd s = 0.5 * (m + m.transpose());
   return symmetric_eigenvalues(s).maxCoeff();
 }
-/// Smallest eigenvalue of the symmetric part of m; −∞ when m holds a NaN or Inf.
-[[nodiscard]] inline double smallest_symmetric_eigenvalue(const Eigen::MatrixXd& m) {
-  return m.size() == 0 ? std::numeric_limits<double>::infinity() : -largest_symmetric_eigenvalue(-m);
+/// Smallest eigenvalue of a decision matrix of the theorems (P0, P1, a Γ), which
+/// they require symmetric: −∞ when m holds a NaN or Inf, or is not symmetric
+/// (`is_symmetric`). A non-symmetric candidate proves nothing, whatever its
+/// symmetric part: the Lyapunov function \f$e^TP_0e\f$ and the gains
+/// \f$L_i = P_0^{-1}R_i\f$ are derived for a symmetric \f$P_0\f$.
+[[nodiscard]] inline double smallest_eigenvalue_if_symmetric(const Eigen::MatrixXd& m) {
+  if (m.size() == 0) return std::numeric_limits<double>::infinity();
+  if (!m.allFinite() || !is_symmetric(m)) return -std::numeric_limits<double>::infinity();
+  return symmetric_eigenvalues(m).minCoeff();
 }
 
 /// The candidate's blocks have the sizes the data give them.
@@ -288,6 +294,7 @@ inline void validate_certificate(const TakagiSugenoLmiData& data, const TakagiSu
 /// Outcome of checking a candidate solution against theorem 1 or 2.
 struct TakagiSugenoCertificateCheck {
   double max_vertex_eigenvalue = std::numeric_limits<double>::infinity();  ///< \f$\max_i\lambda_{\max}(M_i)\f$
+  /// \f$\lambda_{\min}\f$ of \f$P_0\f$, \f$P_1\f$ and the \f$\Gamma^j\f$; −∞ for one that is not symmetric.
   double min_eigenvalue_P0 = -std::numeric_limits<double>::infinity();
   double min_eigenvalue_P1 = -std::numeric_limits<double>::infinity();
   double min_lambda = -std::numeric_limits<double>::infinity();
@@ -314,15 +321,15 @@ struct TakagiSugenoCertificateCheck {
   for (Index i = 0; i < r; ++i)
     check.max_vertex_eigenvalue =
         std::max(check.max_vertex_eigenvalue, detail::largest_symmetric_eigenvalue(detail::vertex_lmi(data, s, i)));
-  check.min_eigenvalue_P0 = detail::smallest_symmetric_eigenvalue(s.P0);
-  check.min_eigenvalue_P1 = detail::smallest_symmetric_eigenvalue(s.P1);
+  check.min_eigenvalue_P0 = detail::smallest_eigenvalue_if_symmetric(s.P0);
+  check.min_eigenvalue_P1 = detail::smallest_eigenvalue_if_symmetric(s.P1);
   check.min_lambda = std::numeric_limits<double>::infinity();
   for (const double l : s.lambda) check.min_lambda = std::isfinite(l) ? std::min(check.min_lambda, l) : -std::numeric_limits<double>::infinity();
-  check.min_eigenvalue_Gamma = std::min(detail::smallest_symmetric_eigenvalue(s.Gamma_x),
-                                        detail::smallest_symmetric_eigenvalue(s.Gamma_u));
+  check.min_eigenvalue_Gamma = std::min(detail::smallest_eigenvalue_if_symmetric(s.Gamma_x),
+                                        detail::smallest_eigenvalue_if_symmetric(s.Gamma_u));
   if (theorem1) {
-    check.min_eigenvalue_Gamma = std::min({check.min_eigenvalue_Gamma, detail::smallest_symmetric_eigenvalue(s.Gamma_theta),
-                                           detail::smallest_symmetric_eigenvalue(s.Gamma_dtheta)});
+    check.min_eigenvalue_Gamma = std::min({check.min_eigenvalue_Gamma, detail::smallest_eigenvalue_if_symmetric(s.Gamma_theta),
+                                           detail::smallest_eigenvalue_if_symmetric(s.Gamma_dtheta)});
   }
   return check;
 }
