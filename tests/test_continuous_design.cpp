@@ -267,6 +267,64 @@ TEST(CanonicalForms, APairTooIllConditionedForTheFormIsRefusedAsThePair) {
   EXPECT_CONFIGURATION_ERROR_NAMES((void)adaptobs::marino_tomei_form<D>(a, c), "A, c");
 }
 
+// A chain x_{i+1}' = -r_{i+1} x_{i+1} + x_i with rates r_i = factor^i, seen at its last state.
+Matrix graded_chain(Eigen::Index n, double factor) {
+  Matrix a = Matrix::Zero(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) a(i, i) = -std::pow(factor, double(i));
+  for (Eigen::Index i = 0; i + 1 < n; ++i) a(i + 1, i) = 1;
+  return a;
+}
+
+// Graded dynamics are observable: the rank test on [c; cA; ...], whose rows
+// grow like the powers of A, refused them as "not an observable pair". The
+// form is found where it can be computed (Besancon, rates 1 ... 1e12), and
+// refused as too ill-conditioned where it cannot.
+TEST(CanonicalForms, GradedObservablePairsAreNotRefusedAsUnobservable) {
+  using D = adaptobs::Dimensions<double, Eigen::Dynamic, 1, 1, 1>;
+  using D2 = adaptobs::Dimensions<double, Eigen::Dynamic, 1, 2, 1>;
+  const Matrix a = graded_chain(5, 1e3);
+  Matrix c = Matrix::Zero(2, 5);
+  c(0, 4) = 1;  // the last state and the first
+  c(1, 0) = 1;
+  const auto st = adaptobs::besancon_form<D2>(a, c, 0.5);
+  const Matrix t_inv = st.T_inverse();
+  const Matrix co = c * t_inv, ao = st.T() * a * t_inv - st.K() * co;
+  Matrix leading_identity = Matrix::Zero(2, 5);
+  leading_identity.leftCols(2).setIdentity();
+  EXPECT_MATRIX_NEAR(co, leading_identity, 1e-9, 0);
+  EXPECT_LE(ao.leftCols(2).cwiseAbs().maxCoeff(), 1e-9 * a.norm());
+  EXPECT_LT(adaptobs::spectral_abscissa(Matrix(ao.bottomRightCorner(3, 3))), -0.5);
+
+  const auto refused_as_ill_conditioned = [](const std::string& message) {
+    EXPECT_NE(message.find("'A, c' is too ill-conditioned"), std::string::npos) << message;
+    EXPECT_EQ(message.find("observable"), std::string::npos) << message;
+  };
+  Matrix last = Matrix::Zero(1, 5);
+  last(0, 4) = 1;
+  refused_as_ill_conditioned(configuration_error_of([&] { (void)adaptobs::marino_tomei_form<D>(graded_chain(3, 1e3), Matrix(last.rightCols(3))); }));
+  refused_as_ill_conditioned(
+      configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(graded_chain(5, 1e2), last, poly({1, 4, 6, 4, 1})); }));
+  refused_as_ill_conditioned(configuration_error_of(
+      [&] { (void)adaptobs::ackermann_observer_gain(graded_chain(4, 1e2), Matrix(last.rightCols(4)), poly({1, 10, 35, 50, 24})); }));
+
+  // Unobservable pairs stay refused as such, whatever the units of c.
+  Matrix cut = graded_chain(4, 10);
+  cut(2, 1) = 0;  // the first two states never reach the output
+  const Matrix tiny = 1e-12 * last.rightCols(4);
+  const auto refused_as_unobservable = [](const std::string& message, const std::string& pair) {
+    EXPECT_NE(message.find("'" + pair + "' must be an observable pair"), std::string::npos) << message;
+  };
+  refused_as_unobservable(configuration_error_of([&] { (void)adaptobs::marino_tomei_form<D>(cut, tiny); }), "A, c");
+  refused_as_unobservable(
+      configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(cut, tiny, poly({1, 3, 3, 1})); }), "A, c");
+  refused_as_unobservable(
+      configuration_error_of([&] { (void)adaptobs::ackermann_observer_gain(cut, tiny, poly({1, 10, 35, 50, 24})); }), "A, c");
+  Matrix c2 = Matrix::Zero(2, 4);
+  c2(0, 3) = 1e-12;
+  c2(1, 2) = 1e-12;
+  refused_as_unobservable(configuration_error_of([&] { (void)adaptobs::besancon_form<D2>(cut, c2, 0.5); }), "A, C");
+}
+
 TEST(CanonicalForms, NonFiniteDataOfTheSisoDesignsIsRefusedByName) {
   using D = siso::Dims<double>;
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();

@@ -210,6 +210,29 @@ TEST(GuiroDesign, InfeasibleSpectrumIsReportedNotReturned) {
   EXPECT_LE(near.cayley_hamilton_residual, 1e-10);
 }
 
+// The design does not depend on the units of the output: with C × 1e-12 the
+// gains K and Gamma are 1e12 times the paper's and U is the same. (E, C) was
+// refused as unobservable, and then C as of rank 0.
+TEST(GuiroDesign, OutputInOtherUnitsGivesScaledGains) {
+  const Paper paper;
+  const auto reference = paper_gains();
+  for (const double s : {1e-12, 1e12}) {
+    const Eigen::RowVector2d c = s * paper.C;
+    const auto gains = adaptobs::design_guiro_gains(paper.E, c, paper.H0, g::requested_poles());
+    EXPECT_MATRIX_NEAR(Eigen::Vector2d(s * gains.K), reference.K, 0, 1e-12) << s;
+    EXPECT_NEAR(s * gains.Gamma(0, 0), reference.Gamma(0, 0), 1e-12 * reference.Gamma(0, 0)) << s;
+    EXPECT_MATRIX_NEAR(gains.U, reference.U, 1e-12, 0) << s;
+    EXPECT_LE(gains.eigenvalue_mismatch, 1e-9) << s;
+    EXPECT_LE((sorted_eigenvalues(gains.U) - Eigen::Vector3cd(0.2, 0.5, 0.6)).cwiseAbs().maxCoeff(), 1e-10) << s;
+    // C = (1 0) does not observe this E in any units.
+    EXPECT_NE(configuration_error_of([&] {
+                (void)adaptobs::design_guiro_gains(paper.E, Eigen::RowVector2d(s, 0), paper.H0, g::requested_poles());
+              }).find("'E, C' is not observable"),
+              std::string::npos)
+        << s;
+  }
+}
+
 TEST(GuiroDesign, CasesWithoutSolutionAreNamed) {
   const Paper paper;
   // a = 0: θ never reaches the output (rank condition at the eigenvalue 1).

@@ -18,6 +18,7 @@
 #include <complex>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -97,6 +98,65 @@ TEST(Observability, RandomPairsAreObservable) {
     const auto report = adaptobs::observability(rng.uniform<MatrixXd>(n, n), rng.uniform<MatrixXd>(1, n));
     EXPECT_TRUE(report.observable());
     EXPECT_EQ(report.observable_dimension, n);
+  }
+}
+
+// Observability does not depend on the units of the output or of time. With
+// C × 1e-12 every singular value of C once fell below the yardstick
+// max(1, ||A||_F, ||C||_F) and the pair read unobservable (dimension 0); so did
+// A × 1e-9 (every coupling below 1e-10), and a chain seen through C × 1e-12.
+TEST(Observability, BadlyScaledObservablePairsAreObservable) {
+  MatrixXd a(3, 3), c(1, 3);
+  a << 0.5, 1, 0, -0.3, 0.2, 1, 0.1, 0, -0.4;
+  c << 1, 0, 0;
+  for (const auto& [aa, cc] : {std::pair{a, MatrixXd(1e-12 * c)}, std::pair{a, MatrixXd(1e12 * c)},
+                               std::pair{MatrixXd(1e-9 * a), c}, std::pair{MatrixXd(1e-9 * a), MatrixXd(1e-12 * c)}}) {
+    const auto report = adaptobs::observability(aa, cc);
+    EXPECT_TRUE(report.observable());
+    EXPECT_EQ(report.observable_dimension, 3);
+  }
+  MatrixXd chain = MatrixXd::Zero(5, 5), last = MatrixXd::Zero(1, 5);
+  for (Eigen::Index i = 0; i < 5; ++i) chain(i, i) = -std::pow(10.0, double(i));
+  for (Eigen::Index i = 0; i + 1 < 5; ++i) chain(i + 1, i) = 1;  // x_{i+1}' = -r x_{i+1} + x_i
+  last(0, 4) = 1;
+  EXPECT_EQ(adaptobs::observability(chain, last).observable_dimension, 5);
+  EXPECT_EQ(adaptobs::observability(chain, MatrixXd(1e-12 * last)).observable_dimension, 5);
+  // Cut the chain after the second state: the first two modes stay hidden at
+  // every scale of C, and are reported to rounding.
+  chain(2, 1) = 0;
+  for (const double s : {1.0, 1e-12, 1e12}) {
+    const auto report = adaptobs::observability(chain, MatrixXd(s * last));
+    EXPECT_EQ(report.observable_dimension, 3) << s;
+    ASSERT_EQ(report.unobservable_modes.size(), 2) << s;
+    std::vector<double> modes{report.unobservable_modes(0).real(), report.unobservable_modes(1).real()};
+    std::sort(modes.begin(), modes.end());
+    EXPECT_NEAR(modes[0], -10.0, 1e-12) << s;
+    EXPECT_NEAR(modes[1], -1.0, 1e-12) << s;
+  }
+  // An unobservable pair in other units stays unobservable.
+  Eigen::Matrix2d lower;
+  lower << 0, 0, 1, 0;
+  for (const double s : {1e-12, 1e12})
+    EXPECT_EQ(adaptobs::observability(lower, Eigen::RowVector2d(s, 0)).observable_dimension, 1) << s;
+}
+
+// A state that reaches the output only through a coupling far below the data,
+// with no coupling back, is not observable in any useful sense: moving its mode
+// takes a gain of the coupling's inverse size. Balancing leaves such a state in
+// its units (scaling the coupling up would make 1e-300 count), and placement
+// names the true reason.
+TEST(Observability, ACouplingFarBelowTheDataIsNoObservability) {
+  for (const double eps : {1e-17, 1e-100, 1e-300}) {
+    Eigen::Matrix2d a;
+    a << -1, eps, 0, -2;  // x2 reaches y = x1 only through eps
+    const Eigen::RowVector2d c(1, 0);
+    const auto report = adaptobs::observability(a, c);
+    EXPECT_EQ(report.observable_dimension, 1) << eps;
+    ASSERT_EQ(report.unobservable_modes.size(), 1) << eps;
+    EXPECT_EQ(report.unobservable_modes(0).real(), -2.0) << eps;
+    EXPECT_CONFIGURATION_ERROR_NAMES(
+        (void)adaptobs::place_output_injection(a, c, Eigen::Vector2d(-3, -4).cast<std::complex<double>>().eval()),
+        "A, C");
   }
 }
 
@@ -295,6 +355,34 @@ TEST(PolePlacement, StateFeedbackByDuality) {
   // A non-finite B is named B, not the C of the dual problem solved for it.
   b3(2, 0) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::place_state_feedback(a3, b3, Eigen::Vector3d(0.1, 0.2, 0.3)), "B");
+}
+
+// The gains of a pair with its output in units 1e12 times too large are
+// 1e12 times larger, and place the same poles (the pair was refused as
+// unobservable). The same for the dual state feedback with B × 1e-12.
+TEST(PolePlacement, OutputInOtherUnitsIsPlaced) {
+  MatrixXd a(3, 3), c(1, 3);
+  a << 0.5, 1, 0, -0.3, 0.2, 1, 0.1, 0, -0.4;
+  c << 1, 0, 0;
+  const Eigen::Vector3d poles(-1, -2, -3);
+  const auto reference = adaptobs::place_output_injection(a, c, poles);
+  const auto scaled = adaptobs::place_output_injection(a, MatrixXd(1e-12 * c), poles);
+  EXPECT_MATRIX_NEAR(MatrixXd(1e-12 * scaled.L), MatrixXd(reference.L), 0, 1e-12);
+  EXPECT_LE(adaptobs::eigenvalue_mismatch(MatrixXd(a - scaled.L * (1e-12 * c)), ComplexVector(poles.cast<std::complex<double>>())),
+            1e-9);
+  EXPECT_LE(scaled.eigenvalue_mismatch, 1e-9);
+  const auto feedback = adaptobs::place_state_feedback(a, MatrixXd(1e-12 * c.transpose()), poles);
+  EXPECT_LE(adaptobs::eigenvalue_mismatch(MatrixXd(a - 1e-12 * c.transpose() * feedback.K),
+                                          ComplexVector(poles.cast<std::complex<double>>())),
+            1e-9);
+  // Unobservable in any units: still refused, with the hidden mode.
+  Eigen::Matrix2d lower;
+  lower << 0, 0.5, 1, 0.3;
+  lower(0, 1) = 0;  // x1' = 0, x2' = x1 + 0.3 x2: C = (1e-12 0) never sees x2
+  const std::string message = configuration_error_of(
+      [&] { (void)adaptobs::place_output_injection(lower, Eigen::RowVector2d(1e-12, 0), Eigen::Vector2d(0.1, 0.2)); });
+  EXPECT_NE(message.find("'A, C' is not observable"), std::string::npos) << message;
+  EXPECT_NE(message.find("0.3"), std::string::npos) << message;
 }
 
 TEST(PolePlacement, BadArgumentsAreNamed) {

@@ -26,6 +26,7 @@
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/care.hpp>
+#include <adaptobs/design/observability.hpp>
 #include <adaptobs/design/polynomial.hpp>
 
 #include <Eigen/Core>
@@ -102,17 +103,28 @@ template <typename Scalar>
     bk = (a * bk).eval();
     bk.diagonal().array() += den(k + 1);
   }
+  // M is a unit lower triangular Toeplitz matrix times the observability matrix:
+  // invertible exactly when (A, c) is observable, which the staircase decides
+  // in any output or time units; M, whose rows grow like the powers of A, is
+  // what v needs.
+  require(observability(a, cc).observable(), who, "A, c", "must be an observable pair");
   const Eigen::FullPivLU<Matrix> lu(m);
-  require(lu.isInvertible(), who, "A, c", "must be an observable pair");
+  constexpr std::string_view ill_conditioned =
+      "is too ill-conditioned for the canonical form: the vector v of T^-1 = [v, W] (C adj(sI - A) v = zeros) "
+      "cannot be computed to working accuracy";
+  require(lu.isInvertible(), who, "A, c", ill_conditioned);
   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> v = lu.solve(zeros);
   Matrix w = kernel ? *kernel : kernel_basis<Scalar>(cc, who);
   require_shape(w, n, n - 1, who, "kernel");
   require((cc * w).cwiseAbs().maxCoeff() <= Scalar(1e-10) * std::max(Scalar(1), w.cwiseAbs().maxCoeff()), who,
           "kernel", "must span the kernel of c");
+  require(w.fullPivLu().rank() == n - 1, who, "kernel", "must have independent columns");
   Matrix t_inv(n, n);
   t_inv << v, w;
+  // With c v = 1 and W a basis of ker c, [v, W] is invertible: a singular one
+  // means that v was not computed accurately.
   const Eigen::FullPivLU<Matrix> t_lu(t_inv);
-  require(t_lu.isInvertible(), who, "kernel", "must have independent columns");
+  require(t_lu.isInvertible(), who, "A, c", ill_conditioned);
   return transform_with_injection_of_first_columns<Scalar>(Matrix(t_lu.inverse()), a, 1);
 }
 
@@ -128,10 +140,8 @@ template <typename Scalar>
   canonical.col(0) = -a.tail(n);
   Matrix e1 = Matrix::Zero(1, n);
   e1(0, 0) = Scalar(1);
-  const Matrix o = observability_matrix(A, c);
-  const Eigen::FullPivLU<Matrix> o_lu(o);
-  require(o_lu.isInvertible(), who, "A, c", "must be an observable pair");
-  return {observability_matrix(canonical, e1).fullPivLu().solve(o), -a.tail(n)};
+  require(observability(A, c).observable(), who, "A, c", "must be an observable pair");
+  return {observability_matrix(canonical, e1).fullPivLu().solve(observability_matrix(A, c)), -a.tail(n)};
 }
 
 template <typename Scalar>
@@ -152,8 +162,7 @@ template <typename Scalar>
   if (r > 0) {
     const Matrix a12 = at.topRightCorner(m, r);
     const Matrix a22 = at.bottomRightCorner(r, r) + decay * Matrix::Identity(r, r);
-    const Eigen::FullPivLU<Matrix> obs(observability_matrix(a22, a12));
-    require(obs.rank() == r, who, "A, C", "must be an observable pair");
+    require(observability(a22, a12).observable(), who, "A, C", "must be an observable pair");
     const Matrix x = kalman_bucy_gain(a22, a12, Matrix::Identity(r, r), Matrix::Identity(m, m)).K;
     Matrix left = Matrix::Identity(n, n);
     left.bottomLeftCorner(r, m) = -x;

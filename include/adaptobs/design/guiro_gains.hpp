@@ -112,16 +112,23 @@ struct DynamicGuiroGains {
 
 // The design on dynamic-size matrices, instantiated once per scalar type.
 template <typename Scalar>
-DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, const DynamicMatrix<Scalar>& C,
+DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, const DynamicMatrix<Scalar>& C_given,
                                              const DynamicMatrix<Scalar>& Hbar, const ComplexVector<Scalar>& target,
                                              const GuiroDesignOptions& options) {
   using Matrix = DynamicMatrix<Scalar>;
   constexpr std::string_view who = "design_guiro_gains";
   require_square(E, who, "E");
   require_finite(E, who, "E");
-  const Index n = E.rows(), m = C.rows(), p = Hbar.cols(), na = n + p;
-  require_finite_shape(C, m, n, who, "C");
+  const Index n = E.rows(), m = C_given.rows(), p = Hbar.cols(), na = n + p;
+  require_finite_shape(C_given, m, n, who, "C");
   require(m >= 1, who, "C", "must have at least one row (output)");
+  // The design does not depend on the units of the outputs: C → 2^e C leaves
+  // U and N = I − CK as they are and divides K, Γ and L by 2^e, exactly. It
+  // runs on C scaled to ‖C‖_F in [1, 2), so that the rank of C and the rank test
+  // at the eigenvalue 1 judge C against its own size, not against 1.
+  const Scalar c_norm = C_given.stableNorm();
+  const int c_exponent = c_norm > Scalar(0) ? std::ilogb(c_norm) : 0;
+  const Matrix C = C_given * std::ldexp(Scalar(1), -c_exponent);
   require_finite_shape(Hbar, n, p, who, "Hbar");
   // Compared with `>` below, which a NaN fails: the refusal would blame the data.
   require_non_negative(options.rank_tolerance, who, "options.rank_tolerance");
@@ -226,6 +233,10 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
        << "): (E, C, Hbar) is too close to a case without solution";
     fail_argument(who, "poles", os.str());
   }
+  const Scalar to_given_units = std::ldexp(Scalar(1), -c_exponent);
+  gains.K *= to_given_units;
+  gains.Gamma *= to_given_units;
+  gains.L *= to_given_units;
   return gains;
 }
 #ifdef ADAPTOBS_PRECOMPILED

@@ -13,9 +13,31 @@
 /// with \f$(\tilde A_{11}, \tilde B_1)\f$ controllable; the eigenvalues of
 /// \f$\tilde A_{22}\f$ are the unobservable modes of (A, C) (P. Van Dooren, "The
 /// generalized eigenstructure problem in linear system theory", IEEE TAC 26(1), 1981).
+///
+/// **Scale.** Observability is a property of the subspaces, not of the units:
+/// (A, C) and \f$(\alpha A, EC)\f$ are observable together for every α ≠ 0
+/// and invertible E (a change of the time unit or of the output units). A rank
+/// decision against one fixed yardstick such as \f$\max(1, \|A\|_F, \|C\|_F)\f$
+/// is not: with C in units \f$10^{12}\f$ times too large every singular value of
+/// C falls below it. So the staircase first scales each row of C by a power of
+/// two to a norm in [1, 2) (exact in binary floating point: the same pair in
+/// other output units, without a rounding error), then decides each rank
+/// against the scale of the block it examines: C's own norm for the first step
+/// (the rank of C), and \f$\|A\|_F\f$ for the later ones, whose blocks are
+/// parts of \f$Q^TA^TQ\f$. Both are relative, so the verdict does not change
+/// when C, or A, is multiplied by a constant.
+///
+/// The units of the *states* are left as given. A diagonal similarity
+/// \f$(D^{-1}AD, CD)\f$ could make any coupling count, down to one at the
+/// rounding level of the data or of 1e-300: a state that reaches the output
+/// only through such a coupling has a mode that only a gain of the coupling's
+/// inverse size could move, and is reported unobservable. A model whose states
+/// are in wildly different units (a coupling below \f$10^6\varepsilon\|A\|_F\f$
+/// that matters) should be brought to comparable units first.
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/dense_eigenvalues.hpp>
 
@@ -38,29 +60,40 @@ struct ObservabilityReport {
   [[nodiscard]] bool observable() const noexcept { return unobservable_modes.size() == 0; }
 };
 
-/// Staircase observability analysis of (A, C) (see file comment). A singular
-/// value counts as zero below `relative_tolerance` × max(1, ‖A‖_F, ‖C‖_F);
-/// 0 selects \f$10^6\varepsilon\f$.
-template <class DA, class DC>
-[[nodiscard]] ObservabilityReport<typename DA::Scalar> observability(const Eigen::MatrixBase<DA>& A,
-                                                                     const Eigen::MatrixBase<DC>& C,
-                                                                     typename DA::Scalar relative_tolerance = 0) {
-  using Scalar = typename DA::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  constexpr std::string_view who = "observability";
-  detail::require_output_pair(A, C, who);
+namespace detail {
+
+/// Scales each nonzero row of c by the power of two that brings its norm into
+/// [1, 2) (file comment, "Scale"): only the exponents change.
+template <typename Scalar>
+void scale_output_rows(DynamicMatrix<Scalar>& c) {
+  for (Index k = 0; k < c.rows(); ++k) {
+    const Scalar norm = c.row(k).stableNorm();
+    if (norm > Scalar(0) && std::isfinite(norm)) c.row(k) *= std::ldexp(Scalar(1), -std::ilogb(norm));
+  }
+}
+
+/// The staircase on run-time sizes (see `observability`), one instance per
+/// scalar type (compiled once in adaptobs::precompiled).
+template <typename Scalar>
+[[nodiscard]] ObservabilityReport<Scalar> observability_staircase(const DynamicMatrix<Scalar>& A,
+                                                                  const DynamicMatrix<Scalar>& C,
+                                                                  Scalar relative_tolerance) {
+  using Matrix = DynamicMatrix<Scalar>;
   const Index n = A.rows();
   const Scalar rel = relative_tolerance > 0 ? relative_tolerance
                                             : Scalar(1e6) * std::numeric_limits<Scalar>::epsilon();
-  const Scalar tol = rel * std::max({Scalar(1), Scalar(A.norm()), Scalar(C.norm())});
+  Matrix scaled_c = C;
+  scale_output_rows(scaled_c);
+  const Scalar c_tol = rel * scaled_c.stableNorm(), a_tol = rel * A.stableNorm();
 
-  Matrix a = detail::dynamic_copy(A.transpose());
-  Matrix block = detail::dynamic_copy(C.transpose());  // the part of the input matrix not yet reached
+  Matrix a = A.transpose();
+  Matrix block = scaled_c.transpose();  // the part of the input matrix not yet reached
   Index offset = 0;
   while (offset < n && block.cols() > 0) {
     const Index rows = n - offset;
     const Eigen::JacobiSVD<Matrix> svd(block, Eigen::ComputeFullU);
     const auto& sigma = svd.singularValues();
+    const Scalar tol = offset == 0 ? c_tol : a_tol;  // the scale of the block: C, then a part of A
     Index rank = 0;
     while (rank < sigma.size() && sigma(rank) > tol) ++rank;
     if (rank == 0) break;
@@ -75,9 +108,30 @@ template <class DA, class DC>
   report.observable_dimension = offset;
   if (offset < n) {
     const Matrix rest = a.bottomRightCorner(n - offset, n - offset);
-    report.unobservable_modes = detail::dense_eigenvalues(rest);
+    report.unobservable_modes = dense_eigenvalues(rest);
   }
   return report;
+}
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE ObservabilityReport<double> observability_staircase<double>(const DynamicMatrix<double>&,
+                                                                                const DynamicMatrix<double>&, double);
+#endif
+
+}  // namespace detail
+
+/// Staircase observability analysis of (A, C) (see file comment). A singular
+/// value of C counts as zero below `relative_tolerance` × ‖C‖_F (its rows
+/// scaled to unit size), and one of a later block below `relative_tolerance` ×
+/// ‖A‖_F; 0 selects \f$10^6\varepsilon\f$. The unobservable modes are the
+/// eigenvalues of the unreached block.
+template <class DA, class DC>
+[[nodiscard]] ObservabilityReport<typename DA::Scalar> observability(const Eigen::MatrixBase<DA>& A,
+                                                                     const Eigen::MatrixBase<DC>& C,
+                                                                     typename DA::Scalar relative_tolerance = 0) {
+  using Scalar = typename DA::Scalar;
+  constexpr std::string_view who = "observability";
+  detail::require_output_pair(A, C, who);
+  return detail::observability_staircase<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C), relative_tolerance);
 }
 
 /// Popov–Belevitch–Hautus margin at a real μ:

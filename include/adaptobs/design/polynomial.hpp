@@ -10,6 +10,10 @@
 /// \f$\mathrm{adj}(sI - A) = \sum_{k=0}^{n-1} B_k s^{n-1-k}\f$ — exact in rational
 /// arithmetic, and accurate in floating point for the small orders (n ≲ 10)
 /// of the design problems it serves.
+///
+/// `ackermann_observer_gain` is in positive_real.hpp: it decides observability
+/// by the staircase of observability.hpp, whose SVD and eigenvalue solver this
+/// header, which the observers include, does without.
 
 #include <adaptobs/core/small_dense.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -253,25 +257,6 @@ template <class DA, class DB, class DC>
     if (k + 1 <= n) bk.diagonal().array() += g.denominator(k + 1);
   }
   return g;
-}
-
-/// Output-injection gain k with \f$\det(sI - A + kc) = p(s)\f$ (observer form of
-/// Ackermann's formula, \f$k = p(A)\,\mathcal O^{-1}e_n\f$). Throws when (A, c)
-/// is not observable, p is not monic of degree n, or any of them is not finite.
-template <class DA, class DC>
-[[nodiscard]] Eigen::Matrix<typename DA::Scalar, DA::RowsAtCompileTime, 1> ackermann_observer_gain(
-    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Polynomial<typename DA::Scalar>& p) {
-  using Scalar = typename DA::Scalar;
-  constexpr std::string_view who = "ackermann_observer_gain";
-  const Index n = detail::require_single_output_pair(A, c, who);
-  detail::require(p.size() == n + 1 && p(0) == Scalar(1), who, "p", "must be monic of degree n");
-  detail::require_finite(p, who, "p");
-  const auto o = observability_matrix(A, c);
-  const Eigen::FullPivLU<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> lu(o);
-  detail::require(lu.rank() == n, who, "A, c", "must be an observable pair");
-  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> en = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Zero(n);
-  en(n - 1) = Scalar(1);
-  return evaluate_polynomial(p, A) * lu.solve(en);
 }
 
 }  // namespace adaptobs

@@ -23,6 +23,7 @@
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/care.hpp>
+#include <adaptobs/design/observability.hpp>
 #include <adaptobs/design/polynomial.hpp>
 #include <adaptobs/design/spr_test.hpp>
 #include <adaptobs/design/stability.hpp>
@@ -244,6 +245,33 @@ template <class DA, class DB, class DC>
                                                                     detail::dynamic_copy(c));
   if (!k) return std::nullopt;
   return detail::sized_certificate<DA::RowsAtCompileTime>(*k);
+}
+
+/// Output-injection gain k with \f$\det(sI - A + kc) = p(s)\f$ (observer form of
+/// Ackermann's formula, \f$k = p(A)\,\mathcal O^{-1}e_n\f$). Throws when (A, c)
+/// is not observable, p is not monic of degree n, or any of them is not finite.
+/// Observability is decided by the staircase (`observability`), whose verdict
+/// does not depend on the units of the output or of time: a rank test on
+/// \f$\mathcal O\f$ itself, whose rows grow like the powers of A, refused
+/// observable pairs with graded dynamics. \f$\mathcal O\f$ is still what the
+/// formula solves with; an observable pair whose \f$\mathcal O\f$ is singular to
+/// working accuracy is refused as too ill-conditioned for the formula.
+template <class DA, class DC>
+[[nodiscard]] Eigen::Matrix<typename DA::Scalar, DA::RowsAtCompileTime, 1> ackermann_observer_gain(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& c, const Polynomial<typename DA::Scalar>& p) {
+  using Scalar = typename DA::Scalar;
+  constexpr std::string_view who = "ackermann_observer_gain";
+  const Index n = detail::require_single_output_pair(A, c, who);
+  detail::require(p.size() == n + 1 && p(0) == Scalar(1), who, "p", "must be monic of degree n");
+  detail::require_finite(p, who, "p");
+  detail::require(observability(A, c).observable(), who, "A, c", "must be an observable pair");
+  const Eigen::FullPivLU<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> lu(observability_matrix(A, c));
+  detail::require(lu.rank() == n, who, "A, c",
+                  "is too ill-conditioned for Ackermann's formula: its observability matrix is singular to working "
+                  "accuracy");
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> en = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Zero(n);
+  en(n - 1) = Scalar(1);
+  return evaluate_polynomial(p, A) * lu.solve(en);
 }
 
 /// Output-injection gain k making \f$c(sI - A + kc)^{-1}\gamma = c\gamma/(s + \lambda)\f$
