@@ -231,6 +231,28 @@ TEST(CanonicalForms, BastinGeversFormOfTheThirdOrderPlant) {
   EXPECT_MATRIX_NEAR(adaptobs::characteristic_polynomial(Eigen::Matrix2d(so2.Ao.bottomRightCorner(2, 2))), poly({1, 4, 3}),
                      1e-10, 0);
 
+  // c in other units has the same kernel: 1e12 c was refused as 'kernel', and
+  // with 1e-12 c a W outside the kernel was accepted (an absolute test).
+  const Eigen::Matrix3d a3 = siso::dynamics<double>();
+  for (const double s : {1e-12, 1e12}) {
+    const Eigen::RowVector3d cs = s * siso::output_matrix<double>();
+    const auto st3 = adaptobs::bastin_gevers_form<D>(a3, cs, poly({1, 4, 3}));
+    const Eigen::Matrix3d t_inv = st3.T_inverse();
+    const Eigen::RowVector3d co = cs * t_inv;
+    const Eigen::Matrix3d ao = st3.T() * a3 * t_inv - st3.K() * co;
+    EXPECT_MATRIX_NEAR(co, Eigen::RowVector3d(1, 0, 0), 1e-12, 0) << s;
+    EXPECT_MATRIX_NEAR(adaptobs::characteristic_polynomial(Eigen::Matrix2d(ao.bottomRightCorner(2, 2))), poly({1, 4, 3}),
+                       1e-9, 0)
+        << s;
+  }
+  Matrix not_kernel = Matrix::Zero(3, 2);
+  not_kernel(0, 0) = 1;
+  not_kernel(1, 1) = 1;
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      (void)adaptobs::bastin_gevers_form<D>(a3, Eigen::RowVector3d(1e-12 * siso::output_matrix<double>()), poly({1, 4, 3}),
+                                            not_kernel),
+      "kernel");
+
   EXPECT_NE(configuration_error_of([&] {
               (void)adaptobs::bastin_gevers_form<D>(siso::dynamics<double>(), siso::output_matrix<double>(),
                                                     poly({1, -1, 3}));

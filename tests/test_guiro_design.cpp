@@ -27,6 +27,7 @@ namespace {
 namespace g = adaptobs::examples::guiro;
 using adaptobs::ConditionVerdict;
 using adaptobs::Index;
+using adaptobs::testing::bitwise_equal;
 using adaptobs::testing::configuration_error_of;
 using adaptobs::testing::RandomMatrices;
 using adaptobs::testing::guiro::Paper;
@@ -231,6 +232,32 @@ TEST(GuiroDesign, OutputInOtherUnitsGivesScaledGains) {
               std::string::npos)
         << s;
   }
+}
+
+// Each output in its own units: C = diag(2^-40, 1) gets the gains of C = I
+// with their first column times 2^40, bit for bit, and the same U (it was
+// refused as "C has rank 1"). Gains beyond the floating-point range, for a C
+// of 2e-308 or a subnormal one, are refused naming C (they were returned as
+// infinite, or refused as another function's argument).
+TEST(GuiroDesign, EachOutputInItsOwnUnits) {
+  Eigen::Matrix2d e;
+  e << 0.9, 0.1, 0, 0.8;
+  const Eigen::Matrix2d hbar = Eigen::Matrix2d::Identity();
+  Eigen::Vector4cd poles;
+  poles << 0.2, 0.3, 0.4, 0.5;
+  const auto reference = adaptobs::design_guiro_gains(e, Eigen::Matrix2d::Identity(), hbar, poles);
+  const double small = std::ldexp(1.0, -40);
+  const auto gains = adaptobs::design_guiro_gains(e, Eigen::Matrix2d(Eigen::Vector2d(small, 1).asDiagonal()), hbar, poles);
+  const Eigen::Matrix2d back = Eigen::Vector2d(1 / small, 1).asDiagonal();
+  EXPECT_TRUE(bitwise_equal(gains.K, Eigen::Matrix2d(reference.K * back)));
+  EXPECT_TRUE(bitwise_equal(gains.Gamma, Eigen::Matrix2d(reference.Gamma * back)));
+  EXPECT_MATRIX_NEAR(gains.U, reference.U, 1e-14, 0);
+  EXPECT_LE(gains.eigenvalue_mismatch, 1e-9);
+
+  const Paper paper;
+  for (const double tiny : {2e-308, 1e-310})
+    EXPECT_CONFIGURATION_ERROR_NAMES(
+        (void)adaptobs::design_guiro_gains(paper.E, Eigen::RowVector2d(tiny, tiny), paper.H0, g::requested_poles()), "C");
 }
 
 TEST(GuiroDesign, CasesWithoutSolutionAreNamed) {

@@ -103,8 +103,10 @@ TEST(Observability, RandomPairsAreObservable) {
 
 // Observability does not depend on the units of the output or of time. With
 // C × 1e-12 every singular value of C once fell below the yardstick
-// max(1, ||A||_F, ||C||_F) and the pair read unobservable (dimension 0); so did
-// A × 1e-9 (every coupling below 1e-10), and a chain seen through C × 1e-12.
+// max(1, ||A||_F, ||C||_F) and the pair read unobservable (dimension 0), with
+// A × 1e-9 too, and so did a chain seen through C × 1e-12. A row of C that is
+// subnormal, or whose norm overflows, counts like any other, in double and
+// float alike (the float tolerance is sqrt(eps), not 1e6 eps = 0.12).
 TEST(Observability, BadlyScaledObservablePairsAreObservable) {
   MatrixXd a(3, 3), c(1, 3);
   a << 0.5, 1, 0, -0.3, 0.2, 1, 0.1, 0, -0.4;
@@ -138,13 +140,27 @@ TEST(Observability, BadlyScaledObservablePairsAreObservable) {
   lower << 0, 0, 1, 0;
   for (const double s : {1e-12, 1e12})
     EXPECT_EQ(adaptobs::observability(lower, Eigen::RowVector2d(s, 0)).observable_dimension, 1) << s;
+  // Rows at the ends of the range: each output is judged in its own units.
+  Eigen::Matrix2d graded;
+  graded << -1, 0, 1, -2;
+  for (const double s : {1e-310, 1.5e308})
+    EXPECT_EQ(adaptobs::observability(graded, Eigen::RowVector2d(0, s)).observable_dimension, 2) << s;
+  EXPECT_EQ(adaptobs::observability(Eigen::Matrix2d::Zero().eval(), Eigen::Matrix2d(Eigen::Vector2d(1, 1e-310).asDiagonal()))
+                .observable_dimension,
+            2);
+  Eigen::Matrix2f weak;
+  weak << -1, 0.05f, 0, -2;
+  EXPECT_EQ(adaptobs::observability(weak, Eigen::RowVector2f(1, 0)).observable_dimension, 2);
+  EXPECT_EQ(adaptobs::observability(Eigen::Matrix2f(Eigen::Vector2f(-1, -2).asDiagonal()), Eigen::RowVector2f(1, 0))
+                .observable_dimension,
+            1);
 }
 
 // A state that reaches the output only through a coupling far below the data,
 // with no coupling back, is not observable in any useful sense: moving its mode
-// takes a gain of the coupling's inverse size. Balancing leaves such a state in
-// its units (scaling the coupling up would make 1e-300 count), and placement
-// names the true reason.
+// takes a gain of the coupling's inverse size. The staircase does not rescale
+// the states (that would make a coupling of 1e-300 count), and placement names
+// the true reason.
 TEST(Observability, ACouplingFarBelowTheDataIsNoObservability) {
   for (const double eps : {1e-17, 1e-100, 1e-300}) {
     Eigen::Matrix2d a;
@@ -377,8 +393,7 @@ TEST(PolePlacement, OutputInOtherUnitsIsPlaced) {
             1e-9);
   // Unobservable in any units: still refused, with the hidden mode.
   Eigen::Matrix2d lower;
-  lower << 0, 0.5, 1, 0.3;
-  lower(0, 1) = 0;  // x1' = 0, x2' = x1 + 0.3 x2: C = (1e-12 0) never sees x2
+  lower << 0, 0, 1, 0.3;  // x1' = 0, x2' = x1 + 0.3 x2: C = (1e-12 0) never sees x2
   const std::string message = configuration_error_of(
       [&] { (void)adaptobs::place_output_injection(lower, Eigen::RowVector2d(1e-12, 0), Eigen::Vector2d(0.1, 0.2)); });
   EXPECT_NE(message.find("'A, C' is not observable"), std::string::npos) << message;

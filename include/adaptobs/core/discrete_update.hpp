@@ -17,14 +17,15 @@
 namespace adaptobs {
 
 /// The declarations an observer deriving from `DiscreteUpdate` makes, written
-/// once: the friendship the base needs to reach `model_`, `theta_` and the
-/// step; the names its errors give (`Observer::update`, `Observer::reset`);
-/// and the common types. A class template does not see the members of a
-/// dependent base without qualification, so each observer would otherwise
-/// restate them (Eigen's `EIGEN_DENSE_PUBLIC_INTERFACE` answers the same
-/// problem). Use it in a public section of a class template whose parameter
-/// is `Model`:
+/// once: the friendship the base needs to reach its private members (`model_`,
+/// `theta_`, `work_`, `restart` and the step); the names its errors give
+/// (`Observer::update`, `Observer::reset`); and the common types. A class
+/// template does not see the members of a dependent base without
+/// qualification, so each observer would otherwise restate them (Eigen's
+/// `EIGEN_DENSE_PUBLIC_INTERFACE` answers the same problem). Use it in a public
+/// section of a class template whose model parameter is named `Model`:
 /// `ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuyaderZhangObserver, DiscreteSample);`
+/// (outside namespace adaptobs, qualify the sample: `adaptobs::DiscreteSample`).
 #define ADAPTOBS_DISCRETE_UPDATE_INTERFACE(Observer, SampleOf)                                    \
   friend ::adaptobs::DiscreteUpdate<Observer, typename Model::Dims, SampleOf>;                    \
   static constexpr std::string_view name_update = #Observer "::update";                           \

@@ -174,11 +174,11 @@ void require_initial_estimates(const Eigen::DenseBase<X>& x0, Index nx, const Ei
   require_finite_shape(theta0, np, 1, who, theta_name);
 }
 
-/// Square and symmetric to a relative tolerance of 100 ulp of its largest entry.
+/// Square, finite and symmetric to a relative tolerance of 100 ulp of its largest entry.
 template <class Derived>
 [[nodiscard]] bool is_symmetric(const Eigen::MatrixBase<Derived>& m) {
   using Scalar = typename Derived::Scalar;
-  if (m.rows() != m.cols()) return false;
+  if (m.rows() != m.cols() || !m.allFinite()) return false;
   if (m.size() == 0) return true;
   const Scalar scale = m.cwiseAbs().maxCoeff();
   const Scalar tol = Scalar(100) * std::numeric_limits<Scalar>::epsilon() * (scale > Scalar(0) ? scale : Scalar(1));

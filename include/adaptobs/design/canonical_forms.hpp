@@ -116,7 +116,8 @@ template <typename Scalar>
   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> v = lu.solve(zeros);
   Matrix w = kernel ? *kernel : kernel_basis<Scalar>(cc, who);
   require_shape(w, n, n - 1, who, "kernel");
-  require((cc * w).cwiseAbs().maxCoeff() <= Scalar(1e-10) * std::max(Scalar(1), w.cwiseAbs().maxCoeff()), who,
+  // Relative to the sizes of c and W: c in other units has the same kernel.
+  require((cc * w).cwiseAbs().maxCoeff() <= Scalar(1e-10) * cc.cwiseAbs().sum() * w.cwiseAbs().maxCoeff(), who,
           "kernel", "must span the kernel of c");
   require(w.fullPivLu().rank() == n - 1, who, "kernel", "must have independent columns");
   Matrix t_inv(n, n);
@@ -161,8 +162,11 @@ template <typename Scalar>
   Matrix t = t0;
   if (r > 0) {
     const Matrix a12 = at.topRightCorner(m, r);
+    // (A22 + decay I, A12) is observable with (A22, A12); the staircase judges the
+    // unshifted pair, whose scale does not grow with `decay`.
+    require(observability(Matrix(at.bottomRightCorner(r, r)), a12).observable(), who, "A, C",
+            "must be an observable pair");
     const Matrix a22 = at.bottomRightCorner(r, r) + decay * Matrix::Identity(r, r);
-    require(observability(a22, a12).observable(), who, "A, C", "must be an observable pair");
     const Matrix x = kalman_bucy_gain(a22, a12, Matrix::Identity(r, r), Matrix::Identity(m, m)).K;
     Matrix left = Matrix::Identity(n, n);
     left.bottomLeftCorner(r, m) = -x;

@@ -122,13 +122,13 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
   const Index n = E.rows(), m = C_given.rows(), p = Hbar.cols(), na = n + p;
   require_finite_shape(C_given, m, n, who, "C");
   require(m >= 1, who, "C", "must have at least one row (output)");
-  // The design does not depend on the units of the outputs: C → 2^e C leaves
-  // U and N = I − CK as they are and divides K, Γ and L by 2^e, exactly. It
-  // runs on C scaled to ‖C‖_F in [1, 2), so that the rank of C and the rank test
-  // at the eigenvalue 1 judge C against its own size, not against 1.
-  const Scalar c_norm = C_given.stableNorm();
-  const int c_exponent = c_norm > Scalar(0) ? std::ilogb(c_norm) : 0;
-  const Matrix C = C_given * std::ldexp(Scalar(1), -c_exponent);
+  // The design does not depend on the units of the outputs: with C = D C_given,
+  // D diagonal, the gains K D, Γ D and L D for C_given give the same KC, ΓC and U
+  // (N = I − CK becomes the similar D⁻¹ND). It runs on the rows of C scaled by
+  // powers of two (exactly) to their largest entry in [1, 2), so that the rank
+  // of C and the rank test at the eigenvalue 1 judge each output in its own units.
+  const auto output_exponents = row_exponents<Scalar>(C_given);
+  const Matrix C = scaled_by_powers_of_two<Scalar>(C_given, output_exponents, true);
   require_finite_shape(Hbar, n, p, who, "Hbar");
   // Compared with `>` below, which a NaN fails: the refusal would blame the data.
   require_non_negative(options.rank_tolerance, who, "options.rank_tolerance");
@@ -150,7 +150,7 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
                   "is not observable: its mode(s) " + format_complex_list(state_report.unobservable_modes) +
                       " cannot be moved");
   }
-  const Scalar c_scale = std::max(Scalar(1), Scalar(C.norm()));
+  const Scalar c_scale = C.norm();
   const auto c_sigma = Eigen::JacobiSVD<Matrix>(C).singularValues();
   Index c_rank = 0;
   while (c_rank < c_sigma.size() && c_sigma(c_rank) > Scalar(options.rank_tolerance) * c_scale) ++c_rank;
@@ -215,28 +215,27 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
   }
 
   DynamicGuiroGains<Scalar> gains;
-  gains.K = best->K;
-  // Γ = L₂ N⁻¹  ⇔  Nᵀ Γᵀ = L₂ᵀ.
-  gains.Gamma = best->N.transpose().fullPivLu().solve(Matrix(best->L.bottomRows(p).transpose())).transpose();
-  gains.L = best->L;
-  gains.U = guiro_error_matrix<Scalar>(E, C, Hbar, gains.K, gains.Gamma);
+  // Γ = L₂ N⁻¹  ⇔  Nᵀ Γᵀ = L₂ᵀ; then each gain in the caller's output units (columns times D).
+  const Matrix gamma = best->N.transpose().fullPivLu().solve(Matrix(best->L.bottomRows(p).transpose())).transpose();
+  gains.U = guiro_error_matrix<Scalar>(E, C, Hbar, best->K, gamma);
   gains.eigenvector_condition = best->score;
   gains.cayley_hamilton_residual = cayley_hamilton_residual(gains.U, target);
   gains.eigenvalue_mismatch = eigenvalue_mismatch(gains.U, target);
   gains.spectral_radius = spectral_radius(gains.U);
   const Scalar tol = default_verification_tolerance<Scalar>(options.placement.verification_tolerance);
-  if (!(gains.cayley_hamilton_residual <= tol) || !(gains.spectral_radius < Scalar(1)) || !gains.K.allFinite() ||
-      !gains.Gamma.allFinite()) {
+  if (!(gains.cayley_hamilton_residual <= tol) || !(gains.spectral_radius < Scalar(1)) || !best->K.allFinite() ||
+      !gamma.allFinite()) {
     std::ostringstream os;
     os << "could not be assigned to the required accuracy (Cayley-Hamilton residual " << gains.cayley_hamilton_residual
        << ", tolerance " << tol << ", spectral radius of U " << gains.spectral_radius
        << "): (E, C, Hbar) is too close to a case without solution";
     fail_argument(who, "poles", os.str());
   }
-  const Scalar to_given_units = std::ldexp(Scalar(1), -c_exponent);
-  gains.K *= to_given_units;
-  gains.Gamma *= to_given_units;
-  gains.L *= to_given_units;
+  gains.K = scaled_by_powers_of_two<Scalar>(best->K, output_exponents, false);
+  gains.Gamma = scaled_by_powers_of_two<Scalar>(gamma, output_exponents, false);
+  gains.L = scaled_by_powers_of_two<Scalar>(best->L, output_exponents, false);
+  if (!gains.K.allFinite() || !gains.Gamma.allFinite() || !gains.L.allFinite())
+    fail_argument(who, "C", "is so small that the gains for it lie beyond the floating-point range");
   return gains;
 }
 #ifdef ADAPTOBS_PRECOMPILED

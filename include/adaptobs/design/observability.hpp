@@ -20,8 +20,8 @@
 /// decision against one fixed yardstick such as \f$\max(1, \|A\|_F, \|C\|_F)\f$
 /// is not: with C in units \f$10^{12}\f$ times too large every singular value of
 /// C falls below it. So the staircase first scales each row of C by a power of
-/// two to a norm in [1, 2) (exact in binary floating point: the same pair in
-/// other output units, without a rounding error), then decides each rank
+/// two to its largest entry in [1, 2) (exact in binary floating point: the same
+/// pair in other output units, without a rounding error), then decides each rank
 /// against the scale of the block it examines: C's own norm for the first step
 /// (the rank of C), and \f$\|A\|_F\f$ for the later ones, whose blocks are
 /// parts of \f$Q^TA^TQ\f$. Both are relative, so the verdict does not change
@@ -32,7 +32,7 @@
 /// rounding level of the data or of 1e-300: a state that reaches the output
 /// only through such a coupling has a mode that only a gain of the coupling's
 /// inverse size could move, and is reported unobservable. A model whose states
-/// are in wildly different units (a coupling below \f$10^6\varepsilon\|A\|_F\f$
+/// are in wildly different units (a coupling below the rank tolerance times \f$\|A\|_F\f$
 /// that matters) should be brought to comparable units first.
 
 #include <adaptobs/core/dimensions.hpp>
@@ -62,14 +62,39 @@ struct ObservabilityReport {
 
 namespace detail {
 
-/// Scales each nonzero row of c by the power of two that brings its norm into
-/// [1, 2) (file comment, "Scale"): only the exponents change.
+/// The exponent \f$e_k\f$ of each row of c: row k times \f$2^{-e_k}\f$ has its
+/// largest entry in [1, 2) (0 for a zero row). Taken from the largest entry, not
+/// from the row's norm, so that it is finite for every finite row, subnormal
+/// or near the overflow threshold.
 template <typename Scalar>
-void scale_output_rows(DynamicMatrix<Scalar>& c) {
+[[nodiscard]] Eigen::Matrix<int, Eigen::Dynamic, 1> row_exponents(const DynamicMatrix<Scalar>& c) {
+  Eigen::Matrix<int, Eigen::Dynamic, 1> e(c.rows());
   for (Index k = 0; k < c.rows(); ++k) {
-    const Scalar norm = c.row(k).stableNorm();
-    if (norm > Scalar(0) && std::isfinite(norm)) c.row(k) *= std::ldexp(Scalar(1), -std::ilogb(norm));
+    const Scalar largest = c.cols() == 0 ? Scalar(0) : c.row(k).cwiseAbs().maxCoeff();
+    e(k) = largest > Scalar(0) ? std::ilogb(largest) : 0;
   }
+  return e;
+}
+
+/// m with row k (`rows`) or column k (otherwise) multiplied by \f$2^{-e_k}\f$,
+/// entry by entry through `ldexp`: exact unless an entry leaves the range of
+/// the normal numbers (the factor itself never overflows).
+template <typename Scalar>
+[[nodiscard]] DynamicMatrix<Scalar> scaled_by_powers_of_two(DynamicMatrix<Scalar> m,
+                                                          const Eigen::Matrix<int, Eigen::Dynamic, 1>& e, bool rows) {
+  for (Index j = 0; j < m.cols(); ++j)
+    for (Index i = 0; i < m.rows(); ++i) m(i, j) = std::ldexp(m(i, j), -e(rows ? i : j));
+  return m;
+}
+
+/// The default relative rank tolerance of the staircase: \f$10^6\varepsilon\f$
+/// (2.2e-10 in double), but at most \f$\sqrt\varepsilon\f$, which it exceeds in
+/// float (\f$10^6\varepsilon\f$ is 0.12 there: any coupling below 12 % of
+/// \f$\|A\|_F\f$ would count as zero).
+template <typename Scalar>
+[[nodiscard]] Scalar default_observability_tolerance() {
+  const Scalar eps = std::numeric_limits<Scalar>::epsilon();
+  return std::min(Scalar(1e6) * eps, std::sqrt(eps));
 }
 
 /// The staircase on run-time sizes (see `observability`), one instance per
@@ -80,10 +105,8 @@ template <typename Scalar>
                                                                   Scalar relative_tolerance) {
   using Matrix = DynamicMatrix<Scalar>;
   const Index n = A.rows();
-  const Scalar rel = relative_tolerance > 0 ? relative_tolerance
-                                            : Scalar(1e6) * std::numeric_limits<Scalar>::epsilon();
-  Matrix scaled_c = C;
-  scale_output_rows(scaled_c);
+  const Scalar rel = relative_tolerance > 0 ? relative_tolerance : default_observability_tolerance<Scalar>();
+  const Matrix scaled_c = scaled_by_powers_of_two<Scalar>(C, row_exponents<Scalar>(C), true);
   const Scalar c_tol = rel * scaled_c.stableNorm(), a_tol = rel * A.stableNorm();
 
   Matrix a = A.transpose();
@@ -120,9 +143,10 @@ ADAPTOBS_INSTANTIATE ObservabilityReport<double> observability_staircase<double>
 }  // namespace detail
 
 /// Staircase observability analysis of (A, C) (see file comment). A singular
-/// value of C counts as zero below `relative_tolerance` × ‖C‖_F (its rows
-/// scaled to unit size), and one of a later block below `relative_tolerance` ×
-/// ‖A‖_F; 0 selects \f$10^6\varepsilon\f$. The unobservable modes are the
+/// value of C counts as zero below `relative_tolerance` × ‖C‖_F (each row of C
+/// scaled by a power of two to its largest entry in [1, 2)), and one of a later
+/// block below `relative_tolerance` × ‖A‖_F; 0 selects
+/// \f$\min(10^6\varepsilon, \sqrt\varepsilon)\f$. The unobservable modes are the
 /// eigenvalues of the unreached block.
 template <class DA, class DC>
 [[nodiscard]] ObservabilityReport<typename DA::Scalar> observability(const Eigen::MatrixBase<DA>& A,

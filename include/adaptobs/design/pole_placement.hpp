@@ -98,7 +98,8 @@ struct PolePlacementOptions {
   int tries = 20;
   /// Seed of those draws: designs are reproducible.
   std::uint64_t seed = 1;
-  /// Relative rank tolerance of the observability staircase; 0 selects \f$10^6\varepsilon\f$.
+  /// Relative rank tolerance of the observability staircase; 0 selects
+  /// \f$\min(10^6\varepsilon, \sqrt\varepsilon)\f$ (`observability`).
   double observability_tolerance = 0;
   /// Largest accepted Cayley–Hamilton residual; 0 selects \f$10^5\varepsilon\f$.
   double verification_tolerance = 0;

@@ -264,6 +264,7 @@ template <class DA, class DC>
   const Index n = detail::require_single_output_pair(A, c, who);
   detail::require(p.size() == n + 1 && p(0) == Scalar(1), who, "p", "must be monic of degree n");
   detail::require_finite(p, who, "p");
+  if (n == 0) return Eigen::Matrix<Scalar, DA::RowsAtCompileTime, 1>(0);
   detail::require(observability(A, c).observable(), who, "A, c", "must be an observable pair");
   const Eigen::FullPivLU<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> lu(observability_matrix(A, c));
   detail::require(lu.rank() == n, who, "A, c",

@@ -294,11 +294,10 @@ inline void validate_certificate(const TakagiSugenoLmiData& data, const TakagiSu
 /// Outcome of checking a candidate solution against theorem 1 or 2.
 struct TakagiSugenoCertificateCheck {
   double max_vertex_eigenvalue = std::numeric_limits<double>::infinity();  ///< \f$\max_i\lambda_{\max}(M_i)\f$
-  /// \f$\lambda_{\min}\f$ of \f$P_0\f$, \f$P_1\f$ and the \f$\Gamma^j\f$; −∞ for one that is not symmetric.
-  double min_eigenvalue_P0 = -std::numeric_limits<double>::infinity();
-  double min_eigenvalue_P1 = -std::numeric_limits<double>::infinity();
+  double min_eigenvalue_P0 = -std::numeric_limits<double>::infinity();  ///< \f$\lambda_{\min}(P_0)\f$; −∞ unless symmetric
+  double min_eigenvalue_P1 = -std::numeric_limits<double>::infinity();  ///< \f$\lambda_{\min}(P_1)\f$; −∞ unless symmetric
   double min_lambda = -std::numeric_limits<double>::infinity();
-  double min_eigenvalue_Gamma = -std::numeric_limits<double>::infinity();
+  double min_eigenvalue_Gamma = -std::numeric_limits<double>::infinity();  ///< smallest over the \f$\Gamma^j\f$; −∞ unless each is symmetric
   /// Every \f$M_i \prec 0\f$ and \f$P_0, P_1, \lambda_m, \Gamma^j \succ 0\f$ (strictly).
   [[nodiscard]] bool holds() const noexcept {
     return max_vertex_eigenvalue < 0 && min_eigenvalue_P0 > 0 && min_eigenvalue_P1 > 0 && min_lambda > 0 &&
