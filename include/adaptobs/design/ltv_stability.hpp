@@ -58,17 +58,14 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> checked_dynamics(const AFn
   return a;
 }
 
-/// The transition matrix of \f$\dot e = A(t)e\f$ from t0 to t1 by `steps` RK4
-/// steps, each evaluation of A(t) checked by `checked_dynamics`.
+/// The transition matrix of \f$\dot e = A(t)e\f$ of order n from t0 to t1 by
+/// `steps` RK4 steps, each evaluation of A(t) (the first at t0) checked by
+/// `checked_dynamics`.
 template <class AFn, typename Scalar>
 Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> checked_transition(const AFn& A, Scalar t0, Scalar t1,
-                                                                         int steps, std::string_view who,
+                                                                         int steps, Index n, std::string_view who,
                                                                          Scalar& norm_seen) {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  const Matrix a0 = A(t0);
-  require_square(a0, who, "A");
-  const Index n = a0.rows();
-  check_dynamics_value(a0, t0, n, who, norm_seen);
   Matrix phi = Matrix::Identity(n, n);
   RungeKutta4<Matrix> rk4(phi);
   rk4.integrate(
@@ -109,13 +106,12 @@ void require_floquet_arguments(Scalar period, int steps, std::string_view who) {
 /// exponents (largest first) must agree between N and 2N steps within the
 /// tolerance; the others are returned as computed. See `floquet_exponents`.
 template <class AFn, typename Scalar>
-Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn& A, Scalar period, int steps,
+Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn& A, Scalar period, int steps, Index n,
                                                                       Index count, std::string_view who) {
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   // max_t ||A(t)|| from a uniform sample of the period; the RK4 passes raise it
   // with every evaluation they make.
   Scalar norm = 0;
-  const Index n = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>(A(Scalar(0))).rows();
   const int samples = std::max(steps, 256);
   for (int k = 0; k < samples; ++k) (void)checked_dynamics(A, period * Scalar(k) / Scalar(samples), n, who, norm);
   const Scalar wanted = std::ceil(period * norm / Scalar(floquet_first_step_scale));
@@ -126,7 +122,7 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn&
     fail_argument(who, "A", os.str());
   }
   int n_steps = std::max(steps, static_cast<int>(wanted));
-  Vector coarse = exponents_of_monodromy(checked_transition(A, Scalar(0), period, n_steps, who, norm), period);
+  Vector coarse = exponents_of_monodromy(checked_transition(A, Scalar(0), period, n_steps, n, who, norm), period);
   for (int doubling = 0;; ++doubling) {
     if (n_steps > floquet_max_steps / 2) {
       std::ostringstream os;
@@ -134,7 +130,7 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn&
          << " RK4 steps";
       fail_argument(who, "A", os.str());
     }
-    Vector fine = exponents_of_monodromy(checked_transition(A, Scalar(0), period, 2 * n_steps, who, norm), period);
+    Vector fine = exponents_of_monodromy(checked_transition(A, Scalar(0), period, 2 * n_steps, n, who, norm), period);
     // A solution beyond the floating-point range: no exponent can be told.
     if (coarse.array().isNaN().any() || fine.array().isNaN().any()) return fine;
     // A largest multiplier in the subnormal range has lost its relative
@@ -200,8 +196,10 @@ template <class AFn, typename Scalar = double>
                                                                                        Scalar t1, int steps = 2000) {
   detail::require(std::isfinite(t0) && std::isfinite(t1), "transition_matrix", "t0, t1", "must be finite");
   detail::require(steps >= 1, "transition_matrix", "steps", "must be at least 1");
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a0 = A(t0);  // its order; RK4 checks every value
+  detail::require_square(a0, "transition_matrix", "A");
   Scalar norm_seen = 0;
-  return detail::checked_transition(A, t0, t1, steps, "transition_matrix", norm_seen);
+  return detail::checked_transition(A, t0, t1, steps, a0.rows(), "transition_matrix", norm_seen);
 }
 
 /// Floquet exponents \f$\log|\mu_i|/T\f$ of a `period`-periodic \f$\dot e = A(t)e\f$, largest first.
@@ -247,7 +245,7 @@ template <class AFn, typename Scalar = double>
   detail::require_square(a0, "floquet_exponents", "A");
   detail::require_floquet_arguments(period, steps, "floquet_exponents");
   if (a0.rows() == 0) return Eigen::Matrix<Scalar, Eigen::Dynamic, 1>();
-  return detail::controlled_floquet_exponents(A, period, steps, a0.rows(), "floquet_exponents");
+  return detail::controlled_floquet_exponents(A, period, steps, a0.rows(), a0.rows(), "floquet_exponents");
 }
 
 /// Exponential stability of a periodic \f$\dot e = A(t)e\f$: every Floquet exponent below −margin
@@ -266,7 +264,7 @@ template <class AFn, typename Scalar = double>
   detail::require(std::isfinite(margin), "is_exponentially_stable_periodic", "margin", "must be finite");
   detail::require_floquet_arguments(period, steps, "is_exponentially_stable_periodic");
   if (a0.rows() == 0) return true;
-  return detail::controlled_floquet_exponents(A, period, steps, 1, "is_exponentially_stable_periodic")(0) <
+  return detail::controlled_floquet_exponents(A, period, steps, a0.rows(), 1, "is_exponentially_stable_periodic")(0) <
          -margin;
 }
 

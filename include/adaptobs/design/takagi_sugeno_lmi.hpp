@@ -192,7 +192,7 @@ inline void validate_lmi_data(const TakagiSugenoLmiData& data, std::string_view 
 /// \f$L_i = P_0^{-1}R_i\f$ are derived for a symmetric \f$P_0\f$.
 [[nodiscard]] inline double smallest_eigenvalue_if_symmetric(const Eigen::MatrixXd& m) {
   if (m.size() == 0) return std::numeric_limits<double>::infinity();
-  if (!m.allFinite() || !is_symmetric(m)) return -std::numeric_limits<double>::infinity();
+  if (!is_symmetric(m)) return -std::numeric_limits<double>::infinity();  // non-finite too
   return symmetric_eigenvalues(m).minCoeff();
 }
 

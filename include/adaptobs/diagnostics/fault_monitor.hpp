@@ -97,12 +97,11 @@ template <typename Scalar, int NY, int NP>
   detail::require_positive(drift, who, "drift");
   detail::require(glr_window >= 1, who, "glr_window", "must be at least 1");
   const double evaluations_between = static_cast<double>(mean_samples_between_false_alarms) / static_cast<double>(stride);
-  detail::require(evaluations_between >= 2 && evaluations_between <= 1e5, who, "mean_samples_between_false_alarms",
+  detail::require(evaluations_between >= 2 && evaluations_between <= glr_max_mean_evaluations, who,
+                  "mean_samples_between_false_alarms",
                   "must lie between 2 and 1e5 strides (the GLR's threshold is simulated over 50 times as many)");
   // The GLR's threshold is simulated (glr_threshold), at a cost of window × parameters × evaluations.
-  const double glr_work_per_evaluation = static_cast<double>(glr_window) * static_cast<double>(nominal.size());
-  detail::require(glr_window <= glr_max_window && glr_work_per_evaluation * evaluations_between <= glr_max_simulation_work,
-                  who, "glr_window",
+  detail::require(detail::glr_simulation_affordable(glr_window, nominal.size(), evaluations_between), who, "glr_window",
                   "times the parameters times mean_samples_between_false_alarms / stride must be at most 1e7 "
                   "(glr_max_simulation_work: the GLR's threshold is simulated)");
   FaultMonitorDesign<Scalar, NY, NP> design;
@@ -115,7 +114,7 @@ template <typename Scalar, int NY, int NP>
   {
     const double checked = static_cast<double>(design.cusum.evaluations) / 50;
     // The check simulates its own threshold, within glr_threshold's range.
-    detail::require(checked <= 1e5 && glr_work_per_evaluation * checked <= glr_max_simulation_work, who, "record",
+    detail::require(detail::glr_simulation_affordable(glr_window, nominal.size(), checked), who, "record",
                     "is too long for the GLR's check, whose threshold is simulated for its estimates at the stride / 50 "
                     "(at most 1e5, and 1e7 / (glr_window x parameters)): give fewer runs");
     GlrDetector<Scalar, NP> glr(nominal, design.cusum.scale, glr_window,
@@ -161,7 +160,8 @@ template <typename Scalar, int NY, int NP>
   if (!(dof >= chi_square_min_degrees_of_freedom && dof <= chi_square_max_degrees_of_freedom)) {
     std::ostringstream os;
     os << "has window sums of the output errors with mean " << mean << " and variance " << variance
-       << ": their matched χ² has " << dof << " degrees of freedom, outside [1e-2, 1e7]";
+       << ": their matched χ² has " << dof << " degrees of freedom, outside [" << chi_square_min_degrees_of_freedom
+       << ", " << chi_square_max_degrees_of_freedom << "]";
     detail::fail_argument(who, "record", os.str());
   }
   design.chi_square_windows = windows;

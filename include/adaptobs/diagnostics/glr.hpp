@@ -46,6 +46,18 @@ inline constexpr Index glr_max_window = Index{1} << 20;
 /// Most window × components × mean_evaluations products `glr_threshold`
 /// simulates per candidate threshold (about ten seconds in all).
 inline constexpr double glr_max_simulation_work = 1e7;
+/// Longest mean run between false alarms `glr_threshold` simulates, in evaluations.
+inline constexpr double glr_max_mean_evaluations = 1e5;
+
+namespace detail {
+/// Whether `glr_threshold` can simulate this window over `components`
+/// components for `mean_evaluations`: window and run length in range, and the
+/// work within `glr_max_simulation_work`.
+[[nodiscard]] inline bool glr_simulation_affordable(Index window, Index components, double mean_evaluations) {
+  return window >= 1 && window <= glr_max_window && mean_evaluations <= glr_max_mean_evaluations &&
+         static_cast<double>(window) * static_cast<double>(components) * mean_evaluations <= glr_max_simulation_work;
+}
+}  // namespace detail
 
 template <typename Scalar, int N = Eigen::Dynamic>
 class GlrDetector : public detail::SequentialTest<GlrDetector<Scalar, N>, Scalar, N> {
@@ -201,11 +213,9 @@ namespace detail {
   constexpr std::string_view who = "glr_threshold";
   detail::require(window >= 1 && window <= glr_max_window, who, "window", "must lie in [1, 2^20]");
   detail::require(components >= 1, who, "components", "must be at least 1");
-  detail::require(mean_evaluations >= 2 && mean_evaluations <= 1e5, who, "mean_evaluations",
+  detail::require(mean_evaluations >= 2 && mean_evaluations <= glr_max_mean_evaluations, who, "mean_evaluations",
                   "must lie in [2, 1e5] evaluations");
-  detail::require(static_cast<double>(window) * static_cast<double>(components) * mean_evaluations <=
-                      glr_max_simulation_work,
-                  who, "window", "times components times mean_evaluations must be at most 1e7 (glr_max_simulation_work)");
+  detail::require(detail::glr_simulation_affordable(window, components, mean_evaluations), who, "window", "times components times mean_evaluations must be at most 1e7 (glr_max_simulation_work)");
   return detail::glr_threshold_search(window, mean_evaluations, components, Index{1} << 22);
 }
 
