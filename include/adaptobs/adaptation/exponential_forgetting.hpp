@@ -103,9 +103,9 @@ class ExponentialForgettingRls : public LeastSquaresLaw<ExponentialForgettingRls
     const Covariance& gamma = this->covariance();
     Parameters& next_p = this->next_parameters();
     Covariance& next_gamma = this->next_covariance();
-    gamma_phi_.noalias() = detail::product(gamma, phi);
+    detail::set_product(gamma_phi_, gamma, phi);
     innovation_weight_ = weight;
-    innovation_weight_.noalias() += detail::product(phi.transpose(), gamma_phi_);
+    detail::add_product(innovation_weight_, phi.transpose(), gamma_phi_);
     factorization_.compute(innovation_weight_);
     // A singular or non-finite M leaves no gain (the factorization would quietly
     // zero it): the step breaks down, and its proposal says so with NaN.
@@ -117,11 +117,11 @@ class ExponentialForgettingRls : public LeastSquaresLaw<ExponentialForgettingRls
     gain_transposed_ = gamma_phi_.transpose();
     factorization_.solveInPlace(gain_transposed_);  // Kᵀ = M⁻¹(Γφ)ᵀ
     innovation_ = z;
-    innovation_.noalias() -= phi.transpose() * this->parameters();
+    detail::subtract_product(innovation_, phi.transpose(), this->parameters());
     next_p = this->parameters();
-    next_p.noalias() += gain_transposed_.transpose() * innovation_;
+    detail::add_product(next_p, gain_transposed_.transpose(), innovation_);
     next_gamma = gamma;
-    next_gamma.noalias() -= detail::product(gain_transposed_.transpose(), gamma_phi_.transpose());
+    detail::subtract_product(next_gamma, gain_transposed_.transpose(), gamma_phi_.transpose());
     next_gamma *= Scalar(1) / options_.lambda;
     detail::mirror_lower_triangle(next_gamma);
     return detail::all_finite(next_p, next_gamma);

@@ -10,6 +10,7 @@
 /// An update law is any type with `derivative(R, epsilon, theta, dtheta)`;
 /// this one is the default of `UnifiedAdaptiveObserver`.
 
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -43,8 +44,8 @@ class GradientLaw {
   template <class DR, class DE, class DT, class DOut>
   void derivative(const Eigen::MatrixBase<DR>& R, const Eigen::MatrixBase<DE>& epsilon,
                   const Eigen::MatrixBase<DT>& /*theta*/, Eigen::MatrixBase<DOut>& dtheta) const {
-    scratch_.noalias() = R.transpose() * epsilon;
-    dtheta.noalias() = gamma_ * scratch_;
+    detail::set_product(scratch_, R.transpose(), epsilon);
+    detail::set_product(dtheta, gamma_, scratch_);
   }
 
   [[nodiscard]] const ParameterMatrix& gamma() const noexcept { return gamma_; }

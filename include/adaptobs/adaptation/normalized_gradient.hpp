@@ -13,6 +13,7 @@
 
 #include <adaptobs/adaptation/adaptation_law.hpp>
 #include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -72,12 +73,12 @@ class NormalizedGradient : public RegressionLaw<NormalizedGradient<S, NP, NZ>, R
   bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& /*unweighted*/) {
     const int next = 1 - current_;
     innovation_ = z;
-    innovation_.noalias() -= phi.transpose() * p_[current_];
+    detail::subtract_product(innovation_, phi.transpose(), p_[current_]);
     p_[next] = p_[current_];
     const Scalar norm2 = phi.squaredNorm();
     if (std::isfinite(norm2)) {
       innovation_ *= options_.mu / (options_.offset + norm2);
-      p_[next].noalias() += phi * innovation_;
+      detail::add_product(p_[next], phi, innovation_);
     } else {
       // ‖φ‖² overflows for entries beyond about 10^154 (and the factor μ/(c + ‖φ‖²)
       // would underflow): with φ = sφ̃, s a power of two near its largest entry,

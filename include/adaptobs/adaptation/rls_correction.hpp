@@ -54,9 +54,9 @@ class RlsCorrection {
   /// hold non-finite numbers when it returns true (overflow).
   bool apply(const Covariance& gamma, const MeasurementWeight& weight, const Regressor& phi, const Measurement& z,
              const Parameters& p, S scale, Parameters& p_out, Covariance& gamma_out) {
-    gain_.noalias() = product(gamma, phi);
+    set_product(gain_, gamma, phi);
     innovation_weight_ = weight;
-    innovation_weight_.noalias() += product(phi.transpose(), gain_);
+    add_product(innovation_weight_, phi.transpose(), gain_);
     if (!cholesky_.compute(innovation_weight_)) {
       p_out.setConstant(std::numeric_limits<S>::quiet_NaN());
       gamma_out.setConstant(std::numeric_limits<S>::quiet_NaN());
@@ -65,12 +65,12 @@ class RlsCorrection {
     // U = Γφ L⁻ᵀ (in place), then L⁻¹(z − φᵀp).
     cholesky_.solve_lower_transposed_on_the_right(gain_);
     innovation_ = z;
-    innovation_.noalias() -= phi.transpose() * p;
+    subtract_product(innovation_, phi.transpose(), p);
     cholesky_.solve_lower_in_place(innovation_);
     p_out = p;
-    p_out.noalias() += gain_ * innovation_;
+    add_product(p_out, gain_, innovation_);
     gamma_out = gamma;
-    gamma_out.noalias() -= product(gain_, gain_.transpose());
+    subtract_product(gamma_out, gain_, gain_.transpose());
     if (scale != S(1)) gamma_out *= scale;
     mirror_lower_triangle(gamma_out);
     return true;

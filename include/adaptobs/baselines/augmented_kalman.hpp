@@ -137,35 +137,35 @@ class AugmentedKalmanFilter
     const typename Dims::OutputMatrixSquare& r = present ? w.r_masked : cov_.R;
 
     // Correction: S = C Pxx Cᵀ + R, L = P Hᵀ S⁻¹ with H = [C 0].
-    w.pht.noalias() = p_.leftCols(nx) * c.transpose();
+    detail::set_product(w.pht, p_.leftCols(nx), c.transpose());
     w.s = r;
-    w.s.noalias() += c * w.pht.topRows(nx);
+    detail::add_product(w.s, c, w.pht.topRows(nx));
     if (!w.cholesky.compute(w.s)) return UpdateStatus::nonfinite_result;
     w.gain = w.pht;
     w.cholesky.solve_on_the_right_in_place(w.gain);  // L = P Hᵀ S⁻¹
     w.innovation = sample.y;
-    w.innovation.noalias() -= c * x_;
+    detail::subtract_product(w.innovation, c, x_);
     detail::zero_absent_rows<Dims>(w.innovation, present);
     w.xi.head(nx) = x_;
     w.xi.tail(theta_.rows()) = theta_;
-    w.xi.noalias() += w.gain * w.innovation;
+    detail::add_product(w.xi, w.gain, w.innovation);
     // Joseph form: P⁺ = (I − L H) P (I − L H)ᵀ + L R Lᵀ.
     w.joseph.setIdentity();
-    w.joseph.leftCols(nx).noalias() -= w.gain * c;
-    w.scratch.noalias() = w.joseph * p_;
-    w.p.noalias() = w.scratch * w.joseph.transpose();
+    detail::subtract_product(w.joseph.leftCols(nx), w.gain, c);
+    detail::set_product(w.scratch, w.joseph, p_);
+    detail::set_product(w.p, w.scratch, w.joseph.transpose());
     w.pht.noalias() = w.gain * r;  // reuse as L R
-    w.p.noalias() += w.pht * w.gain.transpose();
+    detail::add_product(w.p, w.pht, w.gain.transpose());
 
     // Prediction with F_k = [A Ψ; 0 I].
     w.f.topLeftCorner(nx, nx) = system.A;
     w.f.topRightCorner(nx, theta_.rows()) = sample.Psi;
-    w.x.noalias() = system.A * w.xi.head(nx);
+    detail::set_product(w.x, system.A, w.xi.head(nx));
     detail::add_product(w.x, sample.Psi, w.xi.tail(theta_.rows()));
     detail::add_product(w.x, system.B, sample.u);
     w.theta = w.xi.tail(theta_.rows());
-    w.scratch.noalias() = w.f * w.p;
-    w.p.noalias() = w.scratch * w.f.transpose();
+    detail::set_product(w.scratch, w.f, w.p);
+    detail::set_product(w.p, w.scratch, w.f.transpose());
     w.p += cov_.Q;
     w.scratch = Scalar(0.5) * (w.p + w.p.transpose());
 

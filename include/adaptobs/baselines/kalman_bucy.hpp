@@ -93,20 +93,20 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     w.ae.topLeftCorner(nx, nx) = sys.A;
     w.ae.topRightCorner(nx, np) = model_.regressor(t, u, y);
     // L = P C_eᵀ R⁻¹ with C_e = [C 0].
-    w.pct.noalias() = P.leftCols(nx) * sys.C.transpose();
+    detail::set_product(w.pct, P.leftCols(nx), sys.C.transpose());
     w.gain = w.pct;
     r_factor_.solve_on_the_right_in_place(w.gain);
     w.epsilon = y;
-    w.epsilon.noalias() -= sys.C * x;
-    dx.noalias() = sys.A * x;
+    detail::subtract_product(w.epsilon, sys.C, x);
+    detail::set_product(dx, sys.A, x);
     detail::add_product(dx, sys.B, u);
     detail::add_product(dx, w.ae.topRightCorner(nx, np), theta);
-    dx.noalias() += w.gain.topRows(nx) * w.epsilon;
-    dtheta.noalias() = w.gain.bottomRows(np) * w.epsilon;
+    detail::add_product(dx, w.gain.topRows(nx), w.epsilon);
+    detail::set_product(dtheta, w.gain.bottomRows(np), w.epsilon);
     dP = cov_.Q;
-    dP.noalias() += w.ae * P;
-    dP.noalias() += P * w.ae.transpose();
-    dP.noalias() -= w.gain * w.pct.transpose();
+    detail::add_product(dP, w.ae, P);
+    detail::add_product(dP, P, w.ae.transpose());
+    detail::subtract_product(dP, w.gain, w.pct.transpose());
   }
 
   /// Covariance P of \f$[\hat x; \hat\theta]\f$.
@@ -151,7 +151,7 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
   // (w_.epsilon holds the last RK4 stage's).
   void finish_update(const Sample& sample, bool) {
     output_error_ = sample.y;
-    output_error_.noalias() -= model_.at(sample.t).C * eta_;
+    detail::subtract_product(output_error_, model_.at(sample.t).C, eta_);
   }
 
   void refresh_estimates() {

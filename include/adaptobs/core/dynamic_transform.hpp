@@ -64,8 +64,8 @@ class DynamicTransform {
     } else if (identity()) {
       if constexpr (may_be_identity) F = Ao;
     } else {
-      scratch_.noalias() = detail::product(Ao, h_);
-      F.noalias() = detail::product(g_, scratch_);
+      detail::set_product(scratch_, Ao, h_);
+      detail::set_product(F, g_, scratch_);
     }
   }
 
@@ -79,11 +79,11 @@ class DynamicTransform {
   template <class DXi, class DPsi, class DOut>
   void derivative(const FilterMatrix& F, const Eigen::MatrixBase<DXi>& Xi, const Eigen::MatrixBase<DPsi>& Psi,
                   Eigen::MatrixBase<DOut>& dXi) const {
-    dXi.noalias() = detail::product(F, Xi);
+    detail::set_product(dXi, F, Xi);
     if (identity()) {
       if constexpr (may_be_identity) dXi += Psi;
     } else {
-      dXi.noalias() += detail::product(g_, Psi);
+      detail::add_product(dXi, g_, Psi);
     }
   }
 
@@ -93,7 +93,7 @@ class DynamicTransform {
     if (identity()) {
       if constexpr (may_be_identity) Omega = Xi;
     } else {
-      Omega.noalias() = detail::product(h_, Xi);
+      detail::set_product(Omega, h_, Xi);
     }
   }
 

@@ -2,6 +2,7 @@
 /// \file
 /// Spectral norm (largest singular value) of a small matrix.
 
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 
 #include <Eigen/Core>
@@ -28,13 +29,21 @@ template <class Derived>
   const Scalar scale = m.cwiseAbs().template maxCoeff<Eigen::PropagateNaN>();
   if (!(scale > Scalar(0)) || !std::isfinite(scale)) return scale;
   const typename Derived::PlainObject scaled = m / scale;
+  // The Gram matrix of the smaller side; with fixed sizes the other branch is not compiled.
+  constexpr bool fixed = R != Eigen::Dynamic && C != Eigen::Dynamic;
   Scalar largest;
-  if (m.cols() <= m.rows()) {
-    const Eigen::Matrix<Scalar, C, C> gram = scaled.transpose() * scaled;
-    largest = symmetric_eigenvalues(gram)(m.cols() - 1);
+  if (fixed ? C <= R : m.cols() <= m.rows()) {
+    if constexpr (!fixed || C <= R) {
+      Eigen::Matrix<Scalar, C, C> gram;
+      detail::set_product(gram, scaled.transpose(), scaled);
+      largest = symmetric_eigenvalues(gram)(m.cols() - 1);
+    }
   } else {
-    const Eigen::Matrix<Scalar, R, R> gram = scaled * scaled.transpose();
-    largest = symmetric_eigenvalues(gram)(m.rows() - 1);
+    if constexpr (!fixed || C > R) {
+      Eigen::Matrix<Scalar, R, R> gram;
+      detail::set_product(gram, scaled, scaled.transpose());
+      largest = symmetric_eigenvalues(gram)(m.rows() - 1);
+    }
   }
   return scale * std::sqrt(std::max(largest, Scalar(0)));
 }

@@ -139,11 +139,11 @@ class StaticTransform : public SizedBy<D> {
       out.Co = s.C;
       out.TB = s.B;
     } else {
-      out.Co.noalias() = s.C * t_inverse_;
-      out.TB.noalias() = t_ * s.B;
+      detail::set_product(out.Co, s.C, t_inverse_);
+      detail::set_product(out.TB, t_, s.B);
       out.Ao.noalias() = t_ * (s.A * t_inverse_);
     }
-    out.Ao.noalias() -= k_ * out.Co;
+    detail::subtract_product(out.Ao, k_, out.Co);
     out.K = k_;
   }
 
@@ -165,7 +165,7 @@ class StaticTransform : public SizedBy<D> {
   void drive(const TransformedSystem<D>& s, const typename D::Input& u, const typename D::Output& y,
              Eigen::MatrixBase<DPhi>& phi) const {
     detail::set_product(phi, s.TB, u);
-    phi.noalias() += s.K * y;
+    detail::add_product(phi, s.K, y);
   }
 
   /// \f$x = T\eta\f$.
@@ -187,7 +187,7 @@ class StaticTransform : public SizedBy<D> {
     if (identity_) {
       out = in;
     } else {
-      out.noalias() = m * in;
+      detail::set_product(out, m, in);
     }
   }
 

@@ -20,6 +20,7 @@
 /// whenever the subtracted terms outweigh what remains, so that a large term
 /// leaving, or excitation dying out, cannot leave its rounding in the level.
 
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -64,7 +65,7 @@ class ExcitationMonitor {
     removed_trace_ += slot.trace();
     const Scalar remaining = sum_.trace();
     const bool cancelled = removed_trace_ > Scalar(4) * remaining || !std::isfinite(remaining);
-    slot.noalias() = weight * phi.transpose() * phi;
+    detail::set_product(slot, (weight * phi.derived()).transpose(), phi);  // (wΦ)ᵀΦ: w first, so that a tiny w keeps a huge Φ from overflowing
     if (slot.allFinite()) {
       if (adds_since_overflow_ < window_) ++adds_since_overflow_;
     } else {

@@ -126,8 +126,7 @@ class CanonicalFormFilters {
   /// row of \f$\hat B_{(k-1)q+l,\,i}\f$ holds \f$e_1^T\bar F^{r-k}\sigma_{u_i}\f$ in column l.
   void regressor(const Bank& bank, Regressor& phi) const {
     const Index r = order(), q = q_, n = states();
-    phi.template block<R, Q>(0, 0, r, q).noalias() =
-        detail::product(first_rows_, bank.template block<Q, R>(0, 0, q, r).transpose());
+    detail::set_product(phi.template block<R, Q>(0, 0, r, q), first_rows_, bank.template block<Q, R>(0, 0, q, r).transpose());
     phi.bottomRows(m_ * n).setZero();
     for (Index i = 0; i < m_; ++i)
       for (Index j = 0; j < r; ++j) {
@@ -151,7 +150,7 @@ class CanonicalFormFilters {
         apply_transition(x_blocks);
         x_blocks += p(j) * sy;
       }
-      if (m > 0) x_blocks.noalias() += detail::product(b.template block<Q, M>(j * q, 0, q, m), su);
+      detail::add_product(x_blocks, b.template block<Q, M>(j * q, 0, q, m), su);
     }
     x += free;
   }
@@ -166,9 +165,9 @@ class CanonicalFormFilters {
     next = x;
     Eigen::Map<Blocks> next_blocks(next.data(), q_, r);
     apply_transition(next_blocks);
-    next_blocks.noalias() += detail::product(y.derived(), p.template head<R>(r).transpose());
+    detail::add_product(next_blocks, y.derived(), p.template head<R>(r).transpose());
     const Eigen::Map<const InputMatrix> b(p.data() + r, states(), m_);
-    if (m_ > 0) next.noalias() += detail::product(b, u.derived());
+    detail::add_product(next, b, u.derived());
   }
 
  private:

@@ -293,7 +293,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     filters_.state(w.bank, *p, w.free, w.x);
     // The a-priori error z_t − φ_tᵀ p̂_{t−1} of (22) (p̂_{t−1}: the law's estimate until it commits).
     w.error = w.z;
-    w.error.noalias() -= detail::product(w.phi.transpose(), law_.parameters());
+    detail::subtract_product(w.error, w.phi.transpose(), law_.parameters());
     w.y = y;
     if (present)
       for (Index i = 0; i < q; ++i)

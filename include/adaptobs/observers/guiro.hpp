@@ -153,18 +153,18 @@ class GuiroObserver
     detail::zero_absent_rows<Dims>(w.innovation, present);
     w.corrected = z_;
     if (started_ || options_.correct_initial_estimate) w.corrected.noalias() += gain_ * w.innovation;
-    w.residual.noalias() = system.C * w.corrected;
+    detail::set_product(w.residual, system.C, w.corrected);
     w.residual -= sample.y;  // a-posteriori output error C z_k − y_k
     detail::zero_absent_rows<Dims>(w.residual, present);
 
     /// Eq. (2), third line: \f$\hat\theta_{k+1} = \hat\theta_k - \Gamma(Cz_k - y_k)\f$.
     w.theta = theta_;
-    w.theta.noalias() -= parameter_gain_ * w.residual;
+    detail::subtract_product(w.theta, parameter_gain_, w.residual);
 
     /// Eq. (2), first line integrated over the period with \f$\hat\theta_k\f$:
     /// \f$z^-_{k+1} = Ez_k + \Psi_k\hat\theta_k + B_du_k\f$, \f$\Psi_k = EH_k\f$.
-    w.predicted.noalias() = detail::product(system.A, w.corrected);
-    w.predicted.noalias() += detail::product(sample.Psi, theta_);
+    detail::set_product(w.predicted, system.A, w.corrected);
+    detail::add_product(w.predicted, sample.Psi, theta_);
     detail::add_product(w.predicted, system.B, sample.u);
 
     if (!detail::all_finite(w.predicted, w.corrected, w.theta)) return UpdateStatus::nonfinite_result;

@@ -184,7 +184,7 @@ class TakagiSugenoObserver
     w.v.segment(nx, nu) = sample.u;
     w.v.tail(ny) = sample.y;
     auto output_error = w.v.tail(ny);
-    output_error.noalias() -= model_.C() * x_;
+    detail::subtract_product(output_error, model_.C(), x_);
     detail::zero_absent_rows<Dims>(output_error, present);  // D_k(y_k − C x̂_k)
 
     /// (65) \f$\hat x_{k+1} = \sum_i\hat h_i[A_i\hat x_k + B_iu_k + L_i(y_k - C\hat x_k)]\f$ and
@@ -192,11 +192,11 @@ class TakagiSugenoObserver
     /// \f$[\hat x_{k+1}; \hat\theta_{k+1} - \hat\theta_k] = (\sum_i\hat h_iV_i)\,v\f$ with
     /// \f$V_i = \begin{bmatrix} A_i & B_i & L_i \\ 0 & 0 & K_{y,i}\end{bmatrix}\f$.
     blend_vertex_maps(w.h, w.blend);
-    w.next.noalias() = detail::product(w.blend, w.v);
+    detail::set_product(w.next, w.blend, w.v);
     w.x = w.next.head(nx);
     w.theta = theta_ + w.next.tail(np);
     /// (21) adds the leakage \f$-\sum_i\hat h_iK_\theta\hat\theta_k = -K_\theta\hat\theta_k\f$ (\f$\sum_i\hat h_i = 1\f$).
-    if (gains_.K_theta) w.theta.noalias() -= *gains_.K_theta * theta_;
+    if (gains_.K_theta) detail::subtract_product(w.theta, *gains_.K_theta, theta_);
 
     if (!detail::all_finite(w.x, w.theta)) return UpdateStatus::nonfinite_result;
 
@@ -209,29 +209,22 @@ class TakagiSugenoObserver
     return UpdateStatus::accepted;
   }
 
-  // Σ_i ĥ_i V_i, summed in two interleaved halves to shorten the chain of dependent
-  // additions (r ≥ 2 is even); fixed sizes take each V_i as a fixed-size block.
+  // Σ_i ĥ_i V_i, coefficient by coefficient, summed in two interleaved halves
+  // (even and odd i) to shorten the chain of dependent additions. Plain loops:
+  // the same sums as whole-matrix expressions, at a fraction of their compile time.
   template <class DH, class DB>
   void blend_vertex_maps(const Eigen::MatrixBase<DH>& h, Eigen::MatrixBase<DB>& blend) const {
-    const Index nv = blend.cols();
-    const auto V = [&](Index i) {
-      if constexpr (nv_at_compile_time != Eigen::Dynamic) {
-        return vertex_maps_.template middleCols<nv_at_compile_time>(i * nv);
-      } else {
-        return vertex_maps_.middleCols(i * nv, nv);
+    const Index rows = blend.rows(), nv = blend.cols(), r = h.size();
+    for (Index c = 0; c < nv; ++c) {
+      for (Index row = 0; row < rows; ++row) {
+        Scalar even(0), odd(0);
+        for (Index i = 0; i < r; i += 2) {
+          even += h(i) * vertex_maps_(row, i * nv + c);
+          if (i + 1 < r) odd += h(i + 1) * vertex_maps_(row, (i + 1) * nv + c);
+        }
+        blend(row, c) = even + odd;
       }
-    };
-    if (h.size() == 1) {
-      blend = V(0);
-      return;
     }
-    typename Workspace::Blend odd = h(1) * V(1);
-    blend.noalias() = h(0) * V(0);
-    for (Index i = 2; i < h.size(); i += 2) {
-      blend.noalias() += h(i) * V(i);
-      odd.noalias() += h(i + 1) * V(i + 1);
-    }
-    blend += odd;
   }
 
   Model model_;

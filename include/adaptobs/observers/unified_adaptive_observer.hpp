@@ -164,7 +164,7 @@ class UnifiedAdaptiveObserver
     /// (3b): \f$\Omega = H\Xi\f$; output error \f$\varepsilon = y - C_o\hat x\f$.
     dt.output(Xi, w.Omega);
     w.epsilon = y;
-    w.epsilon.noalias() -= so.Co * x;
+    detail::subtract_product(w.epsilon, so.Co, x);
     /// Update law: \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$ with the algorithm's R.
     algorithm_.regressor(so, Xi, w.Omega, w.Psi, w.R);
     law_.derivative(w.R, w.epsilon, theta, dtheta);
@@ -172,11 +172,11 @@ class UnifiedAdaptiveObserver
     dt.derivative(Model::time_invariant ? f_ : w.F, Xi, w.Psi, dXi);
     /// \f$\dot{\hat x} = A_o\hat x + \varphi + \Psi\hat\theta + L\varepsilon + \Omega\dot{\hat\theta}\f$.
     algorithm_.injection_gain(so, t, w.L);
-    dx.noalias() = so.Ao * x;
+    detail::set_product(dx, so.Ao, x);
     dx += w.phi;
     detail::add_product(dx, w.Psi, theta);
-    dx.noalias() += w.L * w.epsilon;
-    dx.noalias() += w.Omega * dtheta;
+    detail::add_product(dx, w.L, w.epsilon);
+    detail::add_product(dx, w.Omega, dtheta);
   }
 
   /// \f$\hat x\f$ in the coordinates of system (2).
@@ -283,7 +283,7 @@ class UnifiedAdaptiveObserver
   void finish_update(const Sample& sample, bool stepping) {
     if (stepping && excitation_) excitation_->add(work_.R);
     output_error_ = sample.y;
-    output_error_.noalias() -= system_at(sample.t).Co * transformed_state();
+    detail::subtract_product(output_error_, system_at(sample.t).Co, transformed_state());
   }
 
   // Ξ = 0, and the excitation monitor empty.

@@ -21,6 +21,7 @@
 /// A time-varying K(t) from `RiccatiDifferentialEquation` is applied sample by
 /// sample with `set_output_injection`.
 
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/static_transform.hpp>
@@ -62,7 +63,7 @@ struct ZhangContinuous {
   void regressor(const TransformedSystem<D>& so, const Eigen::MatrixBase<DXi>& /*Xi*/,
                  const Eigen::MatrixBase<DOmega>& Omega, const Eigen::MatrixBase<DPsi>& /*Psi*/,
                  Eigen::MatrixBase<DR>& R) const {
-    R.noalias() = so.Co * Omega;
+    detail::set_product(R, so.Co, Omega);
   }
 
   void check(const TransformedSystem<D>& so, const Sizes& /*sizes*/, bool time_invariant) const {

@@ -7,23 +7,34 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <type_traits>
 
 namespace adaptobs::detail {
 
-/// True when every coefficient of every argument is finite.
-///
-/// Sums \f$0\cdot v_i\f$ over all coefficients: the sum is 0 when every
-/// \f$v_i\f$ is finite and NaN as soon as one is NaN or ±Inf (0·Inf = NaN), so
-/// one vectorized reduction replaces a compare-and-branch per coefficient.
-/// (Like Eigen's `allFinite`, this relies on IEEE arithmetic: not valid under
-/// `-ffast-math`.)
+/// \f$\sum_i 0\cdot v_i\f$ over the coefficients of m: 0 when every \f$v_i\f$ is
+/// finite, NaN as soon as one is NaN or ±Inf (0·Inf = NaN). A fixed-size matrix
+/// takes a plain loop over its storage, which the optimizer unrolls and which
+/// costs little to compile; anything else Eigen's vectorized reduction.
+template <class Derived>
+[[nodiscard]] typename Derived::Scalar zero_times(const Eigen::DenseBase<Derived>& m) {
+  using Scalar = typename Derived::Scalar;
+  if constexpr (std::is_base_of_v<Eigen::PlainObjectBase<Derived>, Derived> &&
+                Derived::SizeAtCompileTime != Eigen::Dynamic) {
+    Scalar sum(0);
+    const Scalar* data = m.derived().data();
+    for (int i = 0; i < Derived::SizeAtCompileTime; ++i) sum += data[i] * Scalar(0);
+    return sum;
+  } else {
+    return m.size() == 0 ? Scalar(0) : (m.derived().array() * Scalar(0)).sum();
+  }
+}
+
+/// True when every coefficient of every argument is finite: one sum of
+/// `zero_times` replaces a compare-and-branch per coefficient. (Like Eigen's
+/// `allFinite`, this relies on IEEE arithmetic: not valid under `-ffast-math`.)
 template <class First, class... Rest>
 [[nodiscard]] bool all_finite(const Eigen::DenseBase<First>& first, const Eigen::DenseBase<Rest>&... rest) {
-  using Scalar = typename First::Scalar;
-  const auto zero_times = [](const auto& block) {
-    return block.size() == 0 ? Scalar(0) : (block.derived().array() * Scalar(0)).sum();
-  };
-  const Scalar sum = (zero_times(first) + ... + zero_times(rest));
+  const typename First::Scalar sum = (zero_times(first) + ... + zero_times(rest));
   return sum == sum;
 }
 
