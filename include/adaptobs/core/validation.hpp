@@ -8,6 +8,7 @@
 /// positive and finite (got -1)`.
 
 #include <adaptobs/core/detail/cholesky.hpp>
+#include <adaptobs/core/detail/finite.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 
@@ -86,7 +87,7 @@ void require_square(const Eigen::EigenBase<Derived>& m, std::string_view who, st
 
 template <class Derived>
 void require_finite(const Eigen::DenseBase<Derived>& m, std::string_view who, std::string_view argument) {
-  if (!m.derived().allFinite()) fail_argument(who, argument, "must contain only finite numbers");
+  if (!all_finite(m)) fail_argument(who, argument, "must contain only finite numbers");
 }
 
 /// The shape check, then the finiteness check, of one argument: the pair that
@@ -178,7 +179,7 @@ void require_initial_estimates(const Eigen::DenseBase<X>& x0, Index nx, const Ei
 template <class Derived>
 [[nodiscard]] bool is_symmetric(const Eigen::MatrixBase<Derived>& m) {
   using Scalar = typename Derived::Scalar;
-  if (m.rows() != m.cols() || !m.allFinite()) return false;
+  if (m.rows() != m.cols() || !all_finite(m)) return false;
   if (m.size() == 0) return true;
   const Scalar scale = m.cwiseAbs().maxCoeff();
   const Scalar tol = Scalar(100) * std::numeric_limits<Scalar>::epsilon() * (scale > Scalar(0) ? scale : Scalar(1));

@@ -100,7 +100,7 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
   [[nodiscard]] UpdateStatus update(const Vector& output_error) {
     if constexpr (NY == Eigen::Dynamic)
       detail::require_shape(output_error, information_.rows(), 1, "ChiSquareTest::update", "output_error");
-    if (!output_error.allFinite()) return UpdateStatus::nonfinite_input;
+    if (!detail::all_finite(output_error)) return UpdateStatus::nonfinite_input;
     Scalar term = weighted_square(output_error);
     if (!std::isfinite(term)) {
       // Overflow in the products (∞, or ∞ − ∞ across the off-diagonal terms):

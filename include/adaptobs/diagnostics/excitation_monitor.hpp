@@ -66,7 +66,7 @@ class ExcitationMonitor {
     const Scalar remaining = sum_.trace();
     const bool cancelled = removed_trace_ > Scalar(4) * remaining || !std::isfinite(remaining);
     detail::set_product(slot, (weight * phi.derived()).transpose(), phi);  // (wΦ)ᵀΦ: w first, so that a tiny w keeps a huge Φ from overflowing
-    if (slot.allFinite()) {
+    if (detail::all_finite(slot)) {
       if (adds_since_overflow_ < window_) ++adds_since_overflow_;
     } else {
       slot.setZero();  // kept out of the sum; the level is unavailable until it leaves the window
@@ -95,7 +95,7 @@ class ExcitationMonitor {
   }
 
   /// False while a contribution in the window, or their sum, exceeded the floating-point range.
-  [[nodiscard]] bool available() const { return adds_since_overflow_ >= window_ && sum_.allFinite(); }
+  [[nodiscard]] bool available() const { return adds_since_overflow_ >= window_ && detail::all_finite(sum_); }
 
   /// Smallest eigenvalue of `average()`: the excitation level α; NaN while not `available()`.
   [[nodiscard]] Scalar level() const {

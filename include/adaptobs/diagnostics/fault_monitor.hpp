@@ -186,7 +186,7 @@ class FaultMonitor {
     constexpr std::string_view who = "FaultMonitor::observe";
     detail::require_shape(observer.parameters(), cusum_.nominal().size(), 1, who, "observer.parameters()");
     detail::require_shape(observer.output_error(), chi_square_.outputs(), 1, who, "observer.output_error()");
-    if (!observer.parameters().allFinite() || !observer.output_error().allFinite()) return UpdateStatus::nonfinite_input;
+    if (!detail::all_finite(observer.parameters(), observer.output_error())) return UpdateStatus::nonfinite_input;
     const UpdateStatus chi = chi_square_.update(observer.output_error());
     if (!accepted(chi)) return chi;  // an overflowing weighted error: the others have not moved either
     (void)glr_.update(observer.parameters());  // finite, hence accepted, as by the CUSUM

@@ -48,7 +48,7 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   [[nodiscard]] UpdateStatus update(const Vector& value) {
     if constexpr (N == Eigen::Dynamic)
       if (value.size() != nominal_.size()) require_shape(value, nominal_.size(), 1, std::string(name_) + "::update", "value");
-    if (!value.allFinite()) return UpdateStatus::nonfinite_input;
+    if (!detail::all_finite(value)) return UpdateStatus::nonfinite_input;
     this->clear_alarm();
     // Every stride-th value is evaluated: a countdown, not a division per value.
     if (skip_ > 0) {

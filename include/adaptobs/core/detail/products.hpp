@@ -3,17 +3,15 @@
 /// Matrix products of the update paths: `dst = lhs·rhs`, `dst += lhs·rhs` and
 /// `dst −= lhs·rhs`, with the evaluation chosen from the sizes.
 ///
-/// Small fixed-size products (every dimension at most 16) are plain loops over
-/// the coefficients. Eigen's own coefficient-based product would unroll them
-/// too, but through a recursive template per coefficient and per term: on the
-/// observers' 2 × 2 … 8 × 8 products that template work was the largest part
-/// of a user program's compile time, and the loops, unrolled by the optimizer,
-/// run as fast. Each sum is taken in the order k = 0, 1, …, as Eigen's
-/// vectorized product does. Dynamic or larger products use Eigen's product
-/// (its cache-blocked kernel for large sizes).
+/// For a product of fixed-size operands Eigen switches from the coefficient-based
+/// (fully unrolled, register-resident) evaluation to its cache-blocked GEMM
+/// kernel once rows + cols + depth reaches 20, e.g. for an 8 × 8 times 8 × 4
+/// product. The GEMM kernel's packing costs more than it saves at these sizes,
+/// so small fixed-size products (every dimension at most 16) are evaluated
+/// lazily here; dynamic or large products keep the GEMM kernel. One function
+/// for the three forms keeps the choice, and the empty-product case, in one place.
 ///
-/// The operands are matrices, blocks or transposes of them (whose coefficients
-/// are read directly), and must not alias the destination.
+/// The operands must not alias the destination.
 
 #include <Eigen/Core>
 
@@ -32,26 +30,13 @@ inline constexpr bool small_fixed_product =
 template <Combine how, class Dst, class Lhs, class Rhs>
 void accumulate_product(Eigen::MatrixBase<Dst>& dst, const Eigen::MatrixBase<Lhs>& lhs,
                         const Eigen::MatrixBase<Rhs>& rhs) {
-  using Scalar = typename Dst::Scalar;
   if constexpr (small_fixed_product<Lhs, Rhs>) {
-    constexpr int rows = Lhs::RowsAtCompileTime, depth = Lhs::ColsAtCompileTime, cols = Rhs::ColsAtCompileTime;
-    // Column j of the product as a sum of columns of lhs (contiguous, so the
-    // inner loop vectorizes); each coefficient is summed in the order k = 0, 1, ….
-    for (int j = 0; j < cols; ++j) {
-      Scalar column[rows > 0 ? rows : 1] = {};
-      for (int k = 0; k < depth; ++k) {
-        const Scalar factor = rhs.coeff(k, j);
-        for (int i = 0; i < rows; ++i) column[i] += lhs.coeff(i, k) * factor;
-      }
-      for (int i = 0; i < rows; ++i) {
-        if constexpr (how == Combine::assign) {
-          dst.coeffRef(i, j) = column[i];
-        } else if constexpr (how == Combine::add) {
-          dst.coeffRef(i, j) += column[i];
-        } else {
-          dst.coeffRef(i, j) -= column[i];
-        }
-      }
+    if constexpr (how == Combine::assign) {
+      dst.noalias() = lhs.derived().lazyProduct(rhs.derived());
+    } else if constexpr (how == Combine::add) {
+      dst.noalias() += lhs.derived().lazyProduct(rhs.derived());
+    } else {
+      dst.noalias() -= lhs.derived().lazyProduct(rhs.derived());
     }
   } else if (Lhs::ColsAtCompileTime == 0 || lhs.cols() == 0) {
     if constexpr (how == Combine::assign) dst.setZero();
