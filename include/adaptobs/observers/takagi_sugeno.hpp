@@ -209,22 +209,29 @@ class TakagiSugenoObserver
     return UpdateStatus::accepted;
   }
 
-  // Σ_i ĥ_i V_i, coefficient by coefficient, summed in two interleaved halves
-  // (even and odd i) to shorten the chain of dependent additions. Plain loops:
-  // the same sums as whole-matrix expressions, at a fraction of their compile time.
+  // Σ_i ĥ_i V_i, summed in two interleaved halves to shorten the chain of dependent
+  // additions (r ≥ 2 is even); fixed sizes take each V_i as a fixed-size block.
   template <class DH, class DB>
   void blend_vertex_maps(const Eigen::MatrixBase<DH>& h, Eigen::MatrixBase<DB>& blend) const {
-    const Index rows = blend.rows(), nv = blend.cols(), r = h.size();
-    for (Index c = 0; c < nv; ++c) {
-      for (Index row = 0; row < rows; ++row) {
-        Scalar even(0), odd(0);
-        for (Index i = 0; i < r; i += 2) {
-          even += h(i) * vertex_maps_(row, i * nv + c);
-          if (i + 1 < r) odd += h(i + 1) * vertex_maps_(row, (i + 1) * nv + c);
-        }
-        blend(row, c) = even + odd;
+    const Index nv = blend.cols();
+    const auto V = [&](Index i) {
+      if constexpr (nv_at_compile_time != Eigen::Dynamic) {
+        return vertex_maps_.template middleCols<nv_at_compile_time>(i * nv);
+      } else {
+        return vertex_maps_.middleCols(i * nv, nv);
       }
+    };
+    if (h.size() == 1) {
+      blend = V(0);
+      return;
     }
+    typename Workspace::Blend odd = h(1) * V(1);
+    blend.noalias() = h(0) * V(0);
+    for (Index i = 2; i < h.size(); i += 2) {
+      blend.noalias() += h(i) * V(i);
+      odd.noalias() += h(i + 1) * V(i + 1);
+    }
+    blend += odd;
   }
 
   Model model_;
