@@ -26,22 +26,25 @@ inline constexpr bool small_fixed_product =
     Rhs::ColsAtCompileTime != Eigen::Dynamic && Lhs::RowsAtCompileTime <= 16 && Lhs::ColsAtCompileTime <= 16 &&
     Rhs::ColsAtCompileTime <= 16;
 
-/// `dst (=, +=, −=) lhs·rhs`; an empty inner dimension gives the zero product.
+/// `dst (=, +=, −=) lhs·rhs`. An empty inner dimension (a model without inputs
+/// or without parameters) gives the zero product without forming it: Eigen's
+/// coefficient-based product would still form row views of `lhs`, which has no
+/// storage, an offset applied to a null pointer.
 template <Combine how, class Dst, class Lhs, class Rhs>
 void accumulate_product(Eigen::MatrixBase<Dst>& dst, const Eigen::MatrixBase<Lhs>& lhs,
                         const Eigen::MatrixBase<Rhs>& rhs) {
-  if constexpr (small_fixed_product<Lhs, Rhs>) {
-    if constexpr (how == Combine::assign) {
-      dst.noalias() = lhs.derived().lazyProduct(rhs.derived());
-    } else if constexpr (how == Combine::add) {
-      dst.noalias() += lhs.derived().lazyProduct(rhs.derived());
-    } else {
-      dst.noalias() -= lhs.derived().lazyProduct(rhs.derived());
-    }
-  } else if (Lhs::ColsAtCompileTime == 0 || lhs.cols() == 0) {
+  if (Lhs::ColsAtCompileTime == 0 || lhs.cols() == 0) {
     if constexpr (how == Combine::assign) dst.setZero();
   } else if constexpr (Lhs::ColsAtCompileTime != 0) {  // (an empty product type has no evaluator)
-    if constexpr (how == Combine::assign) {
+    if constexpr (small_fixed_product<Lhs, Rhs>) {
+      if constexpr (how == Combine::assign) {
+        dst.noalias() = lhs.derived().lazyProduct(rhs.derived());
+      } else if constexpr (how == Combine::add) {
+        dst.noalias() += lhs.derived().lazyProduct(rhs.derived());
+      } else {
+        dst.noalias() -= lhs.derived().lazyProduct(rhs.derived());
+      }
+    } else if constexpr (how == Combine::assign) {
       dst.noalias() = lhs.derived() * rhs.derived();
     } else if constexpr (how == Combine::add) {
       dst.noalias() += lhs.derived() * rhs.derived();
