@@ -85,22 +85,6 @@ void require_square(const Eigen::EigenBase<Derived>& m, std::string_view who, st
   }
 }
 
-/// True when every coefficient of m is finite. Fixed sizes take a loop over the
-/// coefficients, which compiles in a fraction of the time of Eigen's vectorized
-/// reduction (one per matrix type) and is as fast at these sizes; dynamic sizes,
-/// which can be large, take the reduction (`all_finite`).
-template <class Derived>
-[[nodiscard]] bool finite_entries(const Eigen::DenseBase<Derived>& m) {
-  if constexpr (Derived::SizeAtCompileTime != Eigen::Dynamic) {
-    for (Index j = 0; j < m.cols(); ++j)
-      for (Index i = 0; i < m.rows(); ++i)
-        if (!std::isfinite(m.derived().coeff(i, j))) return false;
-    return true;
-  } else {
-    return all_finite(m);
-  }
-}
-
 template <class Derived>
 void require_finite(const Eigen::DenseBase<Derived>& m, std::string_view who, std::string_view argument) {
   if (!finite_entries(m)) fail_argument(who, argument, "must contain only finite numbers");
