@@ -58,21 +58,35 @@ template <class Matrix>
     for (Index i = j + 1; i < n; ++i)
       if (std::abs(a(i, j)) > std::abs(a(pivot, j))) pivot = i;
     if (!(a(pivot, j) != Scalar(0))) return std::nullopt;
-    if (pivot != j) {
-      a.row(j).swap(a.row(pivot));
-      inverse.row(j).swap(inverse.row(pivot));
+    // Row operations coefficient by coefficient: each would otherwise be its own
+    // Eigen expression type, instantiated for every fixed size T comes in.
+    for (Index k = 0; k < n; ++k) {
+      std::swap(a(j, k), a(pivot, k));
+      std::swap(inverse(j, k), inverse(pivot, k));
     }
     const Scalar scale = Scalar(1) / a(j, j);
-    a.row(j) *= scale;
-    inverse.row(j) *= scale;
+    for (Index k = 0; k < n; ++k) {
+      a(j, k) *= scale;
+      inverse(j, k) *= scale;
+    }
     for (Index i = 0; i < n; ++i) {
       if (i == j || a(i, j) == Scalar(0)) continue;
       const Scalar factor = a(i, j);
-      a.row(i) -= factor * a.row(j);
-      inverse.row(i) -= factor * inverse.row(j);
+      for (Index k = 0; k < n; ++k) {
+        a(i, k) -= factor * a(j, k);
+        inverse(i, k) -= factor * inverse(j, k);
+      }
     }
   }
-  const auto one_norm = [](const Matrix& m) { return m.cwiseAbs().colwise().sum().maxCoeff(); };
+  const auto one_norm = [n](const Matrix& m) {
+    Scalar largest = 0;
+    for (Index k = 0; k < n; ++k) {
+      Scalar column = 0;
+      for (Index i = 0; i < n; ++i) column += std::abs(m(i, k));
+      largest = std::max(largest, column);
+    }
+    return largest;
+  };
   const Scalar condition = n == 0 ? Scalar(1) : one_norm(t) * one_norm(inverse);
   if (!(condition * Scalar(n) * std::numeric_limits<Scalar>::epsilon() < Scalar(1))) return std::nullopt;
   return inverse;
@@ -83,10 +97,13 @@ template <class Matrix>
 template <class DC>
 bool is_leading_identity(const Eigen::MatrixBase<DC>& co) {
   using Scalar = typename DC::Scalar;
-  const Index m = co.rows();
-  const Scalar tol = Scalar(1e3) * std::numeric_limits<Scalar>::epsilon() * std::max(Scalar(1), co.cwiseAbs().maxCoeff());
-  return (co.leftCols(m) - DC::PlainObject::Identity(m, co.cols()).leftCols(m)).cwiseAbs().maxCoeff() <= tol &&
-         (co.cols() == m || co.rightCols(co.cols() - m).cwiseAbs().maxCoeff() <= tol);
+  Scalar largest = 1, deviation = 0;
+  for (Index j = 0; j < co.cols(); ++j)
+    for (Index i = 0; i < co.rows(); ++i) {
+      largest = std::max(largest, std::abs(co(i, j)));
+      deviation = std::max(deviation, std::abs(co(i, j) - (i == j ? Scalar(1) : Scalar(0))));
+    }
+  return deviation <= Scalar(1e3) * std::numeric_limits<Scalar>::epsilon() * largest;
 }
 
 }  // namespace detail

@@ -19,11 +19,11 @@
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace adaptobs {
@@ -31,24 +31,55 @@ namespace adaptobs {
 template <typename Scalar>
 using Polynomial = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
 
+namespace detail {
+// The routines below index coefficients one by one rather than writing Eigen
+// expressions (tail, segment, reverse, cwiseAbs): they run once, at design time
+// or at an observer's construction, on a dozen coefficients, and every
+// distinct Eigen expression type is a template instantiation that each
+// translation unit including this header pays for.
+
+/// \f$\max_i |p_i|\f$ (0 for an empty p).
+template <typename Scalar>
+Scalar largest_magnitude(const Polynomial<Scalar>& p) {
+  Scalar largest = 0;
+  for (Index i = 0; i < p.size(); ++i) largest = std::max(largest, std::abs(p(i)));
+  return largest;
+}
+
+/// The coefficients of p from index `first` on.
+template <typename Scalar>
+Polynomial<Scalar> without_leading(const Polynomial<Scalar>& p, Index first) {
+  Polynomial<Scalar> out(p.size() - first);
+  for (Index i = 0; i < out.size(); ++i) out(i) = p(first + i);
+  return out;
+}
+
+/// Faddeev–LeVerrier on a dynamic-size copy: one instantiation per scalar type,
+/// whatever expression the caller passes.
+template <typename Scalar>
+Polynomial<Scalar> characteristic_polynomial_of(const DynamicMatrix<Scalar>& a) {
+  const Index n = a.rows();
+  Polynomial<Scalar> p(n + 1);
+  p(0) = Scalar(1);
+  DynamicMatrix<Scalar> b = DynamicMatrix<Scalar>::Identity(n, n);
+  for (Index k = 1; k <= n; ++k) {
+    b = multiply(a, b);
+    Scalar trace = 0;
+    for (Index i = 0; i < n; ++i) trace += b(i, i);
+    p(k) = -trace / Scalar(k);
+    for (Index i = 0; i < n; ++i) b(i, i) += p(k);
+  }
+  return p;
+}
+}  // namespace detail
+
 /// Coefficients of \f$\det(sI - A)\f$ (monic, degree n).
 template <class Derived>
 [[nodiscard]] Polynomial<typename Derived::Scalar> characteristic_polynomial(const Eigen::MatrixBase<Derived>& A) {
-  using Scalar = typename Derived::Scalar;
-  detail::require_square(A, "characteristic_polynomial", "A");
-  detail::require_finite(A, "characteristic_polynomial", "A");
-  const Index n = A.rows();
-  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a = A;
-  Polynomial<Scalar> p(n + 1);
-  p(0) = Scalar(1);
-  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> b = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Identity(n, n);
-  for (Index k = 1; k <= n; ++k) {
-    const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> ab = detail::multiply(a, b);
-    p(k) = -ab.trace() / Scalar(k);
-    b = ab;
-    b.diagonal().array() += p(k);
-  }
-  return p;
+  const detail::DynamicMatrix<typename Derived::Scalar> a = detail::dynamic_copy(A);
+  detail::require_square(a, "characteristic_polynomial", "A");
+  detail::require_finite(a, "characteristic_polynomial", "A");
+  return detail::characteristic_polynomial_of(a);
 }
 
 namespace detail {
@@ -90,13 +121,13 @@ Polynomial<Scalar> with_roots_scaled(const Polynomial<Scalar>& p, int e) {
 /// s² + 10¹⁰s + 10³⁰ is judged as (z + 1)² or z² + 10⁻⁵z + 1.
 template <typename Scalar>
 [[nodiscard]] bool is_hurwitz_polynomial(const Polynomial<Scalar>& p) {
-  if (p.size() == 0 || p(0) == Scalar(0) || !p.allFinite()) return false;
+  if (p.size() == 0 || p(0) == Scalar(0) || !detail::all_finite(p)) return false;
   const Index degree = p.size() - 1;
   if (degree == 0) return true;
   if (p(degree) == Scalar(0)) return false;  // a root at 0
   const Polynomial<Scalar> q = detail::with_roots_scaled(p, detail::root_scale_exponent(p));
   const Scalar sign = q(0) > 0 ? Scalar(1) : Scalar(-1);
-  const Scalar tol = Scalar(64) * std::numeric_limits<Scalar>::epsilon() * q.cwiseAbs().maxCoeff();
+  const Scalar tol = Scalar(64) * std::numeric_limits<Scalar>::epsilon() * detail::largest_magnitude(q);
   const Index width = degree / 2 + 1;
   Polynomial<Scalar> upper = Polynomial<Scalar>::Zero(width), lower = Polynomial<Scalar>::Zero(width);
   for (Index i = 0; i <= degree; ++i) (i % 2 == 0 ? upper : lower)(i / 2) = sign * q(i);
@@ -117,7 +148,10 @@ template <typename Scalar>
 template <class Derived>
 [[nodiscard]] bool has_hurwitz_characteristic_polynomial(const Eigen::MatrixBase<Derived>& m) {
   if (m.size() == 0) return true;
-  return is_hurwitz_polynomial(characteristic_polynomial(m));
+  const detail::DynamicMatrix<typename Derived::Scalar> a = detail::dynamic_copy(m);
+  detail::require_square(a, "has_hurwitz_characteristic_polynomial", "m");
+  detail::require_finite(a, "has_hurwitz_characteristic_polynomial", "m");
+  return is_hurwitz_polynomial(detail::characteristic_polynomial_of(a));
 }
 
 /// Number of distinct real roots of p in the half-open interval (a, ∞), by a
@@ -130,11 +164,11 @@ template <typename Scalar>
                                            Scalar relative_tolerance = Scalar(1e-10)) {
   detail::require_finite(p, "count_real_roots_above", "p");
   detail::require(std::isfinite(a), "count_real_roots_above", "a", "must be finite");
-  const auto trimmed = [&](Polynomial<Scalar> q) {
-    const Scalar scale = q.size() == 0 ? Scalar(0) : q.cwiseAbs().maxCoeff();
+  const auto trimmed = [&](const Polynomial<Scalar>& q) {
+    const Scalar scale = detail::largest_magnitude(q);
     Index first = 0;
     while (first < q.size() && std::abs(q(first)) <= relative_tolerance * scale) ++first;
-    return Polynomial<Scalar>(q.tail(q.size() - first));
+    return detail::without_leading(q, first);
   };
   std::vector<Polynomial<Scalar>> chain;
   // Scale invariance: the roots (and a) divided by 2^e, near their geometric
@@ -142,7 +176,7 @@ template <typename Scalar>
   Index lead = 0;
   while (lead < p.size() && p(lead) == Scalar(0)) ++lead;
   if (p.size() - lead <= 1) return 0;
-  const Polynomial<Scalar> exact = p.tail(p.size() - lead);
+  const Polynomial<Scalar> exact = detail::without_leading(p, lead);
   const int e = detail::root_scale_exponent(exact);
   a = std::clamp(std::ldexp(a, -e), std::numeric_limits<Scalar>::lowest(), std::numeric_limits<Scalar>::max());
   chain.push_back(trimmed(detail::with_roots_scaled(exact, e)));
@@ -152,20 +186,23 @@ template <typename Scalar>
   for (Index i = 0; i < d; ++i) derivative(i) = Scalar(d - i) * chain[0](i);
   chain.push_back(trimmed(derivative));
   while (chain.back().size() > 1) {
+    // r = rem(p_{k−1}, p_k) by long division, in place on a copy of p_{k−1}.
     Polynomial<Scalar> r = chain[chain.size() - 2];
     const Polynomial<Scalar>& q = chain.back();
-    const Scalar keep = r.cwiseAbs().maxCoeff();
+    const Scalar keep = detail::largest_magnitude(r);
     for (Index shift = 0; shift + q.size() <= r.size(); ++shift) {
       const Scalar factor = r(shift) / q(0);
-      r.segment(shift, q.size()) -= factor * q;
+      for (Index i = 0; i < q.size(); ++i) r(shift + i) -= factor * q(i);
       r(shift) = Scalar(0);
     }
-    r = r.tail(q.size() - 1).eval();
-    // Scale-aware trim: compare with the dividend, not with the (small) remainder itself.
-    Index first = 0;
+    // The remainder is the last q.size() − 1 coefficients. Scale-aware trim:
+    // compare with the dividend, not with the (small) remainder itself.
+    Index first = r.size() - (q.size() - 1);
     while (first < r.size() && std::abs(r(first)) <= relative_tolerance * keep) ++first;
     if (first == r.size()) break;  // p has repeated roots: the chain ends at their gcd
-    chain.push_back(Polynomial<Scalar>(-r.tail(r.size() - first)));
+    Polynomial<Scalar> next = detail::without_leading(r, first);
+    for (Index i = 0; i < next.size(); ++i) next(i) = -next(i);
+    chain.push_back(std::move(next));
   }
   const auto sign_changes = [&](auto value_of) {
     Index changes = 0;
@@ -254,7 +291,7 @@ template <class DA, class DB, class DC>
   for (Index k = 0; k < n; ++k) {
     g.numerator(k) = detail::multiply(row, detail::multiply(bk, column))(0, 0);
     bk = detail::multiply(a, bk);
-    if (k + 1 <= n) bk.diagonal().array() += g.denominator(k + 1);
+    for (Index i = 0; i < n; ++i) bk(i, i) += g.denominator(k + 1);
   }
   return g;
 }

@@ -49,10 +49,11 @@ template <typename Scalar>
                   "must be monic of degree at least 1");
   const Index n = denominator.size() - 1;
   detail::require(numerator.size() <= n, who, "numerator", "must have degree below the denominator's");
-  // N padded to n coefficients (degree ≤ n − 1).
+  // N padded to n coefficients (degree ≤ n − 1). The coefficients are indexed
+  // one by one, as in polynomial.hpp: this runs at every SPR observer's construction.
   Polynomial<Scalar> num = Polynomial<Scalar>::Zero(n);
-  num.tail(numerator.size()) = numerator;
-  const Scalar scale = std::max(num.cwiseAbs().maxCoeff(), std::numeric_limits<Scalar>::min());
+  for (Index i = 0; i < numerator.size(); ++i) num(n - numerator.size() + i) = numerator(i);
+  const Scalar scale = std::max(detail::largest_magnitude(num), std::numeric_limits<Scalar>::min());
   const Scalar zero_tol = Scalar(1e-10) * scale;
 
   SprTest<Scalar> r;
@@ -63,7 +64,7 @@ template <typename Scalar>
   r.relative_degree = n - (n - 1 - lead);
   r.high_frequency_gain = num(lead);
 
-  // R(s) = ½[N(s)D(−s) + N(−s)D(s)], ascending powers.
+  // R(s) = ½[N(s)D(−s) + N(−s)D(s)], highest power first.
   const auto reflect = [](const Polynomial<Scalar>& p) {  // coefficients of p(−s)
     Polynomial<Scalar> out = p;
     const Index d = p.size() - 1;
@@ -71,17 +72,19 @@ template <typename Scalar>
       if ((d - i) % 2 == 1) out(i) = -out(i);
     return out;
   };
-  const Polynomial<Scalar> r_desc =
-      Scalar(0.5) * (multiply_polynomials<Scalar>(num, reflect(denominator)) +
-                     multiply_polynomials<Scalar>(reflect(num), denominator));
-  const Polynomial<Scalar> r_asc = r_desc.reverse();
-  const Index q_terms = (r_asc.size() + 1) / 2;
+  const Polynomial<Scalar> first = multiply_polynomials<Scalar>(num, reflect(denominator));
+  const Polynomial<Scalar> second = multiply_polynomials<Scalar>(reflect(num), denominator);
+  // q(w), ascending powers: q_k = (−1)^k R_{2k}, with R_{2k} the coefficient of s^{2k}.
+  const Index last = first.size() - 1;
+  const Index q_terms = (first.size() + 1) / 2;
   Polynomial<Scalar> q_asc(q_terms);
-  for (Index k = 0; k < q_terms; ++k) q_asc(k) = (k % 2 == 0 ? Scalar(1) : Scalar(-1)) * r_asc(2 * k);
-  const Scalar q_scale = std::max(q_asc.cwiseAbs().maxCoeff(), std::numeric_limits<Scalar>::min());
+  for (Index k = 0; k < q_terms; ++k)
+    q_asc(k) = (k % 2 == 0 ? Scalar(1) : Scalar(-1)) * (Scalar(0.5) * (first(last - 2 * k) + second(last - 2 * k)));
+  const Scalar q_scale = std::max(detail::largest_magnitude(q_asc), std::numeric_limits<Scalar>::min());
   Index degree = q_terms - 1;
   while (degree > 0 && std::abs(q_asc(degree)) <= Scalar(1e-10) * q_scale) --degree;
-  r.q = q_asc.head(degree + 1).reverse();
+  r.q.resize(degree + 1);
+  for (Index i = 0; i <= degree; ++i) r.q(i) = q_asc(degree - i);
 
   // q(0) > 0 is checked below, so a root on [0, ∞) is a root in (0, ∞) (Sturm count).
   const bool nonnegative_root = count_real_roots_above<Scalar>(r.q, Scalar(0)) > 0;
