@@ -429,6 +429,29 @@ TEST(CanonicalForms, BesanconFormOfRandomMimoSystems) {
                                    "A");
 }
 
+// A decay the pair's scale cannot carry is refused naming decay, with its true
+// reason, not as a defect of (A, C): first T = [I 0; -X I] T0 turns
+// ill-conditioned (cond T ~ ||X||^2), then the shifted Riccati equation fails.
+TEST(CanonicalForms, BesanconFormRefusesAnExcessiveDecayNamingIt) {
+  using D = adaptobs::Dimensions<double, 3, 1, 1, 1>;
+  Eigen::Matrix3d a;
+  a << 0, 1, 0, 0, 0, 1, -1, -2, -3;
+  const Eigen::RowVector3d c(1, 0, 0);
+  const auto st = adaptobs::besancon_form<D>(a, c, 1e3);
+  const Eigen::Matrix3d ao = st.T() * a * st.T_inverse() - st.K() * c * st.T_inverse();
+  EXPECT_LT(adaptobs::spectral_abscissa(Matrix(ao.bottomRightCorner(2, 2))), -1e3);
+  const auto refusal = [&](double decay) {
+    return configuration_error_of([&] { (void)adaptobs::besancon_form<D>(a, c, decay); });
+  };
+  for (const double decay : {1e4, 1e8}) {
+    const std::string message = refusal(decay);
+    EXPECT_TRUE(adaptobs::testing::quotes_argument(message, "decay")) << message;
+    EXPECT_EQ(message.find("detectable"), std::string::npos) << message;
+  }
+  EXPECT_NE(refusal(1e4).find("condition number"), std::string::npos);
+  EXPECT_NE(refusal(1e8).find("Riccati"), std::string::npos);
+}
+
 TEST(SprDesign, GainsOfAlgorithmsOneAndTwo) {
   using D = siso::Dims<double>;
   const Eigen::Vector3d e1(1, 0, 0);

@@ -167,10 +167,26 @@ template <typename Scalar>
     require(observability(Matrix(at.bottomRightCorner(r, r)), a12).observable(), who, "A, C",
             "must be an observable pair");
     const Matrix a22 = at.bottomRightCorner(r, r) + decay * Matrix::Identity(r, r);
-    const Matrix x = kalman_bucy_gain(a22, a12, Matrix::Identity(r, r), Matrix::Identity(m, m)).K;
+    // The unshifted pair is observable, and a shift keeps it so: a refusal of
+    // the Riccati solver, or an ill-conditioned T, comes from the decay asked for
+    // (the gain X, and with it cond(T) ~ ||X||^2, grows with it).
+    const auto refuse_decay = [&](std::string_view reason) {
+      fail_argument(who, "decay", std::string("is too large for the scale of A: ").append(reason).append("; ask for a smaller decay"));
+    };
+    Matrix x;
+    try {
+      x = kalman_bucy_gain(a22, a12, Matrix::Identity(r, r), Matrix::Identity(m, m)).K;
+    } catch (const ConfigurationError&) {
+      if (decay == Scalar(0)) throw;
+      refuse_decay("the Riccati equation of the shifted pair (A22 + decay I, A12), whose gain moves the eigenvalues "
+                   "of A22 left of -decay, cannot be solved to working accuracy");
+    }
     Matrix left = Matrix::Identity(n, n);
     left.bottomLeftCorner(r, m) = -x;
     t = left * t0;
+    if (decay > Scalar(0) && !well_conditioned_inverse(t) && well_conditioned_inverse(t0))
+      refuse_decay("the transformation T = [I 0; -X I] T0 that moves the eigenvalues of A22 left of -decay has a "
+                   "condition number beyond 1/(n eps)");
   }
   return transform_with_injection_of_first_columns<Scalar>(t, a, m);
 }
