@@ -27,6 +27,7 @@
 /// model at the nearest point of the box.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -253,8 +254,8 @@ class TakagiSugenoModel : public SizedBy<D> {
       const auto& v = vertices[static_cast<std::size_t>(i)];
       detail::require_finite_shape(v.A, nx, nx, who, "vertices[i].A");
       detail::require_finite_shape(v.B, nx, nu, who, "vertices[i].B");
-      A_.middleCols(i * nx, nx) = v.A;
-      B_.middleCols(i * nu, nu) = v.B;
+      detail::copy_entries(A_, 0, i * nx, v.A);
+      detail::copy_entries(B_, 0, i * nu, v.B);
     }
     detail::require_finite_shape(C_, C_.rows(), nx, who, "C");
   }

@@ -31,6 +31,7 @@
 /// the observer does not check (derivation: docs/readings/takagi_sugeno.md).
 
 #include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/discrete_update.hpp>
@@ -122,11 +123,11 @@ class TakagiSugenoObserver
     const Index nv = s.nx + s.nu + s.ny;
     vertex_maps_.setZero(s.nx + s.np, nv * r);
     for (Index i = 0; i < r; ++i) {
-      auto block = vertex_maps_.middleCols(i * nv, nv);
-      block.topLeftCorner(s.nx, s.nx) = model_.A(i);
-      block.block(0, s.nx, s.nx, s.nu) = model_.B(i);
-      block.block(0, s.nx + s.nu, s.nx, s.ny) = gains_.L[static_cast<std::size_t>(i)];
-      block.bottomRightCorner(s.np, s.ny) = gains_.K[static_cast<std::size_t>(i)];
+      const Index first = i * nv;
+      detail::copy_entries(vertex_maps_, 0, first, model_.A(i));
+      detail::copy_entries(vertex_maps_, 0, first + s.nx, model_.B(i));
+      detail::copy_entries(vertex_maps_, 0, first + s.nx + s.nu, gains_.L[static_cast<std::size_t>(i)]);
+      detail::copy_entries(vertex_maps_, s.nx, first + s.nx + s.nu, gains_.K[static_cast<std::size_t>(i)]);
     }
   }
 

@@ -35,4 +35,13 @@ template <class Derived>
   return out;
 }
 
+/// `src` written into `dst` from entry (row, col) on, entry by entry: what a
+/// constructor filling a stacked matrix from its parts does once, without a
+/// block expression type per part (`dst` must be large enough).
+template <class Dst, class Src>
+void copy_entries(Eigen::MatrixBase<Dst>& dst, Index row, Index col, const Eigen::MatrixBase<Src>& src) {
+  for (Index j = 0; j < src.cols(); ++j)
+    for (Index i = 0; i < src.rows(); ++i) dst(row + i, col + j) = src(i, j);
+}
+
 }  // namespace adaptobs::detail
