@@ -195,7 +195,16 @@ TEST(Observability, StaircaseFindsHiddenModesThatEigenvalueTestsMiss) {
   for (Eigen::Index i = 0; i < 3; ++i) EXPECT_NEAR(std::abs(report.unobservable_modes(i) - 0.7), 0.0, 1e-4);
   // The exact PBH test at the known mode sees it too; at another point it does not.
   EXPECT_LT(adaptobs::pbh_margin(MatrixXd(q.transpose() * a * q), MatrixXd(c * q), 0.7), 1e-14);
-  EXPECT_GT(adaptobs::pbh_margin(MatrixXd(q.transpose() * a * q), MatrixXd(c * q), 0.2), 1e-3);
+  const double margin = adaptobs::pbh_margin(MatrixXd(q.transpose() * a * q), MatrixXd(c * q), 0.2);
+  EXPECT_GT(margin, 1e-3);
+  // Outputs in other units (C scaled row by row) leave the margin as it is:
+  // exactly for powers of two, within the power of two the scaling rounds to otherwise.
+  const Eigen::Vector2d units(std::ldexp(1.0, -40), std::ldexp(1.0, 30));
+  EXPECT_EQ(adaptobs::pbh_margin(MatrixXd(q.transpose() * a * q), MatrixXd(units.asDiagonal() * c * q), 0.2), margin);
+  const double tiny_units = adaptobs::pbh_margin(MatrixXd(q.transpose() * a * q), MatrixXd(1e-9 * c * q), 0.2);
+  EXPECT_GT(tiny_units, margin / 4);
+  EXPECT_LT(tiny_units, margin * 4);
+  EXPECT_LT(adaptobs::pbh_margin(MatrixXd(q.transpose() * a * q), MatrixXd(1e-9 * c * q), 0.7), 1e-14);
   // Non-finite data is refused by name: the SVD of a NaN matrix fails, and its
   // unwritten singular values were read as the margin.
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -159,10 +159,13 @@ template <class DA, class DC>
 }
 
 /// Popov–Belevitch–Hautus margin at a real μ:
-/// \f$\sigma_{\min}\!\left(\begin{bmatrix} A - \mu I \\ C\end{bmatrix}\right) / \max(1, \|A\|_F, \|C\|_F)\f$,
-/// 0 exactly when μ is an unobservable eigenvalue of A. Use it at eigenvalues
-/// known in closed form (such as the eigenvalue 1 of an integrator), where a
-/// computed eigenvalue would be inexact.
+/// \f$\sigma_{\min}\!\left(\begin{bmatrix} A - \mu I \\ C_s\end{bmatrix}\right) / \max(1, \|A\|_F, \|C_s\|_F)\f$,
+/// 0 exactly when μ is an unobservable eigenvalue of A. \f$C_s\f$ is C with each
+/// row scaled by a power of two to its largest entry in [1, 2), as in
+/// `observability`: the outputs' units change C by a row scaling, which leaves
+/// the pair's observability as it is, and so must leave the margin. Use it at
+/// eigenvalues known in closed form (such as the eigenvalue 1 of an
+/// integrator), where a computed eigenvalue would be inexact.
 template <class DA, class DC>
 [[nodiscard]] typename DA::Scalar pbh_margin(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
                                              typename DA::Scalar mu) {
@@ -176,9 +179,11 @@ template <class DA, class DC>
   Matrix stacked(n + C.rows(), n);
   stacked.topRows(n) = detail::dynamic_copy(A);
   stacked.topRows(n).diagonal().array() -= mu;
-  stacked.bottomRows(C.rows()) = detail::dynamic_copy(C);
+  const Matrix c = detail::dynamic_copy(C);
+  const Matrix scaled_c = detail::scaled_by_powers_of_two<Scalar>(c, detail::row_exponents<Scalar>(c), true);
+  stacked.bottomRows(C.rows()) = scaled_c;
   const Scalar smallest = Eigen::JacobiSVD<Matrix>(stacked).singularValues()(n - 1);
-  return smallest / std::max({Scalar(1), Scalar(A.norm()), Scalar(C.norm())});
+  return smallest / std::max({Scalar(1), Scalar(A.norm()), scaled_c.norm()});
 }
 
 }  // namespace adaptobs
