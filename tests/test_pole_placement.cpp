@@ -407,6 +407,20 @@ TEST(PolePlacement, OutputInOtherUnitsIsPlaced) {
       [&] { (void)adaptobs::place_output_injection(lower, Eigen::RowVector2d(1e-12, 0), Eigen::Vector2d(0.1, 0.2)); });
   EXPECT_NE(message.find("'A, C' is not observable"), std::string::npos) << message;
   EXPECT_NE(message.find("0.3"), std::string::npos) << message;
+
+  // Two outputs in units 2^40 apart get the design of common units, L's column
+  // scaled back exactly; 1e9 apart, one as well conditioned, not a design that
+  // leans on the larger output alone.
+  RandomMatrices rng(11);
+  const MatrixXd a2 = 0.5 * rng.uniform<MatrixXd>(6, 6), c2 = rng.uniform<MatrixXd>(2, 6);
+  const Eigen::VectorXd poles2 = Eigen::VectorXd::LinSpaced(6, 0.1, 0.6);
+  const auto common = adaptobs::place_output_injection(a2, c2, poles2);
+  const Eigen::Vector2d units(1.0, std::ldexp(1.0, -40));
+  const auto apart = adaptobs::place_output_injection(a2, MatrixXd(units.asDiagonal() * c2), poles2);
+  EXPECT_TRUE(MatrixXd(apart.L * units.asDiagonal()) == common.L);
+  const auto nano = adaptobs::place_output_injection(a2, MatrixXd(Eigen::Vector2d(1, 1e-9).asDiagonal() * c2), poles2);
+  EXPECT_LT(nano.transformation_condition, 2 * common.transformation_condition);
+  EXPECT_LE(nano.eigenvalue_mismatch, 1e-9);
 }
 
 TEST(PolePlacement, BadArgumentsAreNamed) {

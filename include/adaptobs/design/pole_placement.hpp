@@ -14,7 +14,10 @@
 /// that place a spectrum form a family of dimension N(m − 1), and the draw of G
 /// whose X is best conditioned is kept (X⁻¹ maps the eigenvectors of F, which
 /// are orthonormal for distinct poles, to those of \f$A - LC\f$, so cond(X)
-/// bounds the sensitivity of the placed eigenvalues).
+/// bounds the sensitivity of the placed eigenvalues). C enters with its rows
+/// scaled by powers of two to unit size, and L is returned in C's units, so
+/// that outputs in other units get the same design, not one whose X leans on
+/// the outputs with the larger numbers.
 ///
 /// F is block diagonal: 1 × 1 blocks for real poles, \f$\begin{bmatrix}\alpha&\beta\\-\beta&\alpha\end{bmatrix}\f$
 /// for pairs \f$\alpha\pm i\beta\f$; blocks of a repeated pole are chained by
@@ -340,7 +343,12 @@ class PolePlacer {
                                 detail::format_complex_list(report.unobservable_modes) + " cannot be moved");
     }
     f_ = detail::real_matrix_with_spectrum(poles, who);
-    c_ = C;
+    // The placement works with C's rows scaled by powers of two to unit size, as
+    // the observability staircase does, and returns L in C's units: outputs in
+    // other units (C scaled row by row) then get the same design, with L's
+    // columns scaled back, instead of one that leans on the larger outputs.
+    output_exponents_ = detail::row_exponents<Scalar>(C);
+    c_ = detail::scaled_by_powers_of_two<Scalar>(C, output_exponents_, true);
     l0_ = Matrix::Zero(n, outputs_);
     Matrix a0 = A;
     // Keep the requested poles away from the eigenvalues of the matrix the Sylvester equation sees.
@@ -355,18 +363,18 @@ class PolePlacer {
     };
     Scalar gap = separation(a0);
     if (gap < Scalar(1e-3)) {
-      const Scalar gain_scale = scale / std::max(Scalar(C.norm()), std::numeric_limits<Scalar>::min());
+      const Scalar gain_scale = scale / std::max(Scalar(c_.norm()), std::numeric_limits<Scalar>::min());
       Matrix best_l0 = l0_;
       for (int attempt = 0; attempt < 50 && gap < Scalar(1e-2); ++attempt) {
         const Matrix l0 = gaussian(n, outputs_) * gain_scale;
-        const Scalar g = separation(Matrix(A - l0 * C));
+        const Scalar g = separation(Matrix(A - l0 * c_));
         if (g > gap) {
           gap = g;
           best_l0 = l0;
         }
       }
       l0_ = best_l0;
-      a0 = A - l0_ * C;
+      a0 = A - l0_ * c_;
     }
     solver_.emplace(Matrix(-f_), a0);
   }
@@ -374,7 +382,7 @@ class PolePlacer {
   /// Candidate for the free parameter G (N × m), or none when X is singular.
   [[nodiscard]] std::optional<Candidate> candidate(const Matrix& G) const {
     Candidate c;
-    c.X = solver_->solve(G * c_);  // X A0 − F X = G C
+    c.X = solver_->solve(G * c_);  // X A0 − F X = G C_s, C_s the row-scaled C
     if (!c.X.allFinite()) return std::nullopt;
     if (c.X.rows() == 0) {
       c.L = Matrix::Zero(0, outputs_);
@@ -386,7 +394,7 @@ class PolePlacer {
     if (!(sigma(sigma.size() - 1) > Scalar(100) * std::numeric_limits<Scalar>::epsilon() * sigma(0)))
       return std::nullopt;
     c.x_condition = sigma(0) / sigma(sigma.size() - 1);
-    c.L = l0_ + svd.solve(G);
+    c.L = detail::scaled_by_powers_of_two<Scalar>(l0_ + svd.solve(G), output_exponents_, false);
     if (!c.L.allFinite()) return std::nullopt;
     return c;
   }
@@ -412,6 +420,7 @@ class PolePlacer {
   PolePlacementOptions options_;
   std::mt19937_64 rng_;
   Index outputs_ = 0;
+  Eigen::Matrix<int, Eigen::Dynamic, 1> output_exponents_;  // row k of c_ is row k of C times 2^-e_k
   Matrix f_, c_, l0_;
   std::optional<SylvesterSolver<Scalar>> solver_;
 };
