@@ -148,10 +148,7 @@ template <typename Scalar>
 template <class Derived>
 [[nodiscard]] bool has_hurwitz_characteristic_polynomial(const Eigen::MatrixBase<Derived>& m) {
   if (m.size() == 0) return true;
-  const detail::DynamicMatrix<typename Derived::Scalar> a = detail::dynamic_copy(m);
-  detail::require_square(a, "has_hurwitz_characteristic_polynomial", "m");
-  detail::require_finite(a, "has_hurwitz_characteristic_polynomial", "m");
-  return is_hurwitz_polynomial(detail::characteristic_polynomial_of(a));
+  return is_hurwitz_polynomial(characteristic_polynomial(detail::dynamic_copy(m)));
 }
 
 /// Number of distinct real roots of p in the half-open interval (a, ∞), by a
