@@ -15,6 +15,7 @@
 /// by the staircase of observability.hpp, whose SVD and eigenvalue solver this
 /// header, which the observers include, does without.
 
+#include <adaptobs/core/detail/max_abs.hpp>
 #include <adaptobs/core/small_dense.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -33,18 +34,10 @@ using Polynomial = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
 
 namespace detail {
 // The routines below index coefficients one by one rather than writing Eigen
-// expressions (tail, segment, reverse, cwiseAbs): they run once, at design time
+// expressions (tail, segment, reverse): they run once, at design time
 // or at an observer's construction, on a dozen coefficients, and every
 // distinct Eigen expression type is a template instantiation that each
 // translation unit including this header pays for.
-
-/// \f$\max_i |p_i|\f$ (0 for an empty p).
-template <typename Scalar>
-Scalar largest_magnitude(const Polynomial<Scalar>& p) {
-  Scalar largest = 0;
-  for (Index i = 0; i < p.size(); ++i) largest = std::max(largest, std::abs(p(i)));
-  return largest;
-}
 
 /// The coefficients of p from index `first` on.
 template <typename Scalar>
@@ -127,7 +120,7 @@ template <typename Scalar>
   if (p(degree) == Scalar(0)) return false;  // a root at 0
   const Polynomial<Scalar> q = detail::with_roots_scaled(p, detail::root_scale_exponent(p));
   const Scalar sign = q(0) > 0 ? Scalar(1) : Scalar(-1);
-  const Scalar tol = Scalar(64) * std::numeric_limits<Scalar>::epsilon() * detail::largest_magnitude(q);
+  const Scalar tol = Scalar(64) * std::numeric_limits<Scalar>::epsilon() * detail::max_abs(q);
   const Index width = degree / 2 + 1;
   Polynomial<Scalar> upper = Polynomial<Scalar>::Zero(width), lower = Polynomial<Scalar>::Zero(width);
   for (Index i = 0; i <= degree; ++i) (i % 2 == 0 ? upper : lower)(i / 2) = sign * q(i);
@@ -162,7 +155,7 @@ template <typename Scalar>
   detail::require_finite(p, "count_real_roots_above", "p");
   detail::require(std::isfinite(a), "count_real_roots_above", "a", "must be finite");
   const auto trimmed = [&](const Polynomial<Scalar>& q) {
-    const Scalar scale = detail::largest_magnitude(q);
+    const Scalar scale = detail::max_abs(q);
     Index first = 0;
     while (first < q.size() && std::abs(q(first)) <= relative_tolerance * scale) ++first;
     return detail::without_leading(q, first);
@@ -186,7 +179,7 @@ template <typename Scalar>
     // r = rem(p_{k−1}, p_k) by long division, in place on a copy of p_{k−1}.
     Polynomial<Scalar> r = chain[chain.size() - 2];
     const Polynomial<Scalar>& q = chain.back();
-    const Scalar keep = detail::largest_magnitude(r);
+    const Scalar keep = detail::max_abs(r);
     for (Index shift = 0; shift + q.size() <= r.size(); ++shift) {
       const Scalar factor = r(shift) / q(0);
       for (Index i = 0; i < q.size(); ++i) r(shift + i) -= factor * q(i);

@@ -15,6 +15,7 @@
 /// D is tested by Routh–Hurwitz and the real roots of q are counted by a Sturm
 /// sequence: exact in rational arithmetic, no root finding.
 
+#include <adaptobs/core/detail/max_abs.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/polynomial.hpp>
 
@@ -53,7 +54,7 @@ template <typename Scalar>
   // one by one, as in polynomial.hpp: this runs at every SPR observer's construction.
   Polynomial<Scalar> num = Polynomial<Scalar>::Zero(n);
   for (Index i = 0; i < numerator.size(); ++i) num(n - numerator.size() + i) = numerator(i);
-  const Scalar scale = std::max(detail::largest_magnitude(num), std::numeric_limits<Scalar>::min());
+  const Scalar scale = std::max(detail::max_abs(num), std::numeric_limits<Scalar>::min());
   const Scalar zero_tol = Scalar(1e-10) * scale;
 
   SprTest<Scalar> r;
@@ -80,7 +81,7 @@ template <typename Scalar>
   Polynomial<Scalar> q_asc(q_terms);
   for (Index k = 0; k < q_terms; ++k)
     q_asc(k) = (k % 2 == 0 ? Scalar(1) : Scalar(-1)) * (Scalar(0.5) * (first(last - 2 * k) + second(last - 2 * k)));
-  const Scalar q_scale = std::max(detail::largest_magnitude(q_asc), std::numeric_limits<Scalar>::min());
+  const Scalar q_scale = std::max(detail::max_abs(q_asc), std::numeric_limits<Scalar>::min());
   Index degree = q_terms - 1;
   while (degree > 0 && std::abs(q_asc(degree)) <= Scalar(1e-10) * q_scale) --degree;
   r.q.resize(degree + 1);

@@ -26,6 +26,7 @@
 ///   (C. F. Van Loan, "Computing integrals involving the matrix exponential",
 ///   IEEE TAC 23(3), 1978), computed once; an evaluation is d + 1 products.
 
+#include <adaptobs/core/detail/max_abs.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/matrix_exponential.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -96,10 +97,6 @@ struct GaussKronrod15 {
       0.129484966168869693270611432679082};
 };
 
-template <class Derived>
-typename Derived::Scalar max_abs(const Eigen::MatrixBase<Derived>& m) {
-  return m.size() == 0 ? typename Derived::Scalar(0) : m.cwiseAbs().maxCoeff();
-}
 }  // namespace detail
 
 /// Base of both regressor integrals, not used on its own: the types of their

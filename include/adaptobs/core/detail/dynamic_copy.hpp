@@ -1,6 +1,7 @@
 #pragma once
 /// \file
-/// Copies into dynamic-size matrices, for design-time routines.
+/// Entry-by-entry copies: into dynamic-size matrices for design-time routines,
+/// and into a block of a stacked matrix for constructors (`copy_entries`).
 ///
 /// Design routines (pole placement, gain design, stability certificates) work
 /// on dynamic-size matrices, so that their decompositions are instantiated
