@@ -685,26 +685,28 @@ TEST(LtvStability, AnUnstableFastOscillatorKeepsItsPositiveExponent) {
   EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic(stable, period));
 }
 
-// A stiff stable mode: at 2000 fixed steps h·1000 = 5 lies outside RK4's
-// stability region, the monodromy matrix overflowed and e' = −1000e read NaN,
-// "not stable". Over a period where e^{−1000T} is representable the exponent is
-// found; where it underflows (T = 10: e^{−10⁴}) it cannot be told and is refused;
-// the stability of diag(−1, −1000) needs only its largest exponent, −1.
+// A stiff stable mode. With the 2000 steps asked for by default, h·1000 = 3 at
+// T = 6 lies outside RK4's stability region: the monodromy matrix overflowed and
+// e' = −1000e read NaN, "not stable"; the step control takes more steps. Over a
+// period where e^{−1000T} is representable the exponent is found; where it
+// underflows (T = 1: e^{−1000}, below DBL_MIN) it cannot be told and is refused;
+// the stability of diag(−1, −1000) needs only its largest exponent, −1. (A
+// period T costs 3·10⁴·T RK4 steps, so the other cases use T ≤ 1.)
 TEST(LtvStability, AStiffStableModeIsFoundOrRefusedNotReportedUnstable) {
   const auto a = [](double) { return Eigen::MatrixXd(Eigen::MatrixXd::Constant(1, 1, -1000)); };
   EXPECT_NEAR(adaptobs::floquet_exponents(a, 0.5)(0), -1000, 1e-3);
   EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic(a, 0.5, 999.0));
-  const std::string refused = configuration_error_of([&] { (void)adaptobs::floquet_exponents(a, 10.0); });
+  const std::string refused = configuration_error_of([&] { (void)adaptobs::floquet_exponents(a, 1.0); });
   EXPECT_NE(refused.find("'A'"), std::string::npos) << refused;
   EXPECT_NE(refused.find("underflows"), std::string::npos) << refused;
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::is_exponentially_stable_periodic(a, 10.0), "A");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::is_exponentially_stable_periodic(a, 1.0), "A");
   const auto two_rates = [](double) { return Eigen::Matrix2d(Eigen::Vector2d(-1, -1000).asDiagonal()); };
-  EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic(two_rates, 10.0));
-  EXPECT_FALSE(adaptobs::is_exponentially_stable_periodic(two_rates, 10.0, 1.5));
-  // The −1000 multiplier is rounding noise beside e^{−10}: its exponent is
+  EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic(two_rates, 6.0));
+  EXPECT_FALSE(adaptobs::is_exponentially_stable_periodic(two_rates, 1.0, 1.5));
+  // The −1000 multiplier is rounding noise beside e^{−1}: its exponent is
   // reported as the resolution bound −1 + log(2ε)/T, which it lies below.
-  const Eigen::Vector2d both = adaptobs::floquet_exponents(two_rates, 10.0);
-  const double bound = -1 + std::log(2 * std::numeric_limits<double>::epsilon()) / 10;
+  const Eigen::Vector2d both = adaptobs::floquet_exponents(two_rates, 1.0);
+  const double bound = -1 + std::log(2 * std::numeric_limits<double>::epsilon());
   EXPECT_NEAR(both(0), -1, 1e-5);
   EXPECT_NEAR(both(1), bound, 1e-5);
   // Nor does a fast mode need to underflow: −50 beside −1 over T = 1 (a
