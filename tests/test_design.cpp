@@ -412,6 +412,18 @@ TEST(ExcitationMonitor, WindowedMinimumEigenvalue) {
   EXPECT_EQ(monitor.count(), 0);
 }
 
+// Φ given as an expression without storage is added as its value: a constant Φ
+// of dynamic size did not compile (Eigen's product cannot take w·Ones()).
+TEST(ExcitationMonitor, ExpressionsWithoutStorageAreAddedAsTheirValues) {
+  adaptobs::ExcitationMonitor<double, Eigen::Dynamic> monitor(2, 3);
+  monitor.add(Eigen::MatrixXd::Ones(1, 3), 2.0);
+  monitor.add(Eigen::MatrixXd::Identity(3, 3) + Eigen::MatrixXd::Zero(3, 3));
+  // (2·11ᵀ + I)/2: eigenvalues 3.5, 0.5, 0.5
+  const Eigen::Matrix3d expected = (2 * Eigen::Matrix3d::Ones() + Eigen::Matrix3d::Identity()) / 2;
+  EXPECT_MATRIX_NEAR(monitor.average(), expected, 1e-15, 0.0);
+  EXPECT_NEAR(monitor.level(), 0.5, 1e-15);
+}
+
 TEST(ExcitationMonitor, RunningSumDoesNotDrift) {
   RandomMatrices rng(26);
   adaptobs::ExcitationMonitor<double, 3> monitor(7);

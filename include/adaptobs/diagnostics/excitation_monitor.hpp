@@ -51,36 +51,17 @@ class ExcitationMonitor {
   /// Adds the contribution \f$w\,\Phi^T\Phi\f$ of one sample (Φ is m × p).
   /// A Φ with other than p columns, a non-finite entry, or a weight that is
   /// negative or not finite throws a `ConfigurationError` and adds nothing.
+  /// Φ is read twice: an expression without storage (`Ones()`, a sum) is
+  /// evaluated once first, into a temporary that allocates when its size is
+  /// dynamic; a matrix, a block or a map is used in place.
   template <class Derived>
   void add(const Eigen::MatrixBase<Derived>& phi, Scalar weight = Scalar(1)) {
-    constexpr std::string_view who = "ExcitationMonitor::add";
-    detail::require_finite_shape(phi, phi.rows(), sum_.cols(), who, "phi");
-    detail::require(weight >= Scalar(0) && std::isfinite(weight), who, "weight", "must be non-negative and finite");
-    Gramian& slot = ring_[next_];
-    sum_ -= slot;
-    // The sum carries a rounding error of about ε times the terms it ever held;
-    // once the terms removed outweigh what remains (a huge Φ leaving, or
-    // excitation dying out), that error is no longer small beside the sum.
-    // A sum that overflowed stays infinite under subtraction: rebuild it too.
-    removed_trace_ += slot.trace();
-    const Scalar remaining = sum_.trace();
-    const bool cancelled = removed_trace_ > Scalar(4) * remaining || !std::isfinite(remaining);
-    detail::set_product(slot, (weight * phi.derived()).transpose(), phi);  // (wΦ)ᵀΦ: w first, so that a tiny w keeps a huge Φ from overflowing
-    if (detail::all_finite(slot)) {
-      if (adds_since_overflow_ < window_) ++adds_since_overflow_;
+    // Besides the double read, Eigen's product kernel cannot take w·Φ for a
+    // constant Φ of dynamic size: such a call did not compile.
+    if constexpr (Derived::Flags & Eigen::DirectAccessBit) {
+      add_stored(phi, weight);
     } else {
-      slot.setZero();  // kept out of the sum; the level is unavailable until it leaves the window
-      adds_since_overflow_ = 0;
-    }
-    sum_ += slot;
-    next_ = (next_ + 1) % ring_.size();
-    if (count_ < window_) ++count_;
-    // Rebuild the sum from the window once per window, and whenever the
-    // subtractions have cancelled most of it.
-    if (next_ == 0 || cancelled) {
-      sum_.setZero();
-      for (const Gramian& g : ring_) sum_ += g;
-      removed_trace_ = Scalar(0);
+      add_stored(phi.eval(), weight);
     }
   }
 
@@ -114,6 +95,39 @@ class ExcitationMonitor {
   }
 
  private:
+  template <class Derived>
+  void add_stored(const Eigen::MatrixBase<Derived>& phi, Scalar weight) {
+    constexpr std::string_view who = "ExcitationMonitor::add";
+    detail::require_finite_shape(phi, phi.rows(), sum_.cols(), who, "phi");
+    detail::require(weight >= Scalar(0) && std::isfinite(weight), who, "weight", "must be non-negative and finite");
+    Gramian& slot = ring_[next_];
+    sum_ -= slot;
+    // The sum carries a rounding error of about ε times the terms it ever held;
+    // once the terms removed outweigh what remains (a huge Φ leaving, or
+    // excitation dying out), that error is no longer small beside the sum.
+    // A sum that overflowed stays infinite under subtraction: rebuild it too.
+    removed_trace_ += slot.trace();
+    const Scalar remaining = sum_.trace();
+    const bool cancelled = removed_trace_ > Scalar(4) * remaining || !std::isfinite(remaining);
+    detail::set_product(slot, (weight * phi.derived()).transpose(), phi);  // (wΦ)ᵀΦ: w first, so that a tiny w keeps a huge Φ from overflowing
+    if (detail::all_finite(slot)) {
+      if (adds_since_overflow_ < window_) ++adds_since_overflow_;
+    } else {
+      slot.setZero();  // kept out of the sum; the level is unavailable until it leaves the window
+      adds_since_overflow_ = 0;
+    }
+    sum_ += slot;
+    next_ = (next_ + 1) % ring_.size();
+    if (count_ < window_) ++count_;
+    // Rebuild the sum from the window once per window, and whenever the
+    // subtractions have cancelled most of it.
+    if (next_ == 0 || cancelled) {
+      sum_.setZero();
+      for (const Gramian& g : ring_) sum_ += g;
+      removed_trace_ = Scalar(0);
+    }
+  }
+
   std::vector<Gramian> ring_;
   Gramian sum_;
   Scalar removed_trace_ = Scalar(0);  // traces of the terms subtracted from sum_ since it was last rebuilt
