@@ -2,6 +2,7 @@
 // time-varying gains, stability checks, and the excitation monitor.
 
 #include <adaptobs/core/detail/cholesky.hpp>
+#include <adaptobs/design/companion_matrix.hpp>
 #include <adaptobs/design/dare.hpp>
 #include <adaptobs/diagnostics/excitation_monitor.hpp>
 #include <adaptobs/design/riccati_recursion.hpp>
@@ -391,6 +392,28 @@ TEST(Validation, PositiveSemidefiniteToleratesRoundingOnly) {
   const Eigen::MatrixXd rotated = q * Eigen::Vector<double, 5>(1, 2, 3, 4, -1e-6).asDiagonal() * q.transpose();
   EXPECT_THROW(adaptobs::detail::require_positive_semidefinite(rotated, "test", "Q"), ConfigurationError);
   EXPECT_THROW(adaptobs::detail::require_positive_semidefinite(indefinite, "test", "Q"), ConfigurationError);
+}
+
+// The coefficients are read as a vector whatever its type: a 1 × 3 MatrixXd
+// stopped on an Eigen assertion, a 2 × 2 matrix was read as four coefficients,
+// and block_companion_matrix without q (Q dynamic) built a matrix of negative size.
+TEST(CompanionMatrix, ReadsAVectorOfAnyShapeAndRefusesAMatrixOrABadBlockSize) {
+  Eigen::MatrixXd row(1, 3);
+  row << -1, -2, -3;
+  Eigen::Matrix3d expected;
+  expected << -1, 1, 0, -2, 0, 1, -3, 0, 0;
+  EXPECT_MATRIX_NEAR(adaptobs::companion_matrix(row), expected, 0.0, 0.0);
+  EXPECT_MATRIX_NEAR(adaptobs::companion_matrix(Eigen::Vector3d(-1, -2, -3)), expected, 0.0, 0.0);
+  const Eigen::MatrixXd blocks = adaptobs::block_companion_matrix(row, 2);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_MATRIX_NEAR(blocks.block(2 * i, 2 * j, 2, 2), expected(i, j) * Eigen::Matrix2d::Identity(), 0.0, 0.0);
+    }
+  }
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::companion_matrix(Eigen::MatrixXd::Ones(2, 2)), "a");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::block_companion_matrix(Eigen::MatrixXd::Ones(2, 2), 2), "a");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::block_companion_matrix(row), "q");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::block_companion_matrix<2>(row, 3), "q");
 }
 
 TEST(ExcitationMonitor, WindowedMinimumEigenvalue) {
