@@ -452,6 +452,41 @@ TEST(CanonicalForms, BesanconFormRefusesAnExcessiveDecayNamingIt) {
   EXPECT_NE(refusal(1e8).find("Riccati"), std::string::npos);
 }
 
+// A pair whose scale puts the powers of A beyond the floating-point range is
+// refused naming A and the overflow. Marino–Tomei and Bastin–Gevers blamed an
+// argument 'A' of observability_matrix "not finite", Besançon an undetectable
+// pair (decay 0) or its default decay 1.
+TEST(CanonicalForms, APairBeyondTheFloatingPointRangeIsRefusedNamingA) {
+  using D = adaptobs::Dimensions<double, 4, 1, 1, 1>;
+  const auto scaled = [](double s) {
+    Eigen::Matrix4d a = Eigen::Matrix4d::Zero();
+    a.topRightCorner(3, 3).setIdentity();
+    a(3, 0) = -1;
+    return Eigen::Matrix4d(s * a);  // characteristic polynomial λ⁴ + s⁴
+  };
+  const Eigen::RowVector4d c(1, 0, 0, 0);
+  const auto expect_scale_refusal = [](const std::string& message, const char* reason) {
+    EXPECT_TRUE(adaptobs::testing::quotes_argument(message, "A")) << message;
+    EXPECT_NE(message.find(reason), std::string::npos) << message;
+    EXPECT_NE(message.find("rescale"), std::string::npos) << message;
+  };
+  for (const double s : {1e80, 1e200}) {
+    expect_scale_refusal(configuration_error_of([&] { (void)adaptobs::marino_tomei_form<D>(scaled(s), c); }),
+                         "overflows");
+    expect_scale_refusal(
+        configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(scaled(s), c, poly({1, 3, 3, 1})); }),
+        "overflows");
+  }
+  // Besançon's Riccati equation is solved up to about 1e150 (the form is
+  // found at 1e100, with or without a decay) and refused beyond, with the
+  // decay asked for or without.
+  for (const double decay : {0.0, 1.0}) {
+    EXPECT_NO_THROW((void)adaptobs::besancon_form<D>(scaled(1e100), c, decay));
+    expect_scale_refusal(configuration_error_of([&] { (void)adaptobs::besancon_form<D>(scaled(1e160), c, decay); }),
+                         "Riccati");
+  }
+}
+
 TEST(SprDesign, GainsOfAlgorithmsOneAndTwo) {
   using D = siso::Dims<double>;
   const Eigen::Vector3d e1(1, 0, 0);

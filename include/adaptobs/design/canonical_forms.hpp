@@ -48,6 +48,19 @@ struct DenseStaticTransform {
   DynamicMatrix<Scalar> T, K;
 };
 
+/// A quantity of a form that grows like a power of A (the characteristic
+/// polynomial's coefficients, the rows of an observability or adjugate
+/// matrix, the transformation built from them), checked to be finite: one that
+/// overflowed is refused naming `A`, whose scale is the cause.
+template <class Matrix>
+void require_within_range(const Matrix& m, std::string_view who, std::string_view what) {
+  if (!m.allFinite())
+    fail_argument(who, "A",
+                  std::string("is too large in scale for the canonical form: ")
+                      .append(what)
+                      .append(", which grows like the powers of A, overflows; rescale the states or the time unit"));
+}
+
 /// The transformation in the types of `D`; refused, naming `A` or the output
 /// matrix, when the pair's sizes are not the fixed sizes of `D`.
 template <StateSpace D>
@@ -56,6 +69,8 @@ template <StateSpace D>
   if constexpr (D::nx != Eigen::Dynamic) require_shape(t.T, D::nx, D::nx, who, "A");
   if constexpr (D::ny != Eigen::Dynamic)
     require(t.K.cols() == D::ny, who, output_matrix, "must have as many rows as the outputs of the dimensions D");
+  require_within_range(t.T, who, "the transformation T");
+  require_within_range(t.K, who, "the injection K");
   try {
     return StaticTransform<D>(typename D::StateMatrix(t.T), typename D::GainMatrix(t.K));
   } catch (const ConfigurationError&) {  // T (finite, square) not invertible to working accuracy
@@ -97,12 +112,14 @@ template <typename Scalar>
   require(n == 1 || is_hurwitz_polynomial(zeros), who, "zeros", "must be Hurwitz (A22 is the zero dynamics)");
   // Rows c B_k of the Faddeev–LeVerrier adjugate: C adj(sI − A) v has coefficients M v.
   const Polynomial<Scalar> den = characteristic_polynomial(a);
+  require_within_range(den, who, "the characteristic polynomial of A");
   Matrix m(n, n), bk = Matrix::Identity(n, n);
   for (Index k = 0; k < n; ++k) {
     m.row(k) = cc * bk;
     bk = (a * bk).eval();
     bk.diagonal().array() += den(k + 1);
   }
+  require_within_range(m, who, "the adjugate rows c B_k of (A, c)");
   // M is a unit lower triangular Toeplitz matrix times the observability matrix:
   // invertible exactly when (A, c) is observable, which the staircase decides
   // in any output or time units; M, whose rows grow like the powers of A, is
@@ -136,13 +153,17 @@ template <typename Scalar>
   constexpr std::string_view who = "marino_tomei_form";
   const Index n = require_single_output_pair(A, c, who);
   const Polynomial<Scalar> a = characteristic_polynomial(A);
+  require_within_range(a, who, "the characteristic polynomial of A");
   Matrix canonical = Matrix::Zero(n, n);
   canonical.diagonal(1).setOnes();
   canonical.col(0) = -a.tail(n);
   Matrix e1 = Matrix::Zero(1, n);
   e1(0, 0) = Scalar(1);
   require(observability(A, c).observable(), who, "A, c", "must be an observable pair");
-  return {observability_matrix(canonical, e1).fullPivLu().solve(observability_matrix(A, c)), -a.tail(n)};
+  const Matrix o = observability_matrix(A, c), o_canonical = observability_matrix(canonical, e1);
+  require_within_range(o, who, "the observability matrix of (A, c)");
+  require_within_range(o_canonical, who, "the observability matrix of the canonical pair");
+  return {o_canonical.fullPivLu().solve(o), -a.tail(n)};
 }
 
 template <typename Scalar>
@@ -168,18 +189,33 @@ template <typename Scalar>
             "must be an observable pair");
     const Matrix a22 = at.bottomRightCorner(r, r) + decay * Matrix::Identity(r, r);
     // The unshifted pair is observable, and a shift keeps it so: a refusal of
-    // the Riccati solver, or an ill-conditioned T, comes from the decay asked for
-    // (the gain X, and with it cond(T) ~ ||X||^2, grows with it).
+    // the Riccati solver is numerical. It comes from the decay asked for when
+    // the unshifted equation can be solved (the gain X, and with it
+    // cond(T) ~ ||X||^2, grows with the decay), from the scale of A otherwise.
     const auto refuse_decay = [&](std::string_view reason) {
       fail_argument(who, "decay", std::string("is too large for the scale of A: ").append(reason).append("; ask for a smaller decay"));
     };
+    const auto gain = [&](const Matrix& shifted) {
+      return kalman_bucy_gain(shifted, a12, Matrix::Identity(r, r), Matrix::Identity(m, m)).K;
+    };
     Matrix x;
     try {
-      x = kalman_bucy_gain(a22, a12, Matrix::Identity(r, r), Matrix::Identity(m, m)).K;
+      x = gain(a22);
     } catch (const ConfigurationError&) {
-      if (decay == Scalar(0)) throw;
-      refuse_decay("the Riccati equation of the shifted pair (A22 + decay I, A12), whose gain moves the eigenvalues "
-                   "of A22 left of -decay, cannot be solved to working accuracy");
+      bool unshifted_solvable = false;
+      if (decay > Scalar(0)) {
+        try {
+          (void)gain(Matrix(at.bottomRightCorner(r, r)));
+          unshifted_solvable = true;
+        } catch (const ConfigurationError&) {
+        }
+      }
+      if (unshifted_solvable)
+        refuse_decay("the Riccati equation of the shifted pair (A22 + decay I, A12), whose gain moves the eigenvalues "
+                     "of A22 left of -decay, cannot be solved to working accuracy");
+      fail_argument(who, "A",
+                    "is beyond the range of the canonical form: the Riccati equation of the observable pair (A22, A12) "
+                    "cannot be solved to working accuracy at its scale; rescale the states or the time unit");
     }
     Matrix left = Matrix::Identity(n, n);
     left.bottomLeftCorner(r, m) = -x;
