@@ -56,8 +56,9 @@ echo "== g++ -O2 build, warnings as errors"
 # compiles with 8 % less CPU and 2.4 GB of memory instead of 2.0.
 # Both builds compile each test executable as one translation unit
 # (ADAPTOBS_UNITY_TESTS): the files of an executable instantiate much the same
-# templates, which are then compiled once. Under g++ -O2 the tests take 12 %
-# less CPU (645 s against 733), and the largest unit 3.4 GB of memory.
+# templates, which are then compiled once. Under g++ -O2 the tests took 645 to
+# 702 CPU-seconds against 733 as separate units (two runs), the largest unit
+# 3.4 GB of memory.
 configure "$root/build/test" -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" \
   -DCMAKE_CXX_FLAGS="--param=ggc-min-heapsize=4194304 --param=ggc-min-expand=400" \
   -DADAPTOBS_WARNINGS_AS_ERRORS=ON -DADAPTOBS_BUILD_BENCHMARKS=OFF -DADAPTOBS_VERIFY_HEADERS=$((sanitize ? 0 : 1)) \

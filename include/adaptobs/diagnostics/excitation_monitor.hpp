@@ -56,8 +56,8 @@ class ExcitationMonitor {
   /// dynamic; a matrix, a block or a map is used in place.
   template <class Derived>
   void add(const Eigen::MatrixBase<Derived>& phi, Scalar weight = Scalar(1)) {
-    // Besides the double read, Eigen's product kernel cannot take w·Φ for a
-    // constant Φ of dynamic size: such a call did not compile.
+    // Besides the double read: Eigen's product kernel cannot take w·Φ for a
+    // constant Φ of dynamic size (the call does not compile).
     if constexpr (Derived::Flags & Eigen::DirectAccessBit) {
       add_stored(phi, weight);
     } else {
