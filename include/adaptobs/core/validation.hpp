@@ -85,6 +85,12 @@ void require_square(const Eigen::EigenBase<Derived>& m, std::string_view who, st
   }
 }
 
+/// One row or one column, whatever the type (a 1 × n `MatrixXd` is a vector).
+template <class Derived>
+void require_vector(const Eigen::EigenBase<Derived>& m, std::string_view who, std::string_view argument) {
+  if (m.rows() != 1 && m.cols() != 1) fail_argument(who, argument, "must be a vector (one row or one column)");
+}
+
 template <class Derived>
 void require_finite(const Eigen::DenseBase<Derived>& m, std::string_view who, std::string_view argument) {
   if (!finite_entries(m)) fail_argument(who, argument, "must contain only finite numbers");

@@ -198,19 +198,19 @@ template <typename Scalar>
     const auto gain = [&](const Matrix& shifted) {
       return kalman_bucy_gain(shifted, a12, Matrix::Identity(r, r), Matrix::Identity(m, m)).K;
     };
+    const auto solvable = [&](const Matrix& shifted) {
+      try {
+        (void)gain(shifted);
+        return true;
+      } catch (const ConfigurationError&) {
+        return false;
+      }
+    };
     Matrix x;
     try {
       x = gain(a22);
     } catch (const ConfigurationError&) {
-      bool unshifted_solvable = false;
-      if (decay > Scalar(0)) {
-        try {
-          (void)gain(Matrix(at.bottomRightCorner(r, r)));
-          unshifted_solvable = true;
-        } catch (const ConfigurationError&) {
-        }
-      }
-      if (unshifted_solvable)
+      if (decay > Scalar(0) && solvable(Matrix(at.bottomRightCorner(r, r))))
         refuse_decay("the Riccati equation of the shifted pair (A22 + decay I, A12), whose gain moves the eigenvalues "
                      "of A22 left of -decay, cannot be solved to working accuracy");
       fail_argument(who, "A",

@@ -12,21 +12,12 @@
 
 namespace adaptobs {
 
-namespace detail {
-/// The coefficients a of a companion matrix: one row or one column, of any
-/// type (a 1 × r `MatrixXd` is read as the vector it holds).
-template <class Derived>
-void require_coefficient_vector(const Eigen::MatrixBase<Derived>& a, std::string_view who) {
-  require(a.rows() == 1 || a.cols() == 1 || a.size() == 0, who, "a", "must be a vector (one row or one column)");
-}
-}  // namespace detail
-
 /// \f$\bar A(a)\f$: the r × r companion matrix with first column a and ones on the superdiagonal.
 template <class Derived>
 [[nodiscard]] auto companion_matrix(const Eigen::MatrixBase<Derived>& a) {
   using Scalar = typename Derived::Scalar;
   constexpr int R = Derived::SizeAtCompileTime;
-  detail::require_coefficient_vector(a, "companion_matrix");
+  detail::require_vector(a, "companion_matrix", "a");
   const Index r = a.size();
   Eigen::Matrix<Scalar, R, R> m = Eigen::Matrix<Scalar, R, R>::Zero(r, r);
   for (Index i = 0; i < r; ++i) m(i, 0) = a(i);
@@ -41,7 +32,7 @@ template <int Q = Eigen::Dynamic, class Derived>
   using Scalar = typename Derived::Scalar;
   constexpr int N = product_of_sizes(Derived::SizeAtCompileTime, Q);
   constexpr std::string_view who = "block_companion_matrix";
-  detail::require_coefficient_vector(a, who);
+  detail::require_vector(a, who, "a");
   detail::require(q >= 1 && (Q == Eigen::Dynamic || q == Q), who, "q",
                   Q == Eigen::Dynamic ? "must be at least 1" : "must be the fixed block size Q");
   const Index r = a.size();

@@ -172,7 +172,7 @@ std::string format_complex_list(const ComplexVector<Scalar>& values) {
 /// Poles as a complex vector, checked finite.
 template <typename Scalar, class DP>
 ComplexVector<Scalar> complex_poles(const Eigen::MatrixBase<DP>& poles, std::string_view who) {
-  require(poles.cols() == 1 || poles.rows() == 1, who, "poles", "must be a vector");
+  require_vector(poles, who, "poles");
   ComplexVector<Scalar> p(poles.size());
   for (Index i = 0; i < poles.size(); ++i) p(i) = std::complex<Scalar>(poles.derived().reshaped()(i));
   for (Index i = 0; i < p.size(); ++i)
