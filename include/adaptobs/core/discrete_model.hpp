@@ -79,7 +79,8 @@ template <StateSpace D, class Derived>
 void zero_absent_rows(Eigen::MatrixBase<Derived>& m, const OutputMask<D>* present) {
   if (!present) return;
   for (Index i = 0; i < m.rows(); ++i)
-    if (!(*present)(i)) m.row(i).setZero();
+    if (!(*present)(i))
+      for (Index j = 0; j < m.cols(); ++j) m.coeffRef(i, j) = typename Derived::Scalar(0);
 }
 
 }  // namespace detail

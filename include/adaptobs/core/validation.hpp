@@ -40,6 +40,21 @@ namespace detail {
   throw ConfigurationError(message);
 }
 
+// The failures of the shape checks format their message outside the templates, so
+// that a translation unit compiles each once rather than once per matrix type.
+[[noreturn]] inline void fail_not_square(Index rows, Index cols, std::string_view who, std::string_view argument) {
+  std::ostringstream os;
+  os << "must be square (got " << rows << "x" << cols << ")";
+  fail_argument(who, argument, os.str());
+}
+
+[[noreturn]] inline void fail_shape(Index rows, Index cols, Index got_rows, Index got_cols, std::string_view who,
+                                    std::string_view argument) {
+  std::ostringstream os;
+  os << "must be " << rows << "x" << cols << " (got " << got_rows << "x" << got_cols << ")";
+  fail_argument(who, argument, os.str());
+}
+
 inline void require(bool condition, std::string_view who, std::string_view argument,
                     std::string_view problem) {
   if (!condition) fail_argument(who, argument, problem);
@@ -69,20 +84,12 @@ void require_non_negative(Scalar value, std::string_view who, std::string_view a
 template <class Derived>
 void require_shape(const Eigen::EigenBase<Derived>& m, Index rows, Index cols, std::string_view who,
                    std::string_view argument) {
-  if (m.rows() != rows || m.cols() != cols) {
-    std::ostringstream os;
-    os << "must be " << rows << "x" << cols << " (got " << m.rows() << "x" << m.cols() << ")";
-    fail_argument(who, argument, os.str());
-  }
+  if (m.rows() != rows || m.cols() != cols) fail_shape(rows, cols, m.rows(), m.cols(), who, argument);
 }
 
 template <class Derived>
 void require_square(const Eigen::EigenBase<Derived>& m, std::string_view who, std::string_view argument) {
-  if (m.rows() != m.cols()) {
-    std::ostringstream os;
-    os << "must be square (got " << m.rows() << "x" << m.cols() << ")";
-    fail_argument(who, argument, os.str());
-  }
+  if (m.rows() != m.cols()) fail_not_square(m.rows(), m.cols(), who, argument);
 }
 
 /// One row or one column, whatever the type (a 1 × n `MatrixXd` is a vector).

@@ -74,7 +74,9 @@ struct SectorBounds {
   /// True when every \f$v_j \in [v_j^1, v_j^2]\f$.
   template <class Derived>
   [[nodiscard]] bool contains(const Eigen::MatrixBase<Derived>& v) const {
-    return (v.array() >= lower.array()).all() && (v.array() <= upper.array()).all();
+    for (Index j = 0; j < v.size(); ++j)
+      if (!(v(j) >= lower(j) && v(j) <= upper(j))) return false;
+    return true;
   }
   /// The point of the box nearest to v (each coordinate clipped to its sector).
   template <class Derived>
@@ -85,6 +87,14 @@ struct SectorBounds {
 
 namespace detail {
 
+[[noreturn]] inline void fail_sector(Index entry, double lower, double upper, std::string_view who,
+                                     std::string_view argument) {
+  std::ostringstream os;
+  os << "must have lower < upper, with upper - lower finite, in every entry (entry " << entry << ": [" << lower
+     << ", " << upper << "])";
+  fail_argument(who, argument, os.str());
+}
+
 template <typename S, int N>
 void validate_sectors(const SectorBounds<S, N>& bounds, Index expected_size, std::string_view who,
                       std::string_view argument) {
@@ -92,12 +102,8 @@ void validate_sectors(const SectorBounds<S, N>& bounds, Index expected_size, std
   require_finite_shape(bounds.upper, expected_size, 1, who, argument);
   for (Index j = 0; j < expected_size; ++j) {
     // The memberships divide by upper − lower, which must be representable.
-    if (!(bounds.lower(j) < bounds.upper(j)) || !std::isfinite(bounds.upper(j) - bounds.lower(j))) {
-      std::ostringstream os;
-      os << "must have lower < upper, with upper - lower finite, in every entry (entry " << j << ": ["
-         << bounds.lower(j) << ", " << bounds.upper(j) << "])";
-      fail_argument(who, argument, os.str());
-    }
+    if (!(bounds.lower(j) < bounds.upper(j)) || !std::isfinite(bounds.upper(j) - bounds.lower(j)))
+      fail_sector(j, double(bounds.lower(j)), double(bounds.upper(j)), who, argument);
   }
 }
 

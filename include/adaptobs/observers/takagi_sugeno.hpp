@@ -35,7 +35,6 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/discrete_update.hpp>
-#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/models/takagi_sugeno_model.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
@@ -73,9 +72,9 @@ class TakagiSugenoObserver
     const Sizes s = model_.sizes();
     detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
     assign_gains(gains, who);
-    weights_.setZero(model_.vertex_count());
-    premises_.setZero(model_.premise_count());
-    this->output_error_.setZero(s.ny);
+    detail::zero_resize(weights_, model_.vertex_count());
+    detail::zero_resize(premises_, model_.premise_count());
+    detail::zero_resize(this->output_error_, s.ny);
     work_.resize(s, model_);
   }
 
@@ -119,9 +118,9 @@ class TakagiSugenoObserver
     }
     gains_ = gains;
     // [V_1 … V_r], V_i = [[A_i, B_i, L_i], [0, 0, K_{y,i}]], so that
-    // [x̂⁺; Δθ̂] = (Σ ĥ_i V_i) [x̂; u; y − Cx̂].
+    // [x̂⁺; Δθ̂] = Σ ĥ_i V_i [x̂; u; y − Cx̂].
     const Index nv = s.nx + s.nu + s.ny;
-    vertex_maps_.setZero(s.nx + s.np, nv * r);
+    detail::zero_resize(vertex_maps_, s.nx + s.np, nv * r);
     for (Index i = 0; i < r; ++i) {
       const Index first = i * nv;
       detail::copy_entries(vertex_maps_, 0, first, model_.A(i));
@@ -149,21 +148,20 @@ class TakagiSugenoObserver
   struct Workspace {
     PremiseVector z;
     Weights h;
-    Eigen::Matrix<Scalar, nv_at_compile_time, 1> v;  // [x̂; u; y − Cx̂]
-    using Blend = Eigen::Matrix<Scalar, na_at_compile_time, nv_at_compile_time>;
-    Blend blend;  // Σ ĥ_i V_i
-    Eigen::Matrix<Scalar, na_at_compile_time, 1> next;  // [x̂⁺; Δθ̂]
+    using Stacked = Eigen::Matrix<Scalar, nv_at_compile_time, 1>;
+    using Next = Eigen::Matrix<Scalar, na_at_compile_time, 1>;
+    Stacked v;  // [x̂; u; y − Cx̂]
+    Next next;  // [x̂⁺; Δθ̂]
     State x;
     Parameters theta;
     void resize(const Sizes& s, const Model& m) {
       const Index nv = s.nx + s.nu + s.ny;
-      z.setZero(m.premise_count());
-      h.setZero(m.vertex_count());
-      v.setZero(nv);
-      blend.setZero(s.nx + s.np, nv);
-      next.setZero(s.nx + s.np);
-      x.setZero(s.nx);
-      theta.setZero(s.np);
+      detail::zero_resize(z, m.premise_count());
+      detail::zero_resize(h, m.vertex_count());
+      detail::zero_resize(v, nv);
+      detail::zero_resize(next, s.nx + s.np);
+      detail::zero_resize(x, s.nx);
+      detail::zero_resize(theta, s.np);
     }
   };
 
@@ -180,24 +178,26 @@ class TakagiSugenoObserver
     /// Weights \f$\hat h_i = h_i(\hat z_k, \hat\theta_k)\f$ with \f$\hat z_k, \hat\theta_k\f$ clipped to their sectors (10), Remark 1.
     model_.weights(w.z, theta_, w.h);
 
-    // v = [x̂_k; u_k; y_k − C x̂_k].
-    w.v.head(nx) = x_;
-    w.v.segment(nx, nu) = sample.u;
-    w.v.tail(ny) = sample.y;
-    auto output_error = w.v.tail(ny);
-    detail::subtract_product(output_error, model_.C(), x_);
-    detail::zero_absent_rows<Dims>(output_error, present);  // D_k(y_k − C x̂_k)
+    // v = [x̂_k; u_k; D_k(y_k − C x̂_k)].
+    detail::copy_entries(w.v, 0, 0, x_);
+    detail::copy_entries(w.v, nx, 0, sample.u);
+    for (Index i = 0; i < ny; ++i) {
+      Scalar e = sample.y(i);
+      for (Index j = 0; j < nx; ++j) e -= model_.C()(i, j) * x_(j);
+      w.v(nx + nu + i) = (present && !(*present)(i)) ? Scalar(0) : e;
+    }
 
     /// (65) \f$\hat x_{k+1} = \sum_i\hat h_i[A_i\hat x_k + B_iu_k + L_i(y_k - C\hat x_k)]\f$ and
-    /// \f$\hat\theta_{k+1} = \hat\theta_k + \sum_i\hat h_iK_{y,i}(y_k - C\hat x_k)\f$ in one product:
-    /// \f$[\hat x_{k+1}; \hat\theta_{k+1} - \hat\theta_k] = (\sum_i\hat h_iV_i)\,v\f$ with
+    /// \f$\hat\theta_{k+1} = \hat\theta_k + \sum_i\hat h_iK_{y,i}(y_k - C\hat x_k)\f$ in one sum:
+    /// \f$[\hat x_{k+1}; \hat\theta_{k+1} - \hat\theta_k] = \sum_i\hat h_i(V_iv)\f$ with
     /// \f$V_i = \begin{bmatrix} A_i & B_i & L_i \\ 0 & 0 & K_{y,i}\end{bmatrix}\f$.
-    blend_vertex_maps(w.h, w.blend);
-    detail::set_product(w.next, w.blend, w.v);
-    w.x = w.next.head(nx);
-    w.theta = theta_ + w.next.tail(np);
+    weighted_vertex_step(w.h, w.v, w.next);
+    for (Index i = 0; i < nx; ++i) w.x(i) = w.next(i);
+    for (Index i = 0; i < np; ++i) w.theta(i) = theta_(i) + w.next(nx + i);
     /// (21) adds the leakage \f$-\sum_i\hat h_iK_\theta\hat\theta_k = -K_\theta\hat\theta_k\f$ (\f$\sum_i\hat h_i = 1\f$).
-    if (gains_.K_theta) detail::subtract_product(w.theta, *gains_.K_theta, theta_);
+    if (gains_.K_theta)
+      for (Index i = 0; i < np; ++i)
+        for (Index j = 0; j < np; ++j) w.theta(i) -= (*gains_.K_theta)(i, j) * theta_(j);
 
     if (!detail::all_finite(w.x, w.theta)) return UpdateStatus::nonfinite_result;
 
@@ -206,33 +206,26 @@ class TakagiSugenoObserver
     detail::commit(theta_, w.theta);
     detail::commit(weights_, w.h);
     detail::commit(premises_, w.z);
-    this->output_error_ = w.v.tail(ny);  // a copy: v is a segment of the workspace
+    for (Index i = 0; i < ny; ++i) this->output_error_(i) = w.v(nx + nu + i);
     return UpdateStatus::accepted;
   }
 
-  // Σ_i ĥ_i V_i, summed in two interleaved halves to shorten the chain of dependent
-  // additions (r ≥ 2 is even); fixed sizes take each V_i as a fixed-size block.
-  template <class DH, class DB>
-  void blend_vertex_maps(const Eigen::MatrixBase<DH>& h, Eigen::MatrixBase<DB>& blend) const {
-    const Index nv = blend.cols();
-    const auto V = [&](Index i) {
-      if constexpr (nv_at_compile_time != Eigen::Dynamic) {
-        return vertex_maps_.template middleCols<nv_at_compile_time>(i * nv);
-      } else {
-        return vertex_maps_.middleCols(i * nv, nv);
+  // next = Σ_i ĥ_i (V_i v), one entry at a time. Plain loops over the stored entries:
+  // they run as fast as Eigen's block expressions here (r small blocks of a few
+  // entries each) and cost a fraction of their compile time.
+  template <class DH>
+  void weighted_vertex_step(const Eigen::MatrixBase<DH>& h, const typename Workspace::Stacked& v,
+                         typename Workspace::Next& next) const {
+    const Index nv = v.size(), na = next.size();
+    for (Index a = 0; a < na; ++a) {
+      Scalar sum(0);
+      for (Index i = 0; i < h.size(); ++i) {
+        Scalar row(0);
+        for (Index j = 0; j < nv; ++j) row += vertex_maps_(a, i * nv + j) * v(j);
+        sum += h(i) * row;
       }
-    };
-    if (h.size() == 1) {
-      blend = V(0);
-      return;
+      next(a) = sum;
     }
-    typename Workspace::Blend odd = h(1) * V(1);
-    blend.noalias() = h(0) * V(0);
-    for (Index i = 2; i < h.size(); i += 2) {
-      blend.noalias() += h(i) * V(i);
-      odd.noalias() += h(i + 1) * V(i + 1);
-    }
-    blend += odd;
   }
 
   Model model_;

@@ -17,7 +17,9 @@ void commit(Eigen::PlainObjectBase<Derived>& destination, Eigen::PlainObjectBase
   if constexpr (Derived::SizeAtCompileTime == Eigen::Dynamic) {
     destination.swap(computed);
   } else {
-    destination = computed;
+    // An entry-wise copy: a plain loop the compiler turns into moves, without
+    // instantiating Eigen's assignment for every fixed-size type.
+    for (Eigen::Index i = 0; i < Derived::SizeAtCompileTime; ++i) destination.data()[i] = computed.data()[i];
   }
 }
 

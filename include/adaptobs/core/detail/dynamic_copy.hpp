@@ -45,4 +45,20 @@ void copy_entries(Eigen::MatrixBase<Dst>& dst, Index row, Index col, const Eigen
     for (Index i = 0; i < src.rows(); ++i) dst(row + i, col + j) = src(i, j);
 }
 
+/// `m.setZero(rows, cols)` without an expression: a constructor or a workspace sizes
+/// many small matrices of distinct types, and Eigen instantiates about twenty
+/// functions per type for `setZero`.
+template <class Derived>
+void zero_resize(Eigen::PlainObjectBase<Derived>& m, Index rows, Index cols) {
+  m.resize(rows, cols);
+  for (Index i = 0; i < m.size(); ++i) m.data()[i] = typename Derived::Scalar(0);
+}
+
+/// The same for a vector of n entries.
+template <class Derived>
+void zero_resize(Eigen::PlainObjectBase<Derived>& m, Index n) {
+  m.resize(n);
+  for (Index i = 0; i < n; ++i) m.data()[i] = typename Derived::Scalar(0);
+}
+
 }  // namespace adaptobs::detail
