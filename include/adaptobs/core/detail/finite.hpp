@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <type_traits>
 
 namespace adaptobs::detail {
 
@@ -19,7 +20,17 @@ template <class First, class... Rest>
 [[nodiscard]] bool all_finite(const Eigen::DenseBase<First>& first, const Eigen::DenseBase<Rest>&... rest) {
   using Scalar = typename First::Scalar;
   const auto zero_times = [](const auto& block) {
-    return block.size() == 0 ? Scalar(0) : (block.derived().array() * Scalar(0)).sum();
+    using Block = std::remove_cvref_t<decltype(block.derived())>;
+    if constexpr (Block::SizeAtCompileTime != Eigen::Dynamic && Block::SizeAtCompileTime <= 2) {
+      // At most two coefficients (the inputs, outputs and parameters of small
+      // models): their products directly, without instantiating Eigen's
+      // reduction for the type; the same operations at run time.
+      Scalar sum(0);
+      for (Eigen::Index i = 0; i < Block::SizeAtCompileTime; ++i) sum += block.derived().coeff(i) * Scalar(0);
+      return sum;
+    } else {
+      return block.size() == 0 ? Scalar(0) : (block.derived().array() * Scalar(0)).sum();
+    }
   };
   const Scalar sum = (zero_times(first) + ... + zero_times(rest));
   return sum == sum;
