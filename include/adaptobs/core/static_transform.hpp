@@ -158,7 +158,11 @@ class StaticTransform : public SizedBy<D> {
     } else {
       detail::set_product(out.Co, s.C, t_inverse_);
       detail::set_product(out.TB, t_, s.B);
-      out.Ao.noalias() = t_ * (s.A * t_inverse_);
+      // T (A T⁻¹) as two products of one type: a nested product instantiates a
+      // kernel of its own; both forms evaluate A T⁻¹ into a temporary.
+      StateMatrix a_t_inverse(s.A.rows(), t_inverse_.cols());
+      detail::set_product(a_t_inverse, s.A, t_inverse_);
+      detail::set_product(out.Ao, t_, a_t_inverse);
     }
     detail::subtract_product(out.Ao, k_, out.Co);
     out.K = k_;

@@ -14,6 +14,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <complex>
 
 namespace adaptobs {
@@ -51,14 +52,14 @@ void copy_entries(Eigen::MatrixBase<Dst>& dst, Index row, Index col, const Eigen
 template <class Derived>
 void zero_resize(Eigen::PlainObjectBase<Derived>& m, Index rows, Index cols) {
   m.resize(rows, cols);
-  for (Index i = 0; i < m.size(); ++i) m.data()[i] = typename Derived::Scalar(0);
+  std::fill_n(m.data(), m.size(), typename Derived::Scalar(0));
 }
 
 /// The same for a vector of n entries.
 template <class Derived>
 void zero_resize(Eigen::PlainObjectBase<Derived>& m, Index n) {
   m.resize(n);
-  for (Index i = 0; i < n; ++i) m.data()[i] = typename Derived::Scalar(0);
+  std::fill_n(m.data(), n, typename Derived::Scalar(0));
 }
 
 }  // namespace adaptobs::detail
