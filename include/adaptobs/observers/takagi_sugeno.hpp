@@ -215,7 +215,7 @@ class TakagiSugenoObserver
   // entries each) and cost a fraction of their compile time.
   template <class DH>
   void weighted_vertex_step(const Eigen::MatrixBase<DH>& h, const typename Workspace::Stacked& v,
-                         typename Workspace::Next& next) const {
+                            typename Workspace::Next& next) const {
     const Index nv = v.size(), na = next.size();
     for (Index a = 0; a < na; ++a) {
       Scalar sum(0);
