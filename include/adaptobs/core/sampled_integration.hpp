@@ -184,7 +184,9 @@ class SampledIntegrator {
     return needed <= Scalar(options_.max_substeps) ? int(needed) : 0;
   }
 
-  // Signal at the normalized time s ∈ [0, 1] of the interval.
+  // Signal at the normalized time s ∈ [0, 1] of the interval. Written entry by
+  // entry: one loop per signal type, where Eigen expressions would instantiate
+  // a scaled sum per reconstruction and per type in every observer's update.
   template <class V>
   static void reconstruct(SignalReconstruction how, Scalar s, const V& v0, const V* mid, const V& v1, V& out) {
     switch (how) {
@@ -192,14 +194,14 @@ class SampledIntegrator {
         out = v0;
         return;
       case SignalReconstruction::linear:
-        out = (Scalar(1) - s) * v0 + s * v1;
+        for (Index i = 0; i < out.size(); ++i) out(i) = (Scalar(1) - s) * v0(i) + s * v1(i);
         return;
       case SignalReconstruction::quadratic: {
         // Lagrange basis on the nodes 0, 1/2, 1.
         const Scalar l0 = Scalar(2) * (s - Scalar(0.5)) * (s - Scalar(1));
         const Scalar lm = Scalar(-4) * s * (s - Scalar(1));
         const Scalar l1 = Scalar(2) * s * (s - Scalar(0.5));
-        out = l0 * v0 + lm * (*mid) + l1 * v1;
+        for (Index i = 0; i < out.size(); ++i) out(i) = l0 * v0(i) + lm * (*mid)(i) + l1 * v1(i);
         return;
       }
     }

@@ -15,16 +15,16 @@
 /// by the staircase of observability.hpp, whose SVD and eigenvalue solver this
 /// header, which the observers include, does without.
 
-#include <adaptobs/core/detail/max_abs.hpp>
-#include <adaptobs/core/small_dense.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/design/detail/polynomial_coefficients.hpp>
 
 #include <Eigen/Core>
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <utility>
+#include <iterator>
+#include <string_view>
 #include <vector>
 
 namespace adaptobs {
@@ -33,35 +33,15 @@ template <typename Scalar>
 using Polynomial = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
 
 namespace detail {
-// The routines below index coefficients one by one rather than writing Eigen
-// expressions (tail, segment, reverse): they run once, at design time
-// or at an observer's construction, on a dozen coefficients, and every
-// distinct Eigen expression type is a template instantiation that each
-// translation unit including this header pays for.
-
-/// The coefficients of p from index `first` on.
 template <typename Scalar>
-Polynomial<Scalar> without_leading(const Polynomial<Scalar>& p, Index first) {
-  Polynomial<Scalar> out(p.size() - first);
-  for (Index i = 0; i < out.size(); ++i) out(i) = p(first + i);
-  return out;
+[[nodiscard]] Coefficients<Scalar> coefficients_of(const Polynomial<Scalar>& p) {
+  return Coefficients<Scalar>(p.data(), p.data() + p.size());
 }
 
-/// Faddeev–LeVerrier on a dynamic-size copy: one instantiation per scalar type,
-/// whatever expression the caller passes.
 template <typename Scalar>
-Polynomial<Scalar> characteristic_polynomial_of(const DynamicMatrix<Scalar>& a) {
-  const Index n = a.rows();
-  Polynomial<Scalar> p(n + 1);
-  p(0) = Scalar(1);
-  DynamicMatrix<Scalar> b = DynamicMatrix<Scalar>::Identity(n, n);
-  for (Index k = 1; k <= n; ++k) {
-    b = multiply(a, b);
-    Scalar trace = 0;
-    for (Index i = 0; i < n; ++i) trace += b(i, i);
-    p(k) = -trace / Scalar(k);
-    for (Index i = 0; i < n; ++i) b(i, i) += p(k);
-  }
+[[nodiscard]] Polynomial<Scalar> polynomial_of(const Coefficients<Scalar>& c) {
+  Polynomial<Scalar> p(std::ssize(c));
+  std::copy(c.begin(), c.end(), p.data());
   return p;
 }
 }  // namespace detail
@@ -72,35 +52,9 @@ template <class Derived>
   const detail::DynamicMatrix<typename Derived::Scalar> a = detail::dynamic_copy(A);
   detail::require_square(a, "characteristic_polynomial", "A");
   detail::require_finite(a, "characteristic_polynomial", "A");
-  return detail::characteristic_polynomial_of(a);
+  return detail::polynomial_of(
+      detail::characteristic_coefficients(std::vector<typename Derived::Scalar>(a.data(), a.data() + a.size()), a.rows()));
 }
-
-namespace detail {
-/// The e with 2^e near the geometric mean magnitude of the nonzero roots of p
-/// (p(0) ≠ 0): \f$|p_j/p_0|^{1/(d-j)}\f$ with \f$p_j\f$ the last nonzero coefficient.
-template <typename Scalar>
-int root_scale_exponent(const Polynomial<Scalar>& p) {
-  Index last = p.size() - 1;
-  while (last > 0 && p(last) == Scalar(0)) --last;
-  if (last == 0) return 0;
-  return static_cast<int>(std::lround(static_cast<double>(std::ilogb(p(last)) - std::ilogb(p(0))) /
-                                      static_cast<double>(last)));
-}
-
-/// \f$q(z) = p(2^e z)\f$ divided by a power of two that brings its largest
-/// coefficient to [1, 2): both exact (short of underflow), with the roots of q
-/// those of p divided by 2^e.
-template <typename Scalar>
-Polynomial<Scalar> with_roots_scaled(const Polynomial<Scalar>& p, int e) {
-  const Index d = p.size() - 1;
-  int top = std::numeric_limits<int>::min();
-  for (Index i = 0; i <= d; ++i)
-    if (p(i) != Scalar(0)) top = std::max(top, std::ilogb(p(i)) + static_cast<int>(d - i) * e);
-  Polynomial<Scalar> q(p.size());
-  for (Index i = 0; i <= d; ++i) q(i) = p(i) == Scalar(0) ? Scalar(0) : std::ldexp(p(i), static_cast<int>(d - i) * e - top);
-  return q;
-}
-}  // namespace detail
 
 /// Every root in the open left half-plane (and a non-zero leading coefficient).
 ///
@@ -114,34 +68,21 @@ Polynomial<Scalar> with_roots_scaled(const Polynomial<Scalar>& p, int e) {
 /// s² + 10¹⁰s + 10³⁰ is judged as (z + 1)² or z² + 10⁻⁵z + 1.
 template <typename Scalar>
 [[nodiscard]] bool is_hurwitz_polynomial(const Polynomial<Scalar>& p) {
-  if (p.size() == 0 || p(0) == Scalar(0) || !detail::all_finite(p)) return false;
-  const Index degree = p.size() - 1;
-  if (degree == 0) return true;
-  if (p(degree) == Scalar(0)) return false;  // a root at 0
-  const Polynomial<Scalar> q = detail::with_roots_scaled(p, detail::root_scale_exponent(p));
-  const Scalar sign = q(0) > 0 ? Scalar(1) : Scalar(-1);
-  const Scalar tol = Scalar(64) * std::numeric_limits<Scalar>::epsilon() * detail::max_abs(q);
-  const Index width = degree / 2 + 1;
-  Polynomial<Scalar> upper = Polynomial<Scalar>::Zero(width), lower = Polynomial<Scalar>::Zero(width);
-  for (Index i = 0; i <= degree; ++i) (i % 2 == 0 ? upper : lower)(i / 2) = sign * q(i);
-  for (Index row = 1; row <= degree; ++row) {
-    if (!(lower(0) > tol)) return false;
-    const Scalar ratio = upper(0) / lower(0);
-    Polynomial<Scalar> next = Polynomial<Scalar>::Zero(width);
-    for (Index j = 0; j + 1 < width; ++j) next(j) = upper(j + 1) - ratio * lower(j + 1);
-    upper = lower;
-    lower = next;
-  }
-  return true;
+  return detail::is_hurwitz(detail::coefficients_of(p));
 }
 
 /// Hurwitz test of a small square matrix without an eigen-decomposition:
 /// Routh–Hurwitz on its Faddeev–LeVerrier characteristic polynomial (orders n ≲ 10,
-/// the design-time checks of small observer blocks).
+/// the construction-time checks of small observer blocks, which is why it
+/// reads the entries one by one rather than copying m into a dynamic-size matrix).
 template <class Derived>
 [[nodiscard]] bool has_hurwitz_characteristic_polynomial(const Eigen::MatrixBase<Derived>& m) {
+  constexpr std::string_view who = "has_hurwitz_characteristic_polynomial";
+  if (m.rows() != m.cols()) detail::fail_not_square(m.rows(), m.cols(), who, "m");
   if (m.size() == 0) return true;
-  return is_hurwitz_polynomial(characteristic_polynomial(detail::dynamic_copy(m)));
+  const std::vector<typename Derived::Scalar> a = detail::column_major_entries(m);
+  detail::require(detail::all_finite_coefficients(a), who, "m", "must be finite");
+  return detail::is_hurwitz(detail::characteristic_coefficients(a, m.rows()));
 }
 
 /// Number of distinct real roots of p in the half-open interval (a, ∞), by a
@@ -154,76 +95,13 @@ template <typename Scalar>
                                            Scalar relative_tolerance = Scalar(1e-10)) {
   detail::require_finite(p, "count_real_roots_above", "p");
   detail::require(std::isfinite(a), "count_real_roots_above", "a", "must be finite");
-  const auto trimmed = [&](const Polynomial<Scalar>& q) {
-    const Scalar scale = detail::max_abs(q);
-    Index first = 0;
-    while (first < q.size() && std::abs(q(first)) <= relative_tolerance * scale) ++first;
-    return detail::without_leading(q, first);
-  };
-  std::vector<Polynomial<Scalar>> chain;
-  // Scale invariance: the roots (and a) divided by 2^e, near their geometric
-  // mean magnitude, so that the relative trims see x² − 1e-12 as x² − 1.
-  Index lead = 0;
-  while (lead < p.size() && p(lead) == Scalar(0)) ++lead;
-  if (p.size() - lead <= 1) return 0;
-  const Polynomial<Scalar> exact = detail::without_leading(p, lead);
-  const int e = detail::root_scale_exponent(exact);
-  a = std::clamp(std::ldexp(a, -e), std::numeric_limits<Scalar>::lowest(), std::numeric_limits<Scalar>::max());
-  chain.push_back(trimmed(detail::with_roots_scaled(exact, e)));
-  if (chain[0].size() <= 1) return 0;
-  Polynomial<Scalar> derivative(chain[0].size() - 1);
-  const Index d = chain[0].size() - 1;
-  for (Index i = 0; i < d; ++i) derivative(i) = Scalar(d - i) * chain[0](i);
-  chain.push_back(trimmed(derivative));
-  while (chain.back().size() > 1) {
-    // r = rem(p_{k−1}, p_k) by long division, in place on a copy of p_{k−1}.
-    Polynomial<Scalar> r = chain[chain.size() - 2];
-    const Polynomial<Scalar>& q = chain.back();
-    const Scalar keep = detail::max_abs(r);
-    for (Index shift = 0; shift + q.size() <= r.size(); ++shift) {
-      const Scalar factor = r(shift) / q(0);
-      for (Index i = 0; i < q.size(); ++i) r(shift + i) -= factor * q(i);
-      r(shift) = Scalar(0);
-    }
-    // The remainder is the last q.size() − 1 coefficients. Scale-aware trim:
-    // compare with the dividend, not with the (small) remainder itself.
-    Index first = r.size() - (q.size() - 1);
-    while (first < r.size() && std::abs(r(first)) <= relative_tolerance * keep) ++first;
-    if (first == r.size()) break;  // p has repeated roots: the chain ends at their gcd
-    Polynomial<Scalar> next = detail::without_leading(r, first);
-    for (Index i = 0; i < next.size(); ++i) next(i) = -next(i);
-    chain.push_back(std::move(next));
-  }
-  const auto sign_changes = [&](auto value_of) {
-    Index changes = 0;
-    int previous = 0;
-    for (const auto& q : chain) {
-      const Scalar v = value_of(q);
-      const int s = v > 0 ? 1 : (v < 0 ? -1 : 0);
-      if (s != 0) {
-        if (previous != 0 && s != previous) ++changes;
-        previous = s;
-      }
-    }
-    return changes;
-  };
-  const auto at_a = [&](const Polynomial<Scalar>& q) {
-    Scalar v = 0;
-    for (Index i = 0; i < q.size(); ++i) v = v * a + q(i);
-    return v;
-  };
-  const auto at_infinity = [](const Polynomial<Scalar>& q) { return q(0); };
-  return sign_changes(at_a) - sign_changes(at_infinity);
+  return detail::count_real_roots_above(detail::coefficients_of(p), a, relative_tolerance);
 }
 
 /// Product of two polynomials (convolution of the coefficients).
 template <typename Scalar>
 [[nodiscard]] Polynomial<Scalar> multiply_polynomials(const Polynomial<Scalar>& a, const Polynomial<Scalar>& b) {
-  if (a.size() == 0 || b.size() == 0) return Polynomial<Scalar>(0);
-  Polynomial<Scalar> c = Polynomial<Scalar>::Zero(a.size() + b.size() - 1);
-  for (Index i = 0; i < a.size(); ++i)
-    for (Index j = 0; j < b.size(); ++j) c(i + j) += a(i) * b(j);
-  return c;
+  return detail::polynomial_of(detail::multiply_coefficients(detail::coefficients_of(a), detail::coefficients_of(b)));
 }
 
 /// \f$p(M) = p_0M^d + \dots + p_dI\f$ by Horner's rule.
@@ -269,21 +147,9 @@ template <class DA, class DB, class DC>
 [[nodiscard]] SisoTransferFunction<typename DA::Scalar> transfer_function(const Eigen::MatrixBase<DA>& A,
                                                                           const Eigen::MatrixBase<DB>& b,
                                                                           const Eigen::MatrixBase<DC>& c) {
-  using Scalar = typename DA::Scalar;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  constexpr std::string_view who = "transfer_function";
-  const Index n = detail::require_siso_triple(A, b, c, who);
-  SisoTransferFunction<Scalar> g;
-  g.denominator = characteristic_polynomial(A);
-  g.numerator.resize(n);
-  Matrix bk = Matrix::Identity(n, n);
-  const Matrix a = detail::dynamic_copy(A), column = detail::dynamic_copy(b), row = detail::dynamic_copy(c);
-  for (Index k = 0; k < n; ++k) {
-    g.numerator(k) = detail::multiply(row, detail::multiply(bk, column))(0, 0);
-    bk = detail::multiply(a, bk);
-    for (Index i = 0; i < n; ++i) bk(i, i) += g.denominator(k + 1);
-  }
-  return g;
+  detail::require_siso_triple(A, b, c, "transfer_function");
+  const auto g = detail::transfer_coefficients(A, b, c);
+  return {detail::polynomial_of(g.numerator), detail::polynomial_of(g.denominator)};
 }
 
 }  // namespace adaptobs
