@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -53,6 +54,20 @@ namespace detail {
   std::ostringstream os;
   os << "must be " << rows << "x" << cols << " (got " << got_rows << "x" << got_cols << ")";
   fail_argument(who, argument, os.str());
+}
+
+/// A list argument (one matrix per vertex, per mode, ...) of the wrong length:
+/// "must hold <what> (<expected>, got <got>)".
+[[noreturn]] inline void fail_count(Index expected, std::size_t got, std::string_view what, std::string_view who,
+                                    std::string_view argument) {
+  std::ostringstream os;
+  os << "must hold " << what << " (" << expected << ", got " << got << ")";
+  fail_argument(who, argument, os.str());
+}
+
+/// "list[index]", element `index` of a list argument as an error names it.
+[[nodiscard]] inline std::string element_name(std::string_view list, std::size_t index) {
+  return std::string(list).append("[").append(std::to_string(index)).append("]");
 }
 
 inline void require(bool condition, std::string_view who, std::string_view argument,
@@ -110,6 +125,15 @@ void require_finite_shape(const Eigen::DenseBase<Derived>& m, Index rows, Index 
                           std::string_view argument) {
   require_shape(m, rows, cols, who, argument);
   require_finite(m, who, argument);
+}
+
+/// `require_finite_shape` of element `index` of the list `list`, named
+/// `list[index]`; the name is formatted only when the check fails.
+template <class Derived>
+void require_finite_shape(const Eigen::DenseBase<Derived>& m, Index rows, Index cols, std::string_view who,
+                          std::string_view list, std::size_t index) {
+  if (m.rows() != rows || m.cols() != cols || !finite_entries(m))
+    require_finite_shape(m, rows, cols, who, element_name(list, index));
 }
 
 /// The data of an observability question: A square and finite, C finite with

@@ -37,6 +37,7 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <iterator>
 #include <optional>
 #include <sstream>
 #include <string_view>
@@ -247,11 +248,7 @@ class TakagiSugenoModel : public SizedBy<D> {
     const Index k = premise_bounds_.size() + parameter_bounds_.size();
     detail::require(k <= 20, who, "premise_bounds", "with parameter_bounds gives more than 2^20 vertices");
     const Index r = Index(1) << k;
-    if (static_cast<Index>(vertices.size()) != r) {
-      std::ostringstream os;
-      os << "must hold 2^(nz + np) = " << r << " vertices (got " << vertices.size() << ")";
-      detail::fail_argument(who, "vertices", os.str());
-    }
+    if (std::ssize(vertices) != r) detail::fail_count(r, vertices.size(), "2^(nz + np) vertices", who, "vertices");
     const Index nx = vertices.front().A.rows();
     const Index nu = vertices.front().B.cols();
     A_.resize(nx, nx * r);

@@ -42,9 +42,8 @@
 
 #include <Eigen/Core>
 
+#include <iterator>
 #include <optional>
-#include <sstream>
-#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -100,18 +99,11 @@ class TakagiSugenoObserver
   void assign_gains(const Gains& gains, std::string_view who) {
     const Sizes s = model_.sizes();
     const Index r = model_.vertex_count();
-    const auto require_count = [&](std::size_t count, std::string_view argument) {
-      if (static_cast<Index>(count) != r) {
-        std::ostringstream os;
-        os << "must hold one matrix per vertex (" << r << ", got " << count << ")";
-        detail::fail_argument(who, argument, os.str());
-      }
-    };
-    require_count(gains.L.size(), "gains.L");
-    require_count(gains.K.size(), "gains.K");
+    if (std::ssize(gains.L) != r) detail::fail_count(r, gains.L.size(), "one matrix per vertex", who, "gains.L");
+    if (std::ssize(gains.K) != r) detail::fail_count(r, gains.K.size(), "one matrix per vertex", who, "gains.K");
     for (std::size_t i = 0; i < gains.L.size(); ++i) {
-      detail::require_finite_shape(gains.L[i], s.nx, s.ny, who, "gains.L[" + std::to_string(i) + "]");
-      detail::require_finite_shape(gains.K[i], s.np, s.ny, who, "gains.K[" + std::to_string(i) + "]");
+      detail::require_finite_shape(gains.L[i], s.nx, s.ny, who, "gains.L", i);
+      detail::require_finite_shape(gains.K[i], s.np, s.ny, who, "gains.K", i);
     }
     if (gains.K_theta) {
       detail::require_finite_shape(*gains.K_theta, s.np, s.np, who, "gains.K_theta");
