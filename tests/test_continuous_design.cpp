@@ -154,6 +154,12 @@ TEST(Polynomials, HelpersRefuseDataOfTheWrongShapeOrNotFiniteByName) {
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::characteristic_polynomial(a_nan), "A");
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::count_real_roots_above(poly({1, nan, 1}), -1.0), "p");
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::count_real_roots_above(poly({1, 0, -1}), nan), "a");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::strictly_positive_real<double>(poly({1, 1}), poly({1, nan, 6})), "denominator");
+  // Finite coefficients whose product N(s)D(-s) overflows: refused, not judged.
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::strictly_positive_real<double>(poly({1e200, 1e200}), poly({1, 1e200, 1e200})),
+                                   "numerator");
+  EXPECT_CONFIGURATION_ERROR_NAMES((void)adaptobs::has_hurwitz_characteristic_polynomial(a_nan), "m");
+  EXPECT_TRUE(adaptobs::has_hurwitz_characteristic_polynomial(Eigen::MatrixXd(0, 3)));  // empty: no eigenvalue
   EXPECT_EQ(adaptobs::observability_matrix(a, Eigen::RowVector3d(1, 0, 0)).rows(), 3);
 }
 

@@ -78,10 +78,10 @@ template <typename Scalar>
 template <class Derived>
 [[nodiscard]] bool has_hurwitz_characteristic_polynomial(const Eigen::MatrixBase<Derived>& m) {
   constexpr std::string_view who = "has_hurwitz_characteristic_polynomial";
-  if (m.rows() != m.cols()) detail::fail_not_square(m.rows(), m.cols(), who, "m");
   if (m.size() == 0) return true;
+  if (m.rows() != m.cols()) detail::fail_not_square(m.rows(), m.cols(), who, "m");
   const std::vector<typename Derived::Scalar> a = detail::column_major_entries(m);
-  detail::require(detail::all_finite_coefficients(a), who, "m", "must be finite");
+  detail::require(detail::all_finite_coefficients(a), who, "m", "must contain only finite numbers");
   return detail::is_hurwitz(detail::characteristic_coefficients(a, m.rows()));
 }
 

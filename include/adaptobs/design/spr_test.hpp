@@ -57,6 +57,8 @@ template <typename Scalar>
           "must be monic of degree at least 1");
   const Index n = std::ssize(denominator) - 1;
   require(std::ssize(numerator) <= n, who, "numerator", "must have degree below the denominator's");
+  require(all_finite_coefficients(numerator), who, "numerator", "must contain only finite numbers");
+  require(all_finite_coefficients(denominator), who, "denominator", "must contain only finite numbers");
   // N padded to n coefficients (degree ≤ n − 1).
   Coefficients<Scalar> num(static_cast<std::size_t>(n), Scalar(0));
   std::copy(numerator.begin(), numerator.end(), num.end() - std::ssize(numerator));
@@ -91,6 +93,9 @@ template <typename Scalar>
   Index degree = q_terms - 1;
   while (degree > 0 && std::abs(q_asc[degree]) <= Scalar(1e-10) * q_scale) --degree;
   q.assign(q_asc.rend() - (degree + 1), q_asc.rend());
+  // The Sturm count below needs finite coefficients (its root scaling reads their exponents).
+  require(all_finite_coefficients(q), who, "numerator",
+          "times the denominator overflows the floating-point range (Re G(jw) |D(jw)|^2)");
 
   // q(0) > 0 is checked below, so a root on [0, ∞) is a root in (0, ∞) (Sturm count).
   const bool nonnegative_root = count_real_roots_above<Scalar>(q, Scalar(0), Scalar(1e-10)) > 0;

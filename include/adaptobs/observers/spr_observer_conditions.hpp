@@ -34,7 +34,8 @@ void require_spr_error_system(const TransformedSystem<D>& so, const typename D::
                               const Eigen::MatrixBase<DGamma>& gamma, std::string_view gamma_name,
                               std::string_view name) {
   const typename D::StateMatrix closed = so.Ao - k * so.Co;
-  // The transform and the gains are validated, so the triple's shapes hold.
+  // The transform and the gains are validated, so the triple's shapes hold; a closed
+  // loop that overflows is refused by spr_conditions, naming its numerator.
   const auto g = transfer_coefficients(closed, gamma, so.Co);
   Coefficients<typename D::Scalar> q;
   if (!spr_conditions(g.numerator, g.denominator, q))
