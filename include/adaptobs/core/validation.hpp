@@ -9,6 +9,7 @@
 
 #include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/detail/finite.hpp>
+#include <adaptobs/core/detail/message.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 
@@ -18,7 +19,6 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -44,30 +44,30 @@ namespace detail {
 // The failures of the shape checks format their message outside the templates, so
 // that a translation unit compiles each once rather than once per matrix type.
 [[noreturn]] inline void fail_not_square(Index rows, Index cols, std::string_view who, std::string_view argument) {
-  std::ostringstream os;
+  Message os;
   os << "must be square (got " << rows << "x" << cols << ")";
-  fail_argument(who, argument, os.str());
+  fail_argument(who, argument, std::move(os).str());
 }
 
 [[noreturn]] inline void fail_shape(Index rows, Index cols, Index got_rows, Index got_cols, std::string_view who,
                                     std::string_view argument) {
-  std::ostringstream os;
+  Message os;
   os << "must be " << rows << "x" << cols << " (got " << got_rows << "x" << got_cols << ")";
-  fail_argument(who, argument, os.str());
+  fail_argument(who, argument, std::move(os).str());
 }
 
 /// A list argument (one matrix per vertex, per mode, ...) of the wrong length:
 /// "must hold <what> (<expected>, got <got>)".
 [[noreturn]] inline void fail_count(Index expected, std::size_t got, std::string_view what, std::string_view who,
                                     std::string_view argument) {
-  std::ostringstream os;
+  Message os;
   os << "must hold " << what << " (" << expected << ", got " << got << ")";
-  fail_argument(who, argument, os.str());
+  fail_argument(who, argument, std::move(os).str());
 }
 
 /// "list[index]", element `index` of a list argument as an error names it.
 [[nodiscard]] inline std::string element_name(std::string_view list, std::size_t index) {
-  return std::string(list).append("[").append(std::to_string(index)).append("]");
+  return std::move(Message() << list << "[" << index << "]").str();
 }
 
 inline void require(bool condition, std::string_view who, std::string_view argument,
@@ -80,9 +80,9 @@ template <typename Scalar>
 void require_finite_with_sign(bool sign_holds, Scalar value, std::string_view who, std::string_view argument,
                               std::string_view what) {
   if (!sign_holds || !std::isfinite(value)) {
-    std::ostringstream os;
+    Message os;
     os << "must be " << what << " and finite (got " << value << ")";
-    fail_argument(who, argument, os.str());
+    fail_argument(who, argument, std::move(os).str());
   }
 }
 
@@ -195,11 +195,11 @@ void require_system_sizes(const System& s, const Sizes& sizes, std::string_view 
   if (s.A.rows() == sizes.nx && s.A.cols() == sizes.nx && s.B.rows() == sizes.nx && s.B.cols() == sizes.nu &&
       s.C.rows() == sizes.ny && s.C.cols() == sizes.nx)
     return;
-  std::ostringstream os;
+  Message os;
   os << "returns A " << s.A.rows() << "x" << s.A.cols() << ", B " << s.B.rows() << "x" << s.B.cols() << ", C "
      << s.C.rows() << "x" << s.C.cols() << " where the model's sizes give A " << sizes.nx << "x" << sizes.nx << ", B "
      << sizes.nx << "x" << sizes.nu << ", C " << sizes.ny << "x" << sizes.nx;
-  fail_argument(who, callable, os.str());
+  fail_argument(who, callable, std::move(os).str());
 }
 
 /// The initial estimates of an observer: a finite state column of nx entries

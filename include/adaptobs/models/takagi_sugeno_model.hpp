@@ -39,7 +39,6 @@
 #include <cstdint>
 #include <iterator>
 #include <optional>
-#include <sstream>
 #include <string_view>
 #include <type_traits>
 #include <utility>
@@ -90,10 +89,10 @@ namespace detail {
 
 [[noreturn]] inline void fail_sector(Index entry, double lower, double upper, std::string_view who,
                                      std::string_view argument) {
-  std::ostringstream os;
+  Message os;
   os << "must have lower < upper, with upper - lower finite, in every entry (entry " << entry << ": [" << lower
      << ", " << upper << "])";
-  fail_argument(who, argument, os.str());
+  fail_argument(who, argument, std::move(os).str());
 }
 
 template <typename S, int N>
