@@ -192,13 +192,12 @@ template <StateSpace D, int NZ, class F>
   const Index k = premise_bounds.size() + parameter_bounds.size();
   detail::require(k <= 20, who, "premise_bounds", "with parameter_bounds gives more than 2^20 vertices");
   const Index r = Index(1) << k;
-  std::vector<TakagiSugenoVertex<D>> vertices;
-  vertices.reserve(static_cast<std::size_t>(r));
+  std::vector<TakagiSugenoVertex<D>> vertices(static_cast<std::size_t>(r));
   Eigen::Matrix<S, NZ, 1> z;
   typename D::Parameters theta;
   for (Index i = 0; i < r; ++i) {
     vertex_point(i, premise_bounds, parameter_bounds, z, theta);
-    vertices.push_back(matrices_at(std::as_const(z), std::as_const(theta)));
+    vertices[static_cast<std::size_t>(i)] = matrices_at(std::as_const(z), std::as_const(theta));
   }
   return vertices;
 }
