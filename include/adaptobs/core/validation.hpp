@@ -46,14 +46,14 @@ namespace detail {
 [[noreturn]] inline void fail_not_square(Index rows, Index cols, std::string_view who, std::string_view argument) {
   Message os;
   os << "must be square (got " << rows << "x" << cols << ")";
-  fail_argument(who, argument, std::move(os).str());
+  fail_argument(who, argument, os.str());
 }
 
 [[noreturn]] inline void fail_shape(Index rows, Index cols, Index got_rows, Index got_cols, std::string_view who,
                                     std::string_view argument) {
   Message os;
   os << "must be " << rows << "x" << cols << " (got " << got_rows << "x" << got_cols << ")";
-  fail_argument(who, argument, std::move(os).str());
+  fail_argument(who, argument, os.str());
 }
 
 /// A list argument (one matrix per vertex, per mode, ...) of the wrong length:
@@ -62,12 +62,14 @@ namespace detail {
                                     std::string_view argument) {
   Message os;
   os << "must hold " << what << " (" << expected << ", got " << got << ")";
-  fail_argument(who, argument, std::move(os).str());
+  fail_argument(who, argument, os.str());
 }
 
 /// "list[index]", element `index` of a list argument as an error names it.
 [[nodiscard]] inline std::string element_name(std::string_view list, std::size_t index) {
-  return std::move(Message() << list << "[" << index << "]").str();
+  Message name;
+  name << list << "[" << index << "]";
+  return name.str();
 }
 
 inline void require(bool condition, std::string_view who, std::string_view argument,
@@ -82,7 +84,7 @@ void require_finite_with_sign(bool sign_holds, Scalar value, std::string_view wh
   if (!sign_holds || !std::isfinite(value)) {
     Message os;
     os << "must be " << what << " and finite (got " << value << ")";
-    fail_argument(who, argument, std::move(os).str());
+    fail_argument(who, argument, os.str());
   }
 }
 
@@ -199,7 +201,7 @@ void require_system_sizes(const System& s, const Sizes& sizes, std::string_view 
   os << "returns A " << s.A.rows() << "x" << s.A.cols() << ", B " << s.B.rows() << "x" << s.B.cols() << ", C "
      << s.C.rows() << "x" << s.C.cols() << " where the model's sizes give A " << sizes.nx << "x" << sizes.nx << ", B "
      << sizes.nx << "x" << sizes.nu << ", C " << sizes.ny << "x" << sizes.nx;
-  fail_argument(who, callable, std::move(os).str());
+  fail_argument(who, callable, os.str());
 }
 
 /// The initial estimates of an observer: a finite state column of nx entries

@@ -92,7 +92,7 @@ namespace detail {
   Message os;
   os << "must have lower < upper, with upper - lower finite, in every entry (entry " << entry << ": [" << lower
      << ", " << upper << "])";
-  fail_argument(who, argument, std::move(os).str());
+  fail_argument(who, argument, os.str());
 }
 
 template <typename S, int N>

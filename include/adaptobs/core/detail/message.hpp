@@ -14,7 +14,6 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
-#include <utility>
 
 namespace adaptobs::detail {
 
@@ -27,17 +26,14 @@ class Message {
 
   Message& operator<<(const char* text) { return *this << std::string_view(text); }
 
+  /// Integers in full, floating-point values with `%g`. `bool` and `char` are not
+  /// numbers here (a stream prints a `char` as a character): streaming one does not compile.
   template <typename Number>
-    requires std::is_arithmetic_v<Number>
+    requires std::is_arithmetic_v<Number> && (!std::is_same_v<Number, bool>) && (!std::is_same_v<Number, char>)
   Message& operator<<(Number value) {
     char digits[32];
     int length;
-    if constexpr (std::is_same_v<Number, bool>) {
-      length = std::snprintf(digits, sizeof digits, "%d", int(value));
-    } else if constexpr (std::is_same_v<Number, char>) {
-      digits[0] = value;
-      length = 1;
-    } else if constexpr (std::is_floating_point_v<Number>) {
+    if constexpr (std::is_floating_point_v<Number>) {
       length = std::snprintf(digits, sizeof digits, "%Lg", static_cast<long double>(value));
     } else if constexpr (std::is_signed_v<Number>) {
       length = std::snprintf(digits, sizeof digits, "%lld", static_cast<long long>(value));
@@ -48,8 +44,7 @@ class Message {
     return *this;
   }
 
-  [[nodiscard]] const std::string& str() const& { return text_; }
-  [[nodiscard]] std::string str() && { return std::move(text_); }
+  [[nodiscard]] const std::string& str() const noexcept { return text_; }
 
  private:
   std::string text_;

@@ -33,17 +33,12 @@ namespace adaptobs::detail {
 /// How `accumulate_product` combines the product with the destination.
 enum class Combine { assign, add, subtract };
 
-template <class Lhs, class Rhs>
-inline constexpr bool tiny_fixed_product =
+/// Every dimension of `lhs·rhs` fixed and at most `limit`.
+template <class Lhs, class Rhs, int limit>
+inline constexpr bool fixed_product_within =
     Lhs::RowsAtCompileTime != Eigen::Dynamic && Lhs::ColsAtCompileTime != Eigen::Dynamic &&
-    Rhs::ColsAtCompileTime != Eigen::Dynamic && Lhs::RowsAtCompileTime <= 3 && Lhs::ColsAtCompileTime <= 3 &&
-    Rhs::ColsAtCompileTime <= 3;
-
-template <class Lhs, class Rhs>
-inline constexpr bool small_fixed_product =
-    Lhs::RowsAtCompileTime != Eigen::Dynamic && Lhs::ColsAtCompileTime != Eigen::Dynamic &&
-    Rhs::ColsAtCompileTime != Eigen::Dynamic && Lhs::RowsAtCompileTime <= 16 && Lhs::ColsAtCompileTime <= 16 &&
-    Rhs::ColsAtCompileTime <= 16;
+    Rhs::ColsAtCompileTime != Eigen::Dynamic && Lhs::RowsAtCompileTime <= limit &&
+    Lhs::ColsAtCompileTime <= limit && Rhs::ColsAtCompileTime <= limit;
 
 /// `dst (=, +=, −=) lhs·rhs`. An empty inner dimension (a model without inputs
 /// or without parameters) gives the zero product without forming it: Eigen's
@@ -55,7 +50,7 @@ void accumulate_product(Eigen::MatrixBase<Dst>& dst, const Eigen::MatrixBase<Lhs
   if (Lhs::ColsAtCompileTime == 0 || lhs.cols() == 0) {
     if constexpr (how == Combine::assign) dst.setZero();
   } else if constexpr (Lhs::ColsAtCompileTime != 0) {  // (an empty product type has no evaluator)
-    if constexpr (tiny_fixed_product<Lhs, Rhs>) {
+    if constexpr (fixed_product_within<Lhs, Rhs, 3>) {
       // Each entry an inner product summed in ascending order.
       for (Index j = 0; j < Rhs::ColsAtCompileTime; ++j)
         for (Index i = 0; i < Lhs::RowsAtCompileTime; ++i) {
@@ -69,7 +64,7 @@ void accumulate_product(Eigen::MatrixBase<Dst>& dst, const Eigen::MatrixBase<Lhs
             dst.coeffRef(i, j) -= sum;
           }
         }
-    } else if constexpr (small_fixed_product<Lhs, Rhs>) {
+    } else if constexpr (fixed_product_within<Lhs, Rhs, 16>) {
       if constexpr (how == Combine::assign) {
         dst.noalias() = lhs.derived().lazyProduct(rhs.derived());
       } else if constexpr (how == Combine::add) {
