@@ -338,7 +338,7 @@ class TakagiSugenoModel : public SizedBy<D> {
 };
 
 /// What a Takagi–Sugeno observer reads of its model: sizes, the vertex matrices
-/// \f$(A_i, B_i)\f$ and C, the premise variables \f$z(x, u, \theta)\f$, their weights
+/// stacked as \f$[A_1 \cdots A_r]\f$ and \f$[B_1 \cdots B_r]\f$, and C, the premise variables \f$z(x, u, \theta)\f$, their weights
 /// \f$h_i(z, \theta)\f$ and the sectors of z and θ (`TakagiSugenoModel` is one).
 template <class M>
 concept TakagiSugenoSystem =
@@ -350,8 +350,8 @@ concept TakagiSugenoSystem =
       { m.sizes() } -> std::same_as<Sizes>;
       { m.vertex_count() } -> std::convertible_to<Index>;
       { m.premise_count() } -> std::convertible_to<Index>;
-      m.A(i);
-      m.B(i);
+      m.vertex_state_matrices()(i, i);
+      m.vertex_input_matrices()(i, i);
       m.C();
       { m.premises(x, u, theta) } -> std::convertible_to<typename M::PremiseVector>;
       m.weights(z, theta, h);

@@ -111,14 +111,22 @@ class TakagiSugenoObserver
     gains_ = gains;
     // [V_1 … V_r], V_i = [[A_i, B_i, L_i], [0, 0, K_{y,i}]], so that
     // [x̂⁺; Δθ̂] = Σ ĥ_i V_i [x̂; u; y − Cx̂].
+    // Read from the stacked [A_1 … A_r] and [B_1 … B_r], entry by entry: no block type per vertex.
+    const auto& A = model_.vertex_state_matrices();
+    const auto& B = model_.vertex_input_matrices();
     const Index nv = s.nx + s.nu + s.ny;
     detail::zero_resize(vertex_maps_, s.nx + s.np, nv * r);
     for (Index i = 0; i < r; ++i) {
       const Index first = i * nv;
-      detail::copy_entries(vertex_maps_, 0, first, model_.A(i));
-      detail::copy_entries(vertex_maps_, 0, first + s.nx, model_.B(i));
-      detail::copy_entries(vertex_maps_, 0, first + s.nx + s.nu, gains_.L[static_cast<std::size_t>(i)]);
-      detail::copy_entries(vertex_maps_, s.nx, first + s.nx + s.nu, gains_.K[static_cast<std::size_t>(i)]);
+      const auto& L = gains_.L[static_cast<std::size_t>(i)];
+      const auto& K = gains_.K[static_cast<std::size_t>(i)];
+      for (Index a = 0; a < s.nx; ++a) {
+        for (Index j = 0; j < s.nx; ++j) vertex_maps_(a, first + j) = A(a, i * s.nx + j);
+        for (Index j = 0; j < s.nu; ++j) vertex_maps_(a, first + s.nx + j) = B(a, i * s.nu + j);
+        for (Index j = 0; j < s.ny; ++j) vertex_maps_(a, first + s.nx + s.nu + j) = L(a, j);
+      }
+      for (Index a = 0; a < s.np; ++a)
+        for (Index j = 0; j < s.ny; ++j) vertex_maps_(s.nx + a, first + s.nx + s.nu + j) = K(a, j);
     }
   }
 
@@ -140,18 +148,13 @@ class TakagiSugenoObserver
   struct Workspace {
     PremiseVector z;
     Weights h;
-    using Stacked = Eigen::Matrix<Scalar, nv_at_compile_time, 1>;
-    using Next = Eigen::Matrix<Scalar, na_at_compile_time, 1>;
-    Stacked v;  // [x̂; u; y − Cx̂]
-    Next next;  // [x̂⁺; Δθ̂]
+    Output e;  // D_k(y_k − Cx̂_k)
     State x;
     Parameters theta;
     void resize(const Sizes& s, const Model& m) {
-      const Index nv = s.nx + s.nu + s.ny;
       detail::zero_resize(z, m.premise_count());
       detail::zero_resize(h, m.vertex_count());
-      detail::zero_resize(v, nv);
-      detail::zero_resize(next, s.nx + s.np);
+      detail::zero_resize(e, s.ny);
       detail::zero_resize(x, s.nx);
       detail::zero_resize(theta, s.np);
     }
@@ -162,7 +165,7 @@ class TakagiSugenoObserver
   /// \f$\hat z_k\f$, `nonfinite_result` when the step would produce one; both
   /// change nothing.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
-    const Index nx = x_.rows(), nu = sample.u.rows(), ny = sample.y.rows(), np = theta_.rows();
+    const Index nx = x_.rows(), ny = sample.y.rows(), np = theta_.rows();
 
     // Premise variables at the estimates, ẑ_k = z(x̂_k, u_k, θ̂_k) (they may use unmeasured states).
     w.z = model_.premises(x_, sample.u, theta_);
@@ -170,22 +173,19 @@ class TakagiSugenoObserver
     /// Weights \f$\hat h_i = h_i(\hat z_k, \hat\theta_k)\f$ with \f$\hat z_k, \hat\theta_k\f$ clipped to their sectors (10), Remark 1.
     model_.weights(w.z, theta_, w.h);
 
-    // v = [x̂_k; u_k; D_k(y_k − C x̂_k)].
-    detail::copy_entries(w.v, 0, 0, x_);
-    detail::copy_entries(w.v, nx, 0, sample.u);
+    // e = D_k(y_k − C x̂_k).
     for (Index i = 0; i < ny; ++i) {
       Scalar e = sample.y(i);
       for (Index j = 0; j < nx; ++j) e -= model_.C()(i, j) * x_(j);
-      w.v(nx + nu + i) = (present && !(*present)(i)) ? Scalar(0) : e;
+      w.e(i) = (present && !(*present)(i)) ? Scalar(0) : e;
     }
 
     /// (65) \f$\hat x_{k+1} = \sum_i\hat h_i[A_i\hat x_k + B_iu_k + L_i(y_k - C\hat x_k)]\f$ and
     /// \f$\hat\theta_{k+1} = \hat\theta_k + \sum_i\hat h_iK_{y,i}(y_k - C\hat x_k)\f$ in one sum:
     /// \f$[\hat x_{k+1}; \hat\theta_{k+1} - \hat\theta_k] = \sum_i\hat h_i(V_iv)\f$ with
     /// \f$V_i = \begin{bmatrix} A_i & B_i & L_i \\ 0 & 0 & K_{y,i}\end{bmatrix}\f$.
-    weighted_vertex_step(w.h, w.v, w.next);
-    for (Index i = 0; i < nx; ++i) w.x(i) = w.next(i);
-    for (Index i = 0; i < np; ++i) w.theta(i) = theta_(i) + w.next(nx + i);
+    for (Index a = 0; a < nx; ++a) w.x(a) = weighted_vertex_row(a, w.h, sample.u, w.e);
+    for (Index a = 0; a < np; ++a) w.theta(a) = theta_(a) + weighted_vertex_row(nx + a, w.h, sample.u, w.e);
     /// (21) adds the leakage \f$-\sum_i\hat h_iK_\theta\hat\theta_k = -K_\theta\hat\theta_k\f$ (\f$\sum_i\hat h_i = 1\f$).
     if (gains_.K_theta)
       for (Index i = 0; i < np; ++i)
@@ -198,26 +198,25 @@ class TakagiSugenoObserver
     detail::commit(theta_, w.theta);
     detail::commit(weights_, w.h);
     detail::commit(premises_, w.z);
-    for (Index i = 0; i < ny; ++i) this->output_error_(i) = w.v(nx + nu + i);
+    detail::commit(this->output_error_, w.e);
     return UpdateStatus::accepted;
   }
 
-  // next = Σ_i ĥ_i (V_i v), one entry at a time. Plain loops over the stored entries:
+  // Row a of Σ_i ĥ_i (V_i v), v = [x̂; u; e]. Plain loops over the stored entries:
   // they run as fast as Eigen's block expressions here (r small blocks of a few
   // entries each) and cost a fraction of their compile time.
-  template <class DH>
-  void weighted_vertex_step(const Eigen::MatrixBase<DH>& h, const typename Workspace::Stacked& v,
-                            typename Workspace::Next& next) const {
-    const Index nv = v.size(), na = next.size();
-    for (Index a = 0; a < na; ++a) {
-      Scalar sum(0);
-      for (Index i = 0; i < h.size(); ++i) {
-        Scalar row(0);
-        for (Index j = 0; j < nv; ++j) row += vertex_maps_(a, i * nv + j) * v(j);
-        sum += h(i) * row;
-      }
-      next(a) = sum;
+  Scalar weighted_vertex_row(Index a, const Weights& h, const typename Dims::Input& u, const Output& e) const {
+    const Index nx = x_.size(), nu = u.size(), ny = e.size(), nv = nx + nu + ny;
+    Scalar sum(0);
+    for (Index i = 0; i < h.size(); ++i) {
+      const Index first = i * nv;
+      Scalar row(0);
+      for (Index j = 0; j < nx; ++j) row += vertex_maps_(a, first + j) * x_(j);
+      for (Index j = 0; j < nu; ++j) row += vertex_maps_(a, first + nx + j) * u(j);
+      for (Index j = 0; j < ny; ++j) row += vertex_maps_(a, first + nx + nu + j) * e(j);
+      sum += h(i) * row;
     }
+    return sum;
   }
 
   Model model_;
