@@ -199,6 +199,62 @@ TEST(TakagiSugeno, UpdateIsEquation65) {
   EXPECT_TRUE(observer.premises_in_sectors());
 }
 
+// (65) with every block of V_i = [[A_i, B_i, L_i], [0, 0, K_{y,i}]] distinct between
+// vertices and non-square (nx = 3, nu = 2, ny = 2): the update reads each from its
+// own place. The reference goes through the model's A(i), B(i), one vertex at a time.
+TEST(TakagiSugeno, UpdateIsEquation65WithVertexDependentInputMatricesAndSeveralChannels) {
+  using Dims = adaptobs::Dimensions<double, 3, 2, 2, 1>;
+  using Vector1 = Eigen::Matrix<double, 1, 1>;
+  const Eigen::Matrix3d A0{{0.5, 0.1, 0}, {-0.2, 0.6, 0.1}, {0.05, 0, 0.7}};
+  const Eigen::Matrix3d A1{{0.1, 0, 0.2}, {0, -0.1, 0}, {0.3, 0.1, 0}};
+  const Eigen::Matrix3d A2{{0, 0.2, 0}, {0.1, 0, -0.3}, {0, 0.2, 0.1}};
+  const Eigen::Matrix<double, 3, 2> B0{{1, 0}, {0, 0.5}, {0.2, 0.3}};
+  const Eigen::Matrix<double, 3, 2> B1{{0, 0.4}, {-0.6, 0}, {0.1, 0}};
+  const Eigen::Matrix<double, 3, 2> B2{{0.3, 0}, {0, -0.2}, {0, 0.7}};
+  // z = u1 ∈ [0, 1], θ ∈ [−1, 1]: 4 vertices.
+  const auto matrices_at = [&](const Eigen::Matrix<double, 1, 1>& z, const Vector1& theta) {
+    adaptobs::TakagiSugenoVertex<Dims> m;
+    m.A = A0 + z(0) * A1 + theta(0) * A2;
+    m.B = B0 + z(0) * B1 + theta(0) * B2;
+    return m;
+  };
+  const auto premises = [](const Eigen::Vector3d&, const Eigen::Vector2d& u, const Vector1&) {
+    return Vector1(u(0));
+  };
+  const Eigen::Matrix<double, 2, 3> C{{1, 0, 0.5}, {0, 1, -0.25}};
+  const adaptobs::SectorBounds<double, 1> z_bounds{Vector1(0), Vector1(1)};
+  const adaptobs::SectorBounds<double, 1> theta_bounds{Vector1(-1), Vector1(1)};
+  const auto model = adaptobs::make_takagi_sugeno_model<Dims, 1>(matrices_at, C, premises, z_bounds, theta_bounds);
+
+  adaptobs::TakagiSugenoGains<Dims> gains;
+  for (int i = 0; i < 4; ++i) {
+    gains.L.push_back(Eigen::Matrix<double, 3, 2>{{0.1 * i, 0.2}, {0.05, -0.1 * i}, {0.3, 0.02 * i}});
+    gains.K.push_back(Eigen::RowVector2d(0.01 * (i + 1), -0.02 * i));
+  }
+  const Eigen::Vector3d x0(1, -2, 0.5);
+  const Vector1 th0(0.3);
+  adaptobs::TakagiSugenoObserver observer(model, gains, x0, th0);
+  const adaptobs::InputOutputSample<Dims> sample{Eigen::Vector2d(0.25, -1.5), Eigen::Vector2d(1.4, -2.2)};
+  ASSERT_EQ(observer.update(sample), UpdateStatus::accepted);
+
+  const auto h = model.weights(Vector1(sample.u(0)), th0);
+  ASSERT_GT(h.minCoeff(), 0.05);  // every vertex takes part
+  const Eigen::Vector2d e = sample.y - C * x0;
+  Eigen::Vector3d x1 = Eigen::Vector3d::Zero();
+  double dtheta = 0;
+  for (Index i = 0; i < 4; ++i) {
+    x1 += h(i) * (model.A(i) * x0 + model.B(i) * sample.u + gains.L[std::size_t(i)] * e);
+    dtheta += h(i) * gains.K[std::size_t(i)].dot(e);
+  }
+  // The affine model: Σ h_i A_i = A(ẑ, θ̂) and Σ h_i B_i = B(ẑ, θ̂).
+  const auto at_estimates = matrices_at(Vector1(sample.u(0)), th0);
+  EXPECT_MATRIX_NEAR(model.blended_A(h), at_estimates.A, 1e-15, 1e-15);
+  EXPECT_MATRIX_NEAR(model.blended_B(h), at_estimates.B, 1e-15, 1e-15);
+  EXPECT_MATRIX_NEAR(observer.state(), x1, 1e-14, 1e-14);
+  EXPECT_NEAR(observer.parameters()(0), th0(0) + dtheta, 1e-15);
+  EXPECT_MATRIX_NEAR(observer.output_error(), e, 0, 0);
+}
+
 // The weights use ẑ and θ̂ clipped to their sectors; the unclipped ẑ stays visible.
 TEST(TakagiSugeno, WeightsAtEstimatedPremisesAreClippedToTheSectors) {
   const Eigen::Vector2d far_x(100, 0.01);  // ẑ2 = 100/0.41 ≫ 14.63
