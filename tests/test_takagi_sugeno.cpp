@@ -19,6 +19,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -253,6 +254,15 @@ TEST(TakagiSugeno, UpdateIsEquation65WithVertexDependentInputMatricesAndSeveralC
   EXPECT_MATRIX_NEAR(observer.state(), x1, 1e-14, 1e-14);
   EXPECT_NEAR(observer.parameters()(0), th0(0) + dtheta, 1e-15);
   EXPECT_MATRIX_NEAR(observer.output_error(), e, 0, 0);
+  // gains() reads back what the update runs on: every L_i and K_{y,i} as given.
+  const auto in_use = observer.gains();
+  ASSERT_EQ(in_use.L.size(), 4u);
+  ASSERT_EQ(in_use.K.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(in_use.L[i], gains.L[i]) << i;
+    EXPECT_EQ(in_use.K[i], gains.K[i]) << i;
+  }
+  EXPECT_FALSE(in_use.K_theta);
 }
 
 // The weights use ẑ and θ̂ clipped to their sectors; the unclipped ẑ stays visible.
@@ -433,6 +443,10 @@ TEST(TakagiSugeno, LeakageGainAddsMinusKthetaThetaAndZeroLeakageIsEquation65) {
   }
   EXPECT_TRUE(adaptobs::testing::bitwise_equal(zero_leak.state(), plain.state()));
   EXPECT_TRUE(adaptobs::testing::bitwise_equal(zero_leak.parameters(), plain.parameters()));
+  auto leaky = plain;
+  leaky.set_gains(gains);
+  EXPECT_EQ(leaky.gains().K_theta, gains.K_theta);
+  EXPECT_EQ(zero_leak.gains().K_theta, std::optional(wwtp::Vector1<double>(0.0)));
 }
 
 // --- Simulation runner --------------------------------------------------------
@@ -535,6 +549,13 @@ TEST(TakagiSugeno, BadConfigurationNamesTheArgument) {
                "x0");
   auto observer = adaptobs::TakagiSugenoObserver(model, wwtp::paper_gains<double>(), x0, th0);
   EXPECT_CONFIGURATION_ERROR_NAMES(observer.reset(x0, wwtp::Vector1<double>(std::nan(""))), "theta0");
+  // Bad gains given later change nothing.
+  gains = wwtp::paper_gains<double>();
+  gains.L[1](0) = std::nan("");
+  gains.K_theta = wwtp::Vector1<double>(0.1);
+  EXPECT_CONFIGURATION_ERROR_NAMES(observer.set_gains(gains), "gains.L[1]");
+  EXPECT_EQ(observer.gains().L[1], wwtp::paper_gains<double>().L[1]);
+  EXPECT_FALSE(observer.has_leakage());
 }
 
 // --- Dynamic sizes --------------------------------------------------------------

@@ -66,11 +66,12 @@ class TakagiSugenoObserver
   /// \param gains \f$L_i, K_{y,i}\f$ per vertex (and \f$K_\theta\f$ for eq. (21));
   /// \param x0, theta0 initial estimates \f$\hat x_0, \hat\theta_0\f$.
   TakagiSugenoObserver(Model model, const Gains& gains, State x0, Parameters theta0)
-      : model_(std::move(model)), x_(std::move(x0)), theta_(std::move(theta0)) {
+      : model_(std::move(model)), K_theta_(gains.K_theta), x_(std::move(x0)), theta_(std::move(theta0)) {
     constexpr std::string_view who = "TakagiSugenoObserver";
     const Sizes s = model_.sizes();
     detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
-    assign_gains(gains, who);
+    check_gains(gains, who);
+    fill_vertex_maps(gains);
     detail::zero_resize(weights_, model_.vertex_count());
     detail::zero_resize(premises_, model_.premise_count());
     detail::zero_resize(this->output_error_, s.ny);
@@ -86,17 +87,43 @@ class TakagiSugenoObserver
   /// False when the last accepted update had to clip \f$\hat z_k\f$ or \f$\hat\theta_k\f$ to its sector
   /// (the estimates left the region where the model is exact; Remark 8).
   [[nodiscard]] bool premises_in_sectors() const noexcept { return in_sectors_; }
-  [[nodiscard]] const Gains& gains() const noexcept { return gains_; }
+  /// The gains in use, read back from the vertex maps \f$V_i\f$ the update runs on.
+  /// Returned by value: the observer keeps no second copy of them, and a
+  /// program that never asks compiles no copy of their vectors.
+  [[nodiscard]] Gains gains() const {
+    const Sizes s = model_.sizes();
+    const Index r = model_.vertex_count(), nv = s.nx + s.nu + s.ny;
+    Gains g;
+    g.L.resize(static_cast<std::size_t>(r));
+    g.K.resize(static_cast<std::size_t>(r));
+    for (Index i = 0; i < r; ++i) {
+      auto& L = g.L[static_cast<std::size_t>(i)];
+      auto& K = g.K[static_cast<std::size_t>(i)];
+      L.resize(s.nx, s.ny);
+      K.resize(s.np, s.ny);
+      const Index first = i * nv + s.nx + s.nu;
+      for (Index j = 0; j < s.ny; ++j) {
+        for (Index a = 0; a < s.nx; ++a) L(a, j) = vertex_maps_(a, first + j);
+        for (Index a = 0; a < s.np; ++a) K(a, j) = vertex_maps_(s.nx + a, first + j);
+      }
+    }
+    g.K_theta = K_theta_;
+    return g;
+  }
   /// True for the time-varying-parameter observer (eq. (21), \f$K_\theta\f$ set).
-  [[nodiscard]] bool has_leakage() const noexcept { return gains_.K_theta.has_value(); }
+  [[nodiscard]] bool has_leakage() const noexcept { return K_theta_.has_value(); }
 
   /// Replaces the gains (checked as at construction) from the next update on;
   /// bad gains throw `ConfigurationError` naming the vertex (`gains.L[i]`) and
   /// change nothing.
-  void set_gains(const Gains& gains) { assign_gains(gains, "TakagiSugenoObserver::set_gains"); }
+  void set_gains(const Gains& gains) {
+    check_gains(gains, "TakagiSugenoObserver::set_gains");
+    K_theta_ = gains.K_theta;
+    fill_vertex_maps(gains);
+  }
 
  private:
-  void assign_gains(const Gains& gains, std::string_view who) {
+  void check_gains(const Gains& gains, std::string_view who) const {
     const Sizes s = model_.sizes();
     const Index r = model_.vertex_count();
     if (std::ssize(gains.L) != r) detail::fail_count(r, gains.L.size(), "one matrix per vertex", who, "gains.L");
@@ -108,7 +135,11 @@ class TakagiSugenoObserver
     if (gains.K_theta) {
       detail::require_finite_shape(*gains.K_theta, s.np, s.np, who, "gains.K_theta");
     }
-    gains_ = gains;
+  }
+
+  void fill_vertex_maps(const Gains& gains) {
+    const Sizes s = model_.sizes();
+    const Index r = model_.vertex_count();
     // [V_1 … V_r], V_i = [[A_i, B_i, L_i], [0, 0, K_{y,i}]], so that
     // [x̂⁺; Δθ̂] = Σ ĥ_i V_i [x̂; u; y − Cx̂].
     // Read from the stacked [A_1 … A_r] and [B_1 … B_r], entry by entry: no block type per vertex.
@@ -118,8 +149,8 @@ class TakagiSugenoObserver
     detail::zero_resize(vertex_maps_, s.nx + s.np, nv * r);
     for (Index i = 0; i < r; ++i) {
       const Index first = i * nv;
-      const auto& L = gains_.L[static_cast<std::size_t>(i)];
-      const auto& K = gains_.K[static_cast<std::size_t>(i)];
+      const auto& L = gains.L[static_cast<std::size_t>(i)];
+      const auto& K = gains.K[static_cast<std::size_t>(i)];
       for (Index a = 0; a < s.nx; ++a) {
         for (Index j = 0; j < s.nx; ++j) vertex_maps_(a, first + j) = A(a, i * s.nx + j);
         for (Index j = 0; j < s.nu; ++j) vertex_maps_(a, first + s.nx + j) = B(a, i * s.nu + j);
@@ -187,9 +218,9 @@ class TakagiSugenoObserver
     for (Index a = 0; a < nx; ++a) w.x(a) = weighted_vertex_row(a, w.h, sample.u, w.e);
     for (Index a = 0; a < np; ++a) w.theta(a) = theta_(a) + weighted_vertex_row(nx + a, w.h, sample.u, w.e);
     /// (21) adds the leakage \f$-\sum_i\hat h_iK_\theta\hat\theta_k = -K_\theta\hat\theta_k\f$ (\f$\sum_i\hat h_i = 1\f$).
-    if (gains_.K_theta)
+    if (K_theta_)
       for (Index i = 0; i < np; ++i)
-        for (Index j = 0; j < np; ++j) w.theta(i) -= (*gains_.K_theta)(i, j) * theta_(j);
+        for (Index j = 0; j < np; ++j) w.theta(i) -= (*K_theta_)(i, j) * theta_(j);
 
     if (!detail::all_finite(w.x, w.theta)) return UpdateStatus::nonfinite_result;
 
@@ -220,7 +251,7 @@ class TakagiSugenoObserver
   }
 
   Model model_;
-  Gains gains_;
+  std::optional<typename Dims::ParameterMatrix> K_theta_;  // K_θ of eq. (21), empty for (65)
   VertexMaps vertex_maps_;
   State x_;
   Parameters theta_;
