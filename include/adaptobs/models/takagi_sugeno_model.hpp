@@ -138,7 +138,9 @@ template <typename S, int NZ, int NP, class DZ, class DT, class DH>
 void sector_weights(const Eigen::MatrixBase<DZ>& z, const SectorBounds<S, NZ>& premise_bounds,
                     const Eigen::MatrixBase<DT>& theta, const SectorBounds<S, NP>& parameter_bounds,
                     Eigen::MatrixBase<DH>& h) {
-  h.setZero();  // every entry is written below; this lets compilers see it
+  // Every entry is written below; zeroing first lets compilers see it. A loop, not
+  // setZero: Eigen's nullary assignment is a dozen instantiations per weight type.
+  for (Index i = 0; i < h.size(); ++i) h(i) = S(0);
   h(0) = S(1);
   Index filled = 1;
   for (Index j = 0; j < z.size(); ++j, filled *= 2)
