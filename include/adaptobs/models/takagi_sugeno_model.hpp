@@ -340,8 +340,9 @@ class TakagiSugenoModel : public SizedBy<D> {
 };
 
 /// What a Takagi–Sugeno observer reads of its model: sizes, the vertex matrices
-/// stacked as \f$[A_1 \cdots A_r]\f$ and \f$[B_1 \cdots B_r]\f$, and C, the premise variables \f$z(x, u, \theta)\f$, their weights
-/// \f$h_i(z, \theta)\f$ and the sectors of z and θ (`TakagiSugenoModel` is one).
+/// stacked as \f$[A_1 \cdots A_r]\f$ and \f$[B_1 \cdots B_r]\f$, and C, the premise
+/// variables \f$z(x, u, \theta)\f$, their weights \f$h_i(z, \theta)\f$ and the sectors
+/// of z and θ (`TakagiSugenoModel` is one).
 template <class M>
 concept TakagiSugenoSystem =
     StateSpace<typename M::Dims> &&
