@@ -125,10 +125,8 @@ void require_finite(const Eigen::DenseBase<Derived>& m, std::string_view who, st
 template <class Derived>
 void require_finite_shape(const Eigen::DenseBase<Derived>& m, Index rows, Index cols, std::string_view who,
                           std::string_view argument) {
-  // `require_shape` and `require_finite` written out: two function templates
-  // fewer per matrix type checked.
-  if (m.rows() != rows || m.cols() != cols) fail_shape(rows, cols, m.rows(), m.cols(), who, argument);
-  if (!finite_entries(m)) fail_argument(who, argument, "must contain only finite numbers");
+  require_shape(m, rows, cols, who, argument);
+  require_finite(m, who, argument);
 }
 
 /// `require_finite_shape` of element `index` of the list `list`, named

@@ -149,15 +149,12 @@ class TakagiSugenoObserver
     detail::zero_resize(vertex_maps_, s.nx + s.np, nv * r);
     for (Index i = 0; i < r; ++i) {
       const Index first = i * nv;
-      const auto& L = gains.L[static_cast<std::size_t>(i)];
-      const auto& K = gains.K[static_cast<std::size_t>(i)];
       for (Index a = 0; a < s.nx; ++a) {
         for (Index j = 0; j < s.nx; ++j) vertex_maps_(a, first + j) = A(a, i * s.nx + j);
         for (Index j = 0; j < s.nu; ++j) vertex_maps_(a, first + s.nx + j) = B(a, i * s.nu + j);
-        for (Index j = 0; j < s.ny; ++j) vertex_maps_(a, first + s.nx + s.nu + j) = L(a, j);
       }
-      for (Index a = 0; a < s.np; ++a)
-        for (Index j = 0; j < s.ny; ++j) vertex_maps_(s.nx + a, first + s.nx + s.nu + j) = K(a, j);
+      detail::copy_entries(vertex_maps_, 0, first + s.nx + s.nu, gains.L[static_cast<std::size_t>(i)]);
+      detail::copy_entries(vertex_maps_, s.nx, first + s.nx + s.nu, gains.K[static_cast<std::size_t>(i)]);
     }
   }
 
