@@ -28,6 +28,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/discrete_update.hpp>
+#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -102,6 +103,25 @@ class AugmentedKalmanFilter
   [[nodiscard]] const State& state() const noexcept { return x_; }
   /// Covariance of the augmented estimate [x̂; θ̂].
   [[nodiscard]] const AugmentedMatrix& covariance() const noexcept { return p_; }
+  [[nodiscard]] const Covariances& covariances() const noexcept { return cov_; }
+
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the model,
+  /// the covariances, the estimates and P.
+  static constexpr std::string_view snapshot_type = "AugmentedKalmanFilter";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+    requires Snapshottable<Model>
+  static void visit_state(Self& self, Archive& archive) {
+    auto model = archive.nested("model");
+    Model::visit_state(self.model_, model);
+    archive("P0", self.cov_.P0);
+    archive("Q", self.cov_.Q);
+    archive("R", self.cov_.R);
+    archive("x", self.x_);
+    archive("theta", self.theta_);
+    archive("P", self.p_);
+    AugmentedKalmanFilter::visit_update_state(self, archive);
+  }
 
  private:
   // The rest of `reset`: the covariance back to P0.

@@ -120,6 +120,17 @@ class DiscreteLtiModel : public SizedBy<D> {
     return {system_.A.rows(), system_.B.cols(), system_.C.rows(), np_};
   }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): A, B, C; np a setting.
+  static constexpr std::string_view snapshot_type = "DiscreteLtiModel";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive("A", self.system_.A);
+    archive("B", self.system_.B);
+    archive("C", self.system_.C);
+    archive.setting("np", self.np_);
+  }
+
  private:
   DiscreteSystem<D> system_;
   Index np_;

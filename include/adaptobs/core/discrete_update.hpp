@@ -100,6 +100,14 @@ class DiscreteUpdate : public SizedBy<Dims> {
   /// The output error of the last accepted step, sized and written by the observer.
   typename Dims::Output output_error_;
 
+  /// The base's part of an observer's `visit_state` (core/snapshot.hpp): the
+  /// step counter and the last output error.
+  template <class Self, class Archive>
+  static void visit_update_state(Self& self, Archive& archive) {
+    archive("step", self.step_);
+    archive("output_error", self.output_error_);
+  }
+
   /// Checks the matrices the model gives for the current step against its
   /// sizes, before the step reads them: with run-time sizes a time-varying
   /// model can return anything, and a wrong size would be read out of bounds.

@@ -85,6 +85,24 @@ class ExcitationMonitor {
     return symmetric_eigenvalues(average())(0);
   }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the window of
+  /// contributions and the running sum; the window length a setting.
+  static constexpr std::string_view snapshot_type = "ExcitationMonitor";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.setting("window", self.window_);
+    archive("ring", self.ring_);
+    archive("sum", self.sum_);
+    archive("removed_trace", self.removed_trace_);
+    archive("next", self.next_);
+    archive("count", self.count_);
+    archive("adds_since_overflow", self.adds_since_overflow_);
+    if constexpr (Archive::reading)
+      detail::require(self.next_ < self.ring_.size() && self.count_ >= 0 && self.count_ <= self.window_, "restore",
+                      "snapshot", "holds an excitation window position outside the window");
+  }
+
   void reset() {
     for (Gramian& g : ring_) g.setZero();
     adds_since_overflow_ = window_;

@@ -40,6 +40,7 @@
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
+#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/diagnostics/excitation_monitor.hpp>
 
@@ -141,6 +142,32 @@ class GuyaderZhangObserver
   [[nodiscard]] std::optional<Scalar> excitation_level() const {
     if (!excitation_ || !excitation_->full() || !excitation_->available()) return std::nullopt;
     return excitation_->level();
+  }
+
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the model, K,
+  /// μ, the estimates, Υ and the diagnostics; the options are settings.
+  static constexpr std::string_view snapshot_type = "GuyaderZhangObserver";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+    requires Snapshottable<Model>
+  static void visit_state(Self& self, Archive& archive) {
+    auto model = archive.nested("model");
+    Model::visit_state(self.model_, model);
+    archive("K", self.gain_);
+    archive("mu", self.mu_);
+    archive("x", self.x_);
+    archive("theta", self.theta_);
+    archive("upsilon", self.upsilon_);
+    archive("closed_loop", self.closed_loop_);
+    archive("last_c_upsilon", self.last_c_upsilon_);
+    archive("last_mu", self.last_mu_);
+    archive.setting("normalized_step", self.normalized_step_);
+    archive.setting("excitation_window", self.excitation_ ? self.excitation_->window() : 0);
+    if (self.excitation_) {
+      auto excitation = archive.nested("excitation");
+      ExcitationMonitor<Scalar, Dims::np>::visit_state(*self.excitation_, excitation);
+    }
+    GuyaderZhangObserver::visit_update_state(self, archive);
   }
 
  private:

@@ -1,0 +1,146 @@
+// snapshot() and restore() (core/snapshot.hpp): an observer restored from a
+// snapshot continues bit for bit like the original; a snapshot of another
+// class, version or configuration is refused with the object unchanged.
+
+#include <adaptobs/baselines/augmented_kalman.hpp>
+#include <adaptobs/core/snapshot.hpp>
+#include <adaptobs/observers/guyader_zhang.hpp>
+
+#include "models/satellite.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace {
+
+using adaptobs::Index;
+using adaptobs::UpdateStatus;
+namespace satellite = adaptobs::examples::satellite;
+
+auto make_observer(Index window = 50) {
+  return adaptobs::GuyaderZhangObserver(satellite::model<double>(), satellite::paper_gain<double>(), satellite::mu,
+                                        satellite::initial_state_estimate<double>(),
+                                        satellite::initial_parameter_estimate<double>(),
+                                        {.excitation_window = window, .normalized_step = true});
+}
+
+auto make_filter() {
+  using Matrix6 = Eigen::Matrix<double, 6, 6>;
+  Matrix6 p0 = Matrix6::Zero();
+  p0.diagonal() << 0.1, 1e-4, 0.1, 1e-4, 1.0, 1.0;
+  const Matrix6 q = Matrix6::Identity() * 1e-10;
+  return adaptobs::AugmentedKalmanFilter(satellite::model<double>(), satellite::initial_state_estimate<double>(),
+                                         satellite::initial_parameter_estimate<double>(),
+                                         {p0, q, Eigen::Matrix2d::Identity() * 1e-4});
+}
+
+// Runs `observer` over `steps` samples of `plant`, every 7th missing its second output.
+template <class Observer, class Plant>
+void run(Observer& observer, Plant& plant, Index steps) {
+  for (Index k = 0; k < steps; ++k) {
+    const adaptobs::OutputMask<satellite::Dims<double>> present(true, plant.step() % 7 != 3);
+    ASSERT_EQ(observer.update(plant.sample(), present), UpdateStatus::accepted);
+    plant.advance();
+  }
+}
+
+template <class Observer>
+void expect_identical(const Observer& a, const Observer& b) {
+  EXPECT_EQ(a.state(), b.state());
+  EXPECT_EQ(a.parameters(), b.parameters());
+  EXPECT_EQ(a.output_error(), b.output_error());
+  EXPECT_EQ(a.step(), b.step());
+}
+
+TEST(Snapshot, ARestoredGuyaderZhangObserverContinuesBitForBit) {
+  auto plant = satellite::make_plant();
+  auto original = make_observer();
+  run(original, plant, 700);  // past the excitation window, so its ring has wrapped
+  const auto state = adaptobs::snapshot(original);
+  EXPECT_EQ(state.type, "GuyaderZhangObserver");
+  EXPECT_EQ(state.version, 1);
+
+  // Restored into an observer built with other estimates (same sizes and options).
+  auto restored = adaptobs::GuyaderZhangObserver(satellite::model<double>(), satellite::paper_gain<double>(), 1.0,
+                                                 Eigen::Vector4d::Zero(), Eigen::Vector2d::Zero(),
+                                                 {.excitation_window = 50, .normalized_step = true});
+  adaptobs::restore(restored, state);
+  expect_identical(original, restored);
+  EXPECT_EQ(restored.mu(), satellite::mu);
+  EXPECT_EQ(restored.excitation_level(), original.excitation_level());
+
+  auto plant_copy = plant;
+  run(original, plant, 900);
+  run(restored, plant_copy, 900);
+  expect_identical(original, restored);
+  EXPECT_EQ(original.upsilon(), restored.upsilon());
+  EXPECT_EQ(original.assumption2_norm(), restored.assumption2_norm());
+  ASSERT_TRUE(original.excitation_level().has_value());
+  EXPECT_EQ(*original.excitation_level(), *restored.excitation_level());
+}
+
+TEST(Snapshot, ARestoredAugmentedKalmanFilterContinuesBitForBit) {
+  auto plant = satellite::make_plant();
+  auto original = make_filter();
+  run(original, plant, 300);
+  auto restored = make_filter();
+  adaptobs::restore(restored, adaptobs::snapshot(original));
+  auto plant_copy = plant;
+  run(original, plant, 300);
+  run(restored, plant_copy, 300);
+  expect_identical(original, restored);
+  EXPECT_EQ(original.covariance(), restored.covariance());
+}
+
+// Every refusal names its reason, and the observer is exactly as before.
+template <class Mutate>
+std::string refusal(Mutate mutate) {
+  auto plant = satellite::make_plant();
+  auto source = make_observer();
+  run(source, plant, 120);
+  auto state = adaptobs::snapshot(source);
+  mutate(state);
+  auto target = make_observer();
+  const auto before = adaptobs::snapshot(target);
+  std::string message;
+  try {
+    adaptobs::restore(target, state);
+  } catch (const adaptobs::ConfigurationError& e) {
+    message = e.what();
+  }
+  const auto after = adaptobs::snapshot(target);
+  EXPECT_EQ(before.matrices.size(), after.matrices.size());
+  for (std::size_t i = 0; i < before.matrices.size(); ++i)
+    EXPECT_EQ(before.matrices[i].values, after.matrices[i].values) << before.matrices[i].name;
+  for (std::size_t i = 0; i < before.integers.size(); ++i)
+    EXPECT_EQ(before.integers[i].value, after.integers[i].value) << before.integers[i].name;
+  return message;
+}
+
+TEST(Snapshot, ASnapshotOfAnotherClassVersionOrConfigurationIsRefusedAndChangesNothing) {
+  EXPECT_EQ(refusal([](auto& s) { s.type = "AugmentedKalmanFilter"; }),
+            "restore: argument 'snapshot' is of a AugmentedKalmanFilter, not of a GuyaderZhangObserver");
+  EXPECT_EQ(refusal([](auto& s) { s.version = 2; }),
+            "restore: argument 'snapshot' is version 2 of GuyaderZhangObserver; this build reads version 1");
+  EXPECT_EQ(refusal([](auto& s) { s.integers.pop_back(); }), "restore: argument 'snapshot' has no field 'step'");
+  EXPECT_EQ(refusal([](auto& s) {
+              for (auto& i : s.integers)
+                if (i.name == "excitation_window") i.value = 10;
+            }),
+            "restore: argument 'snapshot' holds 'excitation_window' = 10 where this GuyaderZhangObserver has 50: "
+            "restore into an object built with the same configuration");
+  EXPECT_EQ(refusal([](auto& s) {
+              for (auto& m : s.matrices)
+                if (m.name == "theta") m = {"theta", 3, 1, {1, 2, 3}};
+            }),
+            "restore: argument 'snapshot' holds field 'theta' of 3x1 where this GuyaderZhangObserver has 2x1");
+  // A field read late (the excitation window's position) refused after earlier ones were read.
+  EXPECT_EQ(refusal([](auto& s) {
+              for (auto& i : s.integers)
+                if (i.name == "excitation.next") i.value = 50;
+            }),
+            "restore: argument 'snapshot' holds an excitation window position outside the window");
+}
+
+}  // namespace
