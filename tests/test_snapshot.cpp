@@ -68,6 +68,7 @@ TEST(Snapshot, ARestoredGuyaderZhangObserverContinuesBitForBit) {
   adaptobs::restore(restored, state);
   expect_identical(original, restored);
   EXPECT_EQ(restored.mu(), satellite::mu);
+  EXPECT_EQ(restored.assumption2_norm(), original.assumption2_norm());
   EXPECT_EQ(restored.excitation_level(), original.excitation_level());
 
   auto plant_copy = plant;
