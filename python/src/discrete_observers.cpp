@@ -1,0 +1,131 @@
+// The discrete-time observers and their model in Python, with run-time sizes:
+// GuyaderZhangObserver (Guyader & Zhang 2003, eq. (2a)-(2c)) and the
+// AugmentedKalmanFilter baseline, over a DiscreteLtiModel.
+
+#include "discrete_observer.hpp"
+#include "snapshot_fields.hpp"
+
+#include <adaptobs/baselines/augmented_kalman.hpp>
+#include <adaptobs/observers/guyader_zhang.hpp>
+
+#include <nanobind/stl/optional.h>
+
+#include <limits>
+
+namespace adaptobs::python {
+
+using GuyaderZhang = GuyaderZhangObserver<LtiModel>;
+using AugmentedKalman = AugmentedKalmanFilter<LtiModel>;
+
+template <>
+struct Diagnostics<GuyaderZhang> {
+  static constexpr std::array<const char*, 2> names{"assumption2_norm", "excitation_level"};
+  static void record(const GuyaderZhang& o, double* out) {
+    out[0] = o.assumption2_norm();
+    out[1] = o.excitation_level().value_or(std::numeric_limits<double>::quiet_NaN());
+  }
+};
+
+namespace {
+
+// The model of a snapshot's "model." fields.
+LtiModel model_of(const Snapshot<double>& s) {
+  return LtiModel(field(s, "model.A"), field(s, "model.B"), field(s, "model.C"), integer(s, "model.np"));
+}
+
+}  // namespace
+
+void bind_discrete_observers(nb::module_& m) {
+  nb::class_<RunResult>(m, "RunResult", "The arrays of a run(): row k is the observer after sample k.")
+      .def_ro("state", &RunResult::state, "state estimates, N x nx")
+      .def_ro("parameters", &RunResult::parameters, "parameter estimates, N x np")
+      .def_ro("output_error", &RunResult::output_error, "output errors of the accepted updates, N x ny")
+      .def_ro("status", &RunResult::status, "UpdateStatus of each sample (int8)")
+      .def_ro("diagnostics", &RunResult::diagnostics, "the observer's diagnostics after each sample, by name");
+
+  nb::class_<LtiModel>(m, "DiscreteLtiModel",
+                       "Time-invariant discrete model x_{k+1} = A x_k + B u_k + Psi_k theta, y_k = C x_k;\n"
+                       "np is the number of unknown parameters.")
+      .def(
+          "__init__",
+          [](LtiModel* self, nb::handle A, nb::handle B, nb::handle C, Index np) {
+            constexpr std::string_view who = "DiscreteLtiModel";
+            new (self) LtiModel(matrix(A, who, "A"), matrix(B, who, "B"), matrix(C, who, "C"), np);
+          },
+          nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("np"))
+      .def_prop_ro("A", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().A); })
+      .def_prop_ro("B", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().B); })
+      .def_prop_ro("C", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().C); })
+      .def_prop_ro("sizes", [](const LtiModel& self) {
+        const Sizes s = self.sizes();
+        return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
+      });
+
+  auto gz = nb::class_<Bound<GuyaderZhang>>(
+      m, "GuyaderZhangObserver",
+      "Guyader-Zhang adaptive observer (Guyader & Zhang 2003, eq. (2a)-(2c)):\n"
+      "  (2a) Upsilon_{k+1} = (A - K C) Upsilon_k + Psi_k\n"
+      "  (2b) theta_{k+1} = theta_k + mu Upsilon_k^T C^T (y_k - C x_k)\n"
+      "  (2c) x_{k+1} = A x_k + B u_k + Psi_k theta_k + K (y_k - C x_k) + Upsilon_{k+1} (theta_{k+1} - theta_k)\n"
+      "K must make A - K C Schur stable (assumption 1) and mu > 0 be small enough for assumption 2,\n"
+      "||sqrt(mu) C Upsilon_k|| <= 1. excitation_window L > 0 turns on the assumption-3 monitor (eq. (4));\n"
+      "normalized_step uses mu_k = mu / max(1, mu ||C Upsilon_k||_F^2), which keeps assumption 2 at every\n"
+      "step (turn it on whenever outputs can be lost).");
+  gz.def(
+        "__init__",
+        [](Bound<GuyaderZhang>* self, const LtiModel& model, nb::handle K, double mu, nb::handle x0,
+           nb::handle theta0, Index excitation_window, bool normalized_step) {
+          constexpr std::string_view who = "GuyaderZhangObserver";
+          new (self) Bound<GuyaderZhang>(GuyaderZhang(model, matrix(K, who, "K"), mu, vector(x0, who, "x0"),
+                                                      vector(theta0, who, "theta0"),
+                                                      {.excitation_window = excitation_window,
+                                                       .normalized_step = normalized_step}));
+        },
+        nb::arg("model"), nb::arg("K"), nb::arg("mu"), nb::arg("x0"), nb::arg("theta0"), nb::kw_only(),
+        nb::arg("excitation_window") = 0, nb::arg("normalized_step") = false)
+      .def_prop_ro("upsilon", [](const Bound<GuyaderZhang>& b) { return Eigen::MatrixXd(b.observer.upsilon()); },
+                   "Filtered regressor Upsilon_k (eq. (2a)).")
+      .def_prop_ro("K", [](const Bound<GuyaderZhang>& b) { return Eigen::MatrixXd(b.observer.gain()); })
+      .def_prop_ro("mu", [](const Bound<GuyaderZhang>& b) { return b.observer.mu(); })
+      .def(
+          "set_gain",
+          [](Bound<GuyaderZhang>& b, nb::handle K) { b.observer.set_gain(matrix(K, "GuyaderZhangObserver.set_gain", "K")); },
+          nb::arg("K"), "Gain K_k used from the next update on.")
+      .def(
+          "set_mu", [](Bound<GuyaderZhang>& b, double mu) { b.observer.set_mu(mu); }, nb::arg("mu"),
+          "Step size mu_k > 0 used from the next update on.")
+      .def_prop_ro("assumption2_norm", [](const Bound<GuyaderZhang>& b) { return b.observer.assumption2_norm(); },
+                   "||sqrt(mu_k) C Upsilon_k||_2 of the last accepted step (eq. (3)).")
+      .def_prop_ro("assumption2_holds", [](const Bound<GuyaderZhang>& b) { return b.observer.assumption2_holds(); })
+      .def_prop_ro(
+          "excitation_level", [](const Bound<GuyaderZhang>& b) { return b.observer.excitation_level(); },
+          "Excitation level alpha of assumption 3 (eq. (4)) over the last L steps; None while the monitor\n"
+          "is off or its window has not filled.");
+  bind_discrete_observer(gz, [](const Snapshot<double>& s) {
+    return GuyaderZhang(model_of(s), field(s, "K"), scalar(s, "mu"), field(s, "x"), field(s, "theta"),
+                        {.excitation_window = integer(s, "excitation_window"),
+                         .normalized_step = integer(s, "normalized_step") != 0});
+  });
+
+  auto akf = nb::class_<Bound<AugmentedKalman>>(
+      m, "AugmentedKalmanFilter",
+      "Baseline: the Kalman filter on the augmented state [x; theta] (Guyader & Zhang 2003, section 1;\n"
+      "Zhang 2005, appendix), Joseph form. P0 and Q are (nx + np) x (nx + np), R is ny x ny.");
+  akf.def(
+         "__init__",
+         [](Bound<AugmentedKalman>* self, const LtiModel& model, nb::handle x0, nb::handle theta0, nb::handle P0,
+            nb::handle Q, nb::handle R) {
+           constexpr std::string_view who = "AugmentedKalmanFilter";
+           new (self) Bound<AugmentedKalman>(
+               AugmentedKalman(model, vector(x0, who, "x0"), vector(theta0, who, "theta0"),
+                               {matrix(P0, who, "P0"), matrix(Q, who, "Q"), matrix(R, who, "R")}));
+         },
+         nb::arg("model"), nb::arg("x0"), nb::arg("theta0"), nb::arg("P0"), nb::arg("Q"), nb::arg("R"))
+      .def_prop_ro("covariance", [](const Bound<AugmentedKalman>& b) { return Eigen::MatrixXd(b.observer.covariance()); },
+                   "Covariance of the augmented estimate [x_hat; theta_hat].");
+  bind_discrete_observer(akf, [](const Snapshot<double>& s) {
+    return AugmentedKalman(model_of(s), field(s, "x"), field(s, "theta"), {field(s, "P0"), field(s, "Q"), field(s, "R")});
+  });
+}
+
+}  // namespace adaptobs::python

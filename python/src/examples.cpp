@@ -1,0 +1,78 @@
+// adaptobs.examples: the paper systems, their matrices and their simulated
+// data from the same C++ plants and seeds as the C++ examples, so that a
+// Python replay can be compared with the examples' CSV to the last digit.
+
+#include "arrays.hpp"
+
+#include "models/satellite.hpp"
+
+#include <nanobind/eigen/dense.h>
+#include <nanobind/stl/string.h>
+
+#include <cstdint>
+
+namespace adaptobs::python {
+
+namespace {
+
+namespace satellite = adaptobs::examples::satellite;
+
+nb::dict satellite_system() {
+  const auto zoh = satellite::discretized<double>();
+  nb::dict d;
+  d["A"] = Eigen::MatrixXd(zoh.Ad);
+  d["B"] = Eigen::MatrixXd(Eigen::MatrixXd::Zero(4, 2));
+  d["C"] = Eigen::MatrixXd(satellite::output_matrix<double>());
+  d["H"] = Eigen::MatrixXd(zoh.Bd);
+  d["K"] = Eigen::MatrixXd(satellite::paper_gain<double>());
+  d["mu"] = satellite::mu;
+  d["Ts"] = satellite::sampling_period;
+  d["theta"] = Eigen::VectorXd(satellite::true_parameters<double>());
+  d["x0"] = Eigen::VectorXd(satellite::initial_state<double>());
+  d["x0_estimate"] = Eigen::VectorXd(satellite::initial_state_estimate<double>());
+  d["theta0_estimate"] = Eigen::VectorXd(satellite::initial_parameter_estimate<double>());
+  return d;
+}
+
+// N samples of the satellite: U (N x 2), Y (N x 2), Psi (N x 4 x 2) and the true states X (N x 4).
+nb::dict simulate_satellite(Index steps, double noise, std::uint64_t seed) {
+  detail::require(steps >= 0, "examples.simulate_satellite", "steps", "must be non-negative");
+  detail::require(noise >= 0 && std::isfinite(noise), "examples.simulate_satellite", "noise",
+                  "must be non-negative and finite");
+  auto plant = satellite::make_plant<double>(noise, seed);
+  const auto n = static_cast<std::size_t>(steps);
+  OutputArray u({n, 2}), y({n, 2}), psi({n, 4, 2}), x({n, 4});
+  for (Index k = 0; k < steps; ++k) {
+    const auto& sample = plant.sample();
+    for (Index i = 0; i < 2; ++i) {
+      u.data[k * 2 + i] = sample.u(i);
+      y.data[k * 2 + i] = sample.y(i);
+    }
+    for (Index i = 0; i < 4; ++i) {
+      x.data[k * 4 + i] = plant.state()(i);
+      for (Index j = 0; j < 2; ++j) psi.data[(k * 4 + i) * 2 + j] = sample.Psi(i, j);
+    }
+    plant.advance();
+  }
+  nb::dict d;
+  d["U"] = u.array;
+  d["Y"] = y.array;
+  d["Psi"] = psi.array;
+  d["X"] = x.array;
+  return d;
+}
+
+}  // namespace
+
+void bind_examples(nb::module_& m) {
+  nb::module_ examples = m.def_submodule("examples", "The paper systems and their simulated data.");
+  examples.def("satellite", &satellite_system,
+               "The controlled satellite of Guyader & Zhang (2003), section 4: A, B, C, H (Psi_k = H diag-(u_k)),\n"
+               "the paper's gain K and mu, Ts, the true theta and the initial states and estimates.");
+  examples.def("simulate_satellite", &simulate_satellite, nb::arg("steps") = 3000, nb::arg("noise") = 0.01,
+               nb::arg("seed") = 2003,
+               "`steps` samples of the satellite with output noise of standard deviation `noise` from `seed`\n"
+               "(the C++ example's plant): a dict of U, Y, Psi and the true states X, sample k in row k.");
+}
+
+}  // namespace adaptobs::python

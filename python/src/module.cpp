@@ -1,0 +1,37 @@
+// The extension module adaptobs._core: the C++ library with run-time sizes,
+// double precision. The Python package (python/adaptobs) re-exports it.
+
+#include "arrays.hpp"
+
+#include <adaptobs/core/status.hpp>
+#include <adaptobs/core/validation.hpp>
+
+#include <nanobind/nanobind.h>
+
+namespace adaptobs::python {
+void bind_discrete_observers(nb::module_& m);
+void bind_design(nb::module_& m);
+void bind_examples(nb::module_& m);
+}  // namespace adaptobs::python
+
+NB_MODULE(_core, m) {
+  namespace nb = nanobind;
+  using adaptobs::UpdateStatus;
+  m.doc() = "adaptobs: adaptive observers, joint state and parameter estimation";
+
+  // ConfigurationError is a ValueError carrying the C++ message, which names the argument.
+  nb::exception<adaptobs::ConfigurationError>(m, "ConfigurationError", PyExc_ValueError);
+
+  nb::enum_<UpdateStatus>(m, "UpdateStatus", nb::is_arithmetic(),
+                          "What became of one sample; anything but `accepted` left the observer as it was.")
+      .value("accepted", UpdateStatus::accepted)
+      .value("nonfinite_input", UpdateStatus::nonfinite_input)
+      .value("nonfinite_result", UpdateStatus::nonfinite_result)
+      .value("nonincreasing_time", UpdateStatus::nonincreasing_time)
+      .value("indefinite_covariance", UpdateStatus::indefinite_covariance)
+      .value("interval_too_long", UpdateStatus::interval_too_long);
+
+  adaptobs::python::bind_discrete_observers(m);
+  adaptobs::python::bind_design(m);
+  adaptobs::python::bind_examples(m);
+}
