@@ -5,8 +5,14 @@
 # (uninstrumented) and every public header compiled on its own, and runs the
 # suite there, the benchmark smoke run included.
 #
-#   scripts/test.sh                               both builds
-#   ADAPTOBS_SKIP_SANITIZERS=1 scripts/test.sh    the g++ Release build only
+# Between the two, the Python package is installed with `pip install .` into a
+# virtual environment of its own (build/venv, made on first use) and its pytest
+# suite runs from outside the source tree, so that the installed package is
+# what is tested; the C++ examples of the g++ build are what it compares with.
+#
+#   scripts/test.sh                               both builds and the Python suite
+#   ADAPTOBS_SKIP_SANITIZERS=1 scripts/test.sh    the g++ Release build and the Python suite
+#   ADAPTOBS_SKIP_PYTHON=1 scripts/test.sh        no Python suite
 #
 # Why two compilers: g++ is the reference compiler for warnings and for the
 # optimized code users get; clang instruments at -O0 in about a fifth of the
@@ -70,6 +76,18 @@ if command -v doxygen > /dev/null; then
   cmake --build "$root/build/test" --target docs
 fi
 echo "-- g++ build and tests: $((SECONDS - start)) s"
+
+if [[ ${ADAPTOBS_SKIP_PYTHON:-0} != 1 ]]; then
+  echo "== Python package: pip install . and pytest"
+  python_start=$SECONDS
+  venv=$(python_environment "$root/build/venv")
+  # PyPI's build isolation: scikit-build-core and nanobind come from the registry,
+  # and the CMake build tree (build/python) is kept between runs.
+  "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "$root" pytest
+  (cd "$(mktemp -d)" && ADAPTOBS_EXAMPLES_DIR="$root/build/test/examples" \
+    "$venv/bin/python" -m pytest -p no:cacheprovider "$root/python/tests")
+  echo "-- Python package and tests: $((SECONDS - python_start)) s"
+fi
 
 if ((sanitize)); then
   echo "== clang++ AddressSanitizer + UndefinedBehaviorSanitizer build"

@@ -46,3 +46,22 @@ ADAPTOBS_TEST_PACKAGES+=(libboost-dev)
 # The sanitizer build of scripts/test.sh: clang, its sanitizer runtimes, and LLVM's
 # linker (an instrumented test executable links in about 1 s with it, 6 s with ld.bfd).
 ADAPTOBS_SANITIZER_PACKAGES=(clang:clang++ libclang-rt-dev lld:ld.lld)
+
+# python_environment DIR: makes the virtual environment DIR unless it exists
+# (with Debian's python3-venv when the python3 on the PATH lacks venv) and
+# prints its path.
+python_environment() {
+  local dir=$1
+  # The extension module compiles against the interpreter's headers.
+  if ! python3 -c 'import os, sysconfig; raise SystemExit(not os.path.exists(os.path.join(sysconfig.get_paths()["include"], "Python.h")))'; then
+    ensure_packages python3-dev >&2
+  fi
+  if [[ ! -x $dir/bin/python ]]; then
+    if ! python3 -m venv "$dir" >/dev/null 2>&1; then
+      rm -rf "$dir"
+      ensure_packages python3-venv python3-pip >&2
+      python3 -m venv "$dir" >&2
+    fi
+  fi
+  echo "$dir"
+}

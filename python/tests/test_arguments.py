@@ -1,0 +1,105 @@
+"""Bad input, the Python way: ConfigurationError (a ValueError) naming the
+argument and both shapes; TypeError for what NumPy cannot read as numbers."""
+
+import numpy as np
+import pytest
+
+import adaptobs
+from adaptobs import ConfigurationError
+from conftest import make_observer
+
+
+def test_configuration_error_is_a_value_error():
+    assert issubclass(ConfigurationError, ValueError)
+
+
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        ({"K": np.zeros((2, 4))}, "GuyaderZhangObserver: argument 'K' must be 4x2 (got 2x4)"),
+        ({"mu": -1.0}, "GuyaderZhangObserver: argument 'mu' must be positive"),
+        ({"x0": np.zeros(3)}, "GuyaderZhangObserver: argument 'x0'"),
+        ({"theta0": np.zeros((2, 2))}, "GuyaderZhangObserver: argument 'theta0' must be a vector (a 1-D array) (got 2x2)"),
+        ({"K": np.full((4, 2), np.nan)}, "GuyaderZhangObserver: argument 'K'"),
+        ({"excitation_window": -1}, "GuyaderZhangObserver: argument 'options.excitation_window' must be non-negative"),
+    ],
+)
+def test_guyader_zhang_constructor_names_the_bad_argument(satellite, change, message):
+    system, _ = satellite
+    arguments = {"K": system["K"], "mu": 4.0, "x0": system["x0_estimate"], "theta0": system["theta0_estimate"]}
+    options = {k: change.pop(k) for k in list(change) if k == "excitation_window"}
+    arguments.update(change)
+    model = adaptobs.DiscreteLtiModel(system["A"], system["B"], system["C"], np=2)
+    with pytest.raises(ConfigurationError, match=None) as error:
+        adaptobs.GuyaderZhangObserver(model, **arguments, **options)
+    assert str(error.value).startswith(message), str(error.value)
+
+
+@pytest.mark.parametrize(
+    "arguments, message",
+    [
+        ((np.eye(3), np.zeros((4, 1)), np.zeros((1, 3)), 1), "DiscreteLtiModel: argument 'B' must be 3x1 (got 4x1)"),
+        ((np.ones((2, 3)), np.zeros((2, 1)), np.zeros((1, 2)), 1), "DiscreteLtiModel: argument 'A' must be square"),
+        ((np.eye(2), np.zeros((2, 1)), np.zeros((1, 2)), -1), "DiscreteLtiModel: argument 'np'"),
+    ],
+)
+def test_the_model_names_the_bad_argument(arguments, message):
+    with pytest.raises(ConfigurationError) as error:
+        adaptobs.DiscreteLtiModel(*arguments)
+    assert str(error.value).startswith(message), str(error.value)
+
+
+def test_the_augmented_kalman_filter_names_the_bad_covariance(satellite):
+    system, _ = satellite
+    model = adaptobs.DiscreteLtiModel(system["A"], system["B"], system["C"], np=2)
+    with pytest.raises(ConfigurationError, match="AugmentedKalmanFilter: argument 'covariances.R'"):
+        adaptobs.AugmentedKalmanFilter(model, system["x0_estimate"], system["theta0_estimate"],
+                                       P0=np.eye(6), Q=np.zeros((6, 6)), R=-np.eye(2))
+
+
+def test_wrong_sample_shapes_name_the_argument_and_both_shapes_and_change_nothing(satellite):
+    system, data = satellite
+    observer = make_observer(system)
+    observer.run(data["U"][:50], data["Y"][:50], data["Psi"][:50])
+    before = observer.snapshot()
+    cases = [
+        (lambda: observer.update([1.0, 2.0, 3.0], [0, 0], data["Psi"][0]),
+         "GuyaderZhangObserver.update: argument 'u' must be (2,) (got (3,))"),
+        (lambda: observer.update([1.0, 2.0], [0, 0], np.zeros((2, 4))),
+         "GuyaderZhangObserver.update: argument 'Psi' must be 4x2 (got 2x4)"),
+        (lambda: observer.update([1.0, 2.0], [0, 0], data["Psi"][0], present=[True]),
+         "GuyaderZhangObserver.update: argument 'present' must be (2,) (got (1,))"),
+        (lambda: observer.run(data["U"][:9], data["Y"][:10], data["Psi"][:10]),
+         "GuyaderZhangObserver.run: argument 'U' must be 10x2 (got 9x2)"),
+        (lambda: observer.run(data["U"][:10], data["Y"][:10], data["Psi"][:9]),
+         "GuyaderZhangObserver.run: argument 'Psi' must be (10, 4, 2) or 4x2 (got (9, 4, 2))"),
+        (lambda: observer.run(data["U"][:10], data["Y"][:10], None, present=np.ones((10, 3), bool)),
+         "GuyaderZhangObserver.run: argument 'present' must be 10x2 (got 10x3)"),
+        (lambda: observer.run(None, data["Y"][:10]),
+         "GuyaderZhangObserver.run: argument 'U' is required"),
+    ]
+    for call, message in cases:
+        with pytest.raises(ConfigurationError) as error:
+            call()
+        assert str(error.value).startswith(message), str(error.value)
+    after = observer.snapshot()
+    assert before["integers"] == after["integers"]
+    for name in before["matrices"]:
+        assert np.array_equal(before["matrices"][name], after["matrices"][name])
+
+
+def test_what_numpy_cannot_read_as_numbers_is_a_type_error_naming_the_argument(satellite):
+    system, _ = satellite
+    observer = make_observer(system)
+    with pytest.raises(TypeError, match="GuyaderZhangObserver.update: argument 'y' must be an array of real numbers"):
+        observer.update([0.0, 0.0], ["a", "b"], None)
+    with pytest.raises(TypeError, match="DiscreteLtiModel: argument 'A' must be an array of real numbers"):
+        adaptobs.DiscreteLtiModel({"not": "a matrix"}, np.zeros((1, 1)), np.zeros((1, 1)), np=0)
+
+
+def test_lists_and_integer_arrays_are_converted_once(satellite):
+    system, data = satellite
+    a, b = make_observer(system), make_observer(system)
+    psi = data["Psi"][0]
+    assert a.update([1, 0], [1, 0], psi.tolist()) == b.update(np.array([1.0, 0.0]), np.array([1.0, 0.0]), psi)
+    assert np.array_equal(a.state, b.state)
