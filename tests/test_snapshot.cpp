@@ -12,7 +12,9 @@
 
 #include <string>
 
-namespace {
+// A named namespace: in the unity build of the test executable, the anonymous
+// namespaces of its files are one.
+namespace snapshot_test {
 
 using adaptobs::Index;
 using adaptobs::UpdateStatus;
@@ -144,4 +146,4 @@ TEST(Snapshot, ASnapshotOfAnotherClassVersionOrConfigurationIsRefusedAndChangesN
             "restore: argument 'snapshot' holds an excitation window position outside the window");
 }
 
-}  // namespace
+}  // namespace snapshot_test
