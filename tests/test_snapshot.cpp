@@ -4,12 +4,14 @@
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/core/snapshot.hpp>
+#include <adaptobs/diagnostics/fault_monitor.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
 
 #include "models/satellite.hpp"
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <string>
 
 // A named namespace: in the unity build of the test executable, the anonymous
@@ -144,6 +146,68 @@ TEST(Snapshot, ASnapshotOfAnotherClassVersionOrConfigurationIsRefusedAndChangesN
                 if (i.name == "excitation.next") i.value = 50;
             }),
             "restore: argument 'snapshot' holds an excitation window position outside the window");
+}
+
+// What an observer hands a fault monitor: its parameters and output error.
+struct FakeObserver {
+  using Scalar = double;
+  using State = Eigen::Vector2d;
+  using Parameters = Eigen::Vector2d;
+  using Dims = adaptobs::Dimensions<double, 2, 2, 2, 2>;
+  using Sample = int;
+  Eigen::Vector2d theta, error;
+  const State& state() const { return theta; }
+  const Parameters& parameters() const { return theta; }
+  const Eigen::Vector2d& output_error() const { return error; }
+  UpdateStatus update(const Sample&) { return UpdateStatus::accepted; }
+  void reset(const State&, const Parameters&) {}
+};
+
+TEST(Snapshot, ARestoredFaultMonitorContinuesBitForBit) {
+  adaptobs::FaultMonitorDesign<double, 2, 2> design;
+  design.nominal = Eigen::Vector2d(1.0, 1.5);
+  design.cusum.scale = Eigen::Vector2d(0.01, 0.02);
+  design.cusum.drift = 0.5;
+  design.cusum.threshold = 6.0;
+  design.cusum_options = {.stride = 3, .hold_off = 2, .reanchor = false};
+  design.glr_window = 7;
+  design.glr_threshold = 9.0;
+  design.output_error_covariance = Eigen::Matrix2d::Identity() * 1e-4;
+  design.window = 5;
+  design.false_alarm_probability = 0.01;
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal;
+  // Normal around nominal; from sample 300 on, the second parameter shifted by two
+  // scales and the output errors three times as large.
+  std::vector<FakeObserver> values;
+  for (int k = 0; k < 900; ++k) {
+    const double shift = k >= 300 ? 2.0 : 0.0;
+    values.push_back({design.nominal + Eigen::Vector2d(0.01 * normal(rng), 0.02 * (normal(rng) + shift)),
+                      Eigen::Vector2d(0.01 * normal(rng), 0.01 * normal(rng) * (1 + shift))});
+  }
+  adaptobs::FaultMonitor<double, 2, 2> original(design);
+  for (int k = 0; k < 400; ++k) ASSERT_EQ(original.observe(values[k]), UpdateStatus::accepted);
+  adaptobs::FaultMonitor<double, 2, 2> restored(design);
+  adaptobs::restore(restored, adaptobs::snapshot(original));
+  Index alarms = 0;
+  for (int k = 400; k < 900; ++k) {
+    ASSERT_EQ(original.observe(values[k]), restored.observe(values[k]));
+    ASSERT_EQ(original.cusum().alarm(), restored.cusum().alarm()) << k;
+    ASSERT_EQ(original.glr().alarm(), restored.glr().alarm()) << k;
+    ASSERT_EQ(original.chi_square().alarm(), restored.chi_square().alarm()) << k;
+    ASSERT_EQ(original.cusum().statistic(), restored.cusum().statistic()) << k;
+    ASSERT_EQ(original.glr().statistic(), restored.glr().statistic()) << k;
+    ASSERT_EQ(original.chi_square().statistic(), restored.chi_square().statistic()) << k;
+    alarms += original.cusum().alarm() + original.glr().alarm() + original.chi_square().alarm();
+  }
+  EXPECT_GT(alarms, 10);  // the shift is seen: the comparison covers alarms and their hold-off
+  EXPECT_EQ(original.cusum().isolated(), restored.cusum().isolated());
+  EXPECT_EQ(original.cusum().alarm_count(), restored.cusum().alarm_count());
+  // A snapshot from a monitor of another stride is refused.
+  auto other_design = design;
+  other_design.cusum_options.stride = 4;
+  adaptobs::FaultMonitor<double, 2, 2> other(other_design);
+  EXPECT_THROW(adaptobs::restore(other, adaptobs::snapshot(original)), adaptobs::ConfigurationError);
 }
 
 }  // namespace snapshot_test

@@ -81,6 +81,23 @@ struct Snapshot {
   }
 };
 
+namespace detail {
+// The scalar of a snapshottable class: its `SnapshotScalar` where its
+// template parameter is itself named `Scalar`, else its `Scalar`.
+template <class T>
+struct snapshot_scalar {
+  using type = typename T::Scalar;
+};
+template <class T>
+  requires requires { typename T::SnapshotScalar; }
+struct snapshot_scalar<T> {
+  using type = typename T::SnapshotScalar;
+};
+}  // namespace detail
+
+template <class T>
+using snapshot_scalar_t = typename detail::snapshot_scalar<T>::type;
+
 /// A class whose state `snapshot` and `restore` can write and read.
 template <class T>
 concept Snapshottable = requires {
@@ -231,11 +248,11 @@ class SnapshotReader : public SnapshotArchiveBase {
 
 /// The state of `object`, every field the next update reads.
 template <Snapshottable T>
-[[nodiscard]] Snapshot<typename T::Scalar> snapshot(const T& object) {
-  Snapshot<typename T::Scalar> out;
+[[nodiscard]] Snapshot<snapshot_scalar_t<T>> snapshot(const T& object) {
+  Snapshot<snapshot_scalar_t<T>> out;
   out.type = std::string(T::snapshot_type);
   out.version = T::snapshot_version;
-  detail::SnapshotWriter<typename T::Scalar> writer(out);
+  detail::SnapshotWriter<snapshot_scalar_t<T>> writer(out);
   T::visit_state(object, writer);
   return out;
 }
@@ -246,7 +263,7 @@ template <Snapshottable T>
 /// setting differs from `object`'s (restore into an object constructed with
 /// the same sizes and options).
 template <Snapshottable T>
-void restore(T& object, const Snapshot<typename T::Scalar>& state) {
+void restore(T& object, const Snapshot<snapshot_scalar_t<T>>& state) {
   if (state.type != T::snapshot_type)
     detail::fail_argument("restore", "snapshot",
                           "is of a " + state.type + ", not of a " + std::string(T::snapshot_type));
@@ -258,7 +275,7 @@ void restore(T& object, const Snapshot<typename T::Scalar>& state) {
   }
   // Read into a copy, so that a failure at any field leaves `object` as it was.
   T candidate(object);
-  detail::SnapshotReader<typename T::Scalar> reader(state);
+  detail::SnapshotReader<snapshot_scalar_t<T>> reader(state);
   T::visit_state(candidate, reader);
   object = std::move(candidate);
 }

@@ -36,6 +36,7 @@
 
 #include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/diagnostics/chi_square_distribution.hpp>
@@ -132,6 +133,28 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
   /// Designed mean number of samples between false alarms, W/α.
   [[nodiscard]] Scalar mean_samples_between_false_alarms() const noexcept {
     return static_cast<Scalar>(window_) / false_alarm_probability_;
+  }
+
+  [[nodiscard]] Scalar false_alarm_probability() const noexcept { return false_alarm_probability_; }
+
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): S⁻¹, the
+  /// threshold and the window in progress; the window length a setting.
+  using SnapshotScalar = Scalar;
+  static constexpr std::string_view snapshot_type = "ChiSquareTest";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.setting("window", self.window_);
+    archive("false_alarm_probability", self.false_alarm_probability_);
+    archive("information", self.information_);
+    archive("sum", self.sum_);
+    archive("decision", self.decision_);
+    archive("filled", self.filled_);
+    archive("decisions", self.decisions_);
+    if constexpr (Archive::reading)
+      detail::require(self.filled_ >= 0 && self.filled_ < self.window_, "restore", "snapshot",
+                      "holds a chi-square window position outside the window");
+    ChiSquareTest::visit_alarm_state(self, archive);
   }
 
   /// Back to the state after construction.

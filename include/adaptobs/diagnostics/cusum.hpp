@@ -118,6 +118,19 @@ class CusumDetector : public detail::SequentialTest<CusumDetector<Scalar, N>, Sc
   [[nodiscard]] const Vector& lower() const noexcept { return lower_; }
   /// \f$\max_i \max(g^+_i, g^-_i)\f$.
   [[nodiscard]] Scalar statistic() const { return std::max(upper_.maxCoeff(), lower_.maxCoeff()); }
+  [[nodiscard]] Scalar drift() const noexcept { return drift_; }
+
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp).
+  using SnapshotScalar = Scalar;
+  static constexpr std::string_view snapshot_type = "CusumDetector";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    Base::visit_sequential_state(self, archive);
+    archive("drift", self.drift_);
+    archive("upper", self.upper_);
+    archive("lower", self.lower_);
+  }
 
  private:
   Scalar evaluate(const Vector& z, Index& component, int& sign) {

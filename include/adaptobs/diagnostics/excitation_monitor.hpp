@@ -87,6 +87,7 @@ class ExcitationMonitor {
 
   /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the window of
   /// contributions and the running sum; the window length a setting.
+  using SnapshotScalar = Scalar;
   static constexpr std::string_view snapshot_type = "ExcitationMonitor";
   static constexpr int snapshot_version = 1;
   template <class Self, class Archive>

@@ -200,6 +200,20 @@ class FaultMonitor {
   [[nodiscard]] const ChiSquareTest<Scalar, NY>& chi_square() const noexcept { return chi_square_; }
   [[nodiscard]] ChiSquareTest<Scalar, NY>& chi_square() noexcept { return chi_square_; }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): its three tests'.
+  using SnapshotScalar = Scalar;
+  static constexpr std::string_view snapshot_type = "FaultMonitor";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    auto cusum = archive.nested("cusum");
+    CusumDetector<Scalar, NP>::visit_state(self.cusum_, cusum);
+    auto glr = archive.nested("glr");
+    GlrDetector<Scalar, NP>::visit_state(self.glr_, glr);
+    auto chi_square = archive.nested("chi_square");
+    ChiSquareTest<Scalar, NY>::visit_state(self.chi_square_, chi_square);
+  }
+
  private:
   CusumDetector<Scalar, NP> cusum_;
   GlrDetector<Scalar, NP> glr_;

@@ -87,6 +87,25 @@ class GlrDetector : public detail::SequentialTest<GlrDetector<Scalar, N>, Scalar
   [[nodiscard]] Scalar statistic() const { return statistic_.maxCoeff(); }
   [[nodiscard]] Index window() const noexcept { return window_; }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the window of
+  /// normalized values and the position in it; the window length a setting.
+  using SnapshotScalar = Scalar;
+  static constexpr std::string_view snapshot_type = "GlrDetector";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    Base::visit_sequential_state(self, archive);
+    archive.setting("window", self.window_);
+    archive("history", self.history_);
+    archive("statistic", self.statistic_);
+    archive("newest", self.newest_);
+    archive("filled", self.filled_);
+    if constexpr (Archive::reading)
+      detail::require(self.newest_ >= 0 && self.newest_ < self.window_ && self.filled_ >= 0 &&
+                          self.filled_ <= self.window_,
+                      "restore", "snapshot", "holds a GLR window position outside the window");
+  }
+
  private:
   Scalar evaluate(const Vector& z, Index& component, int& sign) {
     // The newest value goes to column `newest_`; older ones precede it circularly.

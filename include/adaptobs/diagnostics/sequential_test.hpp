@@ -11,6 +11,7 @@
 /// not, with the estimate as it stands, to keep the phase.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/diagnostics/threshold_alarm.hpp>
@@ -130,6 +131,31 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   }
 
   [[nodiscard]] Index components() const noexcept { return nominal_.size(); }
+
+  /// The sequential test's part of a detector's `visit_state` (core/snapshot.hpp):
+  /// nominal, scales and the position in stride, hold-off and re-anchoring; the
+  /// options are settings.
+  template <class Self, class Archive>
+  static void visit_sequential_state(Self& self, Archive& archive) {
+    archive.setting("stride", self.options_.stride);
+    archive.setting("hold_off", self.options_.hold_off);
+    archive.setting("reanchor", self.options_.reanchor);
+    archive("nominal", self.nominal_);
+    archive("initial_nominal", self.initial_nominal_);
+    archive("inverse_scale", self.inverse_scale_);
+    archive("z", self.z_);
+    archive("skip", self.skip_);
+    archive("holding", self.holding_);
+    archive("isolated", self.isolated_);
+    archive("direction", self.direction_);
+    archive("alarm_statistic", self.alarm_statistic_);
+    archive("reanchor_pending", self.reanchor_pending_);
+    if constexpr (Archive::reading)
+      require(self.skip_ >= 0 && self.skip_ < self.options_.stride && self.holding_ >= 0 &&
+                  self.holding_ <= self.options_.hold_off,
+              "restore", "snapshot", "holds a stride or hold-off position outside its option");
+    ThresholdAlarm<Scalar>::visit_alarm_state(self, archive);
+  }
 
  private:
   Derived& derived() { return static_cast<Derived&>(*this); }

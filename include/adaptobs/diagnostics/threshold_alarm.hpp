@@ -29,6 +29,15 @@ class ThresholdAlarm {
   }
   /// No alarm for the value being taken (until `decide` says otherwise).
   void clear_alarm() noexcept { alarm_ = false; }
+
+  /// The alarm's part of a detector's `visit_state` (core/snapshot.hpp).
+  template <class Self, class Archive>
+  static void visit_alarm_state(Self& self, Archive& archive) {
+    archive("threshold", self.threshold_);
+    archive("alarms", self.alarms_);
+    archive("alarm", self.alarm_);
+  }
+
   /// No alarm, and none counted.
   void clear_alarms() noexcept {
     alarm_ = false;
