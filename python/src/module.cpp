@@ -12,6 +12,7 @@ namespace adaptobs::python {
 void bind_discrete_observers(nb::module_& m);
 void bind_design(nb::module_& m);
 void bind_examples(nb::module_& m);
+void bind_fault_detection(nb::module_& m);
 }  // namespace adaptobs::python
 
 NB_MODULE(_core, m) {
@@ -33,5 +34,6 @@ NB_MODULE(_core, m) {
 
   adaptobs::python::bind_discrete_observers(m);
   adaptobs::python::bind_design(m);
+  adaptobs::python::bind_fault_detection(m);
   adaptobs::python::bind_examples(m);
 }

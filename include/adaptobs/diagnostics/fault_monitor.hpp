@@ -183,14 +183,14 @@ class FaultMonitor {
   /// with every test unchanged (both sizes are checked before any test moves).
   template <DiagnosableObserver O>
   [[nodiscard]] UpdateStatus observe(const O& observer) {
-    constexpr std::string_view who = "FaultMonitor::observe";
-    detail::require_shape(observer.parameters(), cusum_.nominal().size(), 1, who, "observer.parameters()");
-    detail::require_shape(observer.output_error(), chi_square_.outputs(), 1, who, "observer.output_error()");
-    if (!detail::all_finite(observer.parameters(), observer.output_error())) return UpdateStatus::nonfinite_input;
-    const UpdateStatus chi = chi_square_.update(observer.output_error());
-    if (!accepted(chi)) return chi;  // an overflowing weighted error: the others have not moved either
-    (void)glr_.update(observer.parameters());  // finite, hence accepted, as by the CUSUM
-    return cusum_.update(observer.parameters());
+    return observe(observer.parameters(), observer.output_error(), "observer.parameters()", "observer.output_error()");
+  }
+
+  /// The same with the estimates themselves (recorded, or from another process):
+  /// \f$\hat\theta\f$ and the output error of one accepted update.
+  [[nodiscard]] UpdateStatus observe(const Eigen::Matrix<Scalar, NP, 1>& parameters,
+                                     const Eigen::Matrix<Scalar, NY, 1>& output_error) {
+    return observe(parameters, output_error, "parameters", "output_error");
   }
 
   [[nodiscard]] const CusumDetector<Scalar, NP>& cusum() const noexcept { return cusum_; }
@@ -215,6 +215,19 @@ class FaultMonitor {
   }
 
  private:
+  template <class P, class E>
+  UpdateStatus observe(const P& parameters, const E& output_error, std::string_view parameters_name,
+                       std::string_view output_error_name) {
+    constexpr std::string_view who = "FaultMonitor::observe";
+    detail::require_shape(parameters, cusum_.nominal().size(), 1, who, parameters_name);
+    detail::require_shape(output_error, chi_square_.outputs(), 1, who, output_error_name);
+    if (!detail::all_finite(parameters, output_error)) return UpdateStatus::nonfinite_input;
+    const UpdateStatus chi = chi_square_.update(output_error);
+    if (!accepted(chi)) return chi;  // an overflowing weighted error: the others have not moved either
+    (void)glr_.update(parameters);  // finite, hence accepted, as by the CUSUM
+    return cusum_.update(parameters);
+  }
+
   CusumDetector<Scalar, NP> cusum_;
   GlrDetector<Scalar, NP> glr_;
   ChiSquareTest<Scalar, NY> chi_square_;

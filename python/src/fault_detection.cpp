@@ -1,0 +1,375 @@
+// Fault detection in Python: the CUSUM and GLR tests on the parameter
+// estimates, the chi-square test on the output errors, the FaultMonitor that
+// runs all three, and their calibration from fault-free runs
+// (diagnostics/*.hpp). Sizes are run-time; values come as NumPy arrays.
+
+#include "arrays.hpp"
+#include "discrete_observer.hpp"
+#include "snapshot_dict.hpp"
+#include "snapshot_fields.hpp"
+
+#include <adaptobs/diagnostics/calibration.hpp>
+#include <adaptobs/diagnostics/chi_square_test.hpp>
+#include <adaptobs/diagnostics/cusum.hpp>
+#include <adaptobs/diagnostics/fault_monitor.hpp>
+#include <adaptobs/diagnostics/glr.hpp>
+
+#include <nanobind/eigen/dense.h>
+#include <nanobind/stl/string.h>
+
+#include <vector>
+
+namespace adaptobs::python {
+
+namespace {
+
+constexpr int X = Eigen::Dynamic;
+using Cusum = CusumDetector<double, X>;
+using Glr = GlrDetector<double, X>;
+using ChiSquare = ChiSquareTest<double, X>;
+using Monitor = FaultMonitor<double, X, X>;
+using MonitorDesign = FaultMonitorDesign<double, X, X>;
+using Calibration = CusumCalibration<double, X>;
+using Runs = std::vector<std::vector<Eigen::VectorXd>>;
+
+// A list of runs, each an N_r x n array (row k: the value at sample k).
+Runs runs_of(nb::handle obj, std::string_view who, std::string_view name) {
+  if (!nb::isinstance<nb::sequence>(obj) || nb::isinstance<nb::str>(obj))
+    fail_type(who, name, obj, "a list of arrays, one per run (N_r x n)");
+  Runs runs;
+  std::size_t r = 0;
+  for (nb::handle run : obj) {
+    const std::string element = detail::element_name(name, r++);
+    const Array a = real_array(run, who, element);
+    if (a.ndim() != 2) fail_dimensions(who, element, "an N x n array", shape_of(a));
+    const MatrixView m = view(a, who, element);
+    std::vector<Eigen::VectorXd>& values = runs.emplace_back();
+    values.reserve(static_cast<std::size_t>(m.rows()));
+    for (Index k = 0; k < m.rows(); ++k) values.emplace_back(m.row(k).transpose());
+  }
+  return runs;
+}
+
+SequentialTestOptions sequential_options(Index stride, Index hold_off, bool reanchor) {
+  return {.stride = stride, .hold_off = hold_off, .reanchor = reanchor};
+}
+
+SequentialTestOptions sequential_options_of(const Snapshot<double>& s, const std::string& prefix) {
+  return {.stride = integer(s, prefix + "stride"),
+          .hold_off = integer(s, prefix + "hold_off"),
+          .reanchor = integer(s, prefix + "reanchor") != 0};
+}
+
+// The scales a sequential test was built with, from the reciprocals it stores.
+Eigen::VectorXd scale_of(const Snapshot<double>& s, const std::string& prefix) {
+  return field(s, prefix + "inverse_scale").cwiseInverse();
+}
+
+/// snapshot, restore, copy and pickle of a detector; `construct` builds one of
+/// a snapshot's configuration for `restore` to fill.
+template <class T, class Construct>
+void bind_state(nb::class_<T>& cls, Construct construct) {
+  cls.def("snapshot", [](const T& self) { return to_dict(adaptobs::snapshot(self)); },
+          "The whole internal state as a dict of arrays.")
+      .def("restore", [](T& self, nb::handle state) { adaptobs::restore(self, from_dict(state)); }, nb::arg("state"),
+           "Continues exactly as the object `state` was taken from; another class, version or\n"
+           "configuration raises ConfigurationError and changes nothing.")
+      .def("__copy__", [](const T& self) { return T(self); })
+      .def("__deepcopy__", [](const T& self, nb::handle) { return T(self); }, nb::arg("memo"))
+      .def("__getstate__", [](const T& self) { return to_dict(adaptobs::snapshot(self)); })
+      .def("__setstate__", [construct](T& self, nb::handle state) {
+        const Snapshot<double> s = from_dict(state);
+        if (s.type != T::snapshot_type)
+          detail::fail_argument("restore", "snapshot", "is of a " + s.type + ", not of a " + std::string(T::snapshot_type));
+        T object = construct(s, std::string());
+        adaptobs::restore(object, s);
+        new (&self) T(std::move(object));
+      });
+}
+
+/// What the two sequential tests (CUSUM, GLR) share in Python.
+template <class T>
+void bind_sequential(nb::class_<T>& cls) {
+  cls.def(
+         "update",
+         [](T& self, nb::handle value) {
+           const std::string who = std::string(T::snapshot_type) + ".update";
+           Eigen::VectorXd v(self.nominal().size());
+           read_vector(value, v.size(), who, "value", v);
+           return self.update(v);
+         },
+         nb::arg("value"),
+         "Takes one value (e.g. theta_hat after an accepted update); `nonfinite_input` for NaN or Inf,\n"
+         "the test unchanged.")
+      .def_prop_ro("alarm", &T::alarm, "the last value raised an alarm")
+      .def_prop_ro("alarm_count", &T::alarm_count)
+      .def_prop_ro("threshold", &T::threshold)
+      .def_prop_ro("isolated", &T::isolated, "component of the last alarm")
+      .def_prop_ro("direction", &T::direction, "+1 or -1: the sign of the last alarm's deviation")
+      .def_prop_ro("alarm_statistic", &T::alarm_statistic)
+      .def_prop_ro("statistic", &T::statistic)
+      .def_prop_ro("nominal", [](const T& self) { return Eigen::VectorXd(self.nominal()); })
+      .def(
+          "rearm", [](T& self, nb::handle nominal) { self.rearm(vector(nominal, "rearm", "nominal")); },
+          nb::arg("nominal"), "Restarts the statistic around a new nominal value.")
+      .def("reset", &T::reset, "Back to the state after construction.");
+}
+
+// The per-sample figures of FaultMonitor.run.
+struct MonitorColumns {
+  static constexpr std::array<const char*, 6> statistics{"cusum_statistic", "glr_statistic", "chi_square_statistic",
+                                                        "cusum_isolated", "cusum_direction", "glr_isolated"};
+};
+
+nb::dict run_monitor(Monitor& monitor, nb::handle parameters, nb::handle output_errors, nb::handle status) {
+  constexpr std::string_view who = "FaultMonitor.run";
+  const Array p = real_array(parameters, who, "parameters");
+  if (p.ndim() != 2) fail_dimensions(who, "parameters", "an N x np array", shape_of(p));
+  const Index samples = static_cast<Index>(p.shape(0));
+  const Index np = monitor.cusum().nominal().size();
+  const Index ny = monitor.chi_square().outputs();
+  const Rows theta = rows(p, samples, np, who, "parameters");
+  const Rows error = rows(output_errors, samples, ny, who, "output_errors");
+  nb::ndarray<const std::int8_t, nb::device::cpu> accepted_samples;
+  if (!status.is_none()) {
+    accepted_samples = as_array<nb::ndarray<const std::int8_t, nb::device::cpu>>(status, who, "status", "int8",
+                                                                                 "an array of UpdateStatus values");
+    if (accepted_samples.ndim() != 1 || static_cast<Index>(accepted_samples.shape(0)) != samples)
+      fail_dimensions(who, "status", "(" + std::to_string(samples) + ",)", shape_of(accepted_samples));
+  }
+  const auto n = static_cast<std::size_t>(samples);
+  OutputArray alarms({n, 3});
+  OutputArray figures({n, MonitorColumns::statistics.size()});
+  StatusArray result(n);
+  {
+    nb::gil_scoped_release release;
+    Eigen::VectorXd estimate(np), error_k(ny);
+    for (Index k = 0; k < samples; ++k) {
+      UpdateStatus s = UpdateStatus::nonfinite_input;
+      const bool observed =
+          accepted_samples.ndim() == 0 || accepted_samples.data()[k * accepted_samples.stride(0)] == 0;
+      if (observed) {
+        estimate = theta.row(k);
+        error_k = error.row(k);
+        s = monitor.observe(estimate, error_k);
+      }
+      result.data[k] = static_cast<std::int8_t>(observed ? s : UpdateStatus::nonfinite_input);
+      const bool moved = observed && accepted(s);
+      alarms.data[3 * k] = moved && monitor.cusum().alarm();
+      alarms.data[3 * k + 1] = moved && monitor.glr().alarm();
+      alarms.data[3 * k + 2] = moved && monitor.chi_square().alarm();
+      double* f = figures.data + k * MonitorColumns::statistics.size();
+      f[0] = monitor.cusum().statistic();
+      f[1] = monitor.glr().statistic();
+      f[2] = monitor.chi_square().statistic();
+      f[3] = static_cast<double>(monitor.cusum().isolated());
+      f[4] = static_cast<double>(monitor.cusum().direction());
+      f[5] = static_cast<double>(monitor.glr().isolated());
+    }
+  }
+  nb::dict out;
+  nb::object numpy = nb::module_::import_("numpy");
+  nb::object alarm_columns = nb::cast(alarms.array).attr("astype")(numpy.attr("bool_"));
+  const auto column = [](nb::object a, std::size_t j) {
+    return a[nb::make_tuple(nb::slice(nb::none(), nb::none(), nb::none()), j)];
+  };
+  out["cusum_alarm"] = column(alarm_columns, 0);
+  out["glr_alarm"] = column(alarm_columns, 1);
+  out["chi_square_alarm"] = column(alarm_columns, 2);
+  nb::object figure_columns = nb::cast(figures.array);
+  for (std::size_t j = 0; j < MonitorColumns::statistics.size(); ++j)
+    out[MonitorColumns::statistics[j]] = column(figure_columns, j);
+  out["status"] = nb::cast(result.array);
+  return out;
+}
+
+}  // namespace
+
+void bind_fault_detection(nb::module_& m) {
+  nb::class_<Cusum> cusum(m, "CusumDetector",
+                          "Two-sided CUSUM on the normalized deviations z = (v - nominal) / scale, per component:\n"
+                          "g+ = max(0, g+ + z - drift), g- = max(0, g- - z - drift); alarm when the largest exceeds\n"
+                          "the threshold (Page 1954; thresholds from Siegmund's approximation, calibrate_cusum).");
+  cusum.def(
+      "__init__",
+      [](Cusum* self, nb::handle nominal, nb::handle scale, double drift, double threshold, Index stride,
+         Index hold_off, bool reanchor) {
+        constexpr std::string_view who = "CusumDetector";
+        new (self) Cusum(vector(nominal, who, "nominal"), vector(scale, who, "scale"), drift, threshold,
+                         sequential_options(stride, hold_off, reanchor));
+      },
+      nb::arg("nominal"), nb::arg("scale"), nb::arg("drift"), nb::arg("threshold"), nb::kw_only(),
+      nb::arg("stride") = 1, nb::arg("hold_off") = 0, nb::arg("reanchor") = false);
+  cusum.def_prop_ro("upper", [](const Cusum& self) { return Eigen::VectorXd(self.upper()); })
+      .def_prop_ro("lower", [](const Cusum& self) { return Eigen::VectorXd(self.lower()); })
+      .def_prop_ro("drift", &Cusum::drift);
+  bind_sequential(cusum);
+  const auto make_cusum = [](const Snapshot<double>& s, const std::string& prefix) {
+    return Cusum(field(s, prefix + "initial_nominal"), scale_of(s, prefix), scalar(s, prefix + "drift"),
+                 scalar(s, prefix + "threshold"), sequential_options_of(s, prefix));
+  };
+  bind_state(cusum, make_cusum);
+
+  nb::class_<Glr> glr(m, "GlrDetector",
+                      "Windowed GLR test for a mean change of unknown size on the normalized deviations:\n"
+                      "g = max over the last `window` evaluations m of (sum of z)^2 / (2 m), per component.");
+  glr.def(
+      "__init__",
+      [](Glr* self, nb::handle nominal, nb::handle scale, Index window, double threshold, Index stride, Index hold_off,
+         bool reanchor) {
+        constexpr std::string_view who = "GlrDetector";
+        new (self) Glr(vector(nominal, who, "nominal"), vector(scale, who, "scale"), window, threshold,
+                       sequential_options(stride, hold_off, reanchor));
+      },
+      nb::arg("nominal"), nb::arg("scale"), nb::arg("window"), nb::arg("threshold"), nb::kw_only(),
+      nb::arg("stride") = 1, nb::arg("hold_off") = 0, nb::arg("reanchor") = false);
+  glr.def_prop_ro("statistics", [](const Glr& self) { return Eigen::VectorXd(self.statistics()); })
+      .def_prop_ro("window", &Glr::window);
+  bind_sequential(glr);
+  const auto make_glr = [](const Snapshot<double>& s, const std::string& prefix) {
+    return Glr(field(s, prefix + "initial_nominal"), scale_of(s, prefix), integer(s, prefix + "window"),
+               scalar(s, prefix + "threshold"), sequential_options_of(s, prefix));
+  };
+  bind_state(glr, make_glr);
+
+  nb::class_<ChiSquare> chi(m, "ChiSquareTest",
+                            "Windowed chi-square test of the output errors: T = sum over `window` samples of\n"
+                            "e^T S^-1 e, alarm when T exceeds the upper quantile of probability\n"
+                            "false_alarm_probability of c chi^2(nu) (nu = window ny unless given).");
+  chi.def(
+         "__init__",
+         [](ChiSquare* self, nb::handle covariance, Index window, double false_alarm_probability, double scale,
+            double degrees_of_freedom) {
+           new (self) ChiSquare(matrix(covariance, "ChiSquareTest", "covariance"), window, false_alarm_probability,
+                                {.scale = scale, .degrees_of_freedom = degrees_of_freedom});
+         },
+         nb::arg("covariance"), nb::arg("window"), nb::arg("false_alarm_probability"), nb::kw_only(),
+         nb::arg("scale") = 1.0, nb::arg("degrees_of_freedom") = 0.0)
+      .def(
+          "update",
+          [](ChiSquare& self, nb::handle output_error) {
+            Eigen::VectorXd e(self.outputs());
+            read_vector(output_error, e.size(), "ChiSquareTest.update", "output_error", e);
+            return self.update(e);
+          },
+          nb::arg("output_error"))
+      .def_prop_ro("alarm", &ChiSquare::alarm)
+      .def_prop_ro("alarm_count", &ChiSquare::alarm_count)
+      .def_prop_ro("threshold", &ChiSquare::threshold)
+      .def_prop_ro("statistic", &ChiSquare::statistic, "the sum over the window in progress")
+      .def_prop_ro("decision_statistic", &ChiSquare::decision_statistic, "the sum of the last completed window")
+      .def_prop_ro("decisions", &ChiSquare::decisions)
+      .def_prop_ro("window", &ChiSquare::window)
+      .def_prop_ro("mean_samples_between_false_alarms", &ChiSquare::mean_samples_between_false_alarms)
+      .def("reset", &ChiSquare::reset);
+  // The covariance is not stored (its inverse is); any positive definite one of the
+  // right size builds the test that restore then fills, threshold included.
+  const auto make_chi = [](const Snapshot<double>& s, const std::string& prefix) {
+    const Eigen::MatrixXd information = field(s, prefix + "information");
+    return ChiSquare(Eigen::MatrixXd::Identity(information.rows(), information.cols()), integer(s, prefix + "window"),
+                     scalar(s, prefix + "false_alarm_probability"));
+  };
+  bind_state(chi, make_chi);
+
+  nb::class_<Calibration>(m, "CusumCalibration", "A CUSUM designed from fault-free runs, with what the runs showed.")
+      .def_ro("scale", &Calibration::scale, "RMS deviation from nominal of each component, at the stride")
+      .def_ro("drift", &Calibration::drift)
+      .def_ro("threshold", &Calibration::threshold, "h from Siegmund's approximation")
+      .def_ro("lag_correlation", &Calibration::lag_correlation)
+      .def_ro("long_run_excess", &Calibration::long_run_excess)
+      .def_ro("bias", &Calibration::bias)
+      .def_ro("evaluations", &Calibration::evaluations)
+      .def_ro("checked_mean_evaluations", &Calibration::checked_mean_evaluations)
+      .def_ro("checked_alarms", &Calibration::checked_alarms)
+      .def_ro("alarms", &Calibration::alarms);
+
+  nb::class_<MonitorDesign>(m, "FaultMonitorDesign", "The three tests of a FaultMonitor, designed from fault-free runs.")
+      .def_ro("nominal", &MonitorDesign::nominal)
+      .def_ro("cusum", &MonitorDesign::cusum)
+      .def_prop_ro("stride", [](const MonitorDesign& d) { return d.cusum_options.stride; })
+      .def_ro("glr_window", &MonitorDesign::glr_window)
+      .def_ro("glr_threshold", &MonitorDesign::glr_threshold)
+      .def_ro("glr_checked_alarms", &MonitorDesign::glr_checked_alarms)
+      .def_ro("output_error_covariance", &MonitorDesign::output_error_covariance)
+      .def_ro("window", &MonitorDesign::window)
+      .def_ro("false_alarm_probability", &MonitorDesign::false_alarm_probability)
+      .def_prop_ro("chi_square_scale", [](const MonitorDesign& d) { return d.chi_square_options.scale; })
+      .def_prop_ro("chi_square_degrees_of_freedom",
+                   [](const MonitorDesign& d) { return d.chi_square_options.degrees_of_freedom; })
+      .def_ro("chi_square_windows", &MonitorDesign::chi_square_windows);
+
+  m.def(
+      "calibrate_cusum",
+      [](nb::handle runs, nb::handle nominal, double drift, double mean_evaluations, Index stride) {
+        constexpr std::string_view who = "calibrate_cusum";
+        return calibrate_cusum(runs_of(runs, who, "runs"), Eigen::VectorXd(vector(nominal, who, "nominal")), drift,
+                               mean_evaluations, stride);
+      },
+      nb::arg("runs"), nb::arg("nominal"), nb::arg("drift"), nb::arg("mean_evaluations"), nb::arg("stride"),
+      "A CUSUM raising false alarms every `mean_evaluations` evaluations on average, from fault-free\n"
+      "runs (a list of N_r x n arrays) sampled every step and read every `stride`-th; refuses runs\n"
+      "that break its assumptions (correlation, bias, rate), naming the remedy.");
+  m.def(
+      "design_fault_monitor",
+      [](nb::handle parameters, nb::handle output_errors, nb::handle nominal, double drift,
+         double mean_samples_between_false_alarms, Index stride, Index window, Index glr_window) {
+        constexpr std::string_view who = "design_fault_monitor";
+        FaultFreeRecord<double, X, X> record;
+        record.parameters = runs_of(parameters, who, "parameters");
+        record.output_errors = runs_of(output_errors, who, "output_errors");
+        detail::require(record.parameters.size() == record.output_errors.size(), who, "output_errors",
+                        "must hold one array per run of 'parameters'");
+        return design_fault_monitor(record, Eigen::VectorXd(vector(nominal, who, "nominal")), drift,
+                                    mean_samples_between_false_alarms, stride, window, glr_window);
+      },
+      nb::arg("parameters"), nb::arg("output_errors"), nb::arg("nominal"), nb::arg("drift"),
+      nb::arg("mean_samples_between_false_alarms"), nb::arg("stride"), nb::arg("window"), nb::arg("glr_window") = 10,
+      "Designs the CUSUM, GLR and chi-square tests of a FaultMonitor from fault-free runs: `parameters`\n"
+      "and `output_errors` hold one array per run (N_r x np and N_r x ny, the observer's estimates after\n"
+      "each accepted sample, from convergence on); false alarms every mean_samples_between_false_alarms\n"
+      "samples per test; the parameter tests read every `stride`-th sample, the chi-square test decides\n"
+      "every `window` samples.");
+
+  nb::class_<Monitor> monitor(m, "FaultMonitor",
+                              "A CUSUM and a GLR on the parameter estimates and a chi-square test on the output\n"
+                              "errors, from one FaultMonitorDesign.");
+  monitor.def(nb::init<const MonitorDesign&>(), nb::arg("design"))
+      .def(
+          "observe",
+          [](Monitor& self, nb::handle parameters, nb::handle output_error) {
+            constexpr std::string_view who = "FaultMonitor.observe";
+            Eigen::VectorXd theta(self.cusum().nominal().size()), error(self.chi_square().outputs());
+            read_vector(parameters, theta.size(), who, "parameters", theta);
+            read_vector(output_error, error.size(), who, "output_error", error);
+            return self.observe(theta, error);
+          },
+          nb::arg("parameters"), nb::arg("output_error"),
+          "Feeds an observer's estimates after an accepted update to the three tests.")
+      .def("run", &run_monitor, nb::arg("parameters"), nb::arg("output_errors"), nb::arg("status").none() = nb::none(),
+           "The three tests over N samples of an observer's run (parameters N x np, output_errors N x ny),\n"
+           "with the GIL released; samples whose `status` is not accepted are passed over. Returns a dict of\n"
+           "per-sample arrays: cusum_alarm, glr_alarm, chi_square_alarm, their statistics, the CUSUM's and\n"
+           "GLR's isolated component and the CUSUM's direction, and the status of each sample.")
+      .def_prop_ro("cusum", [](const Monitor& self) { return self.cusum(); }, "a copy of the CUSUM")
+      .def_prop_ro("glr", [](const Monitor& self) { return self.glr(); }, "a copy of the GLR")
+      .def_prop_ro("chi_square", [](const Monitor& self) { return self.chi_square(); }, "a copy of the chi-square test");
+  bind_state(monitor, [make_cusum, make_glr, make_chi](const Snapshot<double>& s, const std::string&) {
+    MonitorDesign design;
+    const Cusum c = make_cusum(s, "cusum.");
+    const Glr g = make_glr(s, "glr.");
+    design.nominal = c.nominal();
+    design.cusum.scale = scale_of(s, "cusum.");
+    design.cusum.drift = c.drift();
+    design.cusum.threshold = c.threshold();
+    design.cusum_options = sequential_options_of(s, "cusum.");
+    design.glr_window = g.window();
+    design.glr_threshold = g.threshold();
+    const ChiSquare chi_square = make_chi(s, "chi_square.");
+    design.output_error_covariance = Eigen::MatrixXd::Identity(chi_square.outputs(), chi_square.outputs());
+    design.window = chi_square.window();
+    design.false_alarm_probability = chi_square.false_alarm_probability();
+    return Monitor(design);
+  });
+}
+
+}  // namespace adaptobs::python
