@@ -7,6 +7,7 @@
 #include <adaptobs/diagnostics/fault_monitor.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
 
+#include "models/dey_bhasin.hpp"
 #include "models/satellite.hpp"
 
 #include <gtest/gtest.h>
@@ -208,6 +209,49 @@ TEST(Snapshot, ARestoredFaultMonitorContinuesBitForBit) {
   other_design.cusum_options.stride = 4;
   adaptobs::FaultMonitor<double, 2, 2> other(other_design);
   EXPECT_THROW(adaptobs::restore(other, adaptobs::snapshot(original)), adaptobs::ConfigurationError);
+}
+
+// Dey–Bhasin (covariance resetting) and Suzuki (forgetting) on the MIMO example
+// of Dey & Bhasin (2022) §5: restored at step 150, past the first covariance resets.
+template <class Observer>
+void expect_filter_observer_continues(Observer original) {
+  namespace mimo = adaptobs::examples::dey_bhasin::mimo;
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  const auto feed = [&](Observer& o, auto& p, Index steps) {
+    for (Index k = 0; k < steps; ++k, p.advance()) ASSERT_EQ(o.update(p.sample()), UpdateStatus::accepted);
+  };
+  feed(original, plant, 150);
+  Observer restored = original;
+  restored.reset(Observer::State::Zero(), Observer::Parameters::Zero());
+  adaptobs::restore(restored, adaptobs::snapshot(original));
+  EXPECT_EQ(restored.state(), original.state());
+  EXPECT_EQ(restored.step(), original.step());
+  auto plant_copy = plant;
+  feed(original, plant, 200);
+  feed(restored, plant_copy, 200);
+  EXPECT_EQ(original.state(), restored.state());
+  EXPECT_EQ(original.parameters(), restored.parameters());
+  EXPECT_EQ(original.law().covariance(), restored.law().covariance());
+  EXPECT_EQ(original.output_error(), restored.output_error());
+  if constexpr (requires { original.law().reset_count(); }) {
+    EXPECT_GT(original.law().reset_count(), 0);
+    EXPECT_EQ(original.law().reset_count(), restored.law().reset_count());
+    EXPECT_EQ(original.law().reset_tests_run(), restored.law().reset_tests_run());
+  }
+}
+
+TEST(Snapshot, RestoredDeyBhasinAndSuzukiObserversContinueBitForBit) {
+  namespace mimo = adaptobs::examples::dey_bhasin::mimo;
+  expect_filter_observer_continues(mimo::make_observer());
+  const auto dey_bhasin = mimo::make_observer();
+  using Suzuki = adaptobs::SuzukiObserver<double, mimo::order, mimo::outputs, mimo::inputs>;
+  const Suzuki suzuki(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(),
+                      {.gamma0 = Suzuki::Parameters::Constant(1.0).asDiagonal() * 1000.0,
+                       .R = Eigen::Matrix2d::Identity(),
+                       .lambda = 0.98});
+  expect_filter_observer_continues(suzuki);
+  EXPECT_EQ(adaptobs::snapshot(suzuki).type, "SuzukiObserver");
+  EXPECT_EQ(adaptobs::snapshot(dey_bhasin).type, "DeyBhasinObserver");
 }
 
 }  // namespace snapshot_test

@@ -166,6 +166,19 @@ class LeastSquaresEstimate {
   /// 0 or 1: lets a law keep more per-slot state beside the estimate.
   [[nodiscard]] int current_slot() const noexcept { return current_; }
 
+  /// The estimate's part of a law's `visit_state` (core/snapshot.hpp): both
+  /// slots of p̂ and Γ, and which one is current.
+  template <class Self, class Archive>
+  static void visit_estimate_state(Self& self, Archive& archive) {
+    archive("p[0]", self.p_[0]);
+    archive("p[1]", self.p_[1]);
+    archive("gamma[0]", self.gamma_[0]);
+    archive("gamma[1]", self.gamma_[1]);
+    archive("current", self.current_);
+    if constexpr (Archive::reading)
+      require(self.current_ == 0 || self.current_ == 1, "restore", "snapshot", "holds a current slot other than 0 or 1");
+  }
+
  private:
   std::array<Parameters, 2> p_;
   std::array<Covariance, 2> gamma_;

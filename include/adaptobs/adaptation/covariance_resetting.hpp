@@ -125,6 +125,26 @@ class CovarianceResettingRls : public LeastSquaresLaw<CovarianceResettingRls<S, 
   [[nodiscard]] Scalar eigenvalue_lower_bound() const noexcept { return track_[this->current_slot()].bound; }
   [[nodiscard]] const Options& options() const noexcept { return options_; }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the estimate,
+  /// the options, and the reset counters of both slots.
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    Base::Estimate::visit_estimate_state(self, archive);
+    archive("k0", self.options_.k0);
+    archive("kmin", self.options_.kmin);
+    archive("R", self.options_.R);
+    archive("screen_reset_test", self.options_.screen_reset_test);
+    for (std::size_t i = 0; i < self.track_.size(); ++i) {
+      auto track = archive.nested(detail::element_name("track", i));
+      track("resets", self.track_[i].resets);
+      track("tests", self.track_[i].tests);
+      track("reset_last", self.track_[i].reset_last);
+      track("bound", self.track_[i].bound);
+    }
+    archive("inverse_weight_bound", self.inverse_weight_bound_);
+    archive("rounding_margin", self.rounding_margin_);
+  }
+
  private:
   const MeasurementWeight* weight() const noexcept { return &options_.R; }
 

@@ -92,6 +92,16 @@ class ExponentialForgettingRls : public LeastSquaresLaw<ExponentialForgettingRls
 
   [[nodiscard]] const Options& options() const noexcept { return options_; }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the estimate and the options.
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    Base::Estimate::visit_estimate_state(self, archive);
+    archive("gamma0", self.options_.gamma0);
+    archive("R", self.options_.R);
+    archive("lambda", self.options_.lambda);
+    archive("weight", self.weight_);
+  }
+
  private:
   const MeasurementWeight* weight() const noexcept { return &weight_; }
 

@@ -170,6 +170,16 @@ class CanonicalFormFilters {
     detail::add_product(next, b, u.derived());
   }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): f and the
+  /// rows derived from it; q and m are settings.
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.setting("q", self.q_);
+    archive.setting("m", self.m_);
+    archive("f", self.f_);
+    archive("first_rows", self.first_rows_);
+  }
+
  private:
   Coefficients f_;
   Index q_;

@@ -49,6 +49,7 @@
 #include <Eigen/Core>
 
 #include <string_view>
+#include <type_traits>
 #include <utility>
 
 namespace adaptobs {
@@ -196,6 +197,32 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   /// \f$[(a - f)^T\ \mathrm{vec}(B)^T]^T\f$ for first-column entries a and input matrix B.
   [[nodiscard]] Parameters parameters_of(const Coefficients& a, const InputMatrix& B) const {
     return initial_parameters(filters_, a, B);
+  }
+
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the filters'
+  /// coefficients, the law's estimate and counters, the filter bank and the
+  /// estimates. The law names the class: a Suzuki observer's snapshot is not a
+  /// Dey–Bhasin one's.
+  static constexpr std::string_view snapshot_type =
+      std::is_same_v<AdaptationLawType, ExponentialForgettingRls<S, Dims::np, Dims::ny>> ? "SuzukiObserver"
+                                                                                          : "DeyBhasinObserver";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    auto filters = archive.nested("filters");
+    Filters::visit_state(self.filters_, filters);
+    auto law = archive.nested("law");
+    AdaptationLawType::visit_state(self.law_, law);
+    archive("x0", self.x0_);
+    archive("bank", self.bank_);
+    archive("last", self.last_);
+    archive("current_free", self.current_free_);
+    archive("phi", self.phi_);
+    archive("z", self.z_);
+    archive("prediction_error", self.prediction_error_);
+    archive("state", self.state_);
+    archive("next_state", self.next_state_);
+    archive("step", self.step_);
   }
 
  private:
