@@ -26,19 +26,24 @@ namespace adaptobs::python {
 using Dims = DynamicDimensions<double>;
 using LtiModel = DiscreteLtiModel<Dims>;
 
+/// An observer whose samples carry a regressor Ψ_k (Guyader–Zhang, the augmented
+/// Kalman filter); the others take (u_k, y_k) alone (Dey–Bhasin, Suzuki).
+template <class Observer>
+constexpr bool takes_regressor = requires(typename Observer::Sample& sample) { sample.Psi; };
+
 /// The Python object of an observer: the C++ observer and a sample sized once,
 /// into which `update` copies its arguments (no allocation per call).
 template <class Observer>
 struct Bound {
   Observer observer;
-  DiscreteSample<Dims> sample;
+  typename Observer::Sample sample;
   OutputMask<Dims> mask;
 
   explicit Bound(Observer o) : observer(std::move(o)) {
     const Sizes s = observer.sizes();
     sample.u.setZero(s.nu);
     sample.y.setZero(s.ny);
-    sample.Psi.setZero(s.nx, s.np);
+    if constexpr (takes_regressor<Observer>) sample.Psi.setZero(s.nx, s.np);
     mask.setConstant(s.ny, true);
   }
 };
@@ -182,7 +187,11 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
   const Index samples = static_cast<Index>(y_array.shape(0));
   const Rows outputs = rows(y_array, samples, s.ny, who, "Y");
   const Rows inputs = rows(u, samples, s.nu, who, "U");
-  const Regressors regressor = regressors(psi, samples, s.nx, s.np, who);
+  Regressors regressor;
+  if constexpr (takes_regressor<Observer>)
+    regressor = regressors(psi, samples, s.nx, s.np, who);
+  else if (!psi.is_none())
+    detail::fail_argument(who, "Psi", "must be None: this observer's samples have no regressor");
   const Masks mask = masks(present, samples, s.ny, who);
 
   using D = Diagnostics<Observer>;
@@ -195,13 +204,14 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
   {
     nb::gil_scoped_release release;
     Bound<Observer>& b = self;
-    DiscreteSample<Dims>& sample = b.sample;
-    sample.Psi.setZero();
+    auto& sample = b.sample;
+    if constexpr (takes_regressor<Observer>) sample.Psi.setZero();
     std::array<double, D::names.size() + 1> values{};
     for (Index k = 0; k < samples; ++k) {
       sample.u = inputs.row(k);
       sample.y = outputs.row(k);
-      if (regressor.data) sample.Psi = regressor.at(k);
+      if constexpr (takes_regressor<Observer>)
+        if (regressor.data) sample.Psi = regressor.at(k);
       UpdateStatus result;
       if (mask.given) {
         for (Index i = 0; i < s.ny; ++i) b.mask(i) = mask.present(k, i);
@@ -245,10 +255,14 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
              read_vector(u, s.nu, who, "u", self.sample.u);
            }
            read_vector(y, s.ny, who, "y", self.sample.y);
-           if (psi.is_none())
-             self.sample.Psi.setZero();
-           else
-             read_matrix(psi, s.nx, s.np, who, "Psi", self.sample.Psi);
+           if constexpr (takes_regressor<Observer>) {
+             if (psi.is_none())
+               self.sample.Psi.setZero();
+             else
+               read_matrix(psi, s.nx, s.np, who, "Psi", self.sample.Psi);
+           } else if (!psi.is_none()) {
+             detail::fail_argument(who, "Psi", "must be None: this observer's samples have no regressor");
+           }
            return step(self, present);
          },
          nb::arg("u").none(), nb::arg("y"), nb::arg("Psi").none() = nb::none(), nb::arg("present").none() = nb::none(),
@@ -266,7 +280,12 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
           "reset",
           [](B& self, nb::handle x0, nb::handle theta0, Index start_step) {
             const auto who = std::string(Observer::snapshot_type) + ".reset";
-            self.observer.reset(vector(x0, who, "x0"), vector(theta0, who, "theta0"), start_step);
+            if constexpr (requires { self.observer.reset(self.observer.state(), self.observer.parameters(), 0); })
+              self.observer.reset(vector(x0, who, "x0"), vector(theta0, who, "theta0"), start_step);
+            else if (start_step == 0)
+              self.observer.reset(vector(x0, who, "x0"), vector(theta0, who, "theta0"));
+            else
+              detail::fail_argument(who, "start_step", "must be 0: this observer restarts its filters from step 0");
           },
           nb::arg("x0"), nb::arg("theta0"), nb::arg("start_step") = 0,
           "Restarts from the initial estimates at step `start_step`, clearing the filters.")

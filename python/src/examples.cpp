@@ -4,6 +4,7 @@
 
 #include "arrays.hpp"
 
+#include "models/dey_bhasin.hpp"
 #include "models/satellite.hpp"
 
 #include <nanobind/eigen/dense.h>
@@ -62,6 +63,44 @@ nb::dict simulate_satellite(Index steps, double noise, std::uint64_t seed) {
   return d;
 }
 
+namespace mimo = adaptobs::examples::dey_bhasin::mimo;
+
+nb::dict dey_bhasin_mimo_system() {
+  nb::dict d;
+  d["a"] = Eigen::VectorXd(mimo::a());
+  d["B"] = Eigen::MatrixXd(mimo::B());
+  d["f"] = Eigen::VectorXd(mimo::f());
+  d["x0"] = Eigen::VectorXd(mimo::x0());
+  d["x0_estimate"] = Eigen::VectorXd(mimo::x_hat0());
+  d["a0_estimate"] = Eigen::VectorXd(mimo::a_hat0());
+  d["B0_estimate"] = Eigen::MatrixXd(mimo::B_hat0());
+  d["k0"] = mimo::k0;
+  d["kmin"] = mimo::kmin;
+  d["R"] = Eigen::MatrixXd(Eigen::MatrixXd::Identity(mimo::outputs, mimo::outputs));
+  return d;
+}
+
+// The MIMO plant of Dey & Bhasin (2022) §5, noise free, under the rich input
+// u = (sin 0.3t + sin 1.3t, sin 0.7t + sin 2.1t) or the one that is not rich enough.
+nb::dict simulate_dey_bhasin_mimo(Index steps, bool rich) {
+  detail::require(steps >= 0, "examples.simulate_dey_bhasin_mimo", "steps", "must be non-negative");
+  const auto record = [steps](auto plant) {
+    const auto n = static_cast<std::size_t>(steps);
+    OutputArray u({n, mimo::inputs}), y({n, mimo::outputs}), x({n, mimo::states});
+    for (Index k = 0; k < steps; ++k, plant.advance()) {
+      Eigen::Map<Eigen::VectorXd>(u.data + k * mimo::inputs, mimo::inputs) = plant.sample().u;
+      Eigen::Map<Eigen::VectorXd>(y.data + k * mimo::outputs, mimo::outputs) = plant.sample().y;
+      Eigen::Map<Eigen::VectorXd>(x.data + k * mimo::states, mimo::states) = plant.state();
+    }
+    nb::dict d;
+    d["U"] = u.array;
+    d["Y"] = y.array;
+    d["X"] = x.array;
+    return d;
+  };
+  return rich ? record(mimo::make_plant(mimo::RichInput{})) : record(mimo::make_plant(mimo::NotRichInput{}));
+}
+
 }  // namespace
 
 void bind_examples(nb::module_& m) {
@@ -73,6 +112,11 @@ void bind_examples(nb::module_& m) {
                nb::arg("seed") = 2003,
                "`steps` samples of the satellite with output noise of standard deviation `noise` from `seed`\n"
                "(the C++ example's plant): a dict of U, Y, Psi and the true states X, sample k in row k.");
+  examples.def("dey_bhasin_mimo", &dey_bhasin_mimo_system,
+               "The MIMO system of Dey & Bhasin (2022), section 5 (r = 3, q = 2, m = 2): the true a and B, the\n"
+               "filter coefficients f, the initial state and estimates, k0, kmin and R of the observer.");
+  examples.def("simulate_dey_bhasin_mimo", &simulate_dey_bhasin_mimo, nb::arg("steps") = 300, nb::arg("rich") = true,
+               "`steps` noise-free samples of that system: U, Y and the true states X.");
 }
 
 }  // namespace adaptobs::python

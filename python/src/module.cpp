@@ -13,6 +13,7 @@ void bind_discrete_observers(nb::module_& m);
 void bind_design(nb::module_& m);
 void bind_examples(nb::module_& m);
 void bind_fault_detection(nb::module_& m);
+void bind_filter_observers(nb::module_& m);
 }  // namespace adaptobs::python
 
 NB_MODULE(_core, m) {
@@ -33,6 +34,7 @@ NB_MODULE(_core, m) {
       .value("interval_too_long", UpdateStatus::interval_too_long);
 
   adaptobs::python::bind_discrete_observers(m);
+  adaptobs::python::bind_filter_observers(m);
   adaptobs::python::bind_design(m);
   adaptobs::python::bind_fault_detection(m);
   adaptobs::python::bind_examples(m);

@@ -1,0 +1,121 @@
+"""The observers of Dey & Bhasin (2022) from Python: the MIMO example of its
+section 5 identified, the C++ example's estimates to 1e-12, batch against
+step, pickling, and refusals."""
+
+import copy
+import os
+import pickle
+import subprocess
+
+import numpy as np
+import pytest
+
+import adaptobs
+from adaptobs import ConfigurationError, UpdateStatus
+
+
+def make_dey_bhasin(system):
+    return adaptobs.DeyBhasinObserver(system["f"], system["x0_estimate"], system["a0_estimate"],
+                                      system["B0_estimate"], k0=system["k0"], kmin=system["kmin"], R=system["R"])
+
+
+def make_suzuki(system):
+    return adaptobs.SuzukiObserver(system["f"], system["x0_estimate"], system["a0_estimate"], system["B0_estimate"],
+                                   gamma0=np.eye(15) * 1000.0, R=system["R"], lambda_=0.98)
+
+
+@pytest.fixture(scope="module")
+def mimo():
+    return adaptobs.examples.dey_bhasin_mimo(), adaptobs.examples.simulate_dey_bhasin_mimo(400)
+
+
+def test_every_entry_of_a_and_b_is_identified_with_a_rich_input(mimo):
+    system, data = mimo
+    observer = make_dey_bhasin(system)
+    result = observer.run(data["U"], data["Y"])
+    assert np.all(result.status == UpdateStatus.accepted)
+    assert np.max(np.abs(observer.a_hat / system["a"] - 1)) < 1e-6
+    assert np.max(np.abs(observer.B_hat / system["B"] - 1)) < 1e-6
+    # x_hat_{t+1|t} against the true state of step t + 1.
+    assert np.linalg.norm(result.state[-2] - data["X"][-1]) < 1e-6
+    assert observer.reset_count == result.diagnostics["reset_count"][-1] > 0
+    p = np.concatenate([system["a"] - system["f"], system["B"].reshape(-1, order="F")])
+    assert np.max(np.abs(result.parameters[-1] - p)) < 1e-6
+
+
+def test_an_input_that_is_not_rich_leaves_the_estimates_wrong(mimo):
+    system, _ = mimo
+    data = adaptobs.examples.simulate_dey_bhasin_mimo(400, rich=False)
+    observer = make_dey_bhasin(system)
+    observer.run(data["U"], data["Y"])
+    assert np.max(np.abs(observer.B_hat / system["B"] - 1)) > 0.05
+
+
+def test_the_mimo_replay_matches_the_cxx_example(tmp_path, mimo):
+    examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
+    if not examples:
+        pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
+    subprocess.run([os.path.join(examples, "dey_bhasin_mimo"), "--out", str(tmp_path)], check=True,
+                   capture_output=True)
+    table = np.genfromtxt(tmp_path / "dey_bhasin_mimo_pe.csv", delimiter=",", names=True)
+    system, _ = mimo
+    data = adaptobs.examples.simulate_dey_bhasin_mimo(len(table))
+    assert np.array_equal(data["Y"][:, 1], table["y_2"])
+    observer = make_dey_bhasin(system)
+    result = observer.run(data["U"], data["Y"])
+    cxx = np.column_stack([table[f"thetahat_{i}"] for i in range(1, 16)])
+    assert np.max(np.abs(result.parameters - cxx)) <= 1e-12 * max(1.0, np.max(np.abs(cxx)))
+    assert np.array_equal(result.diagnostics["reset_count"], table["resets"])
+
+
+@pytest.mark.parametrize("make", [make_dey_bhasin, make_suzuki])
+def test_run_equals_update_and_copies_continue_bit_for_bit(mimo, make):
+    system, data = mimo
+    U, Y = data["U"], data["Y"].copy()
+    present = np.ones(Y.shape, bool)
+    present[50:60, 1] = False
+    Y[50:60, 1] = np.nan  # absent: ignored
+    Y[120, 0] = np.inf  # present: the sample is rejected
+    batch = make(system)
+    result = batch.run(U, Y, present=present)
+    stepped = make(system)
+    for k in range(len(Y)):
+        if k == 150:
+            stepped = pickle.loads(pickle.dumps(stepped))
+        if k == 250:
+            stepped = copy.deepcopy(stepped)
+        status = stepped.update(U[k], Y[k], present=present[k])
+        assert status == result.status[k]
+        assert np.array_equal(stepped.state, result.state[k])
+        assert np.array_equal(stepped.parameters, result.parameters[k])
+    assert result.status[120] == UpdateStatus.nonfinite_input
+    assert np.count_nonzero(result.status) == 1
+    assert np.array_equal(stepped.covariance, batch.covariance)
+
+
+def test_a_suzuki_snapshot_is_not_a_dey_bhasin_one(mimo):
+    system, _ = mimo
+    with pytest.raises(ConfigurationError, match="is of a SuzukiObserver, not of a DeyBhasinObserver"):
+        make_dey_bhasin(system).restore(make_suzuki(system).snapshot())
+
+
+def test_bad_arguments_name_the_argument(mimo):
+    system, data = mimo
+    cases = [
+        (lambda: adaptobs.DeyBhasinObserver(system["f"], np.zeros(5), system["a0_estimate"], system["B0_estimate"],
+                                            k0=1000.0, kmin=1e-4, R=np.eye(2)), "DeyBhasinObserver: argument 'x0'"),
+        (lambda: adaptobs.DeyBhasinObserver(system["f"], system["x0_estimate"], system["a0_estimate"],
+                                            system["B0_estimate"], k0=1000.0, kmin=2000.0, R=np.eye(2)),
+         "CovarianceResettingRls: argument 'kmin' must be smaller than k0"),
+        (lambda: adaptobs.SuzukiObserver(system["f"], system["x0_estimate"], system["a0_estimate"],
+                                         system["B0_estimate"], gamma0=np.eye(15), R=np.eye(2), lambda_=1.5),
+         "ExponentialForgettingRls: argument 'lambda'"),
+        (lambda: make_dey_bhasin(system).update([0.0, 0.0], [0.0, 0.0], np.zeros((6, 15))),
+         "DeyBhasinObserver.update: argument 'Psi' must be None"),
+        (lambda: make_dey_bhasin(system).run(data["U"][:10], data["Y"][:11]),
+         "DeyBhasinObserver.run: argument 'U' must be 11x2 (got 10x2)"),
+    ]
+    for call, message in cases:
+        with pytest.raises(ConfigurationError) as error:
+            call()
+        assert str(error.value).startswith(message), str(error.value)
