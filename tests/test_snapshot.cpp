@@ -5,9 +5,11 @@
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/diagnostics/fault_monitor.hpp>
+#include <adaptobs/observers/guiro.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
 
 #include "models/dey_bhasin.hpp"
+#include "models/guiro.hpp"
 #include "models/satellite.hpp"
 
 #include <gtest/gtest.h>
@@ -252,6 +254,27 @@ TEST(Snapshot, RestoredDeyBhasinAndSuzukiObserversContinueBitForBit) {
   expect_filter_observer_continues(suzuki);
   EXPECT_EQ(adaptobs::snapshot(suzuki).type, "SuzukiObserver");
   EXPECT_EQ(adaptobs::snapshot(dey_bhasin).type, "DeyBhasinObserver");
+}
+
+TEST(Snapshot, ARestoredGuiroObserverContinuesBitForBit) {
+  namespace g = adaptobs::examples::guiro;
+  const auto make = [] {
+    return adaptobs::GuiroObserver(g::model<double>(), Eigen::Vector2d(g::printed_K()),
+                                   Eigen::Matrix<double, 1, 1>(g::corrected_printed_Gamma),
+                                   g::initial_state_estimate<double>(), g::initial_parameter_estimate<double>());
+  };
+  auto plant = g::make_plant();
+  auto original = make();
+  for (int k = 0; k < 7; ++k, plant.advance()) ASSERT_EQ(original.update(plant.sample()), UpdateStatus::accepted);
+  auto restored = make();  // not started: the first sample's correction would differ
+  adaptobs::restore(restored, adaptobs::snapshot(original));
+  auto plant_copy = plant;
+  for (int k = 0; k < 30; ++k, plant.advance(), plant_copy.advance()) {
+    ASSERT_EQ(original.update(plant.sample()), restored.update(plant_copy.sample()));
+    ASSERT_EQ(original.state(), restored.state());
+    ASSERT_EQ(original.corrected_state(), restored.corrected_state());
+    ASSERT_EQ(original.parameters(), restored.parameters());
+  }
 }
 
 }  // namespace snapshot_test

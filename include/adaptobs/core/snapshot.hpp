@@ -34,7 +34,6 @@
 
 #include <Eigen/Core>
 
-#include <algorithm>
 #include <concepts>
 #include <cstdint>
 #include <string>
@@ -141,7 +140,8 @@ class SnapshotWriter : public SnapshotArchiveBase {
   void operator()(std::string_view name, const T& field) {
     if constexpr (SnapshotEigen<T>) {
       SnapshotMatrix<Scalar> m{full_name(name), field.rows(), field.cols(), {}};
-      m.values.assign(field.data(), field.data() + field.size());
+      m.values.resize(static_cast<std::size_t>(field.size()));
+      Eigen::Map<T>(m.values.data(), field.rows(), field.cols()) = field;
       out_.matrices.push_back(std::move(m));
     } else if constexpr (std::floating_point<T>) {
       out_.matrices.push_back({full_name(name), 1, 1, {static_cast<Scalar>(field)}});
@@ -188,7 +188,7 @@ class SnapshotReader : public SnapshotArchiveBase {
       if (m.rows != field.rows() || m.cols != field.cols() ||
           static_cast<Index>(m.values.size()) != m.rows * m.cols)
         fail_field_shape(full, m.rows, m.cols, field.rows(), field.cols());
-      std::copy(m.values.begin(), m.values.end(), field.data());
+      field = Eigen::Map<const T>(m.values.data(), m.rows, m.cols);
     } else if constexpr (std::floating_point<T>) {
       const SnapshotMatrix<Scalar>& m = matrix(full);
       if (m.rows != 1 || m.cols != 1 || m.values.size() != 1) fail_field_shape(full, m.rows, m.cols, 1, 1);

@@ -46,6 +46,7 @@
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
+#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <utility>
@@ -112,6 +113,28 @@ class GuiroObserver
     detail::require_finite_shape(Gamma, parameter_gain_.rows(), parameter_gain_.cols(), who, "Gamma");
     gain_ = K;
     parameter_gain_ = Gamma;
+  }
+
+  [[nodiscard]] const GuiroOptions& options() const noexcept { return options_; }
+
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the model,
+  /// K, Γ, the estimates and whether the first sample was consumed; the
+  /// option is a setting.
+  static constexpr std::string_view snapshot_type = "GuiroObserver";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+    requires Snapshottable<Model>
+  static void visit_state(Self& self, Archive& archive) {
+    auto model = archive.nested("model");
+    Model::visit_state(self.model_, model);
+    archive("K", self.gain_);
+    archive("Gamma", self.parameter_gain_);
+    archive("z", self.z_);
+    archive("corrected", self.corrected_);
+    archive("theta", self.theta_);
+    archive.setting("correct_initial_estimate", self.options_.correct_initial_estimate);
+    archive("started", self.started_);
+    GuiroObserver::visit_update_state(self, archive);
   }
 
  private:
