@@ -1,11 +1,14 @@
-// The discrete-time observers and their model in Python, with run-time sizes:
-// GuyaderZhangObserver (Guyader & Zhang 2003, eq. (2a)-(2c)) and the
+// The discrete-time observers over a model in Python, with run-time sizes:
+// GuyaderZhangObserver (Guyader & Zhang 2003, eq. (2a)-(2c)), GuiroObserver
+// (Guiro et al. 2008, eq. (4)-(5)) with its gain design, and the
 // AugmentedKalmanFilter baseline, over a DiscreteLtiModel.
 
 #include "discrete_observer.hpp"
 #include "snapshot_fields.hpp"
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
+#include <adaptobs/design/guiro_gains.hpp>
+#include <adaptobs/observers/guiro.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
 
 #include <nanobind/stl/optional.h>
@@ -16,6 +19,7 @@ namespace adaptobs::python {
 
 using GuyaderZhang = GuyaderZhangObserver<LtiModel>;
 using AugmentedKalman = AugmentedKalmanFilter<LtiModel>;
+using Guiro = GuiroObserver<LtiModel>;
 
 template <>
 struct Diagnostics<GuyaderZhang> {
@@ -106,6 +110,61 @@ void bind_discrete_observers(nb::module_& m) {
                         {.excitation_window = integer(s, "excitation_window"),
                          .normalized_step = integer(s, "normalized_step") != 0});
   });
+
+  auto guiro = nb::class_<Bound<Guiro>>(
+      m, "GuiroObserver",
+      "Continuous-discrete adaptive observer of Guiro, Iggidr, Ngom & Toure (2008), eq. (4)-(5), over the\n"
+      "sampled model (E = exp(A T), B, C) with the regressor H_k of each interval (Psi_k):\n"
+      "  z_k = z-_k + K (y_k - C z-_k),  theta_{k+1} = theta_k - Gamma (C z_k - y_k),\n"
+      "  z-_{k+1} = E z_k + H_k theta_k + B u_k.\n"
+      "`state` is the prediction z-_k, `corrected_state` the paper's z_{k-1}; design K and Gamma with\n"
+      "design_guiro_gains. correct_initial_estimate=False leaves the first prediction uncorrected.");
+  guiro.def(
+           "__init__",
+           [](Bound<Guiro>* self, const LtiModel& model, nb::handle K, nb::handle Gamma, nb::handle z0,
+              nb::handle theta0, bool correct_initial_estimate) {
+             constexpr std::string_view who = "GuiroObserver";
+             new (self) Bound<Guiro>(Guiro(model, matrix(K, who, "K"), matrix(Gamma, who, "Gamma"),
+                                           vector(z0, who, "z0"), vector(theta0, who, "theta0"),
+                                           {.correct_initial_estimate = correct_initial_estimate}));
+           },
+           nb::arg("model"), nb::arg("K"), nb::arg("Gamma"), nb::arg("z0"), nb::arg("theta0"), nb::kw_only(),
+           nb::arg("correct_initial_estimate") = true)
+      .def_prop_ro("corrected_state", [](const Bound<Guiro>& b) { return Eigen::VectorXd(b.observer.corrected_state()); })
+      .def_prop_ro("K", [](const Bound<Guiro>& b) { return Eigen::MatrixXd(b.observer.gain()); })
+      .def_prop_ro("Gamma", [](const Bound<Guiro>& b) { return Eigen::MatrixXd(b.observer.parameter_gain()); })
+      .def(
+          "set_gains",
+          [](Bound<Guiro>& b, nb::handle K, nb::handle Gamma) {
+            constexpr std::string_view who = "GuiroObserver.set_gains";
+            b.observer.set_gains(matrix(K, who, "K"), matrix(Gamma, who, "Gamma"));
+          },
+          nb::arg("K"), nb::arg("Gamma"), "Gains used from the next update on (a schedule over varying intervals).");
+  bind_discrete_observer(guiro, [](const Snapshot<double>& s) {
+    return Guiro(model_of(s), field(s, "K"), field(s, "Gamma"), field(s, "z"), field(s, "theta"),
+                 {.correct_initial_estimate = integer(s, "correct_initial_estimate") != 0});
+  });
+
+  using GuiroDesign = GuiroGains<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>;
+  nb::class_<GuiroDesign>(m, "GuiroGains", "Gains K and Gamma of a Guiro observer, with the figures that certify them.")
+      .def_ro("K", &GuiroDesign::K)
+      .def_ro("Gamma", &GuiroDesign::Gamma)
+      .def_ro("L", &GuiroDesign::L, "the equivalent predictor gain [E K; Gamma (I - C K)]")
+      .def_ro("U", &GuiroDesign::U, "the error matrix at Hbar, whose spectrum was placed")
+      .def_ro("cayley_hamilton_residual", &GuiroDesign::cayley_hamilton_residual)
+      .def_ro("spectral_radius", &GuiroDesign::spectral_radius)
+      .def_ro("eigenvector_condition", &GuiroDesign::eigenvector_condition)
+      .def_ro("eigenvalue_mismatch", &GuiroDesign::eigenvalue_mismatch);
+  m.def(
+      "design_guiro_gains",
+      [](nb::handle E, nb::handle C, nb::handle Hbar, nb::handle poles) {
+        constexpr std::string_view who = "design_guiro_gains";
+        return design_guiro_gains(matrix(E, who, "E"), matrix(C, who, "C"), matrix(Hbar, who, "Hbar"),
+                                  complex_vector(poles, who, "poles"));
+      },
+      nb::arg("E"), nb::arg("C"), nb::arg("Hbar"), nb::arg("poles"),
+      "K and Gamma such that the error matrix U at the nominal regressor Hbar has the spectrum `poles`\n"
+      "(n + p values inside the unit circle); refuses, naming the cause, when no gains exist.");
 
   auto akf = nb::class_<Bound<AugmentedKalman>>(
       m, "AugmentedKalmanFilter",

@@ -5,6 +5,7 @@
 #include "arrays.hpp"
 
 #include "models/dey_bhasin.hpp"
+#include "models/guiro.hpp"
 #include "models/satellite.hpp"
 
 #include <nanobind/eigen/dense.h>
@@ -63,6 +64,47 @@ nb::dict simulate_satellite(Index steps, double noise, std::uint64_t seed) {
   return d;
 }
 
+namespace guiro = adaptobs::examples::guiro;
+
+nb::dict guiro_system() {
+  const auto model = guiro::model<double>();
+  nb::dict d;
+  d["E"] = Eigen::MatrixXd(model.system().A);
+  d["B"] = Eigen::MatrixXd(model.system().B);
+  d["C"] = Eigen::MatrixXd(model.system().C);
+  d["T"] = guiro::period;
+  d["theta"] = Eigen::VectorXd(Eigen::VectorXd::Constant(1, guiro::theta));
+  d["x0"] = Eigen::VectorXd(guiro::initial_state<double>());
+  d["z0"] = Eigen::VectorXd(guiro::initial_state_estimate<double>());
+  d["theta0"] = Eigen::VectorXd(guiro::initial_parameter_estimate<double>());
+  d["H0"] = Eigen::MatrixXd(guiro::closed_form_H<double>(0));
+  d["Hbar"] = Eigen::MatrixXd(guiro::limit_H<double>());
+  d["poles"] = Eigen::VectorXd(guiro::requested_poles());
+  d["printed_K"] = Eigen::VectorXd(guiro::printed_K());
+  d["printed_Gamma"] = guiro::corrected_printed_Gamma;
+  return d;
+}
+
+// `samples` samples of the paper's example, regular period T: Y, Psi (H_k, N x 2 x 1) and X.
+nb::dict simulate_guiro(Index samples) {
+  detail::require(samples >= 0, "examples.simulate_guiro", "samples", "must be non-negative");
+  auto plant = guiro::make_plant();
+  const auto n = static_cast<std::size_t>(samples);
+  OutputArray y({n, 1}), psi({n, 2, 1}), x({n, 2});
+  for (Index k = 0; k < samples; ++k, plant.advance()) {
+    y.data[k] = plant.sample().y(0);
+    psi.data[2 * k] = plant.sample().Psi(0, 0);
+    psi.data[2 * k + 1] = plant.sample().Psi(1, 0);
+    x.data[2 * k] = plant.state()(0);
+    x.data[2 * k + 1] = plant.state()(1);
+  }
+  nb::dict d;
+  d["Y"] = y.array;
+  d["Psi"] = psi.array;
+  d["X"] = x.array;
+  return d;
+}
+
 namespace mimo = adaptobs::examples::dey_bhasin::mimo;
 
 nb::dict dey_bhasin_mimo_system() {
@@ -112,6 +154,13 @@ void bind_examples(nb::module_& m) {
                nb::arg("seed") = 2003,
                "`steps` samples of the satellite with output noise of standard deviation `noise` from `seed`\n"
                "(the C++ example's plant): a dict of U, Y, Psi and the true states X, sample k in row k.");
+  examples.def("guiro", &guiro_system,
+               "The example of Guiro, Iggidr, Ngom & Toure (2008): x1' = theta phi(t), x2' = x1, y = x2 sampled\n"
+               "every T = 1, phi(t) = (t + 1)/(t + 2), theta = 5; the sampled E, B, C, the regressor H0 of the first\n"
+               "interval and its limit Hbar,\n"
+               "the requested poles and the printed gains (Gamma with its decimal point corrected).");
+  examples.def("simulate_guiro", &simulate_guiro, nb::arg("samples") = 60,
+               "`samples` noise-free samples: Y, Psi (the interval regressors H_k) and the true states X.");
   examples.def("dey_bhasin_mimo", &dey_bhasin_mimo_system,
                "The MIMO system of Dey & Bhasin (2022), section 5 (r = 3, q = 2, m = 2): the true a and B, the\n"
                "filter coefficients f, the initial state and estimates, k0, kmin and R of the observer.");
