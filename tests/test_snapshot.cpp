@@ -11,6 +11,7 @@
 #include "models/dey_bhasin.hpp"
 #include "models/guiro.hpp"
 #include "models/satellite.hpp"
+#include "models/unified_designs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -275,6 +276,45 @@ TEST(Snapshot, ARestoredGuiroObserverContinuesBitForBit) {
     ASSERT_EQ(original.corrected_state(), restored.corrected_state());
     ASSERT_EQ(original.parameters(), restored.parameters());
   }
+}
+
+// The continuous-time observers of the unified formulation (Zhang 2005), on the
+// third-order plant: restored after 120 samples, past the learned step limit.
+template <class Observer>
+void expect_continuous_observer_continues(Observer original, Observer restored) {
+  namespace siso = adaptobs::examples::siso;
+  auto plant = siso::make_plant<double>();
+  ASSERT_EQ(original.update(plant.sample()), UpdateStatus::accepted);
+  for (int k = 0; k < 120; ++k) {
+    plant.advance();
+    ASSERT_EQ(original.update(plant.sample()), UpdateStatus::accepted);
+  }
+  adaptobs::restore(restored, adaptobs::snapshot(original));
+  EXPECT_EQ(restored.internal_state(), original.internal_state());
+  EXPECT_EQ(restored.time(), original.time());
+  for (int k = 0; k < 200; ++k) {
+    plant.advance();
+    ASSERT_EQ(original.update(plant.sample()), restored.update(plant.sample()));
+    ASSERT_EQ(original.internal_state(), restored.internal_state()) << k;
+  }
+  EXPECT_EQ(original.state(), restored.state());
+  EXPECT_EQ(original.parameters(), restored.parameters());
+  EXPECT_EQ(original.output_error(), restored.output_error());
+  EXPECT_EQ(original.excitation_level(), restored.excitation_level());
+}
+
+TEST(Snapshot, RestoredBastinGeversAndMarinoTomeiObserversContinueBitForBit) {
+  namespace designs = adaptobs::examples::designs;
+  const adaptobs::UnifiedObserverOptions options{.sampling = designs::quadratic(), .excitation_window = 30};
+  expect_continuous_observer_continues(designs::bastin_gevers_observer<double>(options),
+                                       designs::bastin_gevers_observer<double>(options));
+  expect_continuous_observer_continues(designs::marino_tomei_observer<double>(options),
+                                       designs::marino_tomei_observer<double>(options));
+  EXPECT_EQ(adaptobs::snapshot(designs::marino_tomei_observer<double>()).type, "MarinoTomeiObserver");
+  // An observer of another sampling option refuses the snapshot.
+  auto hold = designs::bastin_gevers_observer<double>({.sampling = {}, .excitation_window = 30});
+  EXPECT_THROW(adaptobs::restore(hold, adaptobs::snapshot(designs::bastin_gevers_observer<double>(options))),
+               adaptobs::ConfigurationError);
 }
 
 }  // namespace snapshot_test

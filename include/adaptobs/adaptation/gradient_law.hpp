@@ -50,6 +50,12 @@ class GradientLaw {
 
   [[nodiscard]] const ParameterMatrix& gamma() const noexcept { return gamma_; }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): Γ.
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive("gamma", self.gamma_);
+  }
+
  private:
   ParameterMatrix gamma_;
   mutable typename D::Parameters scratch_;

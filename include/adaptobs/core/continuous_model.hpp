@@ -119,6 +119,18 @@ class ContinuousLtiModel : public SizedBy<D> {
   }
   [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): A, B, C; np a
+  /// setting. The regressor Φ is the model's code, not its state: it is not saved.
+  static constexpr std::string_view snapshot_type = "ContinuousLtiModel";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive("A", self.system_.A);
+    archive("B", self.system_.B);
+    archive("C", self.system_.C);
+    archive.setting("np", self.sizes_.np);
+  }
+
  private:
   ContinuousSystem<D> system_;
   RegressorFn phi_;

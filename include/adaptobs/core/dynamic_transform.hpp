@@ -111,6 +111,17 @@ class DynamicTransform {
     return m;
   }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): F (when not
+  /// projected), G and H; whether F is given is a setting.
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.setting("projected", !self.f_.has_value());
+    if (self.f_) archive("F", *self.f_);
+    archive("G", self.g_);
+    archive("H", self.h_);
+    archive("identity", self.identity_);
+  }
+
  private:
   DynamicTransform(std::optional<FilterMatrix> F, InjectionMatrix G, OutputMatrix H)
       : f_(std::move(F)), g_(std::move(G)), h_(std::move(H)) {

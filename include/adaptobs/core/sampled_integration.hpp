@@ -174,6 +174,23 @@ class SampledIntegrator {
     return advance(sample, state, std::forward<Rhs>(rhs), who, [](InternalState&) { return UpdateStatus::accepted; });
   }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the previous
+  /// sample, the learned step limit and whether integration has started; the
+  /// options are settings.
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.setting("substeps", self.options_.substeps);
+    archive.setting("max_substeps", self.options_.max_substeps);
+    archive.setting("input", static_cast<int>(self.options_.input));
+    archive.setting("output", static_cast<int>(self.options_.output));
+    archive("max_step", self.options_.max_step);
+    archive("previous_t", self.previous_.t);
+    archive("previous_u", self.previous_.u);
+    archive("previous_y", self.previous_.y);
+    archive("learned_step", self.learned_step_);
+    archive("started", self.started_);
+  }
+
  private:
   // RK4 steps for an interval (see the file comment); 0 when more than max_substeps.
   [[nodiscard]] int steps_for(Scalar interval) const {

@@ -199,6 +199,15 @@ class StaticTransform : public SizedBy<D> {
     multiply_unless_identity(t_inverse_, x, eta);
   }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): T, its inverse and K.
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive("T", self.t_);
+    archive("T_inverse", self.t_inverse_);
+    archive("K", self.k_);
+    archive("identity", self.identity_);
+  }
+
  private:
   /// `out = m * in` with m either T or \f$T^{-1}\f$, a plain copy when T = I: the
   /// one place where the products by T are skipped.

@@ -61,6 +61,16 @@ struct BastinGevers {
 
   void injection_gain(const TransformedSystem<D>& /*so*/, Scalar /*t*/, typename D::GainMatrix& L) const { L = k; }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp).
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    auto static_part = archive.nested("static_transform");
+    StaticTransform<D>::visit_state(self.static_transform, static_part);
+    auto dynamic_part = archive.nested("dynamic_transform");
+    DynamicTransform<Scalar, D::nx, filter_rows>::visit_state(self.dynamic_transform, dynamic_part);
+    archive("k", self.k);
+  }
+
   /// \f$\xi^T = a_{12}\Xi + \Psi_1\f$ (§III-A, below (6b)).
   template <class DXi, class DOmega, class DPsi, class DR>
   void regressor(const TransformedSystem<D>& so, const Eigen::MatrixBase<DXi>& Xi,

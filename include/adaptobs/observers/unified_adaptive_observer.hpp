@@ -232,6 +232,34 @@ class UnifiedAdaptiveObserver
     return excitation_->level();
   }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the model's
+  /// matrices, the algorithm's transforms and gains, the law, the integrator's
+  /// previous sample, the internal state (ẑ, Ξ, θ̂) and the diagnostics. The
+  /// transformed system of a time-invariant model is computed again from them.
+  static constexpr std::string_view snapshot_type = Algorithm::name;
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    auto model = archive.nested("model");
+    Model::visit_state(self.model_, model);
+    auto algorithm = archive.nested("algorithm");
+    Algorithm::visit_state(self.algorithm_, algorithm);
+    auto law = archive.nested("law");
+    Law::visit_state(self.law_, law);
+    auto integrator = archive.nested("integrator");
+    SampledIntegrator<Dims, InternalState>::visit_state(self.integrator_, integrator);
+    archive("internal", self.internal_);
+    archive("eta", self.eta_);
+    archive("theta", self.theta_);
+    archive("output_error", self.output_error_);
+    archive.setting("excitation_window", self.excitation_ ? self.excitation_->window() : 0);
+    if (self.excitation_) {
+      auto excitation = archive.nested("excitation");
+      ExcitationMonitor<Scalar, Dims::np>::visit_state(*self.excitation_, excitation);
+    }
+    if constexpr (Archive::reading) self.refresh_time_invariant_system();
+  }
+
  private:
   struct Workspace {
     TransformedSystem<Dims> so;
