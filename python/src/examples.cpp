@@ -7,11 +7,13 @@
 #include "models/dey_bhasin.hpp"
 #include "models/guiro.hpp"
 #include "models/satellite.hpp"
+#include "models/siso_third_order.hpp"
 
 #include <nanobind/eigen/dense.h>
 #include <nanobind/stl/string.h>
 
 #include <cstdint>
+#include <limits>
 
 namespace adaptobs::python {
 
@@ -106,6 +108,48 @@ nb::dict simulate_guiro(Index samples) {
 }
 
 namespace mimo = adaptobs::examples::dey_bhasin::mimo;
+namespace siso = adaptobs::examples::siso;
+
+nb::dict siso_system() {
+  nb::dict d;
+  d["A"] = Eigen::MatrixXd(siso::dynamics<double>());
+  d["B"] = Eigen::MatrixXd(siso::input_matrix<double>());
+  d["C"] = Eigen::MatrixXd(siso::output_matrix<double>());
+  d["theta"] = Eigen::VectorXd(siso::true_parameters<double>());
+  d["x0"] = Eigen::VectorXd(siso::initial_state<double>());
+  return d;
+}
+
+// The third-order plant sampled every `period` from t = 0: t, U, Y, the signals
+// at the midpoint of the interval ending at each sample (row 0: NaN) and X.
+nb::dict simulate_siso(Index steps, double period, double noise, std::uint64_t seed) {
+  constexpr std::string_view who = "examples.simulate_siso";
+  detail::require(steps >= 1, who, "steps", "must be at least 1");
+  detail::require_positive(period, who, "period");
+  detail::require(noise >= 0 && std::isfinite(noise), who, "noise", "must be non-negative and finite");
+  auto plant = siso::make_plant<double>({.period = period, .output_noise = noise, .seed = seed});
+  const auto n = static_cast<std::size_t>(steps);
+  OutputArray t({n}), u({n, 1}), y({n, 1}), u_mid({n, 1}), y_mid({n, 1}), x({n, 3});
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (Index k = 0; k < steps; ++k) {
+    if (k > 0) plant.advance();
+    const auto& sample = plant.sample();
+    t.data[k] = sample.t;
+    u.data[k] = sample.u(0);
+    y.data[k] = sample.y(0);
+    u_mid.data[k] = sample.midpoint ? sample.midpoint->u(0) : nan;
+    y_mid.data[k] = sample.midpoint ? sample.midpoint->y(0) : nan;
+    Eigen::Map<Eigen::Vector3d>(x.data + 3 * k) = plant.state();
+  }
+  nb::dict d;
+  d["t"] = t.array;
+  d["U"] = u.array;
+  d["Y"] = y.array;
+  d["U_mid"] = u_mid.array;
+  d["Y_mid"] = y_mid.array;
+  d["X"] = x.array;
+  return d;
+}
 
 nb::dict dey_bhasin_mimo_system() {
   nb::dict d;
@@ -161,6 +205,14 @@ void bind_examples(nb::module_& m) {
                "the requested poles and the printed gains (Gamma with its decimal point corrected).");
   examples.def("simulate_guiro", &simulate_guiro, nb::arg("samples") = 60,
                "`samples` noise-free samples: Y, Psi (the interval regressors H_k) and the true states X.");
+  examples.def("siso", &siso_system,
+               "The third-order SISO plant of the unified formulation's examples (Zhang 2005 prints none):\n"
+               "A, B, C, the true theta = (2, -1) and eta(0); Phi(t) = [[sin t, 0], [cos 1.7t, 1], [0, sin 0.6t]]\n"
+               "and u = 1 + sin 0.3t.");
+  examples.def("simulate_siso", &simulate_siso, nb::arg("steps") = 10001, nb::arg("period") = 0.01,
+               nb::arg("noise") = 0.0, nb::arg("seed") = 1,
+               "`steps` samples of it every `period` from t = 0 (the C++ plant, RK4): t, U, Y, U_mid and Y_mid\n"
+               "(the signals at the midpoint of the interval ending at each sample; row 0 NaN) and X.");
   examples.def("dey_bhasin_mimo", &dey_bhasin_mimo_system,
                "The MIMO system of Dey & Bhasin (2022), section 5 (r = 3, q = 2, m = 2): the true a and B, the\n"
                "filter coefficients f, the initial state and estimates, k0, kmin and R of the observer.");

@@ -14,6 +14,7 @@ void bind_design(nb::module_& m);
 void bind_examples(nb::module_& m);
 void bind_fault_detection(nb::module_& m);
 void bind_filter_observers(nb::module_& m);
+void bind_continuous_observers(nb::module_& m);
 }  // namespace adaptobs::python
 
 NB_MODULE(_core, m) {
@@ -35,6 +36,7 @@ NB_MODULE(_core, m) {
 
   adaptobs::python::bind_discrete_observers(m);
   adaptobs::python::bind_filter_observers(m);
+  adaptobs::python::bind_continuous_observers(m);
   adaptobs::python::bind_design(m);
   adaptobs::python::bind_fault_detection(m);
   adaptobs::python::bind_examples(m);

@@ -118,6 +118,8 @@ class ContinuousLtiModel : public SizedBy<D> {
     return detail::evaluate_regressor<D>(phi_, t, u, y, sizes_, "ContinuousLtiModel");
   }
   [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
+  /// The regressor callable Φ as given.
+  [[nodiscard]] const RegressorFn& regressor_function() const noexcept { return phi_; }
 
   /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): A, B, C; np a
   /// setting. The regressor Φ is the model's code, not its state: it is not saved.

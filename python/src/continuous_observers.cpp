@@ -1,0 +1,396 @@
+// The continuous-time observers of the unified formulation (Zhang 2005) in
+// Python, with run-time sizes: Bastin-Gevers (Algorithm 1, eq. (2)-(6)) and
+// Marino-Tomei (Algorithm 2, eq. (2)-(4), (7)), over a ContinuousLtiModel
+// whose regressor Phi is a constant matrix or a Python callable; their
+// canonical forms and SPR gain.
+
+#include "arrays.hpp"
+#include "discrete_observer.hpp"
+#include "snapshot_dict.hpp"
+#include "snapshot_fields.hpp"
+
+#include <adaptobs/design/canonical_forms.hpp>
+#include <adaptobs/design/positive_real.hpp>
+#include <adaptobs/observers/bastin_gevers.hpp>
+#include <adaptobs/observers/marino_tomei.hpp>
+
+#include <nanobind/eigen/dense.h>
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
+
+#include <optional>
+#include <string>
+#include <tuple>
+
+namespace adaptobs::python {
+
+namespace {
+
+/// Φ of a continuous model from Python: a constant nx × np matrix, or a callable
+/// Phi(t) or Phi(t, u, y) returning one. The callable runs with the GIL taken
+/// back (once per Runge–Kutta stage); a constant never enters Python.
+struct PythonRegressor {
+  nb::object source;     // what the user gave: the array or the callable (kept for pickling)
+  bool callable = false;
+  bool signals = false;  // Phi(t, u, y) rather than Phi(t)
+  mutable Eigen::MatrixXd value;
+
+  const Eigen::MatrixXd& operator()(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& y) const {
+    if (!callable) return value;
+    nb::gil_scoped_acquire gil;
+    const nb::object phi = signals ? source(t, u, y) : source(t);
+    value = matrix(phi, "ContinuousLtiModel", "Phi(t)");
+    return value;
+  }
+};
+
+PythonRegressor regressor_of(nb::handle phi) {
+  PythonRegressor r;
+  r.source = nb::borrow(phi);
+  r.callable = PyCallable_Check(phi.ptr()) != 0;
+  if (r.callable) {
+    // Phi(t, u, y) when the callable takes three positional arguments.
+    const nb::object signature = nb::module_::import_("inspect").attr("signature")(phi);
+    r.signals = nb::len(nb::object(signature.attr("parameters"))) >= 3;
+  } else {
+    r.value = matrix(phi, "ContinuousLtiModel", "Phi");
+  }
+  return r;
+}
+
+using ContinuousModel = ContinuousLtiModel<Dims, PythonRegressor>;
+using BastinGeversPy = BastinGeversObserver<ContinuousModel>;
+using MarinoTomeiPy = MarinoTomeiObserver<ContinuousModel>;
+using Transform = StaticTransform<Dims>;
+
+SignalReconstruction reconstruction_of(const std::string& name, std::string_view who, std::string_view argument) {
+  if (name == "hold") return SignalReconstruction::hold;
+  if (name == "linear") return SignalReconstruction::linear;
+  if (name == "quadratic") return SignalReconstruction::quadratic;
+  detail::fail_argument(who, argument, "must be 'hold', 'linear' or 'quadratic' (got '" + name + "')");
+}
+
+UnifiedObserverOptions options_of(int substeps, double max_step, int max_substeps, const std::string& input,
+                                  const std::string& output, Index excitation_window, std::string_view who) {
+  return {.sampling = {.substeps = substeps,
+                       .max_step = max_step,
+                       .max_substeps = max_substeps,
+                       .input = reconstruction_of(input, who, "input"),
+                       .output = reconstruction_of(output, who, "output")},
+          .excitation_window = excitation_window};
+}
+
+UnifiedObserverOptions options_of(const Snapshot<double>& s) {
+  return {.sampling = {.substeps = static_cast<int>(integer(s, "integrator.substeps")),
+                       .max_step = scalar(s, "integrator.max_step"),
+                       .max_substeps = static_cast<int>(integer(s, "integrator.max_substeps")),
+                       .input = static_cast<SignalReconstruction>(integer(s, "integrator.input")),
+                       .output = static_cast<SignalReconstruction>(integer(s, "integrator.output"))},
+          .excitation_window = integer(s, "excitation_window")};
+}
+
+ContinuousModel model_of(const Snapshot<double>& s, nb::handle phi) {
+  return ContinuousModel(field(s, "model.A"), field(s, "model.B"), field(s, "model.C"), regressor_of(phi),
+                         integer(s, "model.np"));
+}
+
+Transform transform_of(const Snapshot<double>& s) {
+  return Transform(field(s, "algorithm.static_transform.T"), field(s, "algorithm.static_transform.K"));
+}
+
+/// The Python object of a continuous-time observer, with a sample sized once.
+template <class Observer>
+struct ContinuousBound {
+  Observer observer;
+  ContinuousSample<Dims> sample;
+
+  explicit ContinuousBound(Observer o) : observer(std::move(o)) {
+    const Sizes s = observer.sizes();
+    sample.u.setZero(s.nu);
+    sample.y.setZero(s.ny);
+  }
+};
+
+// One sample (t, u, y), with the midpoint signals when both are given.
+template <class Observer>
+UpdateStatus continuous_step(ContinuousBound<Observer>& self, double t, nb::handle u, nb::handle y, nb::handle u_mid,
+                             nb::handle y_mid) {
+  const std::string who = std::string(Observer::name) + ".update";
+  const Sizes s = self.observer.sizes();
+  read_vector(u, s.nu, who, "u", self.sample.u);
+  read_vector(y, s.ny, who, "y", self.sample.y);
+  self.sample.t = t;
+  if (u_mid.is_none() != y_mid.is_none())
+    detail::fail_argument(who, u_mid.is_none() ? "u_mid" : "y_mid", "must be given with the other midpoint signal");
+  if (u_mid.is_none()) {
+    self.sample.midpoint.reset();
+  } else {
+    if (!self.sample.midpoint) self.sample.midpoint.emplace();
+    auto& mid = *self.sample.midpoint;
+    read_vector(u_mid, s.nu, who, "u_mid", mid.u);
+    read_vector(y_mid, s.ny, who, "y_mid", mid.y);
+  }
+  return self.observer.update(self.sample);
+}
+
+template <class Observer>
+RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::handle u, nb::handle y,
+                         nb::handle u_mid, nb::handle y_mid) {
+  const std::string who = std::string(Observer::name) + ".run";
+  const Sizes s = self.observer.sizes();
+  const Array t_array = real_array(times, who, "t");
+  if (t_array.ndim() != 1) fail_dimensions(who, "t", "a vector of sample times", shape_of(t_array));
+  const Index samples = static_cast<Index>(t_array.shape(0));
+  const Rows t_rows = rows(t_array, samples, 1, who, "t");
+  const Rows inputs = rows(u, samples, s.nu, who, "U");
+  const Rows outputs = rows(y, samples, s.ny, who, "Y");
+  if (u_mid.is_none() != y_mid.is_none())
+    detail::fail_argument(who, u_mid.is_none() ? "U_mid" : "Y_mid", "must be given with the other midpoint signal");
+  const bool midpoints = !u_mid.is_none();
+  const Rows mid_inputs = midpoints ? rows(u_mid, samples, s.nu, who, "U_mid") : Rows{};
+  const Rows mid_outputs = midpoints ? rows(y_mid, samples, s.ny, who, "Y_mid") : Rows{};
+
+  const auto n = static_cast<std::size_t>(samples);
+  OutputArray x({n, static_cast<std::size_t>(s.nx)});
+  OutputArray theta({n, static_cast<std::size_t>(s.np)});
+  OutputArray error({n, static_cast<std::size_t>(s.ny)});
+  OutputArray excitation({n, 1});
+  StatusArray status(n);
+  {
+    nb::gil_scoped_release release;  // a callable regressor takes the GIL back for its calls
+    auto& sample = self.sample;
+    for (Index k = 0; k < samples; ++k) {
+      sample.t = t_rows.row(k)(0);
+      sample.u = inputs.row(k);
+      sample.y = outputs.row(k);
+      // The first sample has no interval behind it, hence no midpoint.
+      if (midpoints && k > 0) {
+        if (!sample.midpoint) sample.midpoint.emplace();
+        sample.midpoint->u = mid_inputs.row(k);
+        sample.midpoint->y = mid_outputs.row(k);
+      } else {
+        sample.midpoint.reset();
+      }
+      status.data[k] = static_cast<std::int8_t>(self.observer.update(sample));
+      Eigen::Map<Eigen::VectorXd>(x.data + k * s.nx, s.nx) = self.observer.state();
+      Eigen::Map<Eigen::VectorXd>(theta.data + k * s.np, s.np) = self.observer.parameters();
+      Eigen::Map<Eigen::VectorXd>(error.data + k * s.ny, s.ny) = self.observer.output_error();
+      excitation.data[k] = self.observer.excitation_level().value_or(std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  RunResult result;
+  result.state = nb::cast(x.array);
+  result.parameters = nb::cast(theta.array);
+  result.output_error = nb::cast(error.array);
+  result.status = nb::cast(status.array);
+  result.diagnostics["excitation_level"] = nb::cast(excitation.array).attr("reshape")(samples);
+  return result;
+}
+
+/// What both continuous-time observers offer; `construct` builds one of a
+/// snapshot's configuration around the pickled regressor.
+template <class Observer, class Construct>
+void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Construct construct) {
+  using B = ContinuousBound<Observer>;
+  cls.def("update", &continuous_step<Observer>, nb::arg("t"), nb::arg("u"), nb::arg("y"),
+          nb::arg("u_mid").none() = nb::none(), nb::arg("y_mid").none() = nb::none(),
+          "The sample (u, y) measured at time t: integrates the observer from the previous sample with RK4,\n"
+          "u and y rebuilt between samples as the `input` and `output` options say (u_mid, y_mid: the\n"
+          "signals at the midpoint of the interval, which 'quadratic' needs). The first sample only sets\n"
+          "the time origin. A rejected sample changes nothing.")
+      .def("run", &continuous_run<Observer>, nb::arg("t"), nb::arg("U"), nb::arg("Y"),
+           nb::arg("U_mid").none() = nb::none(), nb::arg("Y_mid").none() = nb::none(),
+           "Every sample: t (N,), U (N x nu), Y (N x ny), and the midpoint signals of the interval ending\n"
+           "at each sample (row 0 unused), in C++ with the GIL released (a callable regressor takes it back\n"
+           "for its calls). Returns a RunResult; diagnostics: excitation_level.")
+      .def(
+          "reset",
+          [](B& self, nb::handle eta0, nb::handle theta0) {
+            const std::string who = std::string(Observer::name) + ".reset";
+            self.observer.reset(vector(eta0, who, "eta0"), vector(theta0, who, "theta0"));
+          },
+          nb::arg("eta0"), nb::arg("theta0"), "Restarts from the initial estimates; the next sample sets the time origin.")
+      .def_prop_ro("state", [](const B& self) { return Eigen::VectorXd(self.observer.state()); },
+                   "State estimate eta_hat in the original coordinates.")
+      .def_prop_ro("parameters", [](const B& self) { return Eigen::VectorXd(self.observer.parameters()); })
+      .def_prop_ro("output_error", [](const B& self) { return Eigen::VectorXd(self.observer.output_error()); })
+      .def_prop_ro("time", [](const B& self) { return self.observer.time(); }, "time of the last accepted sample")
+      .def_prop_ro("internal_state", [](const B& self) { return Eigen::VectorXd(self.observer.internal_state()); },
+                   "(z_hat, vec Xi, theta_hat), what the RK4 steps integrate")
+      .def_prop_ro("excitation_level", [](const B& self) { return self.observer.excitation_level(); })
+      .def_prop_ro(
+          "sizes",
+          [](const B& self) {
+            const Sizes s = self.observer.sizes();
+            return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
+          })
+      .def("resynchronize", [](B& self) { self.observer.resynchronize(); },
+           "Resumes from the next sample with the estimates kept (after interval_too_long).")
+      .def("snapshot", [](const B& self) { return to_dict(adaptobs::snapshot(self.observer)); },
+           "The whole internal state as a dict of arrays; the regressor Phi is the model's code, not part of it.")
+      .def("restore", [](B& self, nb::handle state) { adaptobs::restore(self.observer, from_dict(state)); },
+           nb::arg("state"))
+      .def("__copy__", [](const B& self) { return B(self.observer); })
+      .def("__deepcopy__", [](const B& self, nb::handle) { return B(self.observer); }, nb::arg("memo"))
+      .def("__getstate__",
+           [](const B& self) {
+             return nb::make_tuple(to_dict(adaptobs::snapshot(self.observer)), self.observer.model().regressor_function().source);
+           })
+      .def("__setstate__", [construct](B& self, const std::tuple<nb::object, nb::object>& state) {
+        const Snapshot<double> s = from_dict(std::get<0>(state));
+        if (s.type != Observer::snapshot_type)
+          detail::fail_argument("restore", "snapshot",
+                                "is of a " + s.type + ", not of a " + std::string(Observer::snapshot_type));
+        Observer observer = construct(s, std::get<1>(state));
+        adaptobs::restore(observer, s);
+        new (&self) B(std::move(observer));
+      });
+}
+
+}  // namespace
+
+void bind_continuous_observers(nb::module_& m) {
+  nb::class_<ContinuousModel>(m, "ContinuousLtiModel",
+                              "Continuous-time model d eta/dt = A eta + B u + Phi theta, y = C eta (Zhang 2005, eq. (1)).\n"
+                              "Phi is a constant nx x np array, or a callable Phi(t) or Phi(t, u, y) returning one;\n"
+                              "a callable is called from C++ at every Runge-Kutta stage (with the GIL), which costs\n"
+                              "about a microsecond a call. np defaults to the columns of a constant Phi.")
+      .def(
+          "__init__",
+          [](ContinuousModel* self, nb::handle A, nb::handle B, nb::handle C, nb::handle Phi, std::optional<Index> np) {
+            constexpr std::string_view who = "ContinuousLtiModel";
+            PythonRegressor phi = regressor_of(Phi);
+            if (!np && phi.callable) detail::fail_argument(who, "np", "is required when Phi is a callable");
+            const Index parameters = np ? *np : phi.value.cols();
+            new (self) ContinuousModel(matrix(A, who, "A"), matrix(B, who, "B"), matrix(C, who, "C"), std::move(phi),
+                                       parameters);
+          },
+          nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("Phi"), nb::arg("np").none() = nb::none())
+      .def_prop_ro("A", [](const ContinuousModel& self) { return Eigen::MatrixXd(self.system().A); })
+      .def_prop_ro("B", [](const ContinuousModel& self) { return Eigen::MatrixXd(self.system().B); })
+      .def_prop_ro("C", [](const ContinuousModel& self) { return Eigen::MatrixXd(self.system().C); })
+      .def_prop_ro("Phi", [](const ContinuousModel& self) { return self.regressor_function().source; },
+                   "the regressor as given: the array or the callable");
+
+  nb::class_<Transform>(m, "StaticTransform",
+                        "Coordinate change x = T eta with output injection K (Zhang 2005, eq. (2)).")
+      .def(
+          "__init__",
+          [](Transform* self, nb::handle T, nb::handle K) {
+            new (self) Transform(matrix(T, "StaticTransform", "T"), matrix(K, "StaticTransform", "K"));
+          },
+          nb::arg("T"), nb::arg("K"))
+      .def_prop_ro("T", [](const Transform& t) { return Eigen::MatrixXd(t.T()); })
+      .def_prop_ro("K", [](const Transform& t) { return Eigen::MatrixXd(t.K()); })
+      .def(
+          "apply",
+          [](const Transform& t, nb::handle A, nb::handle B, nb::handle C) {
+            constexpr std::string_view who = "StaticTransform.apply";
+            const ContinuousSystem<Dims> system{matrix(A, who, "A"), matrix(B, who, "B"), matrix(C, who, "C")};
+            detail::validate_state_space(system, who);
+            detail::require_shape(system.A, t.T().rows(), t.T().rows(), who, "A");
+            const TransformedSystem<Dims> so = t.apply(system);
+            nb::dict d;
+            d["Ao"] = Eigen::MatrixXd(so.Ao);
+            d["Co"] = Eigen::MatrixXd(so.Co);
+            d["TB"] = Eigen::MatrixXd(so.TB);
+            d["K"] = Eigen::MatrixXd(so.K);
+            return d;
+          },
+          nb::arg("A"), nb::arg("B"), nb::arg("C"),
+          "The transformed system: Ao = T A T^-1 - K Co, Co = C T^-1, T B, K.");
+
+  m.def(
+      "bastin_gevers_form",
+      [](nb::handle A, nb::handle c, nb::handle zeros) {
+        constexpr std::string_view who = "bastin_gevers_form";
+        return bastin_gevers_form<Dims>(matrix(A, who, "A"), matrix(c, who, "c"),
+                                        Polynomial<double>(vector(zeros, who, "zeros")));
+      },
+      nb::arg("A"), nb::arg("c"), nb::arg("zeros"),
+      "The transform to the form (5) of Algorithm 1 (Zhang 2005) with det(sI - A22) = zeros (monic,\n"
+      "highest power first, degree n - 1, Hurwitz).");
+  m.def(
+      "marino_tomei_form",
+      [](nb::handle A, nb::handle c) {
+        constexpr std::string_view who = "marino_tomei_form";
+        return marino_tomei_form<Dims>(matrix(A, who, "A"), matrix(c, who, "c"));
+      },
+      nb::arg("A"), nb::arg("c"), "The transform to the form (7) of Algorithm 2: c_o = e_1^T, A_o a shift.");
+  m.def(
+      "spr_injection_gain",
+      [](nb::handle A, nb::handle c, nb::handle gamma, double lambda) {
+        constexpr std::string_view who = "spr_injection_gain";
+        return Eigen::VectorXd(
+            spr_injection_gain(matrix(A, who, "A"), matrix(c, who, "c"), Eigen::VectorXd(vector(gamma, who, "gamma")),
+                               lambda));
+      },
+      nb::arg("A"), nb::arg("c"), nb::arg("gamma"), nb::arg("lambda_"),
+      "The gain k making c (sI - A + k c)^-1 gamma = c gamma / (s + lambda_), strictly positive real.");
+
+  constexpr const char* sampling_doc =
+      "\nSampling options: RK4 `substeps` per interval, `max_step` (0: learned from the first interval),\n"
+      "`max_substeps`, and how u (`input`) and y (`output`) are rebuilt between samples: 'hold',\n"
+      "'linear' or 'quadratic' (which needs the midpoint signals). excitation_window > 0 monitors\n"
+      "the excitation.";
+
+  auto bastin_gevers = nb::class_<ContinuousBound<BastinGeversPy>>(
+      m, "BastinGeversObserver",
+      (std::string("Bastin-Gevers adaptive observer, continuous time, SISO: Algorithm 1 of the unified\n"
+                   "formulation (Zhang 2005, section III-A, eq. (2)-(6)). `transform` gives the form (5)\n"
+                   "(bastin_gevers_form), k the output injection (spr_injection_gain with gamma = e1), gamma\n"
+                   "the adaptation gain (np x np).") +
+       sampling_doc)
+          .c_str());
+  bastin_gevers.def(
+      "__init__",
+      [](ContinuousBound<BastinGeversPy>* self, const ContinuousModel& model, const Transform& transform, nb::handle k,
+         nb::handle gamma, nb::handle eta0, nb::handle theta0, int substeps, double max_step, int max_substeps,
+         const std::string& input, const std::string& output, Index excitation_window) {
+        constexpr std::string_view who = "BastinGeversObserver";
+        new (self) ContinuousBound<BastinGeversPy>(make_bastin_gevers_observer(
+            model, transform, matrix(k, who, "k"), matrix(gamma, who, "gamma"), vector(eta0, who, "eta0"),
+            vector(theta0, who, "theta0"),
+            options_of(substeps, max_step, max_substeps, input, output, excitation_window, who)));
+      },
+      nb::arg("model"), nb::arg("transform"), nb::arg("k"), nb::arg("gamma"), nb::arg("eta0"), nb::arg("theta0"),
+      nb::kw_only(), nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
+      nb::arg("input") = "hold", nb::arg("output") = "linear", nb::arg("excitation_window") = 0);
+  bind_continuous_observer(bastin_gevers, [](const Snapshot<double>& s, nb::handle phi) {
+    return make_bastin_gevers_observer(model_of(s, phi), transform_of(s), field(s, "algorithm.k"),
+                                       field(s, "law.gamma"), field(s, "eta"), field(s, "theta"), options_of(s));
+  });
+
+  auto marino_tomei = nb::class_<ContinuousBound<MarinoTomeiPy>>(
+      m, "MarinoTomeiObserver",
+      (std::string("Marino-Tomei adaptive observer, continuous time, SISO: Algorithm 2 of the unified\n"
+                   "formulation (Zhang 2005, section III-B, eq. (2)-(4), (7)). `transform` gives the form (7)\n"
+                   "(marino_tomei_form), gamma = (1, gamma_2, ..., gamma_n) a Hurwitz polynomial, k the output\n"
+                   "injection (spr_injection_gain with that gamma), adaptation_gain np x np.") +
+       sampling_doc)
+          .c_str());
+  marino_tomei.def(
+      "__init__",
+      [](ContinuousBound<MarinoTomeiPy>* self, const ContinuousModel& model, const Transform& transform,
+         nb::handle gamma, nb::handle k, nb::handle adaptation_gain, nb::handle eta0, nb::handle theta0, int substeps,
+         double max_step, int max_substeps, const std::string& input, const std::string& output,
+         Index excitation_window) {
+        constexpr std::string_view who = "MarinoTomeiObserver";
+        new (self) ContinuousBound<MarinoTomeiPy>(make_marino_tomei_observer(
+            model, transform, vector(gamma, who, "gamma"), matrix(k, who, "k"),
+            matrix(adaptation_gain, who, "adaptation_gain"), vector(eta0, who, "eta0"), vector(theta0, who, "theta0"),
+            options_of(substeps, max_step, max_substeps, input, output, excitation_window, who)));
+      },
+      nb::arg("model"), nb::arg("transform"), nb::arg("gamma"), nb::arg("k"), nb::arg("adaptation_gain"),
+      nb::arg("eta0"), nb::arg("theta0"), nb::kw_only(), nb::arg("substeps") = 1, nb::arg("max_step") = 0.0,
+      nb::arg("max_substeps") = 1'000'000, nb::arg("input") = "hold", nb::arg("output") = "linear",
+      nb::arg("excitation_window") = 0);
+  bind_continuous_observer(marino_tomei, [](const Snapshot<double>& s, nb::handle phi) {
+    return make_marino_tomei_observer(model_of(s, phi), transform_of(s), field(s, "algorithm.gamma"),
+                                      field(s, "algorithm.k"), field(s, "law.gamma"), field(s, "eta"),
+                                      field(s, "theta"), options_of(s));
+  });
+}
+
+}  // namespace adaptobs::python

@@ -1,0 +1,171 @@
+"""The continuous-time observers of the unified formulation (Zhang 2005) from
+Python: Bastin-Gevers and Marino-Tomei on the third-order plant, against the
+C++ example's estimates, batch against step, pickling with a callable
+regressor, and refusals."""
+
+import copy
+import math
+import os
+import pickle
+import subprocess
+
+import numpy as np
+import pytest
+
+import adaptobs
+from adaptobs import ConfigurationError, UpdateStatus
+
+
+def regressor(t):
+    """Phi(t) of the third-order plant, with the C library's sin and cos as in C++."""
+    return np.array([[math.sin(t), 0.0], [math.cos(1.7 * t), 1.0], [0.0, math.sin(0.6 * t)]])
+
+
+@pytest.fixture(scope="module")
+def siso():
+    return adaptobs.examples.siso(), adaptobs.examples.simulate_siso(10001)
+
+
+def model(system, phi=regressor):
+    return adaptobs.ContinuousLtiModel(system["A"], system["B"], system["C"], phi, np=2)
+
+
+def bastin_gevers(system, **options):
+    transform = adaptobs.bastin_gevers_form(system["A"], system["C"], [1.0, 4.0, 3.0])  # (s + 1)(s + 3)
+    so = transform.apply(system["A"], system["B"], system["C"])
+    k = adaptobs.spr_injection_gain(so["Ao"], so["Co"], [1.0, 0.0, 0.0], 2.0)
+    return adaptobs.BastinGeversObserver(model(system), transform, k, 5.0 * np.eye(2), np.zeros(3), np.zeros(2),
+                                         input="quadratic", output="quadratic", **options)
+
+
+def marino_tomei(system, **options):
+    transform = adaptobs.marino_tomei_form(system["A"], system["C"])
+    so = transform.apply(system["A"], system["B"], system["C"])
+    gamma = np.array([1.0, 3.0, 2.0])
+    k = adaptobs.spr_injection_gain(so["Ao"], so["Co"], gamma, 5.0)
+    return adaptobs.MarinoTomeiObserver(model(system), transform, gamma, k, 20.0 * np.eye(2), np.zeros(3),
+                                        np.zeros(2), input="quadratic", output="quadratic", **options)
+
+
+def run(observer, data, n=None):
+    n = len(data["t"]) if n is None else n
+    return observer.run(data["t"][:n], data["U"][:n], data["Y"][:n], data["U_mid"][:n], data["Y_mid"][:n])
+
+
+@pytest.mark.parametrize("make", [bastin_gevers, marino_tomei])
+def test_theta_and_the_state_converge(siso, make):
+    system, data = siso
+    observer = make(system)
+    result = run(observer, data)
+    assert np.all(result.status == UpdateStatus.accepted)
+    assert np.linalg.norm(result.parameters[-1] - system["theta"]) < 1e-3
+    assert np.linalg.norm(result.state[-1] - data["X"][-1]) < 1e-3
+    assert observer.time == pytest.approx(100.0)
+
+
+@pytest.mark.parametrize("make, name", [(bastin_gevers, "bastin_gevers"), (marino_tomei, "marino_tomei")])
+def test_the_replay_matches_the_cxx_example(tmp_path, siso, make, name):
+    examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
+    if not examples:
+        pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
+    subprocess.run([os.path.join(examples, name), "--out", str(tmp_path)], check=True, capture_output=True)
+    table = np.genfromtxt(tmp_path / f"{name}.csv", delimiter=",", names=True)
+    system, data = siso
+    result = run(make(system), data)
+    every = 10  # the example records every tenth sample
+    assert np.array_equal(data["t"][::every], table["t"])
+    cxx = np.column_stack([table["thetahat_1"], table["thetahat_2"]])
+    assert np.max(np.abs(result.parameters[::every] - cxx)) <= 1e-12
+    cxx_state = np.column_stack([table[f"xhat_{i}"] for i in range(1, 4)])
+    assert np.max(np.abs(result.state[::every] - cxx_state)) <= 1e-12
+
+
+@pytest.mark.parametrize("make", [bastin_gevers, marino_tomei])
+def test_run_equals_update_and_copies_continue_bit_for_bit(siso, make):
+    system, data = siso
+    n = 600
+    batch = make(system, excitation_window=50)
+    result = run(batch, data, n)
+    stepped = make(system, excitation_window=50)
+    for k in range(n):
+        if k == 200:
+            stepped = pickle.loads(pickle.dumps(stepped))
+        if k == 400:
+            stepped = copy.deepcopy(stepped)
+        mid = (None, None) if k == 0 else (data["U_mid"][k], data["Y_mid"][k])
+        assert stepped.update(data["t"][k], data["U"][k], data["Y"][k], *mid) == UpdateStatus.accepted
+        assert np.array_equal(stepped.parameters, result.parameters[k]), k
+        assert np.array_equal(stepped.state, result.state[k]), k
+    assert np.array_equal(stepped.internal_state, batch.internal_state)
+    assert stepped.excitation_level == batch.excitation_level > 0
+
+
+def test_a_rejected_sample_changes_nothing(siso):
+    system, data = siso
+    observer = bastin_gevers(system)
+    run(observer, data, 100)
+    before = observer.snapshot()
+    t = data["t"][100]
+    assert observer.update(t, [np.nan], data["Y"][100], data["U_mid"][100], data["Y_mid"][100]) == \
+        UpdateStatus.nonfinite_input
+    assert observer.update(data["t"][50], data["U"][100], data["Y"][100], data["U_mid"][100],
+                           data["Y_mid"][100]) == UpdateStatus.nonincreasing_time
+    after = observer.snapshot()
+    assert before["integers"] == after["integers"]
+    assert all(np.array_equal(before["matrices"][key], after["matrices"][key]) for key in before["matrices"])
+
+
+def test_a_constant_regressor_never_calls_python_and_pickles(siso):
+    system, data = siso
+    constant = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    transform = adaptobs.bastin_gevers_form(system["A"], system["C"], [1.0, 4.0, 3.0])
+    so = transform.apply(system["A"], system["B"], system["C"])
+    k = adaptobs.spr_injection_gain(so["Ao"], so["Co"], [1.0, 0.0, 0.0], 2.0)
+    m = adaptobs.ContinuousLtiModel(system["A"], system["B"], system["C"], constant)
+    observer = adaptobs.BastinGeversObserver(m, transform, k, np.eye(2), np.zeros(3), np.zeros(2))
+    result = run(observer, data, 300)
+    twin = pickle.loads(pickle.dumps(observer))
+    assert np.array_equal(twin.parameters, result.parameters[-1])
+    assert np.array_equal(m.Phi, constant)
+
+
+def test_bad_arguments_name_the_argument(siso):
+    system, data = siso
+    transform = adaptobs.bastin_gevers_form(system["A"], system["C"], [1.0, 4.0, 3.0])
+    cases = [
+        (lambda: adaptobs.ContinuousLtiModel(system["A"], system["B"], system["C"], regressor),
+         "ContinuousLtiModel: argument 'np' is required when Phi is a callable"),
+        (lambda: adaptobs.ContinuousLtiModel(system["A"], system["B"], system["C"], lambda t: np.zeros((2, 2)), np=2),
+         "ContinuousLtiModel: argument 'Phi' must be 3x2 (got 2x2)"),
+        (lambda: adaptobs.bastin_gevers_form(system["A"], system["C"], [1.0, -4.0, 3.0]), "bastin_gevers_form"),
+        (lambda: adaptobs.BastinGeversObserver(model(system), transform, np.zeros((3, 1)), np.eye(2), np.zeros(3),
+                                               np.zeros(2), input="cubic"),
+         "BastinGeversObserver: argument 'input' must be 'hold', 'linear' or 'quadratic' (got 'cubic')"),
+        (lambda: bastin_gevers(system).update(0.0, [1.0], [0.0], [1.0], None),
+         "BastinGeversObserver.update: argument 'y_mid' must be given with the other midpoint signal"),
+        (lambda: adaptobs.spr_injection_gain(system["A"], system["C"], [1.0, 0.0, 0.0], -1.0),
+         "spr_injection_gain: argument 'lambda'"),
+    ]
+    for call, message in cases:
+        with pytest.raises(ConfigurationError) as error:
+            call()
+        assert str(error.value).startswith(message), str(error.value)
+    # An exception raised by the regressor reaches the caller, the observer unchanged.
+    calls = {"n": 0}
+
+    def failing(t):
+        calls["n"] += 1
+        if calls["n"] > 3:
+            raise RuntimeError("sensor table exhausted")
+        return regressor(t)
+
+    transform_bg = adaptobs.bastin_gevers_form(system["A"], system["C"], [1.0, 4.0, 3.0])
+    so = transform_bg.apply(system["A"], system["B"], system["C"])
+    k = adaptobs.spr_injection_gain(so["Ao"], so["Co"], [1.0, 0.0, 0.0], 2.0)
+    observer = adaptobs.BastinGeversObserver(model(system, failing), transform_bg, k, np.eye(2), np.zeros(3),
+                                             np.zeros(2))
+    observer.update(0.0, data["U"][0], data["Y"][0])
+    before = observer.internal_state
+    with pytest.raises(RuntimeError, match="sensor table exhausted"):
+        observer.run(data["t"][1:5], data["U"][1:5], data["Y"][1:5])
+    assert np.array_equal(observer.internal_state, before) and observer.time == 0.0
