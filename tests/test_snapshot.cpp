@@ -207,6 +207,10 @@ TEST(Snapshot, ARestoredFaultMonitorContinuesBitForBit) {
   EXPECT_GT(alarms, 10);  // the shift is seen: the comparison covers alarms and their hold-off
   EXPECT_EQ(original.cusum().isolated(), restored.cusum().isolated());
   EXPECT_EQ(original.cusum().alarm_count(), restored.cusum().alarm_count());
+  // Estimates of the wrong size are refused by name, with the monitor unchanged.
+  const auto before = adaptobs::snapshot(restored);
+  EXPECT_THROW((void)restored.observe(Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(2)), adaptobs::ConfigurationError);
+  EXPECT_EQ(adaptobs::snapshot(restored).integers.back().value, before.integers.back().value);
   // A snapshot from a monitor of another stride is refused.
   auto other_design = design;
   other_design.cusum_options.stride = 4;

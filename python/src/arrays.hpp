@@ -17,7 +17,9 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <atomic>
 #include <complex>
+#include <stdexcept>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -43,16 +45,21 @@ using MatrixView = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::Stride<Eigen::Dyn
   throw nb::type_error(message.c_str());
 }
 
-/// `obj` as an array of `T`: in place when it already is one, else through
-/// `numpy.asarray(obj, dtype)` once.
+/// `obj` as an array of `T`: in place when it already is one, else converted
+/// once by NumPy to `dtype`. Only the kinds of number in `kinds` (NumPy's
+/// dtype.kind letters) convert: a complex array is not silently made real.
 template <class ArrayType>
 ArrayType as_array(nb::handle obj, std::string_view who, std::string_view name, const char* dtype,
-                   std::string_view expected) {
+                   std::string_view expected, std::string_view kinds) {
   ArrayType array;
   if (nb::try_cast(obj, array, false)) return array;
   nb::object converted;
   try {
-    converted = nb::module_::import_("numpy").attr("asarray")(obj, nb::arg("dtype") = dtype);
+    const nb::object numpy = nb::module_::import_("numpy");
+    converted = numpy.attr("asarray")(obj);
+    const std::string kind = nb::cast<std::string>(converted.attr("dtype").attr("kind"));
+    if (kind.size() != 1 || kinds.find(kind[0]) == std::string_view::npos) fail_type(who, name, obj, expected);
+    converted = numpy.attr("asarray")(converted, nb::arg("dtype") = dtype);
   } catch (nb::python_error&) {
     fail_type(who, name, obj, expected);
   }
@@ -60,8 +67,17 @@ ArrayType as_array(nb::handle obj, std::string_view who, std::string_view name, 
   return array;
 }
 
+/// An argument that must be an object of a bound class (a model, a design):
+/// anything else is a TypeError naming the argument, not nanobind's list of overloads.
+template <class T>
+T& object_argument(nb::handle obj, std::string_view who, std::string_view name, std::string_view expected) {
+  T* object = nullptr;
+  if (!nb::try_cast<T*>(obj, object, false) || object == nullptr) fail_type(who, name, obj, expected);
+  return *object;
+}
+
 inline Array real_array(nb::handle obj, std::string_view who, std::string_view name) {
-  return as_array<Array>(obj, who, name, "float64", "an array of real numbers");
+  return as_array<Array>(obj, who, name, "float64", "an array of real numbers", "biuf");
 }
 
 /// "4x2", "(3,)", "(10, 4, 2)": a shape as the errors print it.
@@ -126,38 +142,66 @@ inline void read_matrix(nb::handle obj, Index rows, Index cols, std::string_view
 
 /// A complex vector (poles): real or complex input, converted once to complex128.
 inline Eigen::VectorXcd complex_vector(nb::handle obj, std::string_view who, std::string_view name) {
-  const auto a = as_array<ComplexArray>(obj, who, name, "complex128", "an array of numbers");
+  const auto a = as_array<ComplexArray>(obj, who, name, "complex128", "an array of numbers", "biufc");
   if (a.ndim() > 1) fail_dimensions(who, name, "a vector (a 1-D array)", shape_of(a));
   const Index n = a.ndim() == 1 ? static_cast<Index>(a.shape(0)) : 1;
   const Index stride = a.ndim() == 1 ? static_cast<Index>(a.stride(0)) : 1;
   return Eigen::Map<const Eigen::VectorXcd, 0, Eigen::InnerStride<>>(a.data(), n, Eigen::InnerStride<>(stride));
 }
 
-/// A new float64 NumPy array of `shape`, C order, filled by the caller through `data`.
-struct OutputArray {
-  double* data = nullptr;
-  nb::ndarray<nb::numpy, double> array;
+/// A new NumPy array of `shape`, C order, filled by the caller through `data`.
+template <class T>
+struct NewArray {
+  T* data = nullptr;
+  nb::ndarray<nb::numpy, T> array;
 
-  explicit OutputArray(std::vector<std::size_t> shape) {
+  explicit NewArray(std::vector<std::size_t> shape) {
     std::size_t size = 1;
     for (std::size_t n : shape) size *= n;
-    data = new double[size > 0 ? size : 1];
-    nb::capsule owner(data, [](void* p) noexcept { delete[] static_cast<double*>(p); });
-    array = nb::ndarray<nb::numpy, double>(data, shape.size(), shape.data(), owner);
+    data = new T[size > 0 ? size : 1];
+    nb::capsule owner(data, [](void* p) noexcept { delete[] static_cast<T*>(p); });
+    array = nb::ndarray<nb::numpy, T>(data, shape.size(), shape.data(), owner);
   }
 };
 
-/// A new int8 NumPy array (the status of each sample).
-struct StatusArray {
-  std::int8_t* data = nullptr;
-  nb::ndarray<nb::numpy, std::int8_t> array;
+using OutputArray = NewArray<double>;
 
-  explicit StatusArray(std::size_t n) {
-    data = new std::int8_t[n > 0 ? n : 1];
-    nb::capsule owner(data, [](void* p) noexcept { delete[] static_cast<std::int8_t*>(p); });
-    const std::size_t shape[1] = {n};
-    array = nb::ndarray<nb::numpy, std::int8_t>(data, 1, shape, owner);
+/// The status of each sample (UpdateStatus values).
+struct StatusArray : NewArray<std::int8_t> {
+  explicit StatusArray(std::size_t n) : NewArray<std::int8_t>({n}) {}
+};
+
+/// Column j of a 2-D array, as a view.
+inline nb::object column(nb::handle array, std::size_t j) {
+  return array[nb::make_tuple(nb::slice(nb::none(), nb::none(), nb::none()), j)];
+}
+
+/// Marks an object in use by a call that runs with the GIL released: another
+/// thread's call on the same object is then a RuntimeError rather than a data
+/// race. Held by every call that changes the object.
+class InUse {
+ public:
+  InUse(std::atomic<bool>& flag, std::string_view who) : flag_(flag) {
+    if (flag_.exchange(true)) {
+      std::string message(who);
+      message += ": the object is in use by a call on another thread (one object, one thread at a time)";
+      throw std::runtime_error(message);
+    }
   }
+  InUse(const InUse&) = delete;
+  InUse& operator=(const InUse&) = delete;
+  ~InUse() { flag_ = false; }
+
+ private:
+  std::atomic<bool>& flag_;
+};
+
+/// The flag of `InUse`, which a copied or moved object does not inherit.
+struct UseFlag {
+  mutable std::atomic<bool> flag{false};
+  UseFlag() = default;
+  UseFlag(const UseFlag&) noexcept {}
+  UseFlag& operator=(const UseFlag&) noexcept { return *this; }
 };
 
 }  // namespace adaptobs::python

@@ -95,6 +95,14 @@ ContinuousModel model_of(const Snapshot<double>& s, nb::handle phi) {
                          integer(s, "model.np"));
 }
 
+const ContinuousModel& continuous_model(nb::handle model, std::string_view who) {
+  return object_argument<ContinuousModel>(model, who, "model", "an adaptobs.ContinuousLtiModel");
+}
+
+const Transform& static_transform(nb::handle transform, std::string_view who) {
+  return object_argument<Transform>(transform, who, "transform", "an adaptobs.StaticTransform");
+}
+
 Transform transform_of(const Snapshot<double>& s) {
   return Transform(field(s, "algorithm.static_transform.T"), field(s, "algorithm.static_transform.K"));
 }
@@ -104,6 +112,7 @@ template <class Observer>
 struct ContinuousBound {
   Observer observer;
   ContinuousSample<Dims> sample;
+  UseFlag in_use;
 
   explicit ContinuousBound(Observer o) : observer(std::move(o)) {
     const Sizes s = observer.sizes();
@@ -117,6 +126,7 @@ template <class Observer>
 UpdateStatus continuous_step(ContinuousBound<Observer>& self, double t, nb::handle u, nb::handle y, nb::handle u_mid,
                              nb::handle y_mid) {
   const std::string who = std::string(Observer::name) + ".update";
+  const InUse guard(self.in_use.flag, who);
   const Sizes s = self.observer.sizes();
   read_vector(u, s.nu, who, "u", self.sample.u);
   read_vector(y, s.ny, who, "y", self.sample.y);
@@ -138,6 +148,7 @@ template <class Observer>
 RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::handle u, nb::handle y,
                          nb::handle u_mid, nb::handle y_mid) {
   const std::string who = std::string(Observer::name) + ".run";
+  const InUse guard(self.in_use.flag, who);
   const Sizes s = self.observer.sizes();
   const Array t_array = real_array(times, who, "t");
   if (t_array.ndim() != 1) fail_dimensions(who, "t", "a vector of sample times", shape_of(t_array));
@@ -208,6 +219,7 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
           "reset",
           [](B& self, nb::handle eta0, nb::handle theta0) {
             const std::string who = std::string(Observer::name) + ".reset";
+            const InUse guard(self.in_use.flag, who);
             self.observer.reset(vector(eta0, who, "eta0"), vector(theta0, who, "theta0"));
           },
           nb::arg("eta0"), nb::arg("theta0"), "Restarts from the initial estimates; the next sample sets the time origin.")
@@ -225,12 +237,22 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
             const Sizes s = self.observer.sizes();
             return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
           })
-      .def("resynchronize", [](B& self) { self.observer.resynchronize(); },
+      .def(
+          "resynchronize",
+          [](B& self) {
+            const InUse guard(self.in_use.flag, "resynchronize");
+            self.observer.resynchronize();
+          },
            "Resumes from the next sample with the estimates kept (after interval_too_long).")
       .def("snapshot", [](const B& self) { return to_dict(adaptobs::snapshot(self.observer)); },
            "The whole internal state as a dict of arrays; the regressor Phi is the model's code, not part of it.")
-      .def("restore", [](B& self, nb::handle state) { adaptobs::restore(self.observer, from_dict(state)); },
-           nb::arg("state"))
+      .def(
+          "restore",
+          [](B& self, nb::handle state) {
+            const InUse guard(self.in_use.flag, "restore");
+            adaptobs::restore(self.observer, from_dict(state));
+          },
+          nb::arg("state"))
       .def("__copy__", [](const B& self) { return B(self.observer); })
       .def("__deepcopy__", [](const B& self, nb::handle) { return B(self.observer); }, nb::arg("memo"))
       .def("__getstate__",
@@ -239,9 +261,7 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
            })
       .def("__setstate__", [construct](B& self, const std::tuple<nb::object, nb::object>& state) {
         const Snapshot<double> s = from_dict(std::get<0>(state));
-        if (s.type != Observer::snapshot_type)
-          detail::fail_argument("restore", "snapshot",
-                                "is of a " + s.type + ", not of a " + std::string(Observer::snapshot_type));
+        detail::require_snapshot_type<Observer>(s);
         Observer observer = construct(s, std::get<1>(state));
         adaptobs::restore(observer, s);
         new (&self) B(std::move(observer));
@@ -345,12 +365,12 @@ void bind_continuous_observers(nb::module_& m) {
           .c_str());
   bastin_gevers.def(
       "__init__",
-      [](ContinuousBound<BastinGeversPy>* self, const ContinuousModel& model, const Transform& transform, nb::handle k,
+      [](ContinuousBound<BastinGeversPy>* self, nb::handle model, nb::handle transform, nb::handle k,
          nb::handle gamma, nb::handle eta0, nb::handle theta0, int substeps, double max_step, int max_substeps,
          const std::string& input, const std::string& output, Index excitation_window) {
         constexpr std::string_view who = "BastinGeversObserver";
         new (self) ContinuousBound<BastinGeversPy>(make_bastin_gevers_observer(
-            model, transform, matrix(k, who, "k"), matrix(gamma, who, "gamma"), vector(eta0, who, "eta0"),
+            continuous_model(model, who), static_transform(transform, who), matrix(k, who, "k"), matrix(gamma, who, "gamma"), vector(eta0, who, "eta0"),
             vector(theta0, who, "theta0"),
             options_of(substeps, max_step, max_substeps, input, output, excitation_window, who)));
       },
@@ -372,13 +392,13 @@ void bind_continuous_observers(nb::module_& m) {
           .c_str());
   marino_tomei.def(
       "__init__",
-      [](ContinuousBound<MarinoTomeiPy>* self, const ContinuousModel& model, const Transform& transform,
+      [](ContinuousBound<MarinoTomeiPy>* self, nb::handle model, nb::handle transform,
          nb::handle gamma, nb::handle k, nb::handle adaptation_gain, nb::handle eta0, nb::handle theta0, int substeps,
          double max_step, int max_substeps, const std::string& input, const std::string& output,
          Index excitation_window) {
         constexpr std::string_view who = "MarinoTomeiObserver";
         new (self) ContinuousBound<MarinoTomeiPy>(make_marino_tomei_observer(
-            model, transform, vector(gamma, who, "gamma"), matrix(k, who, "k"),
+            continuous_model(model, who), static_transform(transform, who), vector(gamma, who, "gamma"), matrix(k, who, "k"),
             matrix(adaptation_gain, who, "adaptation_gain"), vector(eta0, who, "eta0"), vector(theta0, who, "theta0"),
             options_of(substeps, max_step, max_substeps, input, output, excitation_window, who)));
       },

@@ -26,8 +26,8 @@ namespace adaptobs::python {
 using Dims = DynamicDimensions<double>;
 using LtiModel = DiscreteLtiModel<Dims>;
 
-/// An observer whose samples carry a regressor Ψ_k (Guyader–Zhang, the augmented
-/// Kalman filter); the others take (u_k, y_k) alone (Dey–Bhasin, Suzuki).
+/// An observer whose samples carry a regressor Ψ_k (Guyader–Zhang, Guiro, the
+/// augmented Kalman filter); the others take (u_k, y_k) alone (Dey–Bhasin, Suzuki).
 template <class Observer>
 constexpr bool takes_regressor = requires(typename Observer::Sample& sample) { sample.Psi; };
 
@@ -38,6 +38,7 @@ struct Bound {
   Observer observer;
   typename Observer::Sample sample;
   OutputMask<Dims> mask;
+  UseFlag in_use;
 
   explicit Bound(Observer o) : observer(std::move(o)) {
     const Sizes s = observer.sizes();
@@ -57,7 +58,7 @@ struct Diagnostics {
 };
 
 /// The rows of a batch argument: sample k of an N × n array (1-D of length N
-/// when n is 1), or zeros when it is None.
+/// when n is 1); None only when n is 0.
 struct Rows {
   Array keep;
   const double* data = nullptr;
@@ -78,7 +79,8 @@ inline Rows rows(const Array& array, Index samples, Index n, std::string_view wh
   const bool one_d = array.ndim() == 1 && n == 1;
   const bool fits = one_d || (array.ndim() == 2 && static_cast<Index>(array.shape(1)) == n);
   if (!fits || static_cast<Index>(array.shape(0)) != samples)
-    fail_dimensions(who, name, std::to_string(samples) + "x" + std::to_string(n), shape_of(array));
+    fail_dimensions(who, name, std::to_string(samples) + "x" + std::to_string(n) + " (samples x " +
+                    std::to_string(n) + ")", shape_of(array));
   r.data = array.data();
   r.row_stride = static_cast<Index>(array.stride(0));
   r.col_stride = one_d ? 1 : static_cast<Index>(array.stride(1));
@@ -92,8 +94,8 @@ inline Rows rows(nb::handle obj, Index samples, Index n, std::string_view who, s
   return r;
 }
 
-/// The regressor of each sample: an N × nx × np array, one nx × np matrix for
-/// every sample, or zeros when None.
+/// The regressor of each sample: an N × nx × np array, or one nx × np matrix for
+/// every sample; None only when np is 0.
 struct Regressors {
   Array keep;
   const double* data = nullptr;
@@ -113,7 +115,10 @@ inline Regressors regressors(nb::handle obj, Index samples, Index nx, Index np, 
   Regressors r;
   r.nx = nx;
   r.np = np;
-  if (obj.is_none()) return r;
+  if (obj.is_none()) {
+    if (np != 0) detail::fail_argument(who, "Psi", "is required: the model has " + std::to_string(np) + " parameters");
+    return r;
+  }
   r.keep = real_array(obj, who, "Psi");
   const auto shape = shape_of(r.keep);
   const auto n = [](Index v) { return static_cast<std::size_t>(v); };
@@ -147,7 +152,7 @@ struct Masks {
 inline Masks masks(nb::handle obj, Index samples, Index ny, std::string_view who) {
   Masks m;
   if (obj.is_none()) return m;
-  m.keep = as_array<BoolArray>(obj, who, "present", "bool", "an array of booleans");
+  m.keep = as_array<BoolArray>(obj, who, "present", "bool", "an array of booleans", "b");
   if (m.keep.ndim() != 2 || static_cast<Index>(m.keep.shape(0)) != samples || static_cast<Index>(m.keep.shape(1)) != ny)
     fail_dimensions(who, "present", std::to_string(samples) + "x" + std::to_string(ny), shape_of(m.keep));
   m.given = true;
@@ -160,6 +165,10 @@ struct RunResult {
   nb::dict diagnostics;
 };
 
+[[noreturn]] inline void fail_no_regressor(std::string_view who) {
+  detail::fail_argument(who, "Psi", "must be None: this observer's samples have no regressor");
+}
+
 template <class Observer>
 std::string update_name() {
   return std::string(Observer::snapshot_type) + ".update";
@@ -171,7 +180,7 @@ UpdateStatus step(Bound<Observer>& self, nb::handle present) {
   if (present.is_none()) return self.observer.update(self.sample);
   const Index ny = self.observer.sizes().ny;
   const auto who = update_name<Observer>();
-  const auto m = as_array<BoolArray>(present, who, "present", "bool", "an array of booleans");
+  const auto m = as_array<BoolArray>(present, who, "present", "bool", "an array of booleans", "b");
   if (m.ndim() != 1 || static_cast<Index>(m.shape(0)) != ny)
     fail_dimensions(who, "present", "(" + std::to_string(ny) + ",)", shape_of(m));
   for (Index i = 0; i < ny; ++i) self.mask(i) = m.data()[i * m.stride(0)];
@@ -181,9 +190,10 @@ UpdateStatus step(Bound<Observer>& self, nb::handle present) {
 template <class Observer>
 RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi, nb::handle present) {
   const auto who = std::string(Observer::snapshot_type) + ".run";
+  const InUse guard(self.in_use.flag, who);
   const Sizes s = self.observer.sizes();
   const Array y_array = real_array(y, who, "Y");
-  if (y_array.ndim() == 0) fail_dimensions(who, "Y", "Nx" + std::to_string(s.ny), shape_of(y_array));
+  if (y_array.ndim() == 0) fail_dimensions(who, "Y", "samples x " + std::to_string(s.ny), shape_of(y_array));
   const Index samples = static_cast<Index>(y_array.shape(0));
   const Rows outputs = rows(y_array, samples, s.ny, who, "Y");
   const Rows inputs = rows(u, samples, s.nu, who, "U");
@@ -191,7 +201,7 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
   if constexpr (takes_regressor<Observer>)
     regressor = regressors(psi, samples, s.nx, s.np, who);
   else if (!psi.is_none())
-    detail::fail_argument(who, "Psi", "must be None: this observer's samples have no regressor");
+    fail_no_regressor(who);
   const Masks mask = masks(present, samples, s.ny, who);
 
   using D = Diagnostics<Observer>;
@@ -232,9 +242,8 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
   result.parameters = nb::cast(theta.array);
   result.output_error = nb::cast(error.array);
   result.status = nb::cast(status.array);
-  nb::object columns = nb::cast(diagnostics.array);
-  for (std::size_t j = 0; j < D::names.size(); ++j)
-    result.diagnostics[D::names[j]] = columns[nb::make_tuple(nb::slice(nb::none(), nb::none(), nb::none()), j)];
+  const nb::object columns = nb::cast(diagnostics.array);
+  for (std::size_t j = 0; j < D::names.size(); ++j) result.diagnostics[D::names[j]] = column(columns, j);
   return result;
 }
 
@@ -248,6 +257,7 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
          "update",
          [](B& self, nb::handle u, nb::handle y, nb::handle psi, nb::handle present) {
            const auto who = update_name<Observer>();
+           const InUse guard(self.in_use.flag, who);
            const Sizes s = self.observer.sizes();
            if (u.is_none()) {
              if (s.nu != 0) detail::fail_argument(who, "u", "is required: the model has inputs");
@@ -256,12 +266,11 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
            }
            read_vector(y, s.ny, who, "y", self.sample.y);
            if constexpr (takes_regressor<Observer>) {
-             if (psi.is_none())
-               self.sample.Psi.setZero();
-             else
-               read_matrix(psi, s.nx, s.np, who, "Psi", self.sample.Psi);
+             if (psi.is_none() && s.np != 0)
+               detail::fail_argument(who, "Psi", "is required: the model has " + std::to_string(s.np) + " parameters");
+             if (!psi.is_none()) read_matrix(psi, s.nx, s.np, who, "Psi", self.sample.Psi);
            } else if (!psi.is_none()) {
-             detail::fail_argument(who, "Psi", "must be None: this observer's samples have no regressor");
+             fail_no_regressor(who);
            }
            return step(self, present);
          },
@@ -280,6 +289,7 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
           "reset",
           [](B& self, nb::handle x0, nb::handle theta0, Index start_step) {
             const auto who = std::string(Observer::snapshot_type) + ".reset";
+            const InUse guard(self.in_use.flag, who);
             if constexpr (requires { self.observer.reset(self.observer.state(), self.observer.parameters(), 0); })
               self.observer.reset(vector(x0, who, "x0"), vector(theta0, who, "theta0"), start_step);
             else if (start_step == 0)
@@ -308,7 +318,11 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
           "snapshot", [](const B& self) { return to_dict(adaptobs::snapshot(self.observer)); },
           "The whole internal state as a dict of arrays (type, version, matrices, integers).")
       .def(
-          "restore", [](B& self, nb::handle state) { adaptobs::restore(self.observer, from_dict(state)); },
+          "restore",
+          [](B& self, nb::handle state) {
+            const InUse guard(self.in_use.flag, "restore");
+            adaptobs::restore(self.observer, from_dict(state));
+          },
           nb::arg("state"),
           "Continues exactly as the observer `state` was taken from; a snapshot of another class, version\n"
           "or configuration raises ConfigurationError and changes nothing.")
@@ -317,9 +331,7 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
       .def("__getstate__", [](const B& self) { return to_dict(adaptobs::snapshot(self.observer)); })
       .def("__setstate__", [construct](B& self, nb::handle state) {
         const Snapshot<double> s = from_dict(state);
-        if (s.type != Observer::snapshot_type)
-          detail::fail_argument("restore", "snapshot",
-                                "is of a " + s.type + ", not of a " + std::string(Observer::snapshot_type));
+        detail::require_snapshot_type<Observer>(s);
         Observer observer = construct(s);
         adaptobs::restore(observer, s);
         new (&self) B(std::move(observer));

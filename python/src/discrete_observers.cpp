@@ -32,6 +32,10 @@ struct Diagnostics<GuyaderZhang> {
 
 namespace {
 
+const LtiModel& lti_model(nb::handle model, std::string_view who) {
+  return object_argument<LtiModel>(model, who, "model", "an adaptobs.DiscreteLtiModel");
+}
+
 // The model of a snapshot's "model." fields.
 LtiModel model_of(const Snapshot<double>& s) {
   return LtiModel(field(s, "model.A"), field(s, "model.B"), field(s, "model.C"), integer(s, "model.np"));
@@ -60,9 +64,16 @@ void bind_discrete_observers(nb::module_& m) {
       .def_prop_ro("A", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().A); })
       .def_prop_ro("B", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().B); })
       .def_prop_ro("C", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().C); })
-      .def_prop_ro("sizes", [](const LtiModel& self) {
-        const Sizes s = self.sizes();
-        return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
+      .def_prop_ro("sizes",
+                   [](const LtiModel& self) {
+                     const Sizes s = self.sizes();
+                     return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
+                   })
+      .def("__getstate__", [](const LtiModel& self) { return to_dict(adaptobs::snapshot(self)); })
+      .def("__setstate__", [](LtiModel& self, nb::handle state) {
+        const Snapshot<double> s = from_dict(state);
+        detail::require_snapshot_type<LtiModel>(s);
+        new (&self) LtiModel(field(s, "A"), field(s, "B"), field(s, "C"), integer(s, "np"));
       });
 
   auto gz = nb::class_<Bound<GuyaderZhang>>(
@@ -77,10 +88,10 @@ void bind_discrete_observers(nb::module_& m) {
       "step (turn it on whenever outputs can be lost).");
   gz.def(
         "__init__",
-        [](Bound<GuyaderZhang>* self, const LtiModel& model, nb::handle K, double mu, nb::handle x0,
+        [](Bound<GuyaderZhang>* self, nb::handle model, nb::handle K, double mu, nb::handle x0,
            nb::handle theta0, Index excitation_window, bool normalized_step) {
           constexpr std::string_view who = "GuyaderZhangObserver";
-          new (self) Bound<GuyaderZhang>(GuyaderZhang(model, matrix(K, who, "K"), mu, vector(x0, who, "x0"),
+          new (self) Bound<GuyaderZhang>(GuyaderZhang(lti_model(model, who), matrix(K, who, "K"), mu, vector(x0, who, "x0"),
                                                       vector(theta0, who, "theta0"),
                                                       {.excitation_window = excitation_window,
                                                        .normalized_step = normalized_step}));
@@ -93,10 +104,18 @@ void bind_discrete_observers(nb::module_& m) {
       .def_prop_ro("mu", [](const Bound<GuyaderZhang>& b) { return b.observer.mu(); })
       .def(
           "set_gain",
-          [](Bound<GuyaderZhang>& b, nb::handle K) { b.observer.set_gain(matrix(K, "GuyaderZhangObserver.set_gain", "K")); },
+          [](Bound<GuyaderZhang>& b, nb::handle K) {
+            const InUse guard(b.in_use.flag, "GuyaderZhangObserver.set_gain");
+            b.observer.set_gain(matrix(K, "GuyaderZhangObserver.set_gain", "K"));
+          },
           nb::arg("K"), "Gain K_k used from the next update on.")
       .def(
-          "set_mu", [](Bound<GuyaderZhang>& b, double mu) { b.observer.set_mu(mu); }, nb::arg("mu"),
+          "set_mu",
+          [](Bound<GuyaderZhang>& b, double mu) {
+            const InUse guard(b.in_use.flag, "GuyaderZhangObserver.set_mu");
+            b.observer.set_mu(mu);
+          },
+          nb::arg("mu"),
           "Step size mu_k > 0 used from the next update on.")
       .def_prop_ro("assumption2_norm", [](const Bound<GuyaderZhang>& b) { return b.observer.assumption2_norm(); },
                    "||sqrt(mu_k) C Upsilon_k||_2 of the last accepted step (eq. (3)).")
@@ -121,10 +140,10 @@ void bind_discrete_observers(nb::module_& m) {
       "design_guiro_gains. correct_initial_estimate=False leaves the first prediction uncorrected.");
   guiro.def(
            "__init__",
-           [](Bound<Guiro>* self, const LtiModel& model, nb::handle K, nb::handle Gamma, nb::handle z0,
+           [](Bound<Guiro>* self, nb::handle model, nb::handle K, nb::handle Gamma, nb::handle z0,
               nb::handle theta0, bool correct_initial_estimate) {
              constexpr std::string_view who = "GuiroObserver";
-             new (self) Bound<Guiro>(Guiro(model, matrix(K, who, "K"), matrix(Gamma, who, "Gamma"),
+             new (self) Bound<Guiro>(Guiro(lti_model(model, who), matrix(K, who, "K"), matrix(Gamma, who, "Gamma"),
                                            vector(z0, who, "z0"), vector(theta0, who, "theta0"),
                                            {.correct_initial_estimate = correct_initial_estimate}));
            },
@@ -137,6 +156,7 @@ void bind_discrete_observers(nb::module_& m) {
           "set_gains",
           [](Bound<Guiro>& b, nb::handle K, nb::handle Gamma) {
             constexpr std::string_view who = "GuiroObserver.set_gains";
+            const InUse guard(b.in_use.flag, who);
             b.observer.set_gains(matrix(K, who, "K"), matrix(Gamma, who, "Gamma"));
           },
           nb::arg("K"), nb::arg("Gamma"), "Gains used from the next update on (a schedule over varying intervals).");
@@ -172,11 +192,11 @@ void bind_discrete_observers(nb::module_& m) {
       "Zhang 2005, appendix), Joseph form. P0 and Q are (nx + np) x (nx + np), R is ny x ny.");
   akf.def(
          "__init__",
-         [](Bound<AugmentedKalman>* self, const LtiModel& model, nb::handle x0, nb::handle theta0, nb::handle P0,
+         [](Bound<AugmentedKalman>* self, nb::handle model, nb::handle x0, nb::handle theta0, nb::handle P0,
             nb::handle Q, nb::handle R) {
            constexpr std::string_view who = "AugmentedKalmanFilter";
            new (self) Bound<AugmentedKalman>(
-               AugmentedKalman(model, vector(x0, who, "x0"), vector(theta0, who, "theta0"),
+               AugmentedKalman(lti_model(model, who), vector(x0, who, "x0"), vector(theta0, who, "theta0"),
                                {matrix(P0, who, "P0"), matrix(Q, who, "Q"), matrix(R, who, "R")}));
          },
          nb::arg("model"), nb::arg("x0"), nb::arg("theta0"), nb::arg("P0"), nb::arg("Q"), nb::arg("R"))

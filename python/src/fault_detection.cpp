@@ -17,6 +17,8 @@
 #include <nanobind/eigen/dense.h>
 #include <nanobind/stl/string.h>
 
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace adaptobs::python {
@@ -65,25 +67,52 @@ Eigen::VectorXd scale_of(const Snapshot<double>& s, const std::string& prefix) {
   return field(s, prefix + "inverse_scale").cwiseInverse();
 }
 
-/// snapshot, restore, copy and pickle of a detector; `construct` builds one of
-/// a snapshot's configuration for `restore` to fill.
+/// The Python object of a FaultMonitor: the monitor and the flag of the calls
+/// that release the GIL.
+struct MonitorBound {
+  Monitor monitor;
+  UseFlag in_use;
+};
+
+/// snapshot, restore, copy and pickle of a detector (`T` itself, or the monitor
+/// in its MonitorBound); `construct` builds one of a snapshot's configuration
+/// for `restore` to fill.
 template <class T, class Construct>
 void bind_state(nb::class_<T>& cls, Construct construct) {
-  cls.def("snapshot", [](const T& self) { return to_dict(adaptobs::snapshot(self)); },
+  const auto object = [](auto& self) -> auto& {
+    if constexpr (std::is_same_v<std::remove_const_t<std::remove_reference_t<decltype(self)>>, MonitorBound>)
+      return self.monitor;
+    else
+      return self;
+  };
+  using Object = std::remove_reference_t<decltype(object(std::declval<T&>()))>;
+  cls.def("snapshot", [object](const T& self) { return to_dict(adaptobs::snapshot(object(self))); },
           "The whole internal state as a dict of arrays.")
-      .def("restore", [](T& self, nb::handle state) { adaptobs::restore(self, from_dict(state)); }, nb::arg("state"),
-           "Continues exactly as the object `state` was taken from; another class, version or\n"
-           "configuration raises ConfigurationError and changes nothing.")
+      .def(
+          "restore",
+          [object](T& self, nb::handle state) {
+            if constexpr (std::is_same_v<T, MonitorBound>) {
+              const InUse guard(self.in_use.flag, "restore");
+              adaptobs::restore(object(self), from_dict(state));
+            } else {
+              adaptobs::restore(object(self), from_dict(state));
+            }
+          },
+          nb::arg("state"),
+          "Continues exactly as the object `state` was taken from; a snapshot of another class or version,\n"
+          "or of other sizes or options, raises ConfigurationError and changes nothing.")
       .def("__copy__", [](const T& self) { return T(self); })
       .def("__deepcopy__", [](const T& self, nb::handle) { return T(self); }, nb::arg("memo"))
-      .def("__getstate__", [](const T& self) { return to_dict(adaptobs::snapshot(self)); })
+      .def("__getstate__", [object](const T& self) { return to_dict(adaptobs::snapshot(object(self))); })
       .def("__setstate__", [construct](T& self, nb::handle state) {
         const Snapshot<double> s = from_dict(state);
-        if (s.type != T::snapshot_type)
-          detail::fail_argument("restore", "snapshot", "is of a " + s.type + ", not of a " + std::string(T::snapshot_type));
-        T object = construct(s, std::string());
-        adaptobs::restore(object, s);
-        new (&self) T(std::move(object));
+        detail::require_snapshot_type<Object>(s);
+        Object restored = construct(s, std::string());
+        adaptobs::restore(restored, s);
+        if constexpr (std::is_same_v<T, MonitorBound>)
+          new (&self) T{std::move(restored), {}};
+        else
+          new (&self) T(std::move(restored));
       });
 }
 
@@ -110,7 +139,13 @@ void bind_sequential(nb::class_<T>& cls) {
       .def_prop_ro("statistic", &T::statistic)
       .def_prop_ro("nominal", [](const T& self) { return Eigen::VectorXd(self.nominal()); })
       .def(
-          "rearm", [](T& self, nb::handle nominal) { self.rearm(vector(nominal, "rearm", "nominal")); },
+          "rearm",
+          [](T& self, nb::handle nominal) {
+            const std::string who = std::string(T::snapshot_type) + ".rearm";
+            Eigen::VectorXd v(self.nominal().size());
+            read_vector(nominal, v.size(), who, "nominal", v);
+            self.rearm(v);
+          },
           nb::arg("nominal"), "Restarts the statistic around a new nominal value.")
       .def("reset", &T::reset, "Back to the state after construction.");
 }
@@ -121,8 +156,10 @@ struct MonitorColumns {
                                                         "cusum_isolated", "cusum_direction", "glr_isolated"};
 };
 
-nb::dict run_monitor(Monitor& monitor, nb::handle parameters, nb::handle output_errors, nb::handle status) {
+nb::dict run_monitor(MonitorBound& self, nb::handle parameters, nb::handle output_errors, nb::handle status) {
   constexpr std::string_view who = "FaultMonitor.run";
+  const InUse guard(self.in_use.flag, who);
+  Monitor& monitor = self.monitor;
   const Array p = real_array(parameters, who, "parameters");
   if (p.ndim() != 2) fail_dimensions(who, "parameters", "an N x np array", shape_of(p));
   const Index samples = static_cast<Index>(p.shape(0));
@@ -130,12 +167,13 @@ nb::dict run_monitor(Monitor& monitor, nb::handle parameters, nb::handle output_
   const Index ny = monitor.chi_square().outputs();
   const Rows theta = rows(p, samples, np, who, "parameters");
   const Rows error = rows(output_errors, samples, ny, who, "output_errors");
-  nb::ndarray<const std::int8_t, nb::device::cpu> accepted_samples;
+  // The observer's status of each sample: integers (UpdateStatus values), never booleans.
+  nb::ndarray<const std::int64_t, nb::device::cpu> observer_status;
   if (!status.is_none()) {
-    accepted_samples = as_array<nb::ndarray<const std::int8_t, nb::device::cpu>>(status, who, "status", "int8",
-                                                                                 "an array of UpdateStatus values");
-    if (accepted_samples.ndim() != 1 || static_cast<Index>(accepted_samples.shape(0)) != samples)
-      fail_dimensions(who, "status", "(" + std::to_string(samples) + ",)", shape_of(accepted_samples));
+    observer_status = as_array<nb::ndarray<const std::int64_t, nb::device::cpu>>(
+        status, who, "status", "int64", "an array of UpdateStatus values (integers)", "iu");
+    if (observer_status.ndim() != 1 || static_cast<Index>(observer_status.shape(0)) != samples)
+      fail_dimensions(who, "status", "(" + std::to_string(samples) + ",)", shape_of(observer_status));
   }
   const auto n = static_cast<std::size_t>(samples);
   OutputArray alarms({n, 3});
@@ -145,16 +183,18 @@ nb::dict run_monitor(Monitor& monitor, nb::handle parameters, nb::handle output_
     nb::gil_scoped_release release;
     Eigen::VectorXd estimate(np), error_k(ny);
     for (Index k = 0; k < samples; ++k) {
-      UpdateStatus s = UpdateStatus::nonfinite_input;
-      const bool observed =
-          accepted_samples.ndim() == 0 || accepted_samples.data()[k * accepted_samples.stride(0)] == 0;
-      if (observed) {
+      const std::int64_t given =
+          observer_status.ndim() == 0 ? 0 : observer_status.data()[k * observer_status.stride(0)];
+      bool moved = false;
+      if (given == static_cast<std::int64_t>(UpdateStatus::accepted)) {
         estimate = theta.row(k);
         error_k = error.row(k);
-        s = monitor.observe(estimate, error_k);
+        const UpdateStatus s = monitor.observe(estimate, error_k);
+        result.data[k] = static_cast<std::int8_t>(s);
+        moved = accepted(s);
+      } else {
+        result.data[k] = static_cast<std::int8_t>(given);  // passed over, reported as the observer's
       }
-      result.data[k] = static_cast<std::int8_t>(observed ? s : UpdateStatus::nonfinite_input);
-      const bool moved = observed && accepted(s);
       alarms.data[3 * k] = moved && monitor.cusum().alarm();
       alarms.data[3 * k + 1] = moved && monitor.glr().alarm();
       alarms.data[3 * k + 2] = moved && monitor.chi_square().alarm();
@@ -169,14 +209,11 @@ nb::dict run_monitor(Monitor& monitor, nb::handle parameters, nb::handle output_
   }
   nb::dict out;
   nb::object numpy = nb::module_::import_("numpy");
-  nb::object alarm_columns = nb::cast(alarms.array).attr("astype")(numpy.attr("bool_"));
-  const auto column = [](nb::object a, std::size_t j) {
-    return a[nb::make_tuple(nb::slice(nb::none(), nb::none(), nb::none()), j)];
-  };
+  const nb::object alarm_columns = nb::cast(alarms.array).attr("astype")(numpy.attr("bool_"));
   out["cusum_alarm"] = column(alarm_columns, 0);
   out["glr_alarm"] = column(alarm_columns, 1);
   out["chi_square_alarm"] = column(alarm_columns, 2);
-  nb::object figure_columns = nb::cast(figures.array);
+  const nb::object figure_columns = nb::cast(figures.array);
   for (std::size_t j = 0; j < MonitorColumns::statistics.size(); ++j)
     out[MonitorColumns::statistics[j]] = column(figure_columns, j);
   out["status"] = nb::cast(result.array);
@@ -330,18 +367,27 @@ void bind_fault_detection(nb::module_& m) {
       "samples per test; the parameter tests read every `stride`-th sample, the chi-square test decides\n"
       "every `window` samples.");
 
-  nb::class_<Monitor> monitor(m, "FaultMonitor",
+  nb::class_<MonitorBound> monitor(m, "FaultMonitor",
                               "A CUSUM and a GLR on the parameter estimates and a chi-square test on the output\n"
                               "errors, from one FaultMonitorDesign.");
-  monitor.def(nb::init<const MonitorDesign&>(), nb::arg("design"))
+  monitor
+      .def(
+          "__init__",
+          [](MonitorBound* self, nb::handle design) {
+            new (self) MonitorBound{
+                Monitor(object_argument<MonitorDesign>(design, "FaultMonitor", "design", "an adaptobs.FaultMonitorDesign")),
+                {}};
+          },
+          nb::arg("design"))
       .def(
           "observe",
-          [](Monitor& self, nb::handle parameters, nb::handle output_error) {
+          [](MonitorBound& self, nb::handle parameters, nb::handle output_error) {
             constexpr std::string_view who = "FaultMonitor.observe";
-            Eigen::VectorXd theta(self.cusum().nominal().size()), error(self.chi_square().outputs());
+            const InUse guard(self.in_use.flag, who);
+            Eigen::VectorXd theta(self.monitor.cusum().nominal().size()), error(self.monitor.chi_square().outputs());
             read_vector(parameters, theta.size(), who, "parameters", theta);
             read_vector(output_error, error.size(), who, "output_error", error);
-            return self.observe(theta, error);
+            return self.monitor.observe(theta, error);
           },
           nb::arg("parameters"), nb::arg("output_error"),
           "Feeds an observer's estimates after an accepted update to the three tests.")
@@ -350,15 +396,16 @@ void bind_fault_detection(nb::module_& m) {
            "with the GIL released; samples whose `status` is not accepted are passed over. Returns a dict of\n"
            "per-sample arrays: cusum_alarm, glr_alarm, chi_square_alarm, their statistics, the CUSUM's and\n"
            "GLR's isolated component and the CUSUM's direction, and the status of each sample.")
-      .def_prop_ro("cusum", [](const Monitor& self) { return self.cusum(); }, "a copy of the CUSUM")
-      .def_prop_ro("glr", [](const Monitor& self) { return self.glr(); }, "a copy of the GLR")
-      .def_prop_ro("chi_square", [](const Monitor& self) { return self.chi_square(); }, "a copy of the chi-square test");
+      .def_prop_ro("cusum", [](const MonitorBound& self) { return self.monitor.cusum(); }, "a copy of the CUSUM")
+      .def_prop_ro("glr", [](const MonitorBound& self) { return self.monitor.glr(); }, "a copy of the GLR")
+      .def_prop_ro("chi_square", [](const MonitorBound& self) { return self.monitor.chi_square(); },
+                   "a copy of the chi-square test");
   bind_state(monitor, [make_cusum, make_glr, make_chi](const Snapshot<double>& s, const std::string&) {
     MonitorDesign design;
     const Cusum c = make_cusum(s, "cusum.");
     const Glr g = make_glr(s, "glr.");
     design.nominal = c.nominal();
-    design.cusum.scale = scale_of(s, "cusum.");
+    design.cusum.scale = Eigen::VectorXd::Ones(c.nominal().size());  // restore writes the scales
     design.cusum.drift = c.drift();
     design.cusum.threshold = c.threshold();
     design.cusum_options = sequential_options_of(s, "cusum.");

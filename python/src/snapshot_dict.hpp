@@ -42,19 +42,30 @@ inline Snapshot<double> from_dict(nb::handle obj) {
   const nb::dict d = nb::borrow<nb::dict>(obj);
   for (const char* key : {"type", "version", "matrices", "integers"})
     if (!d.contains(key)) detail::fail_argument(who, "state", std::string("has no key '") + key + "'");
+  // Each entry of the wrong type is a TypeError naming its key.
+  const auto entry = [&](nb::handle value, const std::string& key, auto& out, std::string_view expected) {
+    if (!nb::try_cast(value, out)) fail_type(who, "state['" + key + "']", value, expected);
+  };
   Snapshot<double> s;
-  s.type = nb::cast<std::string>(d["type"]);
-  s.version = nb::cast<int>(d["version"]);
+  entry(d["type"], "type", s.type, "a str");
+  entry(d["version"], "version", s.version, "an int");
+  for (const char* key : {"matrices", "integers"})
+    if (!nb::isinstance<nb::dict>(d[key])) fail_type(who, std::string("state['") + key + "']", d[key], "a dict");
   for (auto [key, value] : nb::borrow<nb::dict>(d["matrices"])) {
-    const std::string name = nb::cast<std::string>(key);
+    std::string name;
+    entry(key, "matrices", name, "str keys");
     const MatrixView m = view(real_array(value, who, name), who, name);
     SnapshotMatrix<double> field{name, m.rows(), m.cols(), {}};
     field.values.resize(static_cast<std::size_t>(m.size()));
     Eigen::Map<Eigen::MatrixXd>(field.values.data(), m.rows(), m.cols()) = m;
     s.matrices.push_back(std::move(field));
   }
-  for (auto [key, value] : nb::borrow<nb::dict>(d["integers"]))
-    s.integers.push_back({nb::cast<std::string>(key), nb::cast<std::int64_t>(value)});
+  for (auto [key, value] : nb::borrow<nb::dict>(d["integers"])) {
+    SnapshotInteger field;
+    entry(key, "integers", field.name, "str keys");
+    entry(value, field.name, field.value, "an int");
+    s.integers.push_back(std::move(field));
+  }
   return s;
 }
 

@@ -70,7 +70,7 @@ def test_wrong_sample_shapes_name_the_argument_and_both_shapes_and_change_nothin
         (lambda: observer.update([1.0, 2.0], [0, 0], data["Psi"][0], present=[True]),
          "GuyaderZhangObserver.update: argument 'present' must be (2,) (got (1,))"),
         (lambda: observer.run(data["U"][:9], data["Y"][:10], data["Psi"][:10]),
-         "GuyaderZhangObserver.run: argument 'U' must be 10x2 (got 9x2)"),
+         "GuyaderZhangObserver.run: argument 'U' must be 10x2 (samples x 2) (got 9x2)"),
         (lambda: observer.run(data["U"][:10], data["Y"][:10], data["Psi"][:9]),
          "GuyaderZhangObserver.run: argument 'Psi' must be (10, 4, 2) or 4x2 (got (9, 4, 2))"),
         (lambda: observer.run(data["U"][:10], data["Y"][:10], None, present=np.ones((10, 3), bool)),
@@ -103,3 +103,46 @@ def test_lists_and_integer_arrays_are_converted_once(satellite):
     psi = data["Psi"][0]
     assert a.update([1, 0], [1, 0], psi.tolist()) == b.update(np.array([1.0, 0.0]), np.array([1.0, 0.0]), psi)
     assert np.array_equal(a.state, b.state)
+
+
+def test_complex_and_object_arrays_are_refused_not_truncated(satellite):
+    system, data = satellite
+    observer = make_observer(system)
+    with pytest.raises(TypeError, match="GuyaderZhangObserver.run: argument 'Y' must be an array of real numbers"):
+        observer.run(data["U"][:5], data["Y"][:5] + 1j, data["Psi"][:5])
+    with pytest.raises(TypeError, match="argument 'present' must be an array of booleans"):
+        observer.update([0.0, 0.0], [0.0, 0.0], data["Psi"][0], present=[1.5, 0.0])
+    assert observer.step == 0
+
+
+def test_a_model_of_the_wrong_type_is_a_type_error_naming_it(satellite):
+    system, _ = satellite
+    with pytest.raises(TypeError, match="GuyaderZhangObserver: argument 'model' must be an adaptobs.DiscreteLtiModel"):
+        adaptobs.GuyaderZhangObserver(system, system["K"], 4.0, system["x0_estimate"], system["theta0_estimate"])
+
+
+def test_a_missing_regressor_is_refused_when_the_model_has_parameters(satellite):
+    system, data = satellite
+    observer = make_observer(system)
+    with pytest.raises(ConfigurationError, match="GuyaderZhangObserver.update: argument 'Psi' is required"):
+        observer.update(data["U"][0], data["Y"][0])
+    with pytest.raises(ConfigurationError, match="GuyaderZhangObserver.run: argument 'Psi' is required"):
+        observer.run(data["U"][:3], data["Y"][:3])
+
+
+def test_a_model_pickles_and_a_malformed_snapshot_names_its_key(satellite):
+    import pickle
+
+    system, _ = satellite
+    model = adaptobs.DiscreteLtiModel(system["A"], system["B"], system["C"], np=2)
+    twin = pickle.loads(pickle.dumps(model))
+    assert np.array_equal(twin.A, model.A) and twin.sizes == model.sizes
+    observer = make_observer(system)
+    state = observer.snapshot()
+    state["version"] = "one"
+    with pytest.raises(TypeError, match="restore: argument 'state\\['version'\\]' must be an int"):
+        observer.restore(state)
+    state = observer.snapshot()
+    state["matrices"] = []
+    with pytest.raises(TypeError, match="restore: argument 'state\\['matrices'\\]' must be a dict"):
+        observer.restore(state)

@@ -113,7 +113,7 @@ def test_bad_arguments_name_the_argument(mimo):
         (lambda: make_dey_bhasin(system).update([0.0, 0.0], [0.0, 0.0], np.zeros((6, 15))),
          "DeyBhasinObserver.update: argument 'Psi' must be None"),
         (lambda: make_dey_bhasin(system).run(data["U"][:10], data["Y"][:11]),
-         "DeyBhasinObserver.run: argument 'U' must be 11x2 (got 10x2)"),
+         "DeyBhasinObserver.run: argument 'U' must be 11x2 (samples x 2) (got 10x2)"),
     ]
     for call, message in cases:
         with pytest.raises(ConfigurationError) as error:

@@ -206,6 +206,10 @@ def test_bad_detector_configuration_names_the_argument(monitor_design):
         with pytest.raises(ConfigurationError) as error:
             call()
         assert str(error.value).startswith(message), str(error.value)
+    with pytest.raises(TypeError, match="FaultMonitor.run: argument 'status' must be an array of UpdateStatus values"):
+        adaptobs.FaultMonitor(design).run(parameters[0][:10], parameters[0][:10], status=np.ones(10, bool))
+    with pytest.raises(TypeError, match="FaultMonitor: argument 'design' must be an adaptobs.FaultMonitorDesign"):
+        adaptobs.FaultMonitor({"nominal": [1.0, 1.5]})
     with pytest.raises(TypeError, match="design_fault_monitor: argument 'parameters' must be a list of arrays"):
         adaptobs.design_fault_monitor(3.0, parameters, system["theta"], 1.0, 36000.0, 100, 100)
     # A NaN estimate is a rejected sample, the tests unchanged.

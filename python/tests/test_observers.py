@@ -137,7 +137,7 @@ def test_run_releases_the_gil():
 
     def work():
         started.set()
-        observer.run(U, Y, None)
+        observer.run(U, Y, np.zeros((4, 2)))  # one regressor for every sample
         done.set()
 
     ticks = 0
@@ -155,3 +155,31 @@ def test_run_releases_the_gil():
     assert observer.step == n
     # With the GIL held through the loop this thread would run only between switch intervals.
     assert ticks > 10_000
+
+
+def test_one_observer_used_from_two_threads_is_refused_not_corrupted():
+    """While run() holds the observer (GIL released), a call from another thread is a RuntimeError."""
+    system = adaptobs.examples.satellite()
+    observer = make_observer(system)
+    n = 2_000_000
+    U, Y = np.zeros((n, 2)), np.zeros((n, 2))
+    started = threading.Event()
+    errors = []
+
+    def work():
+        started.set()
+        observer.run(U, Y, np.zeros((4, 2)))
+
+    thread = threading.Thread(target=work)
+    thread.start()
+    started.wait()
+    state = observer.snapshot()
+    while thread.is_alive():
+        try:
+            observer.restore(state)
+        except RuntimeError as error:
+            errors.append(str(error))
+            break
+    thread.join()
+    assert errors and "in use by a call on another thread" in errors[0]
+    assert observer.step == n  # the run went through untouched

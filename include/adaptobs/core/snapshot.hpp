@@ -257,22 +257,29 @@ template <Snapshottable T>
   return out;
 }
 
-/// Makes `object` continue exactly as the object `state` was taken from.
-/// Throws `ConfigurationError`, leaving `object` unchanged, for a snapshot of
-/// another class or version, a missing field, or a field whose shape or
-/// setting differs from `object`'s (restore into an object constructed with
-/// the same sizes and options).
+namespace detail {
+/// Refuses a snapshot of another class than T, or of another version of its fields.
 template <Snapshottable T>
-void restore(T& object, const Snapshot<snapshot_scalar_t<T>>& state) {
+void require_snapshot_type(const Snapshot<snapshot_scalar_t<T>>& state) {
   if (state.type != T::snapshot_type)
-    detail::fail_argument("restore", "snapshot",
-                          "is of a " + state.type + ", not of a " + std::string(T::snapshot_type));
+    fail_argument("restore", "snapshot", "is of a " + state.type + ", not of a " + std::string(T::snapshot_type));
   if (state.version != T::snapshot_version) {
-    detail::Message os;
+    Message os;
     os << "is version " << state.version << " of " << state.type << "; this build reads version "
        << T::snapshot_version;
-    detail::fail_argument("restore", "snapshot", os.str());
+    fail_argument("restore", "snapshot", os.str());
   }
+}
+}  // namespace detail
+
+/// Makes `object` continue exactly as the object `state` was taken from: its
+/// model, gains and estimates are all replaced. Throws `ConfigurationError`,
+/// leaving `object` unchanged, for a snapshot of another class or version, a
+/// missing field, or a field whose shape or setting differs from `object`'s
+/// (restore into an object constructed with the same sizes and options).
+template <Snapshottable T>
+void restore(T& object, const Snapshot<snapshot_scalar_t<T>>& state) {
+  detail::require_snapshot_type<T>(state);
   // Read into a copy, so that a failure at any field leaves `object` as it was.
   T candidate(object);
   detail::SnapshotReader<snapshot_scalar_t<T>> reader(state);

@@ -188,9 +188,9 @@ class FaultMonitor {
 
   /// The same with the estimates themselves (recorded, or from another process):
   /// \f$\hat\theta\f$ and the output error of one accepted update.
-  [[nodiscard]] UpdateStatus observe(const Eigen::Matrix<Scalar, NP, 1>& parameters,
-                                     const Eigen::Matrix<Scalar, NY, 1>& output_error) {
-    return observe(parameters, output_error, "parameters", "output_error");
+  template <class P, class E>
+  [[nodiscard]] UpdateStatus observe(const Eigen::MatrixBase<P>& parameters, const Eigen::MatrixBase<E>& output_error) {
+    return observe(parameters.derived(), output_error.derived(), "parameters", "output_error");
   }
 
   [[nodiscard]] const CusumDetector<Scalar, NP>& cusum() const noexcept { return cusum_; }
