@@ -73,7 +73,7 @@ def test_wrong_sample_shapes_name_the_argument_and_both_shapes_and_change_nothin
          "GuyaderZhangObserver.run: argument 'U' must be 10x2 (samples x 2) (got 9x2)"),
         (lambda: observer.run(data["U"][:10], data["Y"][:10], data["Psi"][:9]),
          "GuyaderZhangObserver.run: argument 'Psi' must be (10, 4, 2) or 4x2 (got (9, 4, 2))"),
-        (lambda: observer.run(data["U"][:10], data["Y"][:10], None, present=np.ones((10, 3), bool)),
+        (lambda: observer.run(data["U"][:10], data["Y"][:10], data["Psi"][:10], present=np.ones((10, 3), bool)),
          "GuyaderZhangObserver.run: argument 'present' must be 10x2 (got 10x3)"),
         (lambda: observer.run(None, data["Y"][:10]),
          "GuyaderZhangObserver.run: argument 'U' is required"),
