@@ -112,8 +112,7 @@ class AugmentedKalmanFilter
   template <class Self, class Archive>
     requires Snapshottable<Model>
   static void visit_state(Self& self, Archive& archive) {
-    auto model = archive.nested("model");
-    Model::visit_state(self.model_, model);
+    archive.object("model", self.model_);
     archive("P0", self.cov_.P0);
     archive("Q", self.cov_.Q);
     archive("R", self.cov_.R);

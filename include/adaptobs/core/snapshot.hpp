@@ -16,8 +16,9 @@
 ///   static constexpr int snapshot_version = 1;
 ///   template <class Self, class Archive>
 ///   static void visit_state(Self& self, Archive& archive) {
-///     archive("x", self.x_);          // a matrix, a scalar, a counter or a flag
-///     archive.setting("window", w);  // configuration: must agree to restore
+///     archive("x", self.x_);                // a matrix, a scalar, a counter or a flag
+///     archive.setting("window", w);        // configuration: must agree to restore
+///     archive.object("model", self.model_);  // a member with a visit_state of its own
 ///   }
 /// \endcode
 ///
@@ -165,6 +166,13 @@ class SnapshotWriter : public SnapshotArchiveBase {
   /// The archive for the fields of a member object, named "name.field".
   [[nodiscard]] SnapshotWriter nested(std::string_view name) const { return SnapshotWriter(out_, nested_prefix(name)); }
 
+  /// The fields of a member object with a `visit_state` of its own, under "name.".
+  template <class T>
+  void object(std::string_view name, const T& member) {
+    SnapshotWriter archive = nested(name);
+    T::visit_state(member, archive);
+  }
+
   static constexpr bool reading = false;
 
  private:
@@ -210,6 +218,12 @@ class SnapshotReader : public SnapshotArchiveBase {
 
   [[nodiscard]] SnapshotReader nested(std::string_view name) const {
     return SnapshotReader(in_, nested_prefix(name));
+  }
+
+  template <class T>
+  void object(std::string_view name, T& member) {
+    SnapshotReader archive = nested(name);
+    T::visit_state(member, archive);
   }
 
   static constexpr bool reading = true;

@@ -64,10 +64,8 @@ struct BastinGevers {
   /// Its fields for `snapshot` and `restore` (core/snapshot.hpp).
   template <class Self, class Archive>
   static void visit_state(Self& self, Archive& archive) {
-    auto static_part = archive.nested("static_transform");
-    StaticTransform<D>::visit_state(self.static_transform, static_part);
-    auto dynamic_part = archive.nested("dynamic_transform");
-    DynamicTransform<Scalar, D::nx, filter_rows>::visit_state(self.dynamic_transform, dynamic_part);
+    archive.object("static_transform", self.static_transform);
+    archive.object("dynamic_transform", self.dynamic_transform);
     archive("k", self.k);
   }
 

@@ -209,10 +209,8 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   static constexpr int snapshot_version = 1;
   template <class Self, class Archive>
   static void visit_state(Self& self, Archive& archive) {
-    auto filters = archive.nested("filters");
-    Filters::visit_state(self.filters_, filters);
-    auto law = archive.nested("law");
-    AdaptationLawType::visit_state(self.law_, law);
+    archive.object("filters", self.filters_);
+    archive.object("law", self.law_);
     archive("x0", self.x0_);
     archive("bank", self.bank_);
     archive("last", self.last_);

@@ -125,8 +125,7 @@ class GuiroObserver
   template <class Self, class Archive>
     requires Snapshottable<Model>
   static void visit_state(Self& self, Archive& archive) {
-    auto model = archive.nested("model");
-    Model::visit_state(self.model_, model);
+    archive.object("model", self.model_);
     archive("K", self.gain_);
     archive("Gamma", self.parameter_gain_);
     archive("z", self.z_);

@@ -151,8 +151,7 @@ class GuyaderZhangObserver
   template <class Self, class Archive>
     requires Snapshottable<Model>
   static void visit_state(Self& self, Archive& archive) {
-    auto model = archive.nested("model");
-    Model::visit_state(self.model_, model);
+    archive.object("model", self.model_);
     archive("K", self.gain_);
     archive("mu", self.mu_);
     archive("x", self.x_);
@@ -163,10 +162,7 @@ class GuyaderZhangObserver
     archive("last_mu", self.last_mu_);
     archive.setting("normalized_step", self.normalized_step_);
     archive.setting("excitation_window", self.excitation_ ? self.excitation_->window() : 0);
-    if (self.excitation_) {
-      auto excitation = archive.nested("excitation");
-      ExcitationMonitor<Scalar, Dims::np>::visit_state(*self.excitation_, excitation);
-    }
+    if (self.excitation_) archive.object("excitation", *self.excitation_);
     GuyaderZhangObserver::visit_update_state(self, archive);
   }
 

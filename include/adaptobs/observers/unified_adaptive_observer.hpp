@@ -240,23 +240,16 @@ class UnifiedAdaptiveObserver
   static constexpr int snapshot_version = 1;
   template <class Self, class Archive>
   static void visit_state(Self& self, Archive& archive) {
-    auto model = archive.nested("model");
-    Model::visit_state(self.model_, model);
-    auto algorithm = archive.nested("algorithm");
-    Algorithm::visit_state(self.algorithm_, algorithm);
-    auto law = archive.nested("law");
-    Law::visit_state(self.law_, law);
-    auto integrator = archive.nested("integrator");
-    SampledIntegrator<Dims, InternalState>::visit_state(self.integrator_, integrator);
+    archive.object("model", self.model_);
+    archive.object("algorithm", self.algorithm_);
+    archive.object("law", self.law_);
+    archive.object("integrator", self.integrator_);
     archive("internal", self.internal_);
     archive("eta", self.eta_);
     archive("theta", self.theta_);
     archive("output_error", self.output_error_);
     archive.setting("excitation_window", self.excitation_ ? self.excitation_->window() : 0);
-    if (self.excitation_) {
-      auto excitation = archive.nested("excitation");
-      ExcitationMonitor<Scalar, Dims::np>::visit_state(*self.excitation_, excitation);
-    }
+    if (self.excitation_) archive.object("excitation", *self.excitation_);
     if constexpr (Archive::reading) self.refresh_time_invariant_system();
   }
 
