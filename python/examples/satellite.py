@@ -2,7 +2,7 @@
 Guyader-Zhang observer beside the augmented Kalman filter, figures 1-3 of the
 C++ example (examples/satellite.cpp) with matplotlib.
 
-    python python/examples/satellite.py [--out satellite_python.png] [--seed 2003]
+    python python/examples/satellite.py [--out satellite_python.png] [--seed 2003] [--seconds 300] [--no-figure]
 """
 
 import argparse
@@ -17,9 +17,10 @@ def main():
     parser.add_argument("--out", default="satellite_python.png")
     parser.add_argument("--seed", type=int, default=2003)
     parser.add_argument("--seconds", type=float, default=300.0)
+    parser.add_argument("--no-figure", action="store_true", help="print the estimates only")
     args = parser.parse_args()
-    if args.seconds <= 0:
-        parser.error("--seconds must be positive")
+    if not 1.0 <= args.seconds <= 1e6:
+        parser.error("--seconds must lie in [1, 1e6]")
 
     s = adaptobs.examples.satellite()
     steps = int(round(args.seconds / s["Ts"]))
@@ -35,6 +36,8 @@ def main():
     print("theta_hat =", gz.parameters[-1], "against", s["theta"])
     print("mean over the last 100 s =", gz.parameters[-1000:].mean(axis=0))
     print("augmented Kalman filter mean =", kf.parameters[-1000:].mean(axis=0))
+    if args.no_figure:
+        return
 
     import matplotlib
 
@@ -43,9 +46,11 @@ def main():
 
     t = np.arange(steps) * s["Ts"]
     fig, axes = plt.subplots(3, 1, figsize=(10, 9), sharex=True)
-    axes[0].plot(t, data["U"])
+    axes[0].plot(t, data["U"], label=["u1 radial", "u2 tangential"])
     axes[0].set_title("Figure 1: thrusts")
-    axes[1].plot(t[:-1], gz.state[:-1] - data["X"][1:])  # row k: the estimate of x_{k+1}
+    axes[0].legend(loc="upper right")
+    axes[1].plot(t[1:], gz.state[:-1] - data["X"][1:], label=[f"error x{i}" for i in range(1, 5)])  # row k: x_{k+1}
+    axes[1].legend(loc="upper right", ncol=4)
     axes[1].set_ylim(-0.06, 0.06)
     axes[1].set_title("Figure 2: state estimation errors")
     axes[2].plot(t, gz.parameters, label=["theta1 adaptive observer", "theta2 adaptive observer"])
