@@ -220,6 +220,70 @@ nb::dict run_monitor(MonitorBound& self, nb::handle parameters, nb::handle outpu
   return out;
 }
 
+// A design as a dict of its fields, and back (pickling: a design is costly to
+// compute from its runs).
+nb::dict design_state(const MonitorDesign& d) {
+  nb::dict state;
+  state["nominal"] = d.nominal;
+  state["scale"] = d.cusum.scale;
+  state["drift"] = d.cusum.drift;
+  state["threshold"] = d.cusum.threshold;
+  state["lag_correlation"] = d.cusum.lag_correlation;
+  state["long_run_excess"] = d.cusum.long_run_excess;
+  state["bias"] = d.cusum.bias;
+  state["evaluations"] = d.cusum.evaluations;
+  state["checked_mean_evaluations"] = d.cusum.checked_mean_evaluations;
+  state["checked_alarms"] = d.cusum.checked_alarms;
+  state["alarms"] = d.cusum.alarms;
+  state["stride"] = d.cusum_options.stride;
+  state["hold_off"] = d.cusum_options.hold_off;
+  state["reanchor"] = d.cusum_options.reanchor;
+  state["glr_window"] = d.glr_window;
+  state["glr_threshold"] = d.glr_threshold;
+  state["glr_checked_alarms"] = d.glr_checked_alarms;
+  state["output_error_covariance"] = d.output_error_covariance;
+  state["window"] = d.window;
+  state["false_alarm_probability"] = d.false_alarm_probability;
+  state["chi_square_scale"] = d.chi_square_options.scale;
+  state["chi_square_degrees_of_freedom"] = d.chi_square_options.degrees_of_freedom;
+  state["chi_square_windows"] = d.chi_square_windows;
+  return state;
+}
+
+MonitorDesign design_of(const nb::dict& state) {
+  const auto get = [&](const char* key, auto& out) {
+    if (!state.contains(key) || !nb::try_cast(state[key], out))
+      detail::fail_argument("FaultMonitorDesign", "state", std::string("has no valid entry '") + key + "'");
+  };
+  MonitorDesign d;
+  get("nominal", d.nominal);
+  get("scale", d.cusum.scale);
+  get("drift", d.cusum.drift);
+  get("threshold", d.cusum.threshold);
+  get("lag_correlation", d.cusum.lag_correlation);
+  get("long_run_excess", d.cusum.long_run_excess);
+  get("bias", d.cusum.bias);
+  get("evaluations", d.cusum.evaluations);
+  get("checked_mean_evaluations", d.cusum.checked_mean_evaluations);
+  get("checked_alarms", d.cusum.checked_alarms);
+  get("alarms", d.cusum.alarms);
+  get("stride", d.cusum_options.stride);
+  get("hold_off", d.cusum_options.hold_off);
+  get("reanchor", d.cusum_options.reanchor);
+  get("glr_window", d.glr_window);
+  get("glr_threshold", d.glr_threshold);
+  get("glr_checked_alarms", d.glr_checked_alarms);
+  get("output_error_covariance", d.output_error_covariance);
+  get("window", d.window);
+  get("false_alarm_probability", d.false_alarm_probability);
+  get("chi_square_scale", d.chi_square_options.scale);
+  get("chi_square_degrees_of_freedom", d.chi_square_options.degrees_of_freedom);
+  get("chi_square_windows", d.chi_square_windows);
+  Monitor check(d);  // refuses, naming the argument, what no monitor can be built from
+  (void)check;
+  return d;
+}
+
 }  // namespace
 
 void bind_fault_detection(nb::module_& m) {
@@ -333,7 +397,9 @@ void bind_fault_detection(nb::module_& m) {
       .def_prop_ro("chi_square_scale", [](const MonitorDesign& d) { return d.chi_square_options.scale; })
       .def_prop_ro("chi_square_degrees_of_freedom",
                    [](const MonitorDesign& d) { return d.chi_square_options.degrees_of_freedom; })
-      .def_ro("chi_square_windows", &MonitorDesign::chi_square_windows);
+      .def_ro("chi_square_windows", &MonitorDesign::chi_square_windows)
+      .def("__getstate__", &design_state)
+      .def("__setstate__", [](MonitorDesign& self, const nb::dict& state) { new (&self) MonitorDesign(design_of(state)); });
 
   m.def(
       "calibrate_cusum",

@@ -109,6 +109,17 @@ def test_run_equals_a_loop_of_observe_and_a_pickle_continues_bit_for_bit(monitor
     assert batch["cusum_alarm"].any()
 
 
+def test_a_design_pickles_and_builds_the_same_monitor(monitor_design):
+    system, design, parameters = monitor_design
+    twin = pickle.loads(pickle.dumps(design))
+    assert twin.cusum.threshold == design.cusum.threshold and twin.glr_threshold == design.glr_threshold
+    assert np.array_equal(twin.output_error_covariance, design.output_error_covariance)
+    theta, error = parameters[0][:3000], parameters[0][:3000] * 0.0
+    a = adaptobs.FaultMonitor(design).run(theta, error)
+    b = adaptobs.FaultMonitor(twin).run(theta, error)
+    assert all(np.array_equal(a[key], b[key]) for key in a)
+
+
 def test_the_cusum_is_page_s_recursion():
     rng = np.random.default_rng(1)
     nominal, scale, drift, threshold = np.array([1.0, -2.0]), np.array([0.5, 2.0]), 0.25, 4.0
