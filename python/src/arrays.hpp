@@ -110,6 +110,35 @@ inline MatrixView view(const Array& a, std::string_view who, std::string_view na
   return MatrixView(a.data(), rows, cols, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(col_stride, row_stride));
 }
 
+/// A real scalar argument: a Python or NumPy number, or a 0-d array (not a bool).
+inline double real_scalar(nb::handle obj, std::string_view who, std::string_view name) {
+  if (PyBool_Check(obj.ptr())) fail_type(who, name, obj, "a real number");
+  if (PyFloat_Check(obj.ptr())) return PyFloat_AsDouble(obj.ptr());
+  const Array a = real_array(obj, who, name);
+  if (a.ndim() != 0) fail_dimensions(who, name, "a scalar", shape_of(a));
+  return *a.data();
+}
+
+/// An integer argument: a Python or NumPy integer (not a bool, not a float).
+inline Index integer_argument(nb::handle obj, std::string_view who, std::string_view name) {
+  if (PyBool_Check(obj.ptr()) || !PyIndex_Check(obj.ptr())) fail_type(who, name, obj, "an integer");
+  const Py_ssize_t value = PyNumber_AsSsize_t(obj.ptr(), PyExc_OverflowError);
+  if (value == -1 && PyErr_Occurred()) {
+    PyErr_Clear();
+    detail::fail_argument(who, name, "is out of range");
+  }
+  return static_cast<Index>(value);
+}
+
+/// A flag argument: a Python bool or a NumPy bool.
+inline bool flag_argument(nb::handle obj, std::string_view who, std::string_view name) {
+  if (PyBool_Check(obj.ptr())) return obj.ptr() == Py_True;
+  if (nb::hasattr(obj, "dtype") && nb::hasattr(obj, "ndim") && nb::cast<int>(obj.attr("ndim")) == 0 &&
+      nb::cast<std::string>(obj.attr("dtype").attr("kind")) == "b")
+    return PyObject_IsTrue(obj.ptr()) == 1;
+  fail_type(who, name, obj, "a bool");
+}
+
 /// A matrix argument, copied into the Eigen matrix the library stores.
 inline Eigen::MatrixXd matrix(nb::handle obj, std::string_view who, std::string_view name) {
   const Array a = real_array(obj, who, name);

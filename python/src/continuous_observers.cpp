@@ -64,21 +64,31 @@ using BastinGeversPy = BastinGeversObserver<ContinuousModel>;
 using MarinoTomeiPy = MarinoTomeiObserver<ContinuousModel>;
 using Transform = StaticTransform<Dims>;
 
-SignalReconstruction reconstruction_of(const std::string& name, std::string_view who, std::string_view argument) {
+SignalReconstruction reconstruction_of(nb::handle obj, std::string_view who, std::string_view argument) {
+  if (!nb::isinstance<nb::str>(obj)) fail_type(who, argument, obj, "'hold', 'linear' or 'quadratic'");
+  const std::string name = nb::cast<std::string>(obj);
   if (name == "hold") return SignalReconstruction::hold;
   if (name == "linear") return SignalReconstruction::linear;
   if (name == "quadratic") return SignalReconstruction::quadratic;
   detail::fail_argument(who, argument, "must be 'hold', 'linear' or 'quadratic' (got '" + name + "')");
 }
 
-UnifiedObserverOptions options_of(int substeps, double max_step, int max_substeps, const std::string& input,
-                                  const std::string& output, Index excitation_window, std::string_view who) {
-  return {.sampling = {.substeps = substeps,
-                       .max_step = max_step,
-                       .max_substeps = max_substeps,
+// The sampling options from the keywords, each read by its Python name. The
+// step counts must fit an int, as in C++.
+UnifiedObserverOptions options_of(nb::handle substeps, nb::handle max_step, nb::handle max_substeps, nb::handle input,
+                                  nb::handle output, nb::handle excitation_window, std::string_view who) {
+  const auto step_count = [who](nb::handle obj, std::string_view name) {
+    const Index value = integer_argument(obj, who, name);
+    detail::require(value >= 1 && value <= std::numeric_limits<int>::max(), who, name,
+                    "must be at least 1 and fit an int");
+    return static_cast<int>(value);
+  };
+  return {.sampling = {.substeps = step_count(substeps, "substeps"),
+                       .max_step = real_scalar(max_step, who, "max_step"),
+                       .max_substeps = step_count(max_substeps, "max_substeps"),
                        .input = reconstruction_of(input, who, "input"),
                        .output = reconstruction_of(output, who, "output")},
-          .excitation_window = excitation_window};
+          .excitation_window = integer_argument(excitation_window, who, "excitation_window")};
 }
 
 UnifiedObserverOptions options_of(const Snapshot<double>& s) {
@@ -278,11 +288,11 @@ void bind_continuous_observers(nb::module_& m) {
                               "about a microsecond a call. np defaults to the columns of a constant Phi.")
       .def(
           "__init__",
-          [](ContinuousModel* self, nb::handle A, nb::handle B, nb::handle C, nb::handle Phi, std::optional<Index> np) {
+          [](ContinuousModel* self, nb::handle A, nb::handle B, nb::handle C, nb::handle Phi, nb::handle np) {
             constexpr std::string_view who = "ContinuousLtiModel";
             PythonRegressor phi = regressor_of(Phi);
-            if (!np && phi.callable) detail::fail_argument(who, "np", "is required when Phi is a callable");
-            const Index parameters = np ? *np : phi.value.cols();
+            if (np.is_none() && phi.callable) detail::fail_argument(who, "np", "is required when Phi is a callable");
+            const Index parameters = np.is_none() ? phi.value.cols() : integer_argument(np, who, "np");
             new (self) ContinuousModel(matrix(A, who, "A"), matrix(B, who, "B"), matrix(C, who, "C"), std::move(phi),
                                        parameters);
           },
@@ -340,11 +350,11 @@ void bind_continuous_observers(nb::module_& m) {
       nb::arg("A"), nb::arg("c"), "The transform to the form (7) of Algorithm 2: c_o = e_1^T, A_o a shift.");
   m.def(
       "spr_injection_gain",
-      [](nb::handle A, nb::handle c, nb::handle gamma, double lambda) {
+      [](nb::handle A, nb::handle c, nb::handle gamma, nb::handle lambda) {
         constexpr std::string_view who = "spr_injection_gain";
         return Eigen::VectorXd(
             spr_injection_gain(matrix(A, who, "A"), matrix(c, who, "c"), Eigen::VectorXd(vector(gamma, who, "gamma")),
-                               lambda));
+                               real_scalar(lambda, who, "lambda_")));
       },
       nb::arg("A"), nb::arg("c"), nb::arg("gamma"), nb::arg("lambda_"),
       "The gain k making c (sI - A + k c)^-1 gamma = c gamma / (s + lambda_), strictly positive real.");
@@ -366,8 +376,8 @@ void bind_continuous_observers(nb::module_& m) {
   bastin_gevers.def(
       "__init__",
       [](ContinuousBound<BastinGeversPy>* self, nb::handle model, nb::handle transform, nb::handle k,
-         nb::handle gamma, nb::handle eta0, nb::handle theta0, int substeps, double max_step, int max_substeps,
-         const std::string& input, const std::string& output, Index excitation_window) {
+         nb::handle gamma, nb::handle eta0, nb::handle theta0, nb::handle substeps, nb::handle max_step,
+         nb::handle max_substeps, nb::handle input, nb::handle output, nb::handle excitation_window) {
         constexpr std::string_view who = "BastinGeversObserver";
         new (self) ContinuousBound<BastinGeversPy>(make_bastin_gevers_observer(
             continuous_model(model, who), static_transform(transform, who), matrix(k, who, "k"), matrix(gamma, who, "gamma"), vector(eta0, who, "eta0"),
@@ -393,9 +403,9 @@ void bind_continuous_observers(nb::module_& m) {
   marino_tomei.def(
       "__init__",
       [](ContinuousBound<MarinoTomeiPy>* self, nb::handle model, nb::handle transform,
-         nb::handle gamma, nb::handle k, nb::handle adaptation_gain, nb::handle eta0, nb::handle theta0, int substeps,
-         double max_step, int max_substeps, const std::string& input, const std::string& output,
-         Index excitation_window) {
+         nb::handle gamma, nb::handle k, nb::handle adaptation_gain, nb::handle eta0, nb::handle theta0, nb::handle substeps,
+         nb::handle max_step, nb::handle max_substeps, nb::handle input, nb::handle output,
+         nb::handle excitation_window) {
         constexpr std::string_view who = "MarinoTomeiObserver";
         new (self) ContinuousBound<MarinoTomeiPy>(make_marino_tomei_observer(
             continuous_model(model, who), static_transform(transform, who), vector(gamma, who, "gamma"), matrix(k, who, "k"),

@@ -110,25 +110,27 @@ void bind_design(nb::module_& m) {
       nb::arg("A"), nb::arg("B"), nb::arg("poles"), "Gain K such that A - B K has the spectrum `poles`.");
   m.def(
       "discretize_zoh",
-      [](nb::handle A, nb::handle B, double ts) {
+      [](nb::handle A, nb::handle B, nb::handle ts) {
         constexpr std::string_view who = "discretize_zoh";
-        return discretize_zoh(matrix(A, who, "A"), matrix(B, who, "B"), ts);
+        return discretize_zoh(matrix(A, who, "A"), matrix(B, who, "B"), real_scalar(ts, who, "ts"));
       },
       nb::arg("A"), nb::arg("B"), nb::arg("ts"), "Zero-order-hold discretization of (A, B) with period ts.");
   m.def(
       "is_schur_stable",
-      [](nb::handle M, double margin) {
-        const Eigen::MatrixXd a = matrix(M, "is_schur_stable", "M");
-        detail::require_square(a, "is_schur_stable", "M");
-        return is_schur_stable(a, margin);
+      [](nb::handle M, nb::handle margin) {
+        constexpr std::string_view who = "is_schur_stable";
+        const Eigen::MatrixXd a = matrix(M, who, "M");
+        detail::require_square(a, who, "M");
+        return is_schur_stable(a, real_scalar(margin, who, "margin"));
       },
       nb::arg("M"), nb::arg("margin") = 0.0, "Every eigenvalue strictly inside the circle of radius 1 - margin.");
   m.def(
       "is_hurwitz_stable",
-      [](nb::handle M, double margin) {
-        const Eigen::MatrixXd a = matrix(M, "is_hurwitz_stable", "M");
-        detail::require_square(a, "is_hurwitz_stable", "M");
-        return is_hurwitz_stable(a, margin);
+      [](nb::handle M, nb::handle margin) {
+        constexpr std::string_view who = "is_hurwitz_stable";
+        const Eigen::MatrixXd a = matrix(M, who, "M");
+        detail::require_square(a, who, "M");
+        return is_hurwitz_stable(a, real_scalar(margin, who, "margin"));
       },
       nb::arg("M"), nb::arg("margin") = 0.0, "Every eigenvalue's real part below -margin.");
 }

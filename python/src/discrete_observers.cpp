@@ -56,9 +56,10 @@ void bind_discrete_observers(nb::module_& m) {
                        "np is the number of unknown parameters.")
       .def(
           "__init__",
-          [](LtiModel* self, nb::handle A, nb::handle B, nb::handle C, Index np) {
+          [](LtiModel* self, nb::handle A, nb::handle B, nb::handle C, nb::handle np) {
             constexpr std::string_view who = "DiscreteLtiModel";
-            new (self) LtiModel(matrix(A, who, "A"), matrix(B, who, "B"), matrix(C, who, "C"), np);
+            new (self) LtiModel(matrix(A, who, "A"), matrix(B, who, "B"), matrix(C, who, "C"),
+                                integer_argument(np, who, "np"));
           },
           nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("np"))
       .def_prop_ro("A", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().A); })
@@ -88,13 +89,14 @@ void bind_discrete_observers(nb::module_& m) {
       "step (turn it on whenever outputs can be lost).");
   gz.def(
         "__init__",
-        [](Bound<GuyaderZhang>* self, nb::handle model, nb::handle K, double mu, nb::handle x0,
-           nb::handle theta0, Index excitation_window, bool normalized_step) {
+        [](Bound<GuyaderZhang>* self, nb::handle model, nb::handle K, nb::handle mu, nb::handle x0,
+           nb::handle theta0, nb::handle excitation_window, nb::handle normalized_step) {
           constexpr std::string_view who = "GuyaderZhangObserver";
-          new (self) Bound<GuyaderZhang>(GuyaderZhang(lti_model(model, who), matrix(K, who, "K"), mu, vector(x0, who, "x0"),
-                                                      vector(theta0, who, "theta0"),
-                                                      {.excitation_window = excitation_window,
-                                                       .normalized_step = normalized_step}));
+          new (self) Bound<GuyaderZhang>(GuyaderZhang(
+              lti_model(model, who), matrix(K, who, "K"), real_scalar(mu, who, "mu"), vector(x0, who, "x0"),
+              vector(theta0, who, "theta0"),
+              {.excitation_window = integer_argument(excitation_window, who, "excitation_window"),
+               .normalized_step = flag_argument(normalized_step, who, "normalized_step")}));
         },
         nb::arg("model"), nb::arg("K"), nb::arg("mu"), nb::arg("x0"), nb::arg("theta0"), nb::kw_only(),
         nb::arg("excitation_window") = 0, nb::arg("normalized_step") = false)
@@ -111,9 +113,10 @@ void bind_discrete_observers(nb::module_& m) {
           nb::arg("K"), "Gain K_k used from the next update on.")
       .def(
           "set_mu",
-          [](Bound<GuyaderZhang>& b, double mu) {
-            const InUse guard(b.in_use.flag, "GuyaderZhangObserver.set_mu");
-            b.observer.set_mu(mu);
+          [](Bound<GuyaderZhang>& b, nb::handle mu) {
+            constexpr std::string_view who = "GuyaderZhangObserver.set_mu";
+            const InUse guard(b.in_use.flag, who);
+            b.observer.set_mu(real_scalar(mu, who, "mu"));
           },
           nb::arg("mu"),
           "Step size mu_k > 0 used from the next update on.")
@@ -141,11 +144,12 @@ void bind_discrete_observers(nb::module_& m) {
   guiro.def(
            "__init__",
            [](Bound<Guiro>* self, nb::handle model, nb::handle K, nb::handle Gamma, nb::handle z0,
-              nb::handle theta0, bool correct_initial_estimate) {
+              nb::handle theta0, nb::handle correct_initial_estimate) {
              constexpr std::string_view who = "GuiroObserver";
              new (self) Bound<Guiro>(Guiro(lti_model(model, who), matrix(K, who, "K"), matrix(Gamma, who, "Gamma"),
                                            vector(z0, who, "z0"), vector(theta0, who, "theta0"),
-                                           {.correct_initial_estimate = correct_initial_estimate}));
+                                           {.correct_initial_estimate = flag_argument(
+                                                correct_initial_estimate, who, "correct_initial_estimate")}));
            },
            nb::arg("model"), nb::arg("K"), nb::arg("Gamma"), nb::arg("z0"), nb::arg("theta0"), nb::kw_only(),
            nb::arg("correct_initial_estimate") = true)

@@ -52,8 +52,15 @@ Runs runs_of(nb::handle obj, std::string_view who, std::string_view name) {
   return runs;
 }
 
-SequentialTestOptions sequential_options(Index stride, Index hold_off, bool reanchor) {
-  return {.stride = stride, .hold_off = hold_off, .reanchor = reanchor};
+// The options of a sequential test from its keywords, named as Python spells them.
+SequentialTestOptions sequential_options(nb::handle stride, nb::handle hold_off, nb::handle reanchor,
+                                         std::string_view who) {
+  const SequentialTestOptions options{.stride = integer_argument(stride, who, "stride"),
+                                      .hold_off = integer_argument(hold_off, who, "hold_off"),
+                                      .reanchor = flag_argument(reanchor, who, "reanchor")};
+  detail::require(options.stride >= 1, who, "stride", "must be at least 1");
+  detail::require(options.hold_off >= 0, who, "hold_off", "must be non-negative");
+  return options;
 }
 
 SequentialTestOptions sequential_options_of(const Snapshot<double>& s, const std::string& prefix) {
@@ -293,11 +300,11 @@ void bind_fault_detection(nb::module_& m) {
                           "the threshold (Page 1954; thresholds from Siegmund's approximation, calibrate_cusum).");
   cusum.def(
       "__init__",
-      [](Cusum* self, nb::handle nominal, nb::handle scale, double drift, double threshold, Index stride,
-         Index hold_off, bool reanchor) {
+      [](Cusum* self, nb::handle nominal, nb::handle scale, nb::handle drift, nb::handle threshold,
+         nb::handle stride, nb::handle hold_off, nb::handle reanchor) {
         constexpr std::string_view who = "CusumDetector";
-        new (self) Cusum(vector(nominal, who, "nominal"), vector(scale, who, "scale"), drift, threshold,
-                         sequential_options(stride, hold_off, reanchor));
+        new (self) Cusum(vector(nominal, who, "nominal"), vector(scale, who, "scale"), real_scalar(drift, who, "drift"),
+                         real_scalar(threshold, who, "threshold"), sequential_options(stride, hold_off, reanchor, who));
       },
       nb::arg("nominal"), nb::arg("scale"), nb::arg("drift"), nb::arg("threshold"), nb::kw_only(),
       nb::arg("stride") = 1, nb::arg("hold_off") = 0, nb::arg("reanchor") = false);
@@ -316,11 +323,12 @@ void bind_fault_detection(nb::module_& m) {
                       "g = max over the last `window` evaluations m of (sum of z)^2 / (2 m), per component.");
   glr.def(
       "__init__",
-      [](Glr* self, nb::handle nominal, nb::handle scale, Index window, double threshold, Index stride, Index hold_off,
-         bool reanchor) {
+      [](Glr* self, nb::handle nominal, nb::handle scale, nb::handle window, nb::handle threshold,
+         nb::handle stride, nb::handle hold_off, nb::handle reanchor) {
         constexpr std::string_view who = "GlrDetector";
-        new (self) Glr(vector(nominal, who, "nominal"), vector(scale, who, "scale"), window, threshold,
-                       sequential_options(stride, hold_off, reanchor));
+        new (self) Glr(vector(nominal, who, "nominal"), vector(scale, who, "scale"),
+                       integer_argument(window, who, "window"), real_scalar(threshold, who, "threshold"),
+                       sequential_options(stride, hold_off, reanchor, who));
       },
       nb::arg("nominal"), nb::arg("scale"), nb::arg("window"), nb::arg("threshold"), nb::kw_only(),
       nb::arg("stride") = 1, nb::arg("hold_off") = 0, nb::arg("reanchor") = false);
@@ -339,10 +347,13 @@ void bind_fault_detection(nb::module_& m) {
                             "false_alarm_probability of c chi^2(nu) (nu = window ny unless given).");
   chi.def(
          "__init__",
-         [](ChiSquare* self, nb::handle covariance, Index window, double false_alarm_probability, double scale,
-            double degrees_of_freedom) {
-           new (self) ChiSquare(matrix(covariance, "ChiSquareTest", "covariance"), window, false_alarm_probability,
-                                {.scale = scale, .degrees_of_freedom = degrees_of_freedom});
+         [](ChiSquare* self, nb::handle covariance, nb::handle window, nb::handle false_alarm_probability,
+            nb::handle scale, nb::handle degrees_of_freedom) {
+           constexpr std::string_view who = "ChiSquareTest";
+           new (self) ChiSquare(matrix(covariance, who, "covariance"), integer_argument(window, who, "window"),
+                                real_scalar(false_alarm_probability, who, "false_alarm_probability"),
+                                {.scale = real_scalar(scale, who, "scale"),
+                                 .degrees_of_freedom = real_scalar(degrees_of_freedom, who, "degrees_of_freedom")});
          },
          nb::arg("covariance"), nb::arg("window"), nb::arg("false_alarm_probability"), nb::kw_only(),
          nb::arg("scale") = 1.0, nb::arg("degrees_of_freedom") = 0.0)
@@ -403,10 +414,11 @@ void bind_fault_detection(nb::module_& m) {
 
   m.def(
       "calibrate_cusum",
-      [](nb::handle runs, nb::handle nominal, double drift, double mean_evaluations, Index stride) {
+      [](nb::handle runs, nb::handle nominal, nb::handle drift, nb::handle mean_evaluations, nb::handle stride) {
         constexpr std::string_view who = "calibrate_cusum";
-        return calibrate_cusum(runs_of(runs, who, "runs"), Eigen::VectorXd(vector(nominal, who, "nominal")), drift,
-                               mean_evaluations, stride);
+        return calibrate_cusum(runs_of(runs, who, "runs"), Eigen::VectorXd(vector(nominal, who, "nominal")),
+                               real_scalar(drift, who, "drift"), real_scalar(mean_evaluations, who, "mean_evaluations"),
+                               integer_argument(stride, who, "stride"));
       },
       nb::arg("runs"), nb::arg("nominal"), nb::arg("drift"), nb::arg("mean_evaluations"), nb::arg("stride"),
       "A CUSUM raising false alarms every `mean_evaluations` evaluations on average, from fault-free\n"
@@ -414,16 +426,19 @@ void bind_fault_detection(nb::module_& m) {
       "that break its assumptions (correlation, bias, rate), naming the remedy.");
   m.def(
       "design_fault_monitor",
-      [](nb::handle parameters, nb::handle output_errors, nb::handle nominal, double drift,
-         double mean_samples_between_false_alarms, Index stride, Index window, Index glr_window) {
+      [](nb::handle parameters, nb::handle output_errors, nb::handle nominal, nb::handle drift,
+         nb::handle mean_samples_between_false_alarms, nb::handle stride, nb::handle window, nb::handle glr_window) {
         constexpr std::string_view who = "design_fault_monitor";
         FaultFreeRecord<double, X, X> record;
         record.parameters = runs_of(parameters, who, "parameters");
         record.output_errors = runs_of(output_errors, who, "output_errors");
         detail::require(record.parameters.size() == record.output_errors.size(), who, "output_errors",
                         "must hold one array per run of 'parameters'");
-        return design_fault_monitor(record, Eigen::VectorXd(vector(nominal, who, "nominal")), drift,
-                                    mean_samples_between_false_alarms, stride, window, glr_window);
+        return design_fault_monitor(
+            record, Eigen::VectorXd(vector(nominal, who, "nominal")), real_scalar(drift, who, "drift"),
+            real_scalar(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms"),
+            integer_argument(stride, who, "stride"), integer_argument(window, who, "window"),
+            integer_argument(glr_window, who, "glr_window"));
       },
       nb::arg("parameters"), nb::arg("output_errors"), nb::arg("nominal"), nb::arg("drift"),
       nb::arg("mean_samples_between_false_alarms"), nb::arg("stride"), nb::arg("window"), nb::arg("glr_window") = 10,

@@ -60,13 +60,16 @@ void bind_filter_observers(nb::module_& m) {
           .c_str());
   dey_bhasin.def(
       "__init__",
-      [](Bound<DeyBhasin>* self, nb::handle f, nb::handle x0, nb::handle a0, nb::handle B0, double k0, double kmin,
-         nb::handle R, bool screen_reset_test) {
+      [](Bound<DeyBhasin>* self, nb::handle f, nb::handle x0, nb::handle a0, nb::handle B0, nb::handle k0,
+         nb::handle kmin, nb::handle R, nb::handle screen_reset_test) {
         constexpr std::string_view who = "DeyBhasinObserver";
         new (self) Bound<DeyBhasin>(DeyBhasin(vector(f, who, "f"), vector(x0, who, "x0"), vector(a0, who, "a0"),
                                               matrix(B0, who, "B0"),
-                                              {.k0 = k0, .kmin = kmin, .R = matrix(R, who, "R"),
-                                               .screen_reset_test = screen_reset_test}));
+                                              {.k0 = real_scalar(k0, who, "k0"),
+                                               .kmin = real_scalar(kmin, who, "kmin"),
+                                               .R = matrix(R, who, "R"),
+                                               .screen_reset_test = flag_argument(screen_reset_test, who,
+                                                                                  "screen_reset_test")}));
       },
       nb::arg("f"), nb::arg("x0"), nb::arg("a0"), nb::arg("B0"), nb::kw_only(), nb::arg("k0"), nb::arg("kmin"),
       nb::arg("R"), nb::arg("screen_reset_test") = true);
@@ -90,12 +93,12 @@ void bind_filter_observers(nb::module_& m) {
   suzuki.def(
       "__init__",
       [](Bound<Suzuki>* self, nb::handle f, nb::handle x0, nb::handle a0, nb::handle B0, nb::handle gamma0,
-         nb::handle R, double lambda) {
+         nb::handle R, nb::handle lambda) {
         constexpr std::string_view who = "SuzukiObserver";
         new (self) Bound<Suzuki>(Suzuki(vector(f, who, "f"), vector(x0, who, "x0"), vector(a0, who, "a0"),
                                         matrix(B0, who, "B0"),
                                         {.gamma0 = matrix(gamma0, who, "gamma0"), .R = matrix(R, who, "R"),
-                                         .lambda = lambda}));
+                                         .lambda = real_scalar(lambda, who, "lambda_")}));
       },
       nb::arg("f"), nb::arg("x0"), nb::arg("a0"), nb::arg("B0"), nb::kw_only(), nb::arg("gamma0"), nb::arg("R"),
       nb::arg("lambda_"));

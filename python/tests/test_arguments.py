@@ -146,3 +146,24 @@ def test_a_model_pickles_and_a_malformed_snapshot_names_its_key(satellite):
     state["matrices"] = []
     with pytest.raises(TypeError, match="restore: argument 'state\\['matrices'\\]' must be a dict"):
         observer.restore(state)
+
+
+def test_scalar_arguments_take_numpy_scalars_and_name_the_wrong_kind(satellite):
+    system, _ = satellite
+    model = adaptobs.DiscreteLtiModel(system["A"], system["B"], system["C"], np=np.int64(2))
+    observer = adaptobs.GuyaderZhangObserver(model, system["K"], np.float64(4.0), system["x0_estimate"],
+                                             system["theta0_estimate"], excitation_window=np.int32(10),
+                                             normalized_step=np.True_)
+    assert observer.mu == 4.0
+    cases = [
+        (TypeError, dict(excitation_window=10.0), "argument 'excitation_window' must be an integer (got float)"),
+        (TypeError, dict(normalized_step="yes"), "argument 'normalized_step' must be a bool (got str)"),
+        (TypeError, dict(mu=True), "argument 'mu' must be a real number (got bool)"),
+        (ConfigurationError, dict(mu=np.array([4.0])), "argument 'mu' must be a scalar (got (1,))"),
+    ]
+    for error_type, change, message in cases:
+        arguments = {"mu": 4.0, **change}
+        with pytest.raises(error_type) as error:
+            adaptobs.GuyaderZhangObserver(model, system["K"], x0=system["x0_estimate"],
+                                          theta0=system["theta0_estimate"], **arguments)
+        assert str(error.value) == "GuyaderZhangObserver: " + message

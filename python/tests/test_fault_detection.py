@@ -202,8 +202,9 @@ def test_bad_detector_configuration_names_the_argument(monitor_design):
     cases = [
         (lambda: adaptobs.CusumDetector([0.0], [1.0], -1.0, 5.0), "CusumDetector: argument 'drift'"),
         (lambda: adaptobs.CusumDetector([0.0], [0.0], 1.0, 5.0), "CusumDetector: argument 'scale'"),
-        (lambda: adaptobs.CusumDetector([0.0], [1.0], 1.0, 5.0, stride=0), "CusumDetector: argument 'options.stride'"),
+        (lambda: adaptobs.CusumDetector([0.0], [1.0], 1.0, 5.0, stride=0), "CusumDetector: argument 'stride' must be at least 1"),
         (lambda: adaptobs.GlrDetector([0.0], [1.0], 0, 5.0), "GlrDetector: argument 'window'"),
+        (lambda: adaptobs.CusumDetector([0.0], [1.0], 1.0, 5.0, hold_off=-1), "CusumDetector: argument 'hold_off'"),
         (lambda: adaptobs.ChiSquareTest(-np.eye(2), 4, 0.05), "ChiSquareTest: argument 'covariance'"),
         (lambda: adaptobs.ChiSquareTest(np.eye(2), 4, 1.5), "ChiSquareTest: argument 'false_alarm_probability'"),
         (lambda: adaptobs.design_fault_monitor(parameters, parameters[:3], system["theta"], 1.0, 36000.0, 100, 100),
@@ -217,6 +218,12 @@ def test_bad_detector_configuration_names_the_argument(monitor_design):
         with pytest.raises(ConfigurationError) as error:
             call()
         assert str(error.value).startswith(message), str(error.value)
+    with pytest.raises(TypeError, match="GlrDetector: argument 'window' must be an integer \\(got float\\)"):
+        adaptobs.GlrDetector([0.0], [1.0], 8.0, 5.0)
+    with pytest.raises(TypeError, match="CusumDetector: argument 'reanchor' must be a bool"):
+        adaptobs.CusumDetector([0.0], [1.0], 1.0, 5.0, reanchor="yes")
+    assert adaptobs.CusumDetector([0.0], [1.0], np.float64(1.0), np.array(5.0), stride=np.int64(2),
+                                  reanchor=np.True_).threshold == 5.0
     with pytest.raises(TypeError, match="FaultMonitor.run: argument 'status' must be an array of UpdateStatus values"):
         adaptobs.FaultMonitor(design).run(parameters[0][:10], parameters[0][:10], status=np.ones(10, bool))
     with pytest.raises(TypeError, match="FaultMonitor: argument 'design' must be an adaptobs.FaultMonitorDesign"):
