@@ -282,8 +282,8 @@ TEST(Snapshot, ARestoredGuiroObserverContinuesBitForBit) {
   }
 }
 
-// The continuous-time observers of the unified formulation (Zhang 2005), on the
-// third-order plant: restored after 120 samples, past the learned step limit.
+// The four continuous-time observers of the unified formulation (Zhang 2005), on
+// the third-order plant: restored after 120 samples, past the learned step limit.
 template <class Observer>
 void expect_continuous_observer_continues(Observer original, Observer restored) {
   namespace siso = adaptobs::examples::siso;
@@ -307,13 +307,17 @@ void expect_continuous_observer_continues(Observer original, Observer restored) 
   EXPECT_EQ(original.excitation_level(), restored.excitation_level());
 }
 
-TEST(Snapshot, RestoredBastinGeversAndMarinoTomeiObserversContinueBitForBit) {
+TEST(Snapshot, RestoredContinuousTimeObserversContinueBitForBit) {
   namespace designs = adaptobs::examples::designs;
   const adaptobs::UnifiedObserverOptions options{.sampling = designs::quadratic(), .excitation_window = 30};
   expect_continuous_observer_continues(designs::bastin_gevers_observer<double>(options),
                                        designs::bastin_gevers_observer<double>(options));
   expect_continuous_observer_continues(designs::marino_tomei_observer<double>(options),
                                        designs::marino_tomei_observer<double>(options));
+  expect_continuous_observer_continues(designs::siso_besancon_observer<double>(options),
+                                       designs::siso_besancon_observer<double>(options));
+  expect_continuous_observer_continues(designs::siso_zhang_observer<double>(options),
+                                       designs::siso_zhang_observer<double>(options));
   EXPECT_EQ(adaptobs::snapshot(designs::marino_tomei_observer<double>()).type, "MarinoTomeiObserver");
   // An observer of another sampling option refuses the snapshot.
   auto hold = designs::bastin_gevers_observer<double>({.sampling = {}, .excitation_window = 30});

@@ -1,8 +1,9 @@
 // The continuous-time observers of the unified formulation (Zhang 2005) in
-// Python, with run-time sizes: Bastin-Gevers (Algorithm 1, eq. (2)-(6)) and
-// Marino-Tomei (Algorithm 2, eq. (2)-(4), (7)), over a ContinuousLtiModel
-// whose regressor Phi is a constant matrix or a Python callable; their
-// canonical forms and SPR gain.
+// Python, with run-time sizes: Bastin-Gevers (Algorithm 1, eq. (2)-(6)),
+// Marino-Tomei (Algorithm 2, eq. (2)-(4), (7)), Besancon (Algorithm 3,
+// eq. (2)-(4), (8)-(9)) and Zhang (Algorithm 4, eq. (10)-(15)), over a
+// ContinuousLtiModel whose regressor Phi is a constant matrix or a Python
+// callable; their canonical forms and SPR gain.
 
 #include "arrays.hpp"
 #include "discrete_observer.hpp"
@@ -12,7 +13,9 @@
 #include <adaptobs/design/canonical_forms.hpp>
 #include <adaptobs/design/positive_real.hpp>
 #include <adaptobs/observers/bastin_gevers.hpp>
+#include <adaptobs/observers/besancon.hpp>
 #include <adaptobs/observers/marino_tomei.hpp>
+#include <adaptobs/observers/zhang_continuous.hpp>
 
 #include <nanobind/eigen/dense.h>
 #include <nanobind/stl/optional.h>
@@ -62,6 +65,8 @@ PythonRegressor regressor_of(nb::handle phi) {
 using ContinuousModel = ContinuousLtiModel<Dims, PythonRegressor>;
 using BastinGeversPy = BastinGeversObserver<ContinuousModel>;
 using MarinoTomeiPy = MarinoTomeiObserver<ContinuousModel>;
+using BesanconPy = BesanconObserver<ContinuousModel>;
+using ZhangPy = ZhangContinuousObserver<ContinuousModel>;
 using Transform = StaticTransform<Dims>;
 
 SignalReconstruction reconstruction_of(nb::handle obj, std::string_view who, std::string_view argument) {
@@ -116,6 +121,48 @@ const Transform& static_transform(nb::handle transform, std::string_view who) {
 Transform transform_of(const Snapshot<double>& s) {
   return Transform(field(s, "algorithm.static_transform.T"), field(s, "algorithm.static_transform.K"));
 }
+
+// Cyclic garbage collection. A model (and so an observer) holds its Python
+// regressor; a regressor defined at module level holds that module's globals,
+// where the observer may itself be stored. Python can break such a cycle only if
+// the C++ objects report the reference they hold (tp_traverse) and drop it on
+// request (tp_clear); otherwise it lives until exit, when nanobind reports it.
+PythonRegressor& regressor_in(const ContinuousModel& model) {
+  // The regressor is part of the model's configuration, const to the library:
+  // only the collector changes it, to break a cycle of an object about to go.
+  return const_cast<PythonRegressor&>(model.regressor_function());
+}
+
+template <class T, class GetModel>
+struct CollectedRegressor {
+  static int traverse(PyObject* self, visitproc visit, void* arg) {
+    Py_VISIT(Py_TYPE(self));
+    if (!nb::inst_ready(self)) return 0;
+    Py_VISIT(regressor_in(GetModel{}(*nb::inst_ptr<T>(self))).source.ptr());
+    return 0;
+  }
+  static int clear(PyObject* self) {
+    if (nb::inst_ready(self)) {
+      PythonRegressor& phi = regressor_in(GetModel{}(*nb::inst_ptr<T>(self)));
+      phi.source = nb::none();
+      phi.callable = false;  // a collected object is never stepped again; a call would read a zero Phi
+    }
+    return 0;
+  }
+  static inline PyType_Slot slots[] = {{Py_tp_traverse, reinterpret_cast<void*>(&traverse)},
+                                       {Py_tp_clear, reinterpret_cast<void*>(&clear)},
+                                       {0, nullptr}};
+};
+
+struct ModelItself {
+  const ContinuousModel& operator()(const ContinuousModel& model) const { return model; }
+};
+struct ModelOfObserver {
+  template <class B>
+  const ContinuousModel& operator()(const B& bound) const {
+    return bound.observer.model();
+  }
+};
 
 /// The Python object of a continuous-time observer, with a sample sized once.
 template <class Observer>
@@ -282,6 +329,7 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
 
 void bind_continuous_observers(nb::module_& m) {
   nb::class_<ContinuousModel>(m, "ContinuousLtiModel",
+                              nb::type_slots(CollectedRegressor<ContinuousModel, ModelItself>::slots),
                               "Continuous-time model d eta/dt = A eta + B u + Phi theta, y = C eta (Zhang 2005, eq. (1)).\n"
                               "Phi is a constant nx x np array, or a callable Phi(t) or Phi(t, u, y) returning one;\n"
                               "a callable is called from C++ at every Runge-Kutta stage (with the GIL), which costs\n"
@@ -342,6 +390,15 @@ void bind_continuous_observers(nb::module_& m) {
       "The transform to the form (5) of Algorithm 1 (Zhang 2005) with det(sI - A22) = zeros (monic,\n"
       "highest power first, degree n - 1, Hurwitz).");
   m.def(
+      "besancon_form",
+      [](nb::handle A, nb::handle C) {
+        constexpr std::string_view who = "besancon_form";
+        return besancon_form<Dims>(matrix(A, who, "A"), matrix(C, who, "C"));
+      },
+      nb::arg("A"), nb::arg("C"),
+      "The transform to the form (8) of Algorithm 3 for a constant (A, C) with m outputs:\n"
+      "C_o = [I 0], A_o = [[0, A12], [0, A22]].");
+  m.def(
       "marino_tomei_form",
       [](nb::handle A, nb::handle c) {
         constexpr std::string_view who = "marino_tomei_form";
@@ -366,7 +423,7 @@ void bind_continuous_observers(nb::module_& m) {
       "the excitation.";
 
   auto bastin_gevers = nb::class_<ContinuousBound<BastinGeversPy>>(
-      m, "BastinGeversObserver",
+      m, "BastinGeversObserver", nb::type_slots(CollectedRegressor<ContinuousBound<BastinGeversPy>, ModelOfObserver>::slots),
       (std::string("Bastin-Gevers adaptive observer, continuous time, SISO: Algorithm 1 of the unified\n"
                    "formulation (Zhang 2005, section III-A, eq. (2)-(6)). `transform` gives the form (5)\n"
                    "(bastin_gevers_form), k the output injection (spr_injection_gain with gamma = e1), gamma\n"
@@ -393,7 +450,7 @@ void bind_continuous_observers(nb::module_& m) {
   });
 
   auto marino_tomei = nb::class_<ContinuousBound<MarinoTomeiPy>>(
-      m, "MarinoTomeiObserver",
+      m, "MarinoTomeiObserver", nb::type_slots(CollectedRegressor<ContinuousBound<MarinoTomeiPy>, ModelOfObserver>::slots),
       (std::string("Marino-Tomei adaptive observer, continuous time, SISO: Algorithm 2 of the unified\n"
                    "formulation (Zhang 2005, section III-B, eq. (2)-(4), (7)). `transform` gives the form (7)\n"
                    "(marino_tomei_form), gamma = (1, gamma_2, ..., gamma_n) a Hurwitz polynomial, k the output\n"
@@ -420,6 +477,58 @@ void bind_continuous_observers(nb::module_& m) {
     return make_marino_tomei_observer(model_of(s, phi), transform_of(s), field(s, "algorithm.gamma"),
                                       field(s, "algorithm.k"), field(s, "law.gamma"), field(s, "eta"),
                                       field(s, "theta"), options_of(s));
+  });
+
+  auto besancon = nb::class_<ContinuousBound<BesanconPy>>(
+      m, "BesanconObserver", nb::type_slots(CollectedRegressor<ContinuousBound<BesanconPy>, ModelOfObserver>::slots),
+      (std::string("Besancon adaptive observer, continuous time, MIMO: Algorithm 3 of the unified formulation\n"
+                   "(Zhang 2005, section III-C, eq. (2)-(4), (8)-(9)). `transform` gives the form (8)\n"
+                   "(besancon_form), K1 (m x m) the gain of the measured block, gamma the adaptation gain.") +
+       sampling_doc)
+          .c_str());
+  besancon.def(
+      "__init__",
+      [](ContinuousBound<BesanconPy>* self, nb::handle model, nb::handle transform, nb::handle K1, nb::handle gamma,
+         nb::handle eta0, nb::handle theta0, nb::handle substeps, nb::handle max_step, nb::handle max_substeps,
+         nb::handle input, nb::handle output, nb::handle excitation_window) {
+        constexpr std::string_view who = "BesanconObserver";
+        new (self) ContinuousBound<BesanconPy>(make_besancon_observer(
+            continuous_model(model, who), static_transform(transform, who), matrix(K1, who, "K1"),
+            matrix(gamma, who, "gamma"), vector(eta0, who, "eta0"), vector(theta0, who, "theta0"),
+            options_of(substeps, max_step, max_substeps, input, output, excitation_window, who)));
+      },
+      nb::arg("model"), nb::arg("transform"), nb::arg("K1"), nb::arg("gamma"), nb::arg("eta0"), nb::arg("theta0"),
+      nb::kw_only(), nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
+      nb::arg("input") = "hold", nb::arg("output") = "linear", nb::arg("excitation_window") = 0);
+  bind_continuous_observer(besancon, [](const Snapshot<double>& s, nb::handle phi) {
+    return make_besancon_observer(model_of(s, phi), transform_of(s), field(s, "algorithm.K1"), field(s, "law.gamma"),
+                                  field(s, "eta"), field(s, "theta"), options_of(s));
+  });
+
+  auto zhang = nb::class_<ContinuousBound<ZhangPy>>(
+      m, "ZhangContinuousObserver", nb::type_slots(CollectedRegressor<ContinuousBound<ZhangPy>, ModelOfObserver>::slots),
+      (std::string("Zhang's adaptive observer, continuous time, MIMO: Algorithm 4 of the unified formulation\n"
+                   "(Zhang 2005, section III-D, eq. (10)-(15)). K makes A - K C stable (kalman_bucy_gain, for\n"
+                   "instance), gamma is the adaptation gain; no coordinate change.") +
+       sampling_doc)
+          .c_str());
+  zhang.def(
+      "__init__",
+      [](ContinuousBound<ZhangPy>* self, nb::handle model, nb::handle K, nb::handle gamma, nb::handle eta0,
+         nb::handle theta0, nb::handle substeps, nb::handle max_step, nb::handle max_substeps, nb::handle input,
+         nb::handle output, nb::handle excitation_window) {
+        constexpr std::string_view who = "ZhangContinuousObserver";
+        new (self) ContinuousBound<ZhangPy>(make_zhang_continuous_observer(
+            continuous_model(model, who), matrix(K, who, "K"), matrix(gamma, who, "gamma"), vector(eta0, who, "eta0"),
+            vector(theta0, who, "theta0"),
+            options_of(substeps, max_step, max_substeps, input, output, excitation_window, who)));
+      },
+      nb::arg("model"), nb::arg("K"), nb::arg("gamma"), nb::arg("eta0"), nb::arg("theta0"), nb::kw_only(),
+      nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
+      nb::arg("input") = "hold", nb::arg("output") = "linear", nb::arg("excitation_window") = 0);
+  bind_continuous_observer(zhang, [](const Snapshot<double>& s, nb::handle phi) {
+    return make_zhang_continuous_observer(model_of(s, phi), field(s, "algorithm.static_transform.K"),
+                                          field(s, "law.gamma"), field(s, "eta"), field(s, "theta"), options_of(s));
   });
 }
 

@@ -1,7 +1,8 @@
 """The continuous-time observers of the unified formulation (Zhang 2005) from
-Python: Bastin-Gevers and Marino-Tomei on the third-order plant, against the
-C++ example's estimates, batch against step, pickling with a callable
-regressor, and refusals."""
+Python on the third-order plant: Bastin-Gevers and Marino-Tomei against the
+C++ examples' estimates, all four converging, batch against step, pickling
+with a callable regressor, garbage collection of a regressor cycle, and
+refusals."""
 
 import copy
 import math
@@ -47,12 +48,24 @@ def marino_tomei(system, **options):
                                         np.zeros(2), input="quadratic", output="quadratic", **options)
 
 
+def besancon(system, **options):
+    transform = adaptobs.besancon_form(system["A"], system["C"])
+    return adaptobs.BesanconObserver(model(system), transform, [[2.0]], 5.0 * np.eye(2), np.zeros(3), np.zeros(2),
+                                     input="quadratic", output="quadratic", **options)
+
+
+def zhang(system, **options):
+    K = adaptobs.kalman_bucy_gain(system["A"], system["C"], np.eye(3), [[0.1]]).K
+    return adaptobs.ZhangContinuousObserver(model(system), K, 20.0 * np.eye(2), np.zeros(3), np.zeros(2),
+                                            input="quadratic", output="quadratic", **options)
+
+
 def run(observer, data, n=None):
     n = len(data["t"]) if n is None else n
     return observer.run(data["t"][:n], data["U"][:n], data["Y"][:n], data["U_mid"][:n], data["Y_mid"][:n])
 
 
-@pytest.mark.parametrize("make", [bastin_gevers, marino_tomei])
+@pytest.mark.parametrize("make", [bastin_gevers, marino_tomei, besancon, zhang])
 def test_theta_and_the_state_converge(siso, make):
     system, data = siso
     observer = make(system)
@@ -80,7 +93,7 @@ def test_the_replay_matches_the_cxx_example(tmp_path, siso, make, name):
     assert np.max(np.abs(result.state[::every] - cxx_state)) <= 1e-12
 
 
-@pytest.mark.parametrize("make", [bastin_gevers, marino_tomei])
+@pytest.mark.parametrize("make", [bastin_gevers, marino_tomei, besancon, zhang])
 def test_run_equals_update_and_copies_continue_bit_for_bit(siso, make):
     system, data = siso
     n = 600
@@ -169,3 +182,32 @@ def test_bad_arguments_name_the_argument(siso):
     with pytest.raises(RuntimeError, match="sensor table exhausted"):
         observer.run(data["t"][1:5], data["U"][1:5], data["Y"][1:5])
     assert np.array_equal(observer.internal_state, before) and observer.time == 0.0
+
+
+def test_a_cycle_through_the_regressor_is_collected(siso):
+    """An observer stored where its regressor can reach it is freed by the garbage collector."""
+    import gc
+    import weakref
+
+    system, data = siso
+
+    class Holder:
+        pass
+
+    holder = Holder()
+
+    def phi(t):
+        holder.observer  # the closure keeps holder, and so the observer, alive
+        return regressor(t)
+
+    transform = adaptobs.marino_tomei_form(system["A"], system["C"])
+    so = transform.apply(system["A"], system["B"], system["C"])
+    k = adaptobs.spr_injection_gain(so["Ao"], so["Co"], [1.0, 3.0, 2.0], 5.0)
+    holder.observer = None
+    holder.observer = adaptobs.MarinoTomeiObserver(model(system, phi), transform, [1.0, 3.0, 2.0], k, np.eye(2),
+                                                   np.zeros(3), np.zeros(2))  # phi -> holder -> observer -> phi
+    run(holder.observer, data, 20)
+    alive = weakref.ref(holder)
+    del holder, phi
+    gc.collect()
+    assert alive() is None

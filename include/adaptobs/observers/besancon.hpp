@@ -59,6 +59,14 @@ struct Besancon {
   }
 
   /// \f$L = [K_1; A_{21}(t)]\f$: \f$K_1(y - \hat z_1)\f$ in the first block, \f$A_{21}y\f$ in the second.
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp).
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.object("static_transform", self.static_transform);
+    archive.object("dynamic_transform", self.dynamic_transform);
+    archive("K1", self.K1);
+  }
+
   void injection_gain(const TransformedSystem<D>& so, Scalar /*t*/, typename D::GainMatrix& L) const {
     const Index m = K1.rows(), r = so.Ao.rows() - m;
     L.topRows(m) = K1;

@@ -58,6 +58,13 @@ struct ZhangContinuous {
     L.setZero();
   }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp).
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.object("static_transform", self.static_transform);
+    archive.object("dynamic_transform", self.dynamic_transform);
+  }
+
   /// R = CΩ, so that \f$\dot{\hat\theta} = \Gamma\Omega^TC^T\varepsilon\f$ (12b).
   template <class DXi, class DOmega, class DPsi, class DR>
   void regressor(const TransformedSystem<D>& so, const Eigen::MatrixBase<DXi>& /*Xi*/,
