@@ -10,6 +10,7 @@ exception, and leaves the observer exactly as it was.
 """
 
 from ._core import (
+    AugmentedKalmanBucyFilter,
     AugmentedKalmanFilter,
     BastinGeversObserver,
     BesanconObserver,
@@ -61,6 +62,7 @@ from ._core import (
 __version__ = "0.1.0"
 
 __all__ = [
+    "AugmentedKalmanBucyFilter",
     "AugmentedKalmanFilter",
     "BastinGeversObserver",
     "BesanconObserver",

@@ -10,6 +10,7 @@
 #include "snapshot_dict.hpp"
 #include "snapshot_fields.hpp"
 
+#include <adaptobs/baselines/kalman_bucy.hpp>
 #include <adaptobs/design/canonical_forms.hpp>
 #include <adaptobs/design/positive_real.hpp>
 #include <adaptobs/observers/bastin_gevers.hpp>
@@ -67,6 +68,16 @@ using BastinGeversPy = BastinGeversObserver<ContinuousModel>;
 using MarinoTomeiPy = MarinoTomeiObserver<ContinuousModel>;
 using BesanconPy = BesanconObserver<ContinuousModel>;
 using ZhangPy = ZhangContinuousObserver<ContinuousModel>;
+using KalmanBucyPy = AugmentedKalmanBucyFilter<ContinuousModel>;
+
+// The excitation level of the last window, NaN while unknown (the filter has none).
+template <class Observer>
+double excitation_of(const Observer& o) {
+  if constexpr (requires { o.excitation_level(); })
+    return o.excitation_level().value_or(std::numeric_limits<double>::quiet_NaN());
+  else
+    return std::numeric_limits<double>::quiet_NaN();
+}
 using Transform = StaticTransform<Dims>;
 
 SignalReconstruction reconstruction_of(nb::handle obj, std::string_view who, std::string_view argument) {
@@ -102,7 +113,7 @@ UnifiedObserverOptions options_of(const Snapshot<double>& s) {
                        .max_substeps = static_cast<int>(integer(s, "integrator.max_substeps")),
                        .input = static_cast<SignalReconstruction>(integer(s, "integrator.input")),
                        .output = static_cast<SignalReconstruction>(integer(s, "integrator.output"))},
-          .excitation_window = integer(s, "excitation_window")};
+          .excitation_window = s.find_integer("excitation_window") ? integer(s, "excitation_window") : 0};
 }
 
 ContinuousModel model_of(const Snapshot<double>& s, nb::handle phi) {
@@ -244,7 +255,7 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
       Eigen::Map<Eigen::VectorXd>(x.data + k * s.nx, s.nx) = self.observer.state();
       Eigen::Map<Eigen::VectorXd>(theta.data + k * s.np, s.np) = self.observer.parameters();
       Eigen::Map<Eigen::VectorXd>(error.data + k * s.ny, s.ny) = self.observer.output_error();
-      excitation.data[k] = self.observer.excitation_level().value_or(std::numeric_limits<double>::quiet_NaN());
+      excitation.data[k] = excitation_of(self.observer);
     }
   }
   RunResult result;
@@ -287,7 +298,11 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
       .def_prop_ro("time", [](const B& self) { return self.observer.time(); }, "time of the last accepted sample")
       .def_prop_ro("internal_state", [](const B& self) { return Eigen::VectorXd(self.observer.internal_state()); },
                    "(z_hat, vec Xi, theta_hat), what the RK4 steps integrate")
-      .def_prop_ro("excitation_level", [](const B& self) { return self.observer.excitation_level(); })
+      .def_prop_ro("excitation_level",
+                   [](const B& self) {
+                     const double level = excitation_of(self.observer);
+                     return std::isnan(level) ? std::nullopt : std::optional<double>(level);
+                   })
       .def_prop_ro(
           "sizes",
           [](const B& self) {
@@ -529,6 +544,35 @@ void bind_continuous_observers(nb::module_& m) {
   bind_continuous_observer(zhang, [](const Snapshot<double>& s, nb::handle phi) {
     return make_zhang_continuous_observer(model_of(s, phi), field(s, "algorithm.static_transform.K"),
                                           field(s, "law.gamma"), field(s, "eta"), field(s, "theta"), options_of(s));
+  });
+
+  auto kalman_bucy = nb::class_<ContinuousBound<KalmanBucyPy>>(
+      m, "AugmentedKalmanBucyFilter", nb::type_slots(CollectedRegressor<ContinuousBound<KalmanBucyPy>, ModelOfObserver>::slots),
+      "Baseline: the Kalman-Bucy filter on the augmented state [x; theta] (Zhang 2005, appendix), its\n"
+      "Riccati equation integrated with the estimates; a step that would leave P indefinite is rejected\n"
+      "(indefinite_covariance). P0 and Q are (nx + np) x (nx + np), R is ny x ny. Sampling options as for\n"
+      "the observers (no excitation monitor).");
+  kalman_bucy.def(
+      "__init__",
+      [](ContinuousBound<KalmanBucyPy>* self, nb::handle model, nb::handle eta0, nb::handle theta0, nb::handle P0,
+         nb::handle Q, nb::handle R, nb::handle substeps, nb::handle max_step, nb::handle max_substeps,
+         nb::handle input, nb::handle output) {
+        constexpr std::string_view who = "AugmentedKalmanBucyFilter";
+        const UnifiedObserverOptions options =
+            options_of(substeps, max_step, max_substeps, input, output, nb::int_(0), who);
+        new (self) ContinuousBound<KalmanBucyPy>(
+            KalmanBucyPy(continuous_model(model, who), vector(eta0, who, "eta0"), vector(theta0, who, "theta0"),
+                         {matrix(P0, who, "P0"), matrix(Q, who, "Q"), matrix(R, who, "R")}, options.sampling));
+      },
+      nb::arg("model"), nb::arg("eta0"), nb::arg("theta0"), nb::arg("P0"), nb::arg("Q"), nb::arg("R"), nb::kw_only(),
+      nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
+      nb::arg("input") = "hold", nb::arg("output") = "linear");
+  kalman_bucy.def_prop_ro("covariance",
+                          [](const ContinuousBound<KalmanBucyPy>& b) { return Eigen::MatrixXd(b.observer.covariance()); },
+                          "P of [x_hat; theta_hat]");
+  bind_continuous_observer(kalman_bucy, [](const Snapshot<double>& s, nb::handle phi) {
+    return KalmanBucyPy(model_of(s, phi), field(s, "eta"), field(s, "theta"),
+                        {field(s, "P0"), field(s, "Q"), field(s, "R")}, options_of(s).sampling);
   });
 }
 

@@ -21,6 +21,7 @@
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/continuous_update.hpp>
+#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/detail/products.hpp>
@@ -113,6 +114,30 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
   [[nodiscard]] AugmentedMatrix covariance() const {
     const Index n = sizes_.nx + sizes_.np;
     return Eigen::Map<const AugmentedMatrix>(internal_.data() + n, n, n);
+  }
+
+  [[nodiscard]] const Model& model() const noexcept { return model_; }
+
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the model's
+  /// matrices, the covariances, the integrator's previous sample and the
+  /// internal state \f$(\hat x, \hat\theta, P)\f$; R's factor is computed again.
+  static constexpr std::string_view snapshot_type = name;
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+    requires Snapshottable<Model>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.object("model", self.model_);
+    archive("P0", self.cov_.P0);
+    archive("Q", self.cov_.Q);
+    archive("R", self.cov_.R);
+    archive.object("integrator", self.integrator_);
+    archive("internal", self.internal_);
+    archive("eta", self.eta_);
+    archive("theta", self.theta_);
+    archive("output_error", self.output_error_);
+    if constexpr (Archive::reading)
+      detail::require(self.r_factor_.compute(self.cov_.R), "restore", "snapshot",
+                      "holds an R that is not positive definite");
   }
 
  private:
