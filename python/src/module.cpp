@@ -15,6 +15,8 @@ void bind_examples(nb::module_& m);
 void bind_fault_detection(nb::module_& m);
 void bind_filter_observers(nb::module_& m);
 void bind_continuous_observers(nb::module_& m);
+void bind_takagi_sugeno(nb::module_& m);
+void bind_checks(nb::module_& m);
 }  // namespace adaptobs::python
 
 NB_MODULE(_core, m) {
@@ -40,4 +42,6 @@ NB_MODULE(_core, m) {
   adaptobs::python::bind_design(m);
   adaptobs::python::bind_fault_detection(m);
   adaptobs::python::bind_examples(m);
+  adaptobs::python::bind_takagi_sugeno(m);
+  adaptobs::python::bind_checks(m);
 }
