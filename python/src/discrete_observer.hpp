@@ -5,6 +5,7 @@
 // Each observer's own binding adds its constructor and its diagnostics.
 
 #include "arrays.hpp"
+#include "discrete_models.hpp"
 #include "snapshot_dict.hpp"
 
 #include <adaptobs/core/discrete_model.hpp>
@@ -22,9 +23,6 @@
 #include <utility>
 
 namespace adaptobs::python {
-
-using Dims = DynamicDimensions<double>;
-using LtiModel = DiscreteLtiModel<Dims>;
 
 /// An observer whose samples carry a regressor Ψ_k (Guyader–Zhang, Guiro, the
 /// augmented Kalman filter); the others take (u_k, y_k) alone (Dey–Bhasin, Suzuki).
@@ -203,6 +201,8 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
   else if (!psi.is_none())
     fail_no_regressor(who);
   const Masks mask = masks(present, samples, s.ny, who);
+  if constexpr (requires { { self.observer.model() } -> std::convertible_to<const SharedDiscreteModel&>; })
+    require_steps(self.observer.model(), self.observer.step(), samples, who);
 
   using D = Diagnostics<Observer>;
   const auto n = static_cast<std::size_t>(samples);

@@ -1,7 +1,7 @@
 // The discrete-time observers over a model in Python, with run-time sizes:
 // GuyaderZhangObserver (Guyader & Zhang 2003, eq. (2a)-(2c)), GuiroObserver
 // (Guiro et al. 2008, eq. (4)-(5)) with its gain design, and the
-// AugmentedKalmanFilter baseline, over a DiscreteLtiModel.
+// AugmentedKalmanFilter baseline, over a DiscreteLtiModel or a DiscreteLtvModel.
 
 #include "discrete_observer.hpp"
 #include "snapshot_fields.hpp"
@@ -17,9 +17,9 @@
 
 namespace adaptobs::python {
 
-using GuyaderZhang = GuyaderZhangObserver<LtiModel>;
-using AugmentedKalman = AugmentedKalmanFilter<LtiModel>;
-using Guiro = GuiroObserver<LtiModel>;
+using GuyaderZhang = GuyaderZhangObserver<SharedDiscreteModel>;
+using AugmentedKalman = AugmentedKalmanFilter<SharedDiscreteModel>;
+using Guiro = GuiroObserver<SharedDiscreteModel>;
 
 template <>
 struct Diagnostics<GuyaderZhang> {
@@ -32,14 +32,8 @@ struct Diagnostics<GuyaderZhang> {
 
 namespace {
 
-const LtiModel& lti_model(nb::handle model, std::string_view who) {
-  return object_argument<LtiModel>(model, who, "model", "an adaptobs.DiscreteLtiModel");
-}
-
 // The model of a snapshot's "model." fields.
-LtiModel model_of(const Snapshot<double>& s) {
-  return LtiModel(field(s, "model.A"), field(s, "model.B"), field(s, "model.C"), integer(s, "model.np"));
-}
+SharedDiscreteModel model_of(const Snapshot<double>& s) { return SharedDiscreteModel::of_snapshot(s, "model."); }
 
 }  // namespace
 
@@ -50,32 +44,6 @@ void bind_discrete_observers(nb::module_& m) {
       .def_ro("output_error", &RunResult::output_error, "output errors of the accepted updates, N x ny")
       .def_ro("status", &RunResult::status, "UpdateStatus of each sample (int8)")
       .def_ro("diagnostics", &RunResult::diagnostics, "the observer's diagnostics after each sample, by name");
-
-  nb::class_<LtiModel>(m, "DiscreteLtiModel",
-                       "Time-invariant discrete model x_{k+1} = A x_k + B u_k + Psi_k theta, y_k = C x_k;\n"
-                       "np is the number of unknown parameters.")
-      .def(
-          "__init__",
-          [](LtiModel* self, nb::handle A, nb::handle B, nb::handle C, nb::handle np) {
-            constexpr std::string_view who = "DiscreteLtiModel";
-            new (self) LtiModel(matrix(A, who, "A"), matrix(B, who, "B"), matrix(C, who, "C"),
-                                integer_argument(np, who, "np"));
-          },
-          nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("np"))
-      .def_prop_ro("A", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().A); })
-      .def_prop_ro("B", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().B); })
-      .def_prop_ro("C", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().C); })
-      .def_prop_ro("sizes",
-                   [](const LtiModel& self) {
-                     const Sizes s = self.sizes();
-                     return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
-                   })
-      .def("__getstate__", [](const LtiModel& self) { return to_dict(adaptobs::snapshot(self)); })
-      .def("__setstate__", [](LtiModel& self, nb::handle state) {
-        const Snapshot<double> s = from_dict(state);
-        detail::require_snapshot_type<LtiModel>(s);
-        new (&self) LtiModel(field(s, "A"), field(s, "B"), field(s, "C"), integer(s, "np"));
-      });
 
   auto gz = nb::class_<Bound<GuyaderZhang>>(
       m, "GuyaderZhangObserver",
@@ -93,7 +61,7 @@ void bind_discrete_observers(nb::module_& m) {
            nb::handle theta0, nb::handle excitation_window, nb::handle normalized_step) {
           constexpr std::string_view who = "GuyaderZhangObserver";
           new (self) Bound<GuyaderZhang>(GuyaderZhang(
-              lti_model(model, who), matrix(K, who, "K"), real_scalar(mu, who, "mu"), vector(x0, who, "x0"),
+              discrete_model(model, who), matrix(K, who, "K"), real_scalar(mu, who, "mu"), vector(x0, who, "x0"),
               vector(theta0, who, "theta0"),
               {.excitation_window = integer_argument(excitation_window, who, "excitation_window"),
                .normalized_step = flag_argument(normalized_step, who, "normalized_step")}));
@@ -146,7 +114,7 @@ void bind_discrete_observers(nb::module_& m) {
            [](Bound<Guiro>* self, nb::handle model, nb::handle K, nb::handle Gamma, nb::handle z0,
               nb::handle theta0, nb::handle correct_initial_estimate) {
              constexpr std::string_view who = "GuiroObserver";
-             new (self) Bound<Guiro>(Guiro(lti_model(model, who), matrix(K, who, "K"), matrix(Gamma, who, "Gamma"),
+             new (self) Bound<Guiro>(Guiro(discrete_model(model, who), matrix(K, who, "K"), matrix(Gamma, who, "Gamma"),
                                            vector(z0, who, "z0"), vector(theta0, who, "theta0"),
                                            {.correct_initial_estimate = flag_argument(
                                                 correct_initial_estimate, who, "correct_initial_estimate")}));
@@ -200,7 +168,7 @@ void bind_discrete_observers(nb::module_& m) {
             nb::handle Q, nb::handle R) {
            constexpr std::string_view who = "AugmentedKalmanFilter";
            new (self) Bound<AugmentedKalman>(
-               AugmentedKalman(lti_model(model, who), vector(x0, who, "x0"), vector(theta0, who, "theta0"),
+               AugmentedKalman(discrete_model(model, who), vector(x0, who, "x0"), vector(theta0, who, "theta0"),
                                {matrix(P0, who, "P0"), matrix(Q, who, "Q"), matrix(R, who, "R")}));
          },
          nb::arg("model"), nb::arg("x0"), nb::arg("theta0"), nb::arg("P0"), nb::arg("Q"), nb::arg("R"))

@@ -9,6 +9,7 @@
 #include <nanobind/nanobind.h>
 
 namespace adaptobs::python {
+void bind_discrete_models(nb::module_& m);
 void bind_discrete_observers(nb::module_& m);
 void bind_design(nb::module_& m);
 void bind_examples(nb::module_& m);
@@ -36,6 +37,7 @@ NB_MODULE(_core, m) {
       .value("indefinite_covariance", UpdateStatus::indefinite_covariance)
       .value("interval_too_long", UpdateStatus::interval_too_long);
 
+  adaptobs::python::bind_discrete_models(m);
   adaptobs::python::bind_discrete_observers(m);
   adaptobs::python::bind_filter_observers(m);
   adaptobs::python::bind_continuous_observers(m);

@@ -1,0 +1,145 @@
+#pragma once
+// The model a discrete observer holds in Python. One C++ type carries both of
+// the Python models, so that each observer is one Python class whatever its
+// model: a DiscreteLtiModel's (A, B, C) for every step, or a DiscreteLtvModel's
+// (A_k, B_k, C_k) for steps 0 … N − 1, shared read-only by the model object
+// and every observer built on it (no copy per observer or per step).
+
+#include "arrays.hpp"
+#include "snapshot_fields.hpp"
+
+#include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/snapshot.hpp>
+
+#include <nanobind/nanobind.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace adaptobs::python {
+
+using Dims = DynamicDimensions<double>;
+using LtiModel = DiscreteLtiModel<Dims>;
+using System = DiscreteSystem<Dims>;
+
+class SharedDiscreteModel : public SizedBy<Dims> {
+ public:
+  /// Time-varying in general: the observers check each step's matrices (free
+  /// here, they were checked once at construction).
+  static constexpr bool time_invariant = false;
+  using Systems = std::vector<System>;
+
+  /// The model of a DiscreteLtiModel: its matrices at every step.
+  explicit SharedDiscreteModel(const LtiModel& lti)
+      : systems_(std::make_shared<const Systems>(Systems{lti.system()})), np_(lti.sizes().np), varying_(false) {}
+
+  /// Steps 0 … systems.size() − 1, each validated (finite, sizes of step 0).
+  SharedDiscreteModel(Systems systems, Index np, std::string_view who) : np_(np), varying_(true) {
+    if (systems.empty()) detail::fail_argument(who, "steps", "must be at least 1");
+    detail::validate_system(systems.front(), np, who, "np");
+    const Sizes s = sizes_of(systems.front(), np);
+    for (std::size_t k = 0; k < systems.size(); ++k) {
+      detail::require_finite_shape(systems[k].A, s.nx, s.nx, who, detail::element_name("A", k));
+      detail::require_finite_shape(systems[k].B, s.nx, s.nu, who, detail::element_name("B", k));
+      detail::require_finite_shape(systems[k].C, s.ny, s.nx, who, detail::element_name("C", k));
+    }
+    systems_ = std::make_shared<const Systems>(std::move(systems));
+  }
+
+  /// (A_k, B_k, C_k). Beyond the last step a time-varying model has no
+  /// matrices: the update refuses, naming the step, and changes nothing.
+  [[nodiscard]] const System& at(Index k) const {
+    if (!varying_) return systems_->front();
+    if (k < 0 || k >= steps())
+      detail::fail_argument("DiscreteLtvModel", "steps",
+                            "holds the matrices of steps 0 to " + std::to_string(steps() - 1) + "; step " +
+                                std::to_string(k) + " is beyond them");
+    return (*systems_)[static_cast<std::size_t>(k)];
+  }
+  [[nodiscard]] Sizes sizes() const noexcept { return sizes_of(systems_->front(), np_); }
+  [[nodiscard]] Index steps() const noexcept { return static_cast<Index>(systems_->size()); }
+  [[nodiscard]] bool varying() const noexcept { return varying_; }
+  [[nodiscard]] const Systems& systems() const noexcept { return *systems_; }
+
+  /// Its fields: the matrices of every step side by side (A is nx × N·nx, and
+  /// so on), N and np settings; a time-invariant model is N = 0 with one (A, B, C).
+  static constexpr std::string_view snapshot_type = "DiscreteLtvModel";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.setting("steps", self.varying_ ? self.steps() : 0);
+    archive.setting("np", self.np_);
+    Stacked stacked = self.stacked();
+    archive("A", stacked.A);
+    archive("B", stacked.B);
+    archive("C", stacked.C);
+    if constexpr (Archive::reading) self.systems_ = std::make_shared<const Systems>(stacked.unstacked(self.sizes()));
+  }
+
+  /// The model a snapshot's fields under `prefix` ("model." in an observer's) describe.
+  static SharedDiscreteModel of_snapshot(const Snapshot<double>& s, const std::string& prefix) {
+    const Index steps = integer(s, prefix + "steps");
+    const Index np = integer(s, prefix + "np");
+    const Stacked stacked{field(s, prefix + "A"), field(s, prefix + "B"), field(s, prefix + "C")};
+    const Index nx = stacked.A.rows();
+    const Index count = std::max<Index>(steps, 1);
+    if (nx == 0 || stacked.A.cols() != count * nx || stacked.B.cols() % count != 0 || stacked.C.cols() != count * nx)
+      detail::fail_argument("restore", "snapshot", "holds model matrices that are not " + std::to_string(count) +
+                                                       " steps of one size");
+    const Sizes sizes{nx, stacked.B.cols() / count, stacked.C.rows(), np};
+    if (steps == 0) return SharedDiscreteModel(LtiModel(stacked.A, stacked.B, stacked.C, np));
+    return SharedDiscreteModel(stacked.unstacked(sizes), np, "restore");
+  }
+
+ private:
+  struct Stacked {
+    Eigen::MatrixXd A, B, C;
+    [[nodiscard]] Systems unstacked(const Sizes& s) const {
+      Systems systems;
+      for (Index k = 0; k * s.nx < A.cols(); ++k)
+        systems.push_back({A.middleCols(k * s.nx, s.nx), B.middleCols(k * s.nu, s.nu), C.middleCols(k * s.nx, s.nx)});
+      return systems;
+    }
+  };
+
+  [[nodiscard]] Stacked stacked() const {
+    const Sizes s = sizes();
+    const Index n = steps();
+    Stacked out{Eigen::MatrixXd(s.nx, n * s.nx), Eigen::MatrixXd(s.nx, n * s.nu), Eigen::MatrixXd(s.ny, n * s.nx)};
+    for (Index k = 0; k < n; ++k) {
+      const System& system = (*systems_)[static_cast<std::size_t>(k)];
+      out.A.middleCols(k * s.nx, s.nx) = system.A;
+      out.B.middleCols(k * s.nu, s.nu) = system.B;
+      out.C.middleCols(k * s.nx, s.nx) = system.C;
+    }
+    return out;
+  }
+
+  static Sizes sizes_of(const System& system, Index np) { return {system.A.rows(), system.B.cols(), system.C.rows(), np}; }
+
+  std::shared_ptr<const Systems> systems_;
+  Index np_;
+  bool varying_;
+};
+
+/// Refuses, before any sample, a run of `samples` from step `first` that would
+/// go beyond the last step of a time-varying model.
+inline void require_steps(const SharedDiscreteModel& model, Index first, Index samples, std::string_view who) {
+  if (model.varying() && first + samples > model.steps())
+    detail::fail_argument(who, "Y", "has " + std::to_string(samples) + " samples from step " + std::to_string(first) +
+                                        ", beyond the " + std::to_string(model.steps()) +
+                                        " steps of the DiscreteLtvModel");
+}
+
+/// The model argument of a discrete observer: a DiscreteLtiModel or a DiscreteLtvModel.
+inline SharedDiscreteModel discrete_model(nb::handle model, std::string_view who) {
+  LtiModel* lti = nullptr;
+  if (nb::try_cast<LtiModel*>(model, lti, false) && lti) return SharedDiscreteModel(*lti);
+  return object_argument<SharedDiscreteModel>(model, who, "model", "an adaptobs.DiscreteLtiModel or DiscreteLtvModel");
+}
+
+void bind_discrete_models(nb::module_& m);
+
+}  // namespace adaptobs::python
