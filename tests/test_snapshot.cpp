@@ -330,3 +330,105 @@ TEST(Snapshot, RestoredContinuousTimeObserversContinueBitForBit) {
 }
 
 }  // namespace snapshot_test
+
+// The Takagi–Sugeno observer (65) on the waste water plant of §6, and (21) with
+// the leakage K_theta: restored mid-run into an observer of other gains and
+// estimates, it continues bit for bit at every later step, samples with a lost
+// output included; the gains come back as given.
+#include <adaptobs/observers/takagi_sugeno.hpp>
+
+#include "models/wwtp.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace snapshot_test_takagi_sugeno {
+
+using adaptobs::Index;
+using adaptobs::UpdateStatus;
+
+namespace wwtp = adaptobs::examples::wwtp;
+using Mask = adaptobs::OutputMask<wwtp::Dims<double>>;
+
+// Every 9th output lost (a time update).
+Mask present_at(Index k) { return Mask::Constant(1, k % 9 != 4); }
+
+auto make_observer(bool leakage, double gain_scale = 1.0, double x1 = 3.0) {
+  auto gains = wwtp::paper_gains<double>();
+  for (auto& L : gains.L) L *= gain_scale;
+  if (leakage) gains.K_theta = wwtp::Vector1<double>(1e-3 * gain_scale);
+  return adaptobs::TakagiSugenoObserver(wwtp::model<double>(), gains, Eigen::Vector2d(x1, 0.6),
+                                        wwtp::initial_parameter_estimate<double>());
+}
+
+template <class Observer>
+void expect_continues(Observer original, Observer restored) {
+  auto plant = wwtp::make_plant<double>(0.1);
+  for (Index k = 0; k < 150; ++k, plant.advance())
+    ASSERT_EQ(original.update(plant.sample(), present_at(k)), UpdateStatus::accepted);
+  const auto state = adaptobs::snapshot(original);
+  EXPECT_EQ(state.type, "TakagiSugenoObserver");
+  ASSERT_NE(state.find_matrix("L[7]"), nullptr);
+  ASSERT_NE(state.find_matrix("K_y[0]"), nullptr);
+  ASSERT_NE(state.find_matrix("model.A"), nullptr);
+  adaptobs::restore(restored, state);
+  const auto given = original.gains(), read = restored.gains();
+  for (std::size_t i = 0; i < given.L.size(); ++i) {
+    EXPECT_EQ(given.L[i], read.L[i]);
+    EXPECT_EQ(given.K[i], read.K[i]);
+  }
+  EXPECT_EQ(given.K_theta, read.K_theta);
+  EXPECT_EQ(original.weights(), restored.weights());
+  EXPECT_EQ(original.premises(), restored.premises());
+  for (Index k = 150; k < 500; ++k, plant.advance()) {
+    const auto mask = present_at(k);
+    ASSERT_EQ(original.update(plant.sample(), mask), restored.update(plant.sample(), mask));
+    ASSERT_EQ(original.state(), restored.state()) << k;
+    ASSERT_EQ(original.parameters(), restored.parameters()) << k;
+    ASSERT_EQ(original.weights(), restored.weights()) << k;
+    ASSERT_EQ(original.premises(), restored.premises()) << k;
+    ASSERT_EQ(original.output_error(), restored.output_error()) << k;
+    ASSERT_EQ(original.step(), restored.step()) << k;
+    ASSERT_EQ(original.premises_in_sectors(), restored.premises_in_sectors()) << k;
+  }
+  // The run moved the estimates: θ̂ near the true 0.1, not the initial 0.
+  EXPECT_LT(std::abs(original.parameters()(0) - 0.1), 0.01);
+}
+
+TEST(Snapshot, ARestoredTakagiSugenoObserverContinuesBitForBit) {
+  expect_continues(make_observer(false), make_observer(false, 0.5, 1.0));
+  expect_continues(make_observer(true), make_observer(true, 0.5, 1.0));
+}
+
+TEST(Snapshot, ATakagiSugenoSnapshotOfOtherGainsOrSectorsIsRefusedAndChangesNothing) {
+  const auto leaky = adaptobs::snapshot(make_observer(true));
+  auto plain = make_observer(false, 0.5);
+  const auto before = adaptobs::snapshot(plain);
+  const auto message = [&](const adaptobs::Snapshot<double>& s) {
+    try {
+      adaptobs::restore(plain, s);
+    } catch (const adaptobs::ConfigurationError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message(leaky),
+            "restore: argument 'snapshot' holds 'has_leakage' = 1 where this TakagiSugenoObserver has 0: "
+            "restore into an object built with the same configuration");
+  auto bad_gain = adaptobs::snapshot(make_observer(false));
+  bad_gain.matrices[static_cast<std::size_t>(bad_gain.find_matrix("L[2]") - bad_gain.matrices.data())].values[1] =
+      std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(message(bad_gain), "restore: argument 'gains.L[2]' must contain only finite numbers");
+  auto bad_sector = adaptobs::snapshot(make_observer(false));
+  for (auto& m : bad_sector.matrices)
+    if (m.name == "model.parameter_bounds.upper") m.values[0] = -0.5;  // below the lower bound
+  EXPECT_NE(message(bad_sector).find("snapshot field 'parameter_bounds'"), std::string::npos);
+  // Nothing changed: the gains are still the halved ones.
+  const auto after = adaptobs::snapshot(plain);
+  ASSERT_EQ(before.matrices.size(), after.matrices.size());
+  for (std::size_t i = 0; i < before.matrices.size(); ++i)
+    EXPECT_EQ(before.matrices[i].values, after.matrices[i].values) << before.matrices[i].name;
+  EXPECT_EQ(plain.gains().L[0], 0.5 * wwtp::paper_gains<double>().L[0]);
+}
+
+}  // namespace snapshot_test_takagi_sugeno

@@ -319,6 +319,33 @@ class TakagiSugenoModel : public SizedBy<D> {
     return b;
   }
 
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the stacked
+  /// vertex matrices \f$[A_1 \cdots A_r]\f$, \f$[B_1 \cdots B_r]\f$ (24)–(25), C and the
+  /// sectors (9). The premise function is code, not state: a restored model keeps
+  /// its own. The values read are checked as the constructor checks them, so that
+  /// a damaged snapshot cannot give weights that do not sum to 1 (11).
+  static constexpr std::string_view snapshot_type = "TakagiSugenoModel";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive("A", self.A_);
+    archive("B", self.B_);
+    archive("C", self.C_);
+    archive("premise_bounds.lower", self.premise_bounds_.lower);
+    archive("premise_bounds.upper", self.premise_bounds_.upper);
+    archive("parameter_bounds.lower", self.parameter_bounds_.lower);
+    archive("parameter_bounds.upper", self.parameter_bounds_.upper);
+    if constexpr (Archive::reading) {
+      constexpr std::string_view who = "restore";
+      detail::require_finite(self.A_, who, "snapshot field 'A'");
+      detail::require_finite(self.B_, who, "snapshot field 'B'");
+      detail::require_finite(self.C_, who, "snapshot field 'C'");
+      detail::validate_sectors(self.premise_bounds_, self.premise_bounds_.size(), who, "snapshot field 'premise_bounds'");
+      detail::validate_sectors(self.parameter_bounds_, self.parameter_bounds_.size(), who,
+                               "snapshot field 'parameter_bounds'");
+    }
+  }
+
   /// One step of the polytopic model (64):
   /// \f$x_{k+1} = \sum_i h_i(z(x_k, u_k, \theta), \theta)(A_i x_k + B_i u_k)\f$.
   [[nodiscard]] State step(const State& x, const Input& u, const Parameters& theta) const {

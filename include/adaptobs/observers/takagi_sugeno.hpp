@@ -35,6 +35,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/discrete_update.hpp>
+#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/models/takagi_sugeno_model.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
@@ -120,6 +121,39 @@ class TakagiSugenoObserver
     check_gains(gains, "TakagiSugenoObserver::set_gains");
     K_theta_ = gains.K_theta;
     fill_vertex_maps(gains);
+  }
+
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the model, the
+  /// gains of eq. (65)/(21) as the per-vertex \f$L_i\f$ and \f$K_{y,i}\f$ (lists "L" and "K_y")
+  /// and \f$K_\theta\f$, the estimates and the weights and premises of the last
+  /// update. The gains are written as `gains()` gives them, not as the vertex maps
+  /// the update runs on, so that a snapshot does not depend on how those are
+  /// packed; reading checks them as `set_gains` does and packs them again.
+  /// Whether \f$K_\theta\f$ is set (eq. (21) rather than (65)) is a setting.
+  static constexpr std::string_view snapshot_type = "TakagiSugenoObserver";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+    requires Snapshottable<Model>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.object("model", self.model_);
+    // The current gains give the shapes a reading is checked against.
+    Gains gains = self.gains();
+    archive("L", gains.L);
+    archive("K_y", gains.K);
+    archive.setting("has_leakage", gains.K_theta ? 1 : 0);
+    if (gains.K_theta) archive("K_theta", *gains.K_theta);
+    if constexpr (Archive::reading) {
+      // After the model: the vertex maps pack its A_i, B_i with the gains.
+      self.check_gains(gains, "restore");
+      self.K_theta_ = gains.K_theta;
+      self.fill_vertex_maps(gains);
+    }
+    archive("x", self.x_);
+    archive("theta", self.theta_);
+    archive("weights", self.weights_);
+    archive("premises", self.premises_);
+    archive("premises_in_sectors", self.in_sectors_);
+    TakagiSugenoObserver::visit_update_state(self, archive);
   }
 
  private:
