@@ -27,6 +27,7 @@
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -39,21 +40,41 @@ namespace adaptobs::python {
 
 namespace {
 
+/// A new float64 NumPy array holding v. NumPy's copy of a cached array of v's
+/// length, filled through the buffer protocol, costs a fifth of a general
+/// conversion (numpy.asarray of an exported buffer), which an update pays three times.
+nb::object fresh_array(const Eigen::VectorXd& v, nb::object& pattern) {
+  if (!pattern.is_valid()) pattern = nb::cast(Eigen::VectorXd(Eigen::VectorXd::Zero(v.size())));
+  static PyObject* const copy = PyUnicode_InternFromString("copy");
+  const nb::object a = nb::steal(PyObject_CallMethodNoArgs(pattern.ptr(), copy));
+  if (!a.is_valid()) throw nb::python_error();
+  Py_buffer view;
+  if (PyObject_GetBuffer(a.ptr(), &view, PyBUF_WRITABLE | PyBUF_C_CONTIGUOUS) != 0) throw nb::python_error();
+  std::copy(v.data(), v.data() + v.size(), static_cast<double*>(view.buf));
+  PyBuffer_Release(&view);
+  return a;
+}
+
 /// The premise variables z = z(x, u, theta) of a model from Python: a callable
-/// returning nz numbers, called with NumPy copies of the estimates (so that a
-/// callable that keeps its arguments keeps no view of the observer's memory).
-/// It runs with the GIL taken back, once per update; a model without premise
-/// variables (nz = 0, weights from the parameters alone) never enters Python.
+/// returning nz numbers, called with new NumPy arrays of the estimates (so that a
+/// callable that keeps its arguments keeps values that do not change, and no view
+/// of the observer's memory). It runs with the GIL taken back, once per update; a
+/// model without premise variables (nz = 0, weights from the parameters alone)
+/// never enters Python.
 struct PythonPremises {
   nb::object source;  // the callable, or None (kept for pickling)
   Index nz = 0;
   mutable Eigen::VectorXd value;
+  // Arrays of the lengths of x, u and theta that `fresh_array` copies, made on
+  // the first call (with the GIL) and never written.
+  mutable nb::object x_pattern, u_pattern, theta_pattern;
 
   const Eigen::VectorXd& operator()(const Eigen::VectorXd& x, const Eigen::VectorXd& u,
                                     const Eigen::VectorXd& theta) const {
     if (nz == 0 || !source.is_valid() || source.is_none()) return value;
     nb::gil_scoped_acquire gil;
-    const nb::object z = source(x, u, theta);
+    const nb::object z = source(fresh_array(x, x_pattern), fresh_array(u, u_pattern),
+                                fresh_array(theta, theta_pattern));
     // The shape is checked before anything is copied; a wrong one is an error
     // naming the callable, and the observer's update, which calls it first, changes nothing.
     read_vector(z, nz, "TakagiSugenoModel", "premises(x, u, theta)", value);
