@@ -96,6 +96,16 @@ def test_the_observer_estimates_the_growth_rate_error_and_the_unmeasured_substra
     assert np.all(result.diagnostics["premises_in_sectors"] == 1.0)
     assert abs(observer.weights.sum() - 1) < 1e-15 and observer.premises_in_sectors
     assert np.array_equal(observer.premises, premises(result.state[-2], data["U"][-1], result.parameters[-2]))
+    # From x_hat_0 = (6, 0), z2 = 6 / 0.4 = 15 lies beyond its sector's 14.63: clipped, and reported (Remark 8).
+    outside = adaptobs.TakagiSugenoObserver(make_model(wwtp), paper_gains(wwtp), [6.0, 0.0], [0.0])
+    first = outside.run(data["U"][:1], data["Y"][:1])
+    assert first.diagnostics["premises_in_sectors"][0] == 0.0 and not outside.premises_in_sectors
+    assert outside.premises[1] == 15.0
+    # Vertex i = 4 j_z1 + 2 j_z2 + j_theta: z2 at its upper bound leaves the j_z2 = 0 vertices no weight;
+    # z1 = u_0 = 0.225 in [0, 0.4] and theta_hat = 0 in [-0.3, 0.3] split the rest.
+    assert np.array_equal(outside.weights[[0, 1, 4, 5]], np.zeros(4))
+    assert abs(outside.weights[6] + outside.weights[7] - 0.225 / 0.4) < 1e-15
+    assert abs(outside.weights[2] - 0.5 * (0.4 - 0.225) / 0.4) < 1e-15
 
 
 def test_the_wwtp_replay_matches_the_cxx_example(tmp_path, wwtp):
@@ -103,6 +113,8 @@ def test_the_wwtp_replay_matches_the_cxx_example(tmp_path, wwtp):
     examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
     if not examples:
         pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
+    if not os.path.exists(os.path.join(examples, "wwtp")):
+        pytest.skip("the wwtp example is built only with DSDP (its LMI design)")
     subprocess.run([os.path.join(examples, "wwtp"), "--out", str(tmp_path), "--drop", "0.2", "--seed", "7"],
                    check=True, capture_output=True, text=True)
     table = np.genfromtxt(tmp_path / "wwtp.csv", delimiter=",", names=True)
@@ -181,6 +193,8 @@ def test_a_pickled_model_and_observer_carry_their_premise_function(wwtp):
     clone = pickle.loads(pickle.dumps(observer))
     assert clone.model.premise_function is premises
     assert [np.array_equal(a, b) for a, b in zip(clone.gains.L, wwtp["L"])] == [True] * 8
+    gains = pickle.loads(pickle.dumps(paper_gains(wwtp, [[2e-3]])))
+    assert gains.K_theta[0, 0] == 2e-3 and gains.K[7][0, 0] == 0.03 and np.array_equal(gains.L[4], wwtp["L"][4])
     # A lambda cannot be pickled: the model says so rather than losing it.
     unpicklable = adaptobs.TakagiSugenoModel(wwtp["vertices"], wwtp["C"], lambda x, u, th: premises(x, u, th),
                                              wwtp["premise_bounds"], wwtp["parameter_bounds"])
