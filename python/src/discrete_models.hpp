@@ -26,8 +26,8 @@ using System = DiscreteSystem<Dims>;
 
 class SharedDiscreteModel : public SizedBy<Dims> {
  public:
-  /// Time-varying in general: the observers check each step's matrices (free
-  /// here, they were checked once at construction).
+  /// Either kind, known at run time (`is_time_invariant`); the observers check
+  /// each step's matrices (free here: they were checked once at construction).
   static constexpr bool time_invariant = false;
   using Systems = std::vector<System>;
 
@@ -60,7 +60,7 @@ class SharedDiscreteModel : public SizedBy<Dims> {
   }
   [[nodiscard]] Sizes sizes() const noexcept { return sizes_of(systems_->front(), np_); }
   [[nodiscard]] Index steps() const noexcept { return static_cast<Index>(systems_->size()); }
-  [[nodiscard]] bool varying() const noexcept { return varying_; }
+  [[nodiscard]] bool is_time_invariant() const noexcept { return !varying_; }
   [[nodiscard]] const Systems& systems() const noexcept { return *systems_; }
 
   /// Its fields: the matrices of every step side by side (A is nx × N·nx, and
@@ -127,7 +127,7 @@ class SharedDiscreteModel : public SizedBy<Dims> {
 /// Refuses, before any sample, a run of `samples` from step `first` that would
 /// go beyond the last step of a time-varying model.
 inline void require_steps(const SharedDiscreteModel& model, Index first, Index samples, std::string_view who) {
-  if (model.varying() && first + samples > model.steps())
+  if (!model.is_time_invariant() && first + samples > model.steps())
     detail::fail_argument(who, "Y", "has " + std::to_string(samples) + " samples from step " + std::to_string(first) +
                                         ", beyond the " + std::to_string(model.steps()) +
                                         " steps of the DiscreteLtvModel");

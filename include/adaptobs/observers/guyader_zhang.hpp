@@ -101,7 +101,7 @@ class GuyaderZhangObserver
     last_c_upsilon_.setZero(s.ny, s.np);
     this->output_error_.setZero(s.ny);
     work_.resize(s);
-    if constexpr (Model::time_invariant) update_closed_loop();
+    if (is_time_invariant(model_)) update_closed_loop();
   }
 
   /// State estimate \f$\hat x_k\f$.
@@ -115,7 +115,7 @@ class GuyaderZhangObserver
   void set_gain(const GainMatrix& K) {
     detail::require_finite_shape(K, gain_.rows(), gain_.cols(), "GuyaderZhangObserver::set_gain", "K");
     gain_ = K;
-    if constexpr (Model::time_invariant) update_closed_loop();
+    if (is_time_invariant(model_)) update_closed_loop();
   }
 
   /// Step size \f$\mu_k > 0\f$ used from the next update on.
@@ -226,9 +226,7 @@ class GuyaderZhangObserver
     /// (2a) \f$\Upsilon_{k+1} = (A_k - K_kC_k)\Upsilon_k + \Psi_k\f$; for an LTV model or a
     /// mask evaluated as \f$A_k\Upsilon_k - K_k(\bar C_k\Upsilon_k)\f$, reusing \f$\bar C_k\Upsilon_k\f$.
     w.upsilon = sample.Psi;
-    bool cached_closed_loop = false;
-    if constexpr (Model::time_invariant) cached_closed_loop = present == nullptr;
-    if (cached_closed_loop) {
+    if (is_time_invariant(model_) && present == nullptr) {
       detail::add_product(w.upsilon, closed_loop_, upsilon_);
     } else {
       detail::add_product(w.upsilon, system.A, upsilon_);
