@@ -27,3 +27,16 @@ def test_the_fault_example_detects_and_isolates_the_thruster_fault():
     assert "isolated: theta_2, direction -1" in done.stdout
     refused = run("satellite_fault.py", "--fault-size", "-1.5")
     assert refused.returncode == 2 and "--fault-size must lie in (-1, 10)" in refused.stderr
+
+
+def test_the_guiro_example_places_the_gains_and_estimates_theta():
+    done = run("guiro.py", "--no-figure")
+    assert done.returncode == 0, done.stderr
+    assert "Gamma = 1.87307728" in done.stdout  # the printed 1.8730773, decimal point corrected
+    theta = float(done.stdout.split("theta_hat =")[1].split()[0])
+    assert abs(theta - 5.0) < 1e-6
+    lossy = run("guiro.py", "--no-figure", "--loss", "0.3", "--samples", "200")
+    assert lossy.returncode == 0 and "lost samples: 57" in lossy.stdout, lossy.stderr
+    assert abs(float(lossy.stdout.split("theta_hat =")[1].split()[0]) - 5.0) < 1e-6
+    refused = run("guiro.py", "--loss", "1")
+    assert refused.returncode == 2 and "--loss must lie in [0, 1)" in refused.stderr

@@ -2,7 +2,9 @@
 design against the error matrix written here in NumPy, convergence on the
 paper's example with and without lost samples, and pickling."""
 
+import os
 import pickle
+import subprocess
 
 import numpy as np
 import pytest
@@ -70,3 +72,28 @@ def test_bad_gains_name_the_argument(guiro):
     observer = make_observer(system, np.zeros((2, 1)), np.zeros((1, 1)))
     with pytest.raises(ConfigurationError, match="GuiroObserver::set_gains: argument 'K'"):
         observer.set_gains(np.full((2, 1), np.nan), np.zeros((1, 1)))
+
+
+def test_the_replay_matches_the_cxx_example(tmp_path):
+    """The C++ example (examples/guiro.cpp, 60 samples on the regular grid, designed gains): the same
+    theta_k before each update and the same corrected estimates z_{k-1} after it, to 1e-12."""
+    examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
+    if not examples:
+        pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
+    subprocess.run([os.path.join(examples, "guiro"), "--out", str(tmp_path)], check=True, capture_output=True)
+    table = np.genfromtxt(tmp_path / "guiro.csv", delimiter=",", names=True)
+    system = adaptobs.examples.guiro()
+    data = adaptobs.examples.simulate_guiro(len(table))
+    assert np.max(np.abs(data["Y"][:, 0] - table["y_1"])) < 1e-12
+    gains = adaptobs.design_guiro_gains(system["E"], system["C"], system["H0"], system["poles"])
+    observer = make_observer(system, gains.K, gains.Gamma)
+    theta_before, corrected = [], []
+    for k in range(len(table)):
+        theta_before.append(observer.parameters[0])
+        assert observer.update(None, data["Y"][k], data["Psi"][k]) == UpdateStatus.accepted
+        corrected.append(observer.corrected_state)
+    corrected = np.array(corrected)
+    assert np.max(np.abs(np.array(theta_before) - table["thetahat_1"])) < 1e-12
+    assert np.max(np.abs(corrected[:, 0] - table["xhat_1"])) < 1e-12
+    assert np.max(np.abs(corrected[:, 1] - table["xhat_2"])) < 1e-12
+    assert abs(table["thetahat_1"][-1] - 5.0) < 1e-6  # the paper's theta
