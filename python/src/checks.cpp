@@ -656,7 +656,16 @@ void bind_checks(nb::module_& m) {
       .def_ro("false_alarm_rate", &DetectionSummary::false_alarm_rate,
               "false_alarms / fault_free_time (NaN when no fault-free time was monitored)")
       .def_prop_ro("delays", [](const DetectionSummary& s) { return array_of(s.delays); },
-                   "the delay of each detected seed, in seed order");
+                   "the delay of each detected seed, in seed order")
+      .def("__repr__", [](const DetectionSummary& s) {
+        std::ostringstream os;
+        os.precision(6);
+        os << "DetectionSummary(seeds=" << s.seeds << ", detection_rate=" << s.detection_rate
+           << ", mean_detection_delay=" << s.mean_detection_delay << ", p95_detection_delay=" << s.p95_detection_delay
+           << ", isolation_rate=" << s.isolation_rate << ", quiet_before_fault_rate=" << s.quiet_before_fault_rate
+           << ", false_alarms=" << s.false_alarms << ", false_alarm_rate=" << s.false_alarm_rate << ")";
+        return os.str();
+      });
 
   m.def("evaluate_detection", &evaluate, nb::arg("scenario"), nb::arg("fault"), nb::arg("seeds").none() = nb::none(),
         nb::kw_only(), nb::arg("first_seed") = 0, nb::arg("threads") = 0,

@@ -8,6 +8,7 @@ satellite's thruster fault against a plain loop over the same seeds."""
 import importlib.util
 import math
 import pathlib
+import threading
 
 import numpy as np
 import pytest
@@ -452,6 +453,21 @@ def test_an_exception_of_the_scenario_reaches_the_caller_as_it_is():
     summary = adaptobs.evaluate_detection(lambda seed, faulty: (0.0, 10.0, [5.0, 2.0 + seed]), 1.0, 3, threads=2)
     assert summary.detection_rate == 1.0 and summary.mean_detection_delay == 2.0  # delays 1, 2, 3
     assert summary.false_alarms == 6 and summary.fault_free_time == 30.0 and summary.false_alarm_rate == 0.2
+
+
+def test_two_threads_run_two_scenarios_at_once():
+    """The first faulty runs of both threads meet at a barrier: with the GIL held between calls, or
+    the calls serialized, the barrier would break (after its timeout) instead of opening."""
+    barrier = threading.Barrier(2, timeout=60)
+
+    def scenario(seed, faulty):
+        if faulty:
+            barrier.wait()  # releases the GIL while it waits
+        return adaptobs.MonitoredRun(0.0, 1.0, [0.5 + 0.1 * seed], [seed])
+
+    summary = adaptobs.evaluate_detection(scenario, adaptobs.FaultDescription(0.2, parameter=1), 2, threads=2)
+    assert summary.detection_rate == 1.0 and summary.isolation_rate == 0.5
+    assert np.allclose(summary.delays, [0.3, 0.4], rtol=0, atol=1e-15) and summary.false_alarms == 2
 
 
 def test_the_evaluator_refuses_bad_runs_and_arguments_by_name():
