@@ -22,6 +22,7 @@
 #include <nanobind/stl/vector.h>
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -381,7 +382,8 @@ void bind_checks(nb::module_& m) {
       nb::arg("numerator"), nb::arg("denominator"),
       "Exact SPR test of G = N/D: coefficients highest power first, D monic of degree n, deg N < n.\n"
       "D by Routh-Hurwitz, the real roots of q(w) = Re G(j sqrt w) |D(j sqrt w)|^2 by a Sturm sequence\n"
-      "(no root finding). (s + 2)/((s + 1)(s + 3)) is SPR; (s + 3)/((s + 1)(s + 2)) is not: w^2 Re G(jw) -> 0.");
+      "(no root finding). (s + 2)/((s + 1)(s + 3)) is SPR; (s + 3)/((s + 1)(s + 2)) is not: w^2 Re G(jw) -> 0.\n"
+      "Algorithms 1 and 2 of Zhang (2005, sections III-A, III-B) converge when c_o (sI - A_o + k c_o)^-1 gamma is SPR.");
   m.def(
       "strictly_positive_real",
       [](nb::handle A, nb::handle b, nb::handle c) {
@@ -492,7 +494,8 @@ void bind_checks(nb::module_& m) {
       "steps and step doubling until two passes agree within tau = 1e-6 max(max ||A(t)||, 1/T). An\n"
       "exponent below lambda_max + log(n eps)/T is kept when two passes agree on it, else reported as that\n"
       "bound. All NaN when the solution leaves the floating-point range within one period. Frozen-time\n"
-      "eigenvalues decide nothing (Markus-Yamabe: -1/4 +- 0.66i at every t, exponent +1/2).");
+      "eigenvalues decide nothing (Markus-Yamabe: -1/4 +- 0.66i at every t, exponent +1/2). The conditions\n"
+      "of Algorithm 3 (de2/dt = A22(t) e2) and Algorithm 4 (eq. (13), A(t) - K(t) C(t)) of Zhang (2005).");
   m.def(
       "is_exponentially_stable_periodic",
       [](nb::handle A, nb::handle period, nb::handle margin, nb::handle steps) {
