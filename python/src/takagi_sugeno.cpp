@@ -298,9 +298,11 @@ void bind_model(nb::module_& m) {
               if (!is_sequence(v) || nb::len(v) != 2) fail_type(who, name, v, "a pair (A_i, B_i)");
               list.push_back({matrix(v[0], who, name + ".A"), matrix(v[1], who, name + ".B")});
             }
-            if (list.empty()) detail::fail_argument(who, "vertices", "must hold 2^(nz + np) vertices (got 0)");
             Sectors z = sectors(premise_bounds, who, "premise_bounds");
             Sectors theta = sectors(parameter_bounds, who, "parameter_bounds");
+            // The C++ constructor reads the sizes off the first vertex: none is refused here, as it counts.
+            if (list.empty() && z.size() + theta.size() <= 20)
+              detail::fail_count(Index(1) << (z.size() + theta.size()), 0, "2^(nz + np) vertices", who, "vertices");
             PythonPremises function = premises_of(premises, z.size(), who);
             new (self) TsModel(list, matrix(C, who, "C"), std::move(function), std::move(z), std::move(theta));
           },

@@ -232,6 +232,8 @@ def test_bad_constructor_arguments_name_the_argument(wwtp):
     with pytest.raises(ConfigurationError, match=r"TakagiSugenoModel: argument 'vertices' must hold 2\^\(nz \+ np\) "
                                                  r"vertices \(8, got 7\)"):
         adaptobs.TakagiSugenoModel(V[:7], C, premises, zb, tb)
+    with pytest.raises(ConfigurationError, match=r"argument 'vertices' must hold 2\^\(nz \+ np\) vertices \(8, got 0\)"):
+        adaptobs.TakagiSugenoModel([], C, premises, zb, tb)
     with pytest.raises(ConfigurationError, match=r"argument 'premise_bounds' must have lower < upper.*entry 1"):
         adaptobs.TakagiSugenoModel(V, C, premises, (zb[0], [0.4, 0.0]), tb)
     with pytest.raises(ConfigurationError, match=r"TakagiSugenoModel: argument 'premises' is required"):
