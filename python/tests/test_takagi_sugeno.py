@@ -417,6 +417,18 @@ def test_the_lmi_synthesis_certifies_the_plant_and_its_gains_stabilize_every_ver
         make_model(wwtp), Q_x=wwtp["lmi_Q_x"], Q_theta=wwtp["lmi_Q_theta"], parameter_gain=wwtp["lmi_parameter_gain"],
         objective=adaptobs.TakagiSugenoObjective.maximize_margin, fixed_gamma=1e8)
     assert margin.feasible and margin.margin > 0
+    assert abs(margin.check.max_vertex_eigenvalue + margin.margin) < 1e-8  # M_i <= -t I, attained
+    # Corollary 1 on those sectors (beta* about 4.6e7) is beyond DSDP: infeasible is its claim, returned without gains.
+    beta = adaptobs.synthesize_takagi_sugeno_gains(make_model(wwtp), Q_x=wwtp["lmi_Q_x"], Q_theta=wwtp["lmi_Q_theta"],
+                                                   parameter_gain=wwtp["lmi_parameter_gain"])
+    assert beta.status == adaptobs.SynthesisStatus.infeasible and beta.gains is None
+    assert beta.check.max_vertex_eigenvalue > 0 and not beta.check.holds
+    # A point that fails the independent check is refused, with the library's message.
+    with pytest.raises(ConfigurationError, match=r"synthesize_takagi_sugeno_gains: argument 'model' gives no verified "
+                                                 r"solution \(not verified\): DSDP: .*maximum iterations.*largest "
+                                                 r"eigenvalue of the vertex LMIs"):
+        adaptobs.synthesize_takagi_sugeno_gains(model, Q_x=wwtp["lmi_Q_x"], Q_theta=wwtp["lmi_Q_theta"],
+                                                parameter_gain=wwtp["lmi_parameter_gain"], max_iterations=2)
     with pytest.raises(ConfigurationError, match=r"argument 'options.fixed_gamma' must be set for the maximize_margin"):
         adaptobs.synthesize_takagi_sugeno_gains(model, objective=adaptobs.TakagiSugenoObjective.maximize_margin)
 
