@@ -40,9 +40,11 @@ namespace adaptobs::python {
 
 namespace {
 
-/// A new float64 NumPy array holding v. NumPy's copy of a cached array of v's
-/// length, filled through the buffer protocol, costs a fifth of a general
-/// conversion (numpy.asarray of an exported buffer), which an update pays three times.
+/// A new float64 NumPy array holding v: NumPy's copy of a cached array of v's
+/// length, filled through the buffer protocol. Cheaper than the general
+/// conversion (numpy.asarray of an exported buffer), which an update would pay
+/// three times. With it the call costs about 1.5 us an update beyond the
+/// callable's own time (the waste water plant, run()).
 nb::object fresh_array(const Eigen::VectorXd& v, nb::object& pattern) {
   if (!pattern.is_valid()) pattern = nb::cast(Eigen::VectorXd(Eigen::VectorXd::Zero(v.size())));
   static PyObject* const copy = PyUnicode_InternFromString("copy");
