@@ -282,7 +282,9 @@ Eigen::VectorXd array_of(const std::vector<double>& values) {
 
 void bind_checks(nb::module_& m) {
   // ---- Guiro et al. (2008), proposition 2.2 -----------------------------------------
-  nb::enum_<ConditionVerdict>(m, "ConditionVerdict", "Whether a sufficient condition holds on the data.")
+  nb::enum_<ConditionVerdict>(m, "ConditionVerdict",
+                              "Whether a sufficient condition holds on the data: an enum.Enum whose names are the C++\n"
+                              "to_string's, 'holds', 'fails' and 'undetermined'.")
       .value("holds", ConditionVerdict::holds)
       .value("fails", ConditionVerdict::fails)
       .value("undetermined", ConditionVerdict::undetermined);
