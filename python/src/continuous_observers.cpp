@@ -2,8 +2,8 @@
 // Python, with run-time sizes: Bastin-Gevers (Algorithm 1, eq. (2)-(6)),
 // Marino-Tomei (Algorithm 2, eq. (2)-(4), (7)), Besancon (Algorithm 3,
 // eq. (2)-(4), (8)-(9)) and Zhang (Algorithm 4, eq. (10)-(15)), over a
-// ContinuousLtiModel whose regressor Phi is a constant matrix or a Python
-// callable; their canonical forms and SPR gain.
+// ContinuousLtiModel or a ContinuousLtvModel whose regressor Phi is a constant
+// matrix or a Python callable; their canonical forms and SPR gain.
 
 #include "arrays.hpp"
 #include "discrete_observer.hpp"
@@ -54,9 +54,14 @@ PythonRegressor regressor_of(nb::handle phi) {
   r.source = nb::borrow(phi);
   r.callable = PyCallable_Check(phi.ptr()) != 0;
   if (r.callable) {
-    // Phi(t, u, y) when the callable takes three positional arguments.
-    const nb::object signature = nb::module_::import_("inspect").attr("signature")(phi);
-    r.signals = nb::len(nb::object(signature.attr("parameters"))) >= 3;
+    // Phi(t, u, y) when the callable takes three positional arguments; Phi(t) when
+    // Python cannot read its signature (a function compiled in C++).
+    try {
+      const nb::object signature = nb::module_::import_("inspect").attr("signature")(phi);
+      r.signals = nb::len(nb::object(signature.attr("parameters"))) >= 3;
+    } catch (nb::python_error&) {
+      r.signals = false;
+    }
   } else {
     r.value = matrix(phi, "ContinuousLtiModel", "Phi");
   }
@@ -64,11 +69,109 @@ PythonRegressor regressor_of(nb::handle phi) {
 }
 
 using ContinuousModel = ContinuousLtiModel<Dims, PythonRegressor>;
-using BastinGeversPy = BastinGeversObserver<ContinuousModel>;
-using MarinoTomeiPy = MarinoTomeiObserver<ContinuousModel>;
-using BesanconPy = BesanconObserver<ContinuousModel>;
-using ZhangPy = ZhangContinuousObserver<ContinuousModel>;
-using KalmanBucyPy = AugmentedKalmanBucyFilter<ContinuousModel>;
+
+/// The model a continuous observer holds in Python, so that each observer is one
+/// class whatever its model: a ContinuousLtiModel's (A, B, C), or the matrices a
+/// ContinuousLtvModel's Python function matrices_at(t) returns, called (with the
+/// GIL) wherever the integration needs them. Each observer owns its copy, so the
+/// matrices of the last call are cached per observer, and an observer is never
+/// stepped by two threads at once (UseFlag).
+class SharedContinuousModel : public SizedBy<Dims> {
+ public:
+  static constexpr bool time_invariant = false;
+
+  explicit SharedContinuousModel(const ContinuousModel& lti)
+      : system_(lti.system()), phi_(lti.regressor_function()), sizes_(lti.sizes()) {}
+
+  /// Sizes from matrices_at(0); Φ checked at t = 0 as for a constant model.
+  SharedContinuousModel(nb::object matrices_at, PythonRegressor phi, Index np, std::string_view who)
+      : phi_(std::move(phi)), matrices_at_(std::move(matrices_at)) {
+    if (!PyCallable_Check(matrices_at_.ptr()))
+      fail_type(who, "matrices_at", matrices_at_, "a callable t -> (A, B, C)");
+    const auto [A, B, C] = call(0.0, who);
+    system_ = {matrix(A, who, "matrices_at(0)[0]"), matrix(B, who, "matrices_at(0)[1]"),
+               matrix(C, who, "matrices_at(0)[2]")};
+    detail::validate_state_space(system_, who);
+    detail::require(np >= 0, who, "np", "must be non-negative");
+    sizes_ = {system_.A.rows(), system_.B.cols(), system_.C.rows(), np};
+    detail::validate_regressor<Dims>(phi_, sizes_, who);
+  }
+
+  [[nodiscard]] bool is_time_invariant() const noexcept { return !matrices_at_.is_valid() || matrices_at_.is_none(); }
+
+  /// (A(t), B(t), C(t)); matrices of other sizes than at t = 0, or not finite,
+  /// raise ConfigurationError naming matrices_at(t).
+  [[nodiscard]] const ContinuousSystem<Dims>& at(double t) const {
+    if (is_time_invariant()) return system_;
+    constexpr std::string_view who = "ContinuousLtvModel";
+    nb::gil_scoped_acquire gil;
+    const auto [A, B, C] = call(t, who);
+    read_matrix(A, sizes_.nx, sizes_.nx, who, "matrices_at(t)[0]", system_.A);
+    read_matrix(B, sizes_.nx, sizes_.nu, who, "matrices_at(t)[1]", system_.B);
+    read_matrix(C, sizes_.ny, sizes_.nx, who, "matrices_at(t)[2]", system_.C);
+    if (!detail::finite_entries(system_.A) || !detail::finite_entries(system_.B) || !detail::finite_entries(system_.C))
+      detail::fail_argument(who, "matrices_at(t)", "returned matrices that are not finite at t = " + std::to_string(t));
+    return system_;
+  }
+  [[nodiscard]] const ContinuousSystem<Dims>& system() const noexcept { return system_; }
+  [[nodiscard]] decltype(auto) regressor(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& y) const {
+    return detail::evaluate_regressor<Dims>(phi_, t, u, y, sizes_, "ContinuousLtiModel");
+  }
+  [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
+  [[nodiscard]] const PythonRegressor& regressor_function() const noexcept { return phi_; }
+  [[nodiscard]] const nb::object& matrices_function() const noexcept { return matrices_at_; }
+
+  /// Its fields: A, B, C of a time-invariant model; the sizes of a time-varying
+  /// one, whose function is pickled by Python beside the snapshot, as Φ is.
+  static constexpr std::string_view snapshot_type = "ContinuousLtvModel";
+  static constexpr int snapshot_version = 1;
+  template <class Self, class Archive>
+  static void visit_state(Self& self, Archive& archive) {
+    archive.setting("time_invariant", self.is_time_invariant() ? 1 : 0);
+    archive.setting("np", self.sizes_.np);
+    if (self.is_time_invariant()) {
+      archive("A", self.system_.A);
+      archive("B", self.system_.B);
+      archive("C", self.system_.C);
+    } else {
+      archive.setting("nx", self.sizes_.nx);
+      archive.setting("nu", self.sizes_.nu);
+      archive.setting("ny", self.sizes_.ny);
+    }
+  }
+
+  /// The references to Python objects it holds, for the garbage collector.
+  int traverse(visitproc visit, void* arg) const {
+    Py_VISIT(phi_.source.ptr());
+    if (matrices_at_.is_valid()) Py_VISIT(matrices_at_.ptr());
+    return 0;
+  }
+  void clear() {
+    phi_.source = nb::none();
+    phi_.callable = false;  // a collected object is never stepped again; a call would read a zero Phi
+    if (!is_time_invariant()) matrices_at_ = nb::none();
+  }
+
+ private:
+  std::tuple<nb::object, nb::object, nb::object> call(double t, std::string_view who) const {
+    const nb::object result = matrices_at_(t);
+    nb::tuple abc;
+    if (!nb::try_cast(result, abc, false) || abc.size() != 3)
+      fail_type(who, "matrices_at(t)", result, "a tuple (A, B, C)");
+    return {abc[0], abc[1], abc[2]};
+  }
+
+  mutable ContinuousSystem<Dims> system_;  // of a time-varying model: the matrices of the last call
+  PythonRegressor phi_;
+  nb::object matrices_at_;  // null or None: time invariant
+  Sizes sizes_{};
+};
+
+using BastinGeversPy = BastinGeversObserver<SharedContinuousModel>;
+using MarinoTomeiPy = MarinoTomeiObserver<SharedContinuousModel>;
+using BesanconPy = BesanconObserver<SharedContinuousModel>;
+using ZhangPy = ZhangContinuousObserver<SharedContinuousModel>;
+using KalmanBucyPy = AugmentedKalmanBucyFilter<SharedContinuousModel>;
 
 // The excitation level of the last window, NaN while unknown (the filter has none).
 template <class Observer>
@@ -116,13 +219,19 @@ UnifiedObserverOptions options_of(const Snapshot<double>& s) {
           .excitation_window = s.find_integer("excitation_window") ? integer(s, "excitation_window") : 0};
 }
 
-ContinuousModel model_of(const Snapshot<double>& s, nb::handle phi) {
-  return ContinuousModel(field(s, "model.A"), field(s, "model.B"), field(s, "model.C"), regressor_of(phi),
-                         integer(s, "model.np"));
+// The model of a snapshot's "model." fields, around the pickled Φ and matrices_at.
+SharedContinuousModel model_of(const Snapshot<double>& s, nb::handle phi, nb::handle matrices_at) {
+  if (integer(s, "model.time_invariant") != 0)
+    return SharedContinuousModel(ContinuousModel(field(s, "model.A"), field(s, "model.B"), field(s, "model.C"),
+                                                 regressor_of(phi), integer(s, "model.np")));
+  return SharedContinuousModel(nb::borrow(matrices_at), regressor_of(phi), integer(s, "model.np"), "restore");
 }
 
-const ContinuousModel& continuous_model(nb::handle model, std::string_view who) {
-  return object_argument<ContinuousModel>(model, who, "model", "an adaptobs.ContinuousLtiModel");
+SharedContinuousModel continuous_model(nb::handle model, std::string_view who) {
+  ContinuousModel* lti = nullptr;
+  if (nb::try_cast<ContinuousModel*>(model, lti, false) && lti) return SharedContinuousModel(*lti);
+  return object_argument<SharedContinuousModel>(model, who, "model",
+                                                "an adaptobs.ContinuousLtiModel or ContinuousLtvModel");
 }
 
 const Transform& static_transform(nb::handle transform, std::string_view who) {
@@ -134,30 +243,36 @@ Transform transform_of(const Snapshot<double>& s) {
 }
 
 // Cyclic garbage collection. A model (and so an observer) holds its Python
-// regressor; a regressor defined at module level holds that module's globals,
-// where the observer may itself be stored. Python can break such a cycle only if
-// the C++ objects report the reference they hold (tp_traverse) and drop it on
-// request (tp_clear); otherwise it lives until exit, when nanobind reports it.
-PythonRegressor& regressor_in(const ContinuousModel& model) {
+// regressor and matrices function; one defined at module level holds that
+// module's globals, where the observer may itself be stored. Python can break
+// such a cycle only if the C++ objects report the references they hold
+// (tp_traverse) and drop them on request (tp_clear); otherwise it lives until
+// exit, when nanobind reports it.
+int traverse_model(const ContinuousModel& model, visitproc visit, void* arg) {
+  Py_VISIT(model.regressor_function().source.ptr());
+  return 0;
+}
+void clear_model(const ContinuousModel& model) {
   // The regressor is part of the model's configuration, const to the library:
   // only the collector changes it, to break a cycle of an object about to go.
-  return const_cast<PythonRegressor&>(model.regressor_function());
+  auto& phi = const_cast<PythonRegressor&>(model.regressor_function());
+  phi.source = nb::none();
+  phi.callable = false;
 }
+int traverse_model(const SharedContinuousModel& model, visitproc visit, void* arg) {
+  return model.traverse(visit, arg);
+}
+void clear_model(const SharedContinuousModel& model) { const_cast<SharedContinuousModel&>(model).clear(); }
 
 template <class T, class GetModel>
 struct CollectedRegressor {
   static int traverse(PyObject* self, visitproc visit, void* arg) {
     Py_VISIT(Py_TYPE(self));
     if (!nb::inst_ready(self)) return 0;
-    Py_VISIT(regressor_in(GetModel{}(*nb::inst_ptr<T>(self))).source.ptr());
-    return 0;
+    return traverse_model(GetModel{}(*nb::inst_ptr<T>(self)), visit, arg);
   }
   static int clear(PyObject* self) {
-    if (nb::inst_ready(self)) {
-      PythonRegressor& phi = regressor_in(GetModel{}(*nb::inst_ptr<T>(self)));
-      phi.source = nb::none();
-      phi.callable = false;  // a collected object is never stepped again; a call would read a zero Phi
-    }
+    if (nb::inst_ready(self)) clear_model(GetModel{}(*nb::inst_ptr<T>(self)));
     return 0;
   }
   static inline PyType_Slot slots[] = {{Py_tp_traverse, reinterpret_cast<void*>(&traverse)},
@@ -166,11 +281,14 @@ struct CollectedRegressor {
 };
 
 struct ModelItself {
-  const ContinuousModel& operator()(const ContinuousModel& model) const { return model; }
+  template <class M>
+  const M& operator()(const M& model) const {
+    return model;
+  }
 };
 struct ModelOfObserver {
   template <class B>
-  const ContinuousModel& operator()(const B& bound) const {
+  const SharedContinuousModel& operator()(const B& bound) const {
     return bound.observer.model();
   }
 };
@@ -236,15 +354,18 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
   OutputArray error({n, static_cast<std::size_t>(s.ny)});
   OutputArray excitation({n, 1});
   StatusArray status(n);
-  {
+  // A Python function of the model that raises, or returns matrices of another
+  // size, stops the run: the observer is then put back as it was before it.
+  Observer before = self.observer;
+  try {
     nb::gil_scoped_release release;  // a callable regressor takes the GIL back for its calls
     auto& sample = self.sample;
     for (Index k = 0; k < samples; ++k) {
       sample.t = t_rows.row(k)(0);
       sample.u = inputs.row(k);
       sample.y = outputs.row(k);
-      // The first sample has no interval behind it, hence no midpoint.
-      if (midpoints && k > 0) {
+      // A sample with no accepted one before it ends no interval, hence has no midpoint.
+      if (midpoints && self.observer.started()) {
         if (!sample.midpoint) sample.midpoint.emplace();
         sample.midpoint->u = mid_inputs.row(k);
         sample.midpoint->y = mid_outputs.row(k);
@@ -257,6 +378,9 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
       Eigen::Map<Eigen::VectorXd>(error.data + k * s.ny, s.ny) = self.observer.output_error();
       excitation.data[k] = excitation_of(self.observer);
     }
+  } catch (...) {
+    self.observer = std::move(before);
+    throw;
   }
   RunResult result;
   result.state = nb::cast(x.array);
@@ -281,8 +405,10 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
       .def("run", &continuous_run<Observer>, nb::arg("t"), nb::arg("U"), nb::arg("Y"),
            nb::arg("U_mid").none() = nb::none(), nb::arg("Y_mid").none() = nb::none(),
            "Every sample: t (N,), U (N x nu), Y (N x ny), and the midpoint signals of the interval ending\n"
-           "at each sample (row 0 unused), in C++ with the GIL released (a callable regressor takes it back\n"
-           "for its calls). Returns a RunResult; diagnostics: excitation_level.")
+           "at each sample (unused where no sample was accepted before, as row 0 of a new observer), in C++\n"
+           "with the GIL released (a callable regressor takes it back for its calls). Returns a RunResult;\n"
+           "diagnostics: excitation_level. An exception from a Python function of the model stops the run\n"
+           "and leaves the observer as it was before it.")
       .def(
           "reset",
           [](B& self, nb::handle eta0, nb::handle theta0) {
@@ -329,12 +455,14 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
       .def("__deepcopy__", [](const B& self, nb::handle) { return B(self.observer); }, nb::arg("memo"))
       .def("__getstate__",
            [](const B& self) {
-             return nb::make_tuple(to_dict(adaptobs::snapshot(self.observer)), self.observer.model().regressor_function().source);
+             const SharedContinuousModel& model = self.observer.model();
+             return nb::make_tuple(to_dict(adaptobs::snapshot(self.observer)), model.regressor_function().source,
+                                   model.is_time_invariant() ? nb::none() : model.matrices_function());
            })
-      .def("__setstate__", [construct](B& self, const std::tuple<nb::object, nb::object>& state) {
+      .def("__setstate__", [construct](B& self, const std::tuple<nb::object, nb::object, nb::object>& state) {
         const Snapshot<double> s = from_dict(std::get<0>(state));
         detail::require_snapshot_type<Observer>(s);
-        Observer observer = construct(s, std::get<1>(state));
+        Observer observer = construct(s, model_of(s, std::get<1>(state), std::get<2>(state)));
         adaptobs::restore(observer, s);
         new (&self) B(std::move(observer));
       });
@@ -365,6 +493,46 @@ void bind_continuous_observers(nb::module_& m) {
       .def_prop_ro("C", [](const ContinuousModel& self) { return Eigen::MatrixXd(self.system().C); })
       .def_prop_ro("Phi", [](const ContinuousModel& self) { return self.regressor_function().source; },
                    "the regressor as given: the array or the callable");
+
+  nb::class_<SharedContinuousModel>(
+      m, "ContinuousLtvModel", nb::type_slots(CollectedRegressor<SharedContinuousModel, ModelItself>::slots),
+      "Time-varying continuous model d eta/dt = A(t) eta + B(t) u + Phi theta, y = C(t) eta (Zhang 2005,\n"
+      "eq. (1)). matrices_at(t) returns the tuple (A(t), B(t), C(t)); it is called from C++ (with the GIL)\n"
+      "at every Runge-Kutta stage, about a microsecond a call, and its sizes at t = 0 are the model's.\n"
+      "Phi as for ContinuousLtiModel. Pickled with its functions, which must be picklable (module level).")
+      .def(
+          "__init__",
+          [](SharedContinuousModel* self, nb::handle matrices_at, nb::handle Phi, nb::handle np) {
+            constexpr std::string_view who = "ContinuousLtvModel";
+            PythonRegressor phi = regressor_of(Phi);
+            if (np.is_none() && phi.callable) detail::fail_argument(who, "np", "is required when Phi is a callable");
+            const Index parameters = np.is_none() ? phi.value.cols() : integer_argument(np, who, "np");
+            new (self) SharedContinuousModel(nb::borrow(matrices_at), std::move(phi), parameters, who);
+          },
+          nb::arg("matrices_at"), nb::arg("Phi"), nb::arg("np").none() = nb::none())
+      .def(
+          "at",
+          [](const SharedContinuousModel& self, double t) {
+            const ContinuousSystem<Dims>& s = self.at(t);
+            return nb::make_tuple(Eigen::MatrixXd(s.A), Eigen::MatrixXd(s.B), Eigen::MatrixXd(s.C));
+          },
+          nb::arg("t"), "(A(t), B(t), C(t)).")
+      .def_prop_ro("matrices_at", [](const SharedContinuousModel& self) { return self.matrices_function(); })
+      .def_prop_ro("Phi", [](const SharedContinuousModel& self) { return self.regressor_function().source; },
+                   "the regressor as given: the array or the callable")
+      .def_prop_ro("sizes",
+                   [](const SharedContinuousModel& self) {
+                     const Sizes s = self.sizes();
+                     return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
+                   })
+      .def("__getstate__",
+           [](const SharedContinuousModel& self) {
+             return nb::make_tuple(self.matrices_function(), self.regressor_function().source, self.sizes().np);
+           })
+      .def("__setstate__", [](SharedContinuousModel& self, const std::tuple<nb::object, nb::object, Index>& state) {
+        new (&self) SharedContinuousModel(std::get<0>(state), regressor_of(std::get<1>(state)), std::get<2>(state),
+                                          "ContinuousLtvModel");
+      });
 
   nb::class_<Transform>(m, "StaticTransform",
                         "Coordinate change x = T eta with output injection K (Zhang 2005, eq. (2)).")
@@ -459,8 +627,8 @@ void bind_continuous_observers(nb::module_& m) {
       nb::arg("model"), nb::arg("transform"), nb::arg("k"), nb::arg("gamma"), nb::arg("eta0"), nb::arg("theta0"),
       nb::kw_only(), nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
       nb::arg("input") = "hold", nb::arg("output") = "linear", nb::arg("excitation_window") = 0);
-  bind_continuous_observer(bastin_gevers, [](const Snapshot<double>& s, nb::handle phi) {
-    return make_bastin_gevers_observer(model_of(s, phi), transform_of(s), field(s, "algorithm.k"),
+  bind_continuous_observer(bastin_gevers, [](const Snapshot<double>& s, SharedContinuousModel model) {
+    return make_bastin_gevers_observer(std::move(model), transform_of(s), field(s, "algorithm.k"),
                                        field(s, "law.gamma"), field(s, "eta"), field(s, "theta"), options_of(s));
   });
 
@@ -488,8 +656,8 @@ void bind_continuous_observers(nb::module_& m) {
       nb::arg("eta0"), nb::arg("theta0"), nb::kw_only(), nb::arg("substeps") = 1, nb::arg("max_step") = 0.0,
       nb::arg("max_substeps") = 1'000'000, nb::arg("input") = "hold", nb::arg("output") = "linear",
       nb::arg("excitation_window") = 0);
-  bind_continuous_observer(marino_tomei, [](const Snapshot<double>& s, nb::handle phi) {
-    return make_marino_tomei_observer(model_of(s, phi), transform_of(s), field(s, "algorithm.gamma"),
+  bind_continuous_observer(marino_tomei, [](const Snapshot<double>& s, SharedContinuousModel model) {
+    return make_marino_tomei_observer(std::move(model), transform_of(s), field(s, "algorithm.gamma"),
                                       field(s, "algorithm.k"), field(s, "law.gamma"), field(s, "eta"),
                                       field(s, "theta"), options_of(s));
   });
@@ -515,8 +683,8 @@ void bind_continuous_observers(nb::module_& m) {
       nb::arg("model"), nb::arg("transform"), nb::arg("K1"), nb::arg("gamma"), nb::arg("eta0"), nb::arg("theta0"),
       nb::kw_only(), nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
       nb::arg("input") = "hold", nb::arg("output") = "linear", nb::arg("excitation_window") = 0);
-  bind_continuous_observer(besancon, [](const Snapshot<double>& s, nb::handle phi) {
-    return make_besancon_observer(model_of(s, phi), transform_of(s), field(s, "algorithm.K1"), field(s, "law.gamma"),
+  bind_continuous_observer(besancon, [](const Snapshot<double>& s, SharedContinuousModel model) {
+    return make_besancon_observer(std::move(model), transform_of(s), field(s, "algorithm.K1"), field(s, "law.gamma"),
                                   field(s, "eta"), field(s, "theta"), options_of(s));
   });
 
@@ -541,8 +709,8 @@ void bind_continuous_observers(nb::module_& m) {
       nb::arg("model"), nb::arg("K"), nb::arg("gamma"), nb::arg("eta0"), nb::arg("theta0"), nb::kw_only(),
       nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
       nb::arg("input") = "hold", nb::arg("output") = "linear", nb::arg("excitation_window") = 0);
-  bind_continuous_observer(zhang, [](const Snapshot<double>& s, nb::handle phi) {
-    return make_zhang_continuous_observer(model_of(s, phi), field(s, "algorithm.static_transform.K"),
+  bind_continuous_observer(zhang, [](const Snapshot<double>& s, SharedContinuousModel model) {
+    return make_zhang_continuous_observer(std::move(model), field(s, "algorithm.static_transform.K"),
                                           field(s, "law.gamma"), field(s, "eta"), field(s, "theta"), options_of(s));
   });
 
@@ -570,8 +738,8 @@ void bind_continuous_observers(nb::module_& m) {
   kalman_bucy.def_prop_ro("covariance",
                           [](const ContinuousBound<KalmanBucyPy>& b) { return Eigen::MatrixXd(b.observer.covariance()); },
                           "P of [x_hat; theta_hat]");
-  bind_continuous_observer(kalman_bucy, [](const Snapshot<double>& s, nb::handle phi) {
-    return KalmanBucyPy(model_of(s, phi), field(s, "eta"), field(s, "theta"),
+  bind_continuous_observer(kalman_bucy, [](const Snapshot<double>& s, SharedContinuousModel model) {
+    return KalmanBucyPy(std::move(model), field(s, "eta"), field(s, "theta"),
                         {field(s, "P0"), field(s, "Q"), field(s, "R")}, options_of(s).sampling);
   });
 }

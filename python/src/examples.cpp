@@ -6,6 +6,7 @@
 
 #include "models/dey_bhasin.hpp"
 #include "models/guiro.hpp"
+#include "models/periodic_mimo.hpp"
 #include "models/satellite.hpp"
 #include "models/siso_third_order.hpp"
 
@@ -151,6 +152,59 @@ nb::dict simulate_siso(Index steps, double period, double noise, std::uint64_t s
   return d;
 }
 
+namespace periodic = adaptobs::examples::periodic;
+
+nb::dict periodic_system() {
+  nb::dict d;
+  d["matrices_at"] = nb::cpp_function(
+      [](double t) {
+        const auto s = periodic::system<double>(t);
+        return nb::make_tuple(Eigen::MatrixXd(s.A), Eigen::MatrixXd(s.B), Eigen::MatrixXd(s.C));
+      },
+      nb::arg("t"), "(A(t), B(t), C(t)) of the periodic plant");
+  d["Phi"] = nb::cpp_function([](double t) { return Eigen::MatrixXd(periodic::Regressor{}(t)); }, nb::arg("t"),
+                              "Phi(t) of the periodic plant");
+  d["period"] = periodic::period;
+  d["T"] = Eigen::MatrixXd(periodic::coordinate_change<double>());
+  d["K1"] = Eigen::MatrixXd(2.0 * Eigen::MatrixXd::Identity(2, 2));
+  d["gamma"] = Eigen::MatrixXd(10.0 * Eigen::MatrixXd::Identity(2, 2));
+  d["K"] = Eigen::MatrixXd(periodic::zhang_gain<double>());
+  d["theta"] = Eigen::VectorXd(periodic::true_parameters<double>());
+  d["x0"] = Eigen::VectorXd(periodic::initial_state<double>());
+  return d;
+}
+
+// The periodic plant sampled every `period` from t = 0, as simulate_siso.
+nb::dict simulate_periodic(Index steps, double period, double noise, std::uint64_t seed) {
+  constexpr std::string_view who = "examples.simulate_periodic";
+  detail::require(steps >= 1, who, "steps", "must be at least 1");
+  detail::require_positive(period, who, "period");
+  detail::require(noise >= 0 && std::isfinite(noise), who, "noise", "must be non-negative and finite");
+  auto plant = periodic::make_plant<double>({.period = period, .output_noise = noise, .seed = seed});
+  const auto n = static_cast<std::size_t>(steps);
+  OutputArray t({n}), u({n, 1}), y({n, 2}), u_mid({n, 1}), y_mid({n, 2}), x({n, 4});
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (Index k = 0; k < steps; ++k) {
+    if (k > 0) plant.advance();
+    const auto& sample = plant.sample();
+    t.data[k] = sample.t;
+    u.data[k] = sample.u(0);
+    Eigen::Map<Eigen::Vector2d>(y.data + 2 * k) = sample.y;
+    u_mid.data[k] = sample.midpoint ? sample.midpoint->u(0) : nan;
+    Eigen::Map<Eigen::Vector2d>(y_mid.data + 2 * k) =
+        sample.midpoint ? Eigen::Vector2d(sample.midpoint->y) : Eigen::Vector2d::Constant(nan);
+    Eigen::Map<Eigen::Vector4d>(x.data + 4 * k) = plant.state();
+  }
+  nb::dict d;
+  d["t"] = t.array;
+  d["U"] = u.array;
+  d["Y"] = y.array;
+  d["U_mid"] = u_mid.array;
+  d["Y_mid"] = y_mid.array;
+  d["X"] = x.array;
+  return d;
+}
+
 nb::dict dey_bhasin_mimo_system() {
   nb::dict d;
   d["a"] = Eigen::VectorXd(mimo::a());
@@ -213,6 +267,14 @@ void bind_examples(nb::module_& m) {
                nb::arg("noise") = 0.0, nb::arg("seed") = 1,
                "`steps` samples of it every `period` from t = 0 (the C++ plant, RK4): t, U, Y, U_mid and Y_mid\n"
                "(the signals at the midpoint of the interval ending at each sample; row 0 NaN) and X.");
+  examples.def("periodic", &periodic_system,
+               "The periodic MIMO plant of the Besancon and Zhang examples (n = 4, m = 2, p = 2, period 2 pi):\n"
+               "matrices_at(t) -> (A(t), B(t), C(t)) and Phi(t) (C++ functions, for a ContinuousLtvModel), the\n"
+               "coordinate change T to the form (8), the examples' K1, gamma and Zhang gain K, theta = (1, -2)\n"
+               "and eta(0); u = sin 0.4t.");
+  examples.def("simulate_periodic", &simulate_periodic, nb::arg("steps") = 4001, nb::arg("period") = 0.01,
+               nb::arg("noise") = 0.0, nb::arg("seed") = 1,
+               "`steps` samples of it every `period` from t = 0 (the C++ plant, RK4), as simulate_siso.");
   examples.def("dey_bhasin_mimo", &dey_bhasin_mimo_system,
                "The MIMO system of Dey & Bhasin (2022), section 5 (r = 3, q = 2, m = 2): the true a and B, the\n"
                "filter coefficients f, the initial state and estimates, k0, kmin and R of the observer.");

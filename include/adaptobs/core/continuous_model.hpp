@@ -12,6 +12,7 @@
 /// previous sample (see `core/sampled_integration.hpp` for how observers use them).
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/time_invariance.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <concepts>
@@ -83,7 +84,8 @@ void validate_regressor(const F& phi, const Sizes& s, std::string_view who) {
 
 /// A continuous-time model: `at(t)` gives \f$(A(t), B(t), C(t))\f$ and
 /// `regressor(t, u, y)` gives \f$\Phi\f$. `time_invariant` says that A, B, C are
-/// constant (Φ may still vary).
+/// constant (Φ may still vary); a model type that may hold either kind says so at
+/// run time (`is_time_invariant`, core/time_invariance.hpp).
 template <class M>
 concept ContinuousModel =
     StateSpace<typename M::Dims> &&

@@ -61,6 +61,9 @@ class ContinuousUpdate : public SizedBy<Dims> {
   [[nodiscard]] const typename Dims::Parameters& parameters() const noexcept { return self().theta_; }
   /// Time of the last accepted sample.
   [[nodiscard]] Scalar time() const noexcept { return self().integrator_.time(); }
+  /// Whether an accepted sample has set the time origin: the next sample ends an
+  /// interval (and so has a midpoint).
+  [[nodiscard]] bool started() const noexcept { return self().integrator_.started(); }
   /// Output error \f$\varepsilon(t_k) = y_k - C(t_k)\hat\eta(t_k)\f$ of the last accepted
   /// sample (0 before the first), at the estimate integrated to \f$t_k\f$ — at the
   /// first sample, the initial estimate: the error that drives the observer (its

@@ -8,6 +8,7 @@
 
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/time_invariance.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <cmath>
@@ -92,20 +93,6 @@ concept DiscreteModel = StateSpace<typename M::Dims> && requires(const M& m, Ind
   { M::time_invariant } -> std::convertible_to<bool>;
   { m.sizes() } -> std::same_as<Sizes>;
 };
-
-/// True when `model` gives the same (A, B, C) at every step: `M::time_invariant`,
-/// or, for a model type that may hold either kind (`M::time_invariant` false),
-/// its own run-time answer `model.is_time_invariant()` when it has one. An
-/// observer caches what depends on the matrices alone (A − KC) only when this holds.
-template <class M>
-[[nodiscard]] constexpr bool is_time_invariant(const M& model) {
-  if constexpr (M::time_invariant)
-    return true;
-  else if constexpr (requires { { model.is_time_invariant() } -> std::convertible_to<bool>; })
-    return model.is_time_invariant();
-  else
-    return false;
-}
 
 namespace detail {
 template <StateSpace D>

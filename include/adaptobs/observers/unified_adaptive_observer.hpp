@@ -138,7 +138,7 @@ class UnifiedAdaptiveObserver
     refresh_time_invariant_system();
     // The algorithm's own convergence conditions (form of C_o, stability, SPR, ...).
     const TransformedSystem<Dims>& so0 = system_at(Scalar(0));
-    algorithm_.check(so0, s, Model::time_invariant);
+    algorithm_.check(so0, s, is_time_invariant(model_));
     eta_ = eta0;
     theta_ = theta0;
     set_initial(eta0, theta0);
@@ -169,7 +169,7 @@ class UnifiedAdaptiveObserver
     algorithm_.regressor(so, Xi, w.Omega, w.Psi, w.R);
     law_.derivative(w.R, w.epsilon, theta, dtheta);
     /// (3a): \f$\dot\Xi = F\Xi + G\Psi\f$.
-    dt.derivative(Model::time_invariant ? f_ : w.F, Xi, w.Psi, dXi);
+    dt.derivative(is_time_invariant(model_) ? f_ : w.F, Xi, w.Psi, dXi);
     /// \f$\dot{\hat x} = A_o\hat x + \varphi + \Psi\hat\theta + L\varepsilon + \Omega\dot{\hat\theta}\f$.
     algorithm_.injection_gain(so, t, w.L);
     detail::set_product(dx, so.Ao, x);
@@ -207,7 +207,7 @@ class UnifiedAdaptiveObserver
   /// that breaks them (e.g. A − KC not Hurwitz) throws `ConfigurationError` and
   /// the observer keeps its previous K.
   void set_output_injection(const GainMatrix& K) {
-    if constexpr (Model::time_invariant) {
+    if (is_time_invariant(model_)) {
       const GainMatrix previous = algorithm_.static_transform.K();
       algorithm_.static_transform.set_output_injection(K);
       refresh_time_invariant_system();
@@ -279,18 +279,14 @@ class UnifiedAdaptiveObserver
   }
 
   const TransformedSystem<Dims>& system_at(Scalar t) const {
-    if constexpr (Model::time_invariant) {
-      (void)t;
-      return so_;
-    } else {
-      algorithm_.static_transform.apply(model_.at(t), work_.so);
-      algorithm_.dynamic_transform.filter_matrix(work_.so.Ao, work_.F);
-      return work_.so;
-    }
+    if (is_time_invariant(model_)) return so_;
+    algorithm_.static_transform.apply(model_.at(t), work_.so);
+    algorithm_.dynamic_transform.filter_matrix(work_.so.Ao, work_.F);
+    return work_.so;
   }
 
   void refresh_time_invariant_system() {
-    if constexpr (Model::time_invariant) {
+    if (is_time_invariant(model_)) {
       so_.resize(sizes_);
       algorithm_.static_transform.apply(model_.at(Scalar(0)), so_);
       f_.setZero(r_, r_);

@@ -1,0 +1,139 @@
+"""Time-varying continuous models: ContinuousLtvModel on the periodic MIMO plant
+of the Besancon and Zhang examples (Zhang 2005, Algorithms 3 and 4), against
+the C++ examples' CSV, pickled with its functions, and refused where an
+algorithm needs a constant model."""
+
+import math
+import os
+import pickle
+import subprocess
+
+import numpy as np
+import pytest
+
+import adaptobs
+from adaptobs import ConfigurationError, UpdateStatus
+
+QUADRATIC = dict(input="quadratic", output="quadratic", excitation_window=629)
+
+
+@pytest.fixture(scope="module")
+def periodic():
+    return adaptobs.examples.periodic(), adaptobs.examples.simulate_periodic(4001)
+
+
+def model(system):
+    return adaptobs.ContinuousLtvModel(system["matrices_at"], system["Phi"], np=2)
+
+
+def besancon(system):
+    transform = adaptobs.StaticTransform(system["T"], np.zeros((4, 2)))
+    return adaptobs.BesanconObserver(model(system), transform, system["K1"], system["gamma"], np.zeros(4),
+                                     np.zeros(2), **QUADRATIC)
+
+
+def zhang(system, gamma=50.0):
+    return adaptobs.ZhangContinuousObserver(model(system), system["K"], gamma * np.eye(2), np.zeros(4), np.zeros(2),
+                                            **QUADRATIC)
+
+
+def run(observer, data, n=None):
+    n = len(data["t"]) if n is None else n
+    return observer.run(data["t"][:n], data["U"][:n], data["Y"][:n], data["U_mid"][:n], data["Y_mid"][:n])
+
+
+def matrices_in_numpy(t):
+    """The plant's A(t), B, C written from its definition (examples/models/periodic_mimo.hpp)."""
+    w = 1 + 0.5 * math.sin(t)
+    Ao = np.array([[-1, 0.5 + 0.5 * math.sin(t), 1, 0], [-0.5, -1.5, 0.5 * math.cos(t), 1],
+                   [0.3, 0, -2, w], [0, -0.3, -w, -2]])
+    T = np.array([[1.0, 0, 1, 0], [0, 1, 0, -1], [0, 0, 1, 0], [0, 0, 0, 1]])
+    C = np.array([[1.0, 0, 1, 0], [0, 1, 0, -1]])
+    return np.linalg.solve(T, Ao @ T), np.array([[0.0], [1], [0], [1]]), C
+
+
+def phi_in_numpy(t):
+    return np.array([[math.sin(t), 0], [0, math.cos(0.7 * t)], [1, 0], [0, math.sin(1.3 * t)]])
+
+
+def test_the_model_gives_the_plant_s_matrices(periodic):
+    system, _ = periodic
+    m = model(system)
+    assert m.sizes == (4, 1, 2, 2)
+    for t in (0.0, 1.3, 5.0):
+        for ours, reference in zip(m.at(t), matrices_in_numpy(t)):
+            assert np.allclose(ours, reference, rtol=0, atol=1e-14)
+
+
+@pytest.mark.parametrize("make, name", [(besancon, "besancon"), (zhang, "zhang_continuous")])
+def test_the_replay_matches_the_cxx_example(tmp_path, periodic, make, name):
+    examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
+    if not examples:
+        pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
+    subprocess.run([os.path.join(examples, name), "--out", str(tmp_path)], check=True, capture_output=True)
+    table = np.genfromtxt(tmp_path / f"{name}.csv", delimiter=",", names=True)
+    system, data = periodic
+    result = run(make(system), data)
+    every = 5  # the examples record every fifth sample
+    assert np.array_equal(data["t"][::every], table["t"])
+    cxx = np.column_stack([table["thetahat_1"], table["thetahat_2"]])
+    assert np.max(np.abs(result.parameters[::every] - cxx)) <= 1e-12
+    cxx_state = np.column_stack([table[f"xhat_{i}"] for i in range(1, 5)])
+    assert np.max(np.abs(result.state[::every] - cxx_state)) <= 1e-12
+
+
+@pytest.mark.parametrize("make", [besancon, zhang])
+def test_theta_converges_on_the_periodic_plant(periodic, make):
+    system, data = periodic
+    result = run(make(system), data)
+    assert np.all(result.status == UpdateStatus.accepted)
+    assert np.linalg.norm(result.parameters[-1] - system["theta"]) < 1e-2
+    # The same observer over NumPy functions of the plant: the same estimates to rounding.
+    numpy_model = adaptobs.ContinuousLtvModel(matrices_in_numpy, phi_in_numpy, np=2)
+    observer = make(system)
+    twin = type(observer)(numpy_model, *_design_of(observer, system), **QUADRATIC)
+    assert np.max(np.abs(run(twin, data, 1000).parameters - result.parameters[:1000])) < 1e-9
+
+
+def _design_of(observer, system):
+    if isinstance(observer, adaptobs.BesanconObserver):
+        return adaptobs.StaticTransform(system["T"], np.zeros((4, 2))), system["K1"], system["gamma"], np.zeros(4), \
+            np.zeros(2)
+    return system["K"], 50.0 * np.eye(2), np.zeros(4), np.zeros(2)
+
+
+def test_pickled_with_its_functions_it_continues_bit_for_bit(periodic):
+    system, data = periodic
+    numpy_model = adaptobs.ContinuousLtvModel(matrices_in_numpy, phi_in_numpy, np=2)
+    observer = adaptobs.ZhangContinuousObserver(numpy_model, system["K"], 50.0 * np.eye(2), np.zeros(4), np.zeros(2),
+                                                **QUADRATIC)
+    run(observer, data, 300)
+    twin = pickle.loads(pickle.dumps(observer))
+    rest = [data[k][300:600] for k in ("t", "U", "Y", "U_mid", "Y_mid")]
+    assert np.array_equal(observer.run(*rest).parameters, twin.run(*rest).parameters)
+    restored_model = pickle.loads(pickle.dumps(numpy_model))
+    assert restored_model.matrices_at is matrices_in_numpy and restored_model.sizes == (4, 1, 2, 2)
+
+
+def test_refusals_name_the_argument(periodic):
+    system, data = periodic
+    with pytest.raises(TypeError, match=r"'matrices_at' must be a callable t -> \(A, B, C\)"):
+        adaptobs.ContinuousLtvModel(np.eye(4), system["Phi"], np=2)
+    with pytest.raises(TypeError, match=r"'matrices_at\(t\)' must be a tuple \(A, B, C\)"):
+        adaptobs.ContinuousLtvModel(lambda t: np.eye(4), system["Phi"], np=2)
+    # Algorithms 1 and 2 rest on an SPR transfer function: a time-varying model is refused.
+    siso = adaptobs.examples.siso()
+    ltv = adaptobs.ContinuousLtvModel(lambda t: (siso["A"], siso["B"], siso["C"]), np.zeros((3, 2)))
+    transform = adaptobs.bastin_gevers_form(siso["A"], siso["C"], [1.0, 4.0, 3.0])
+    with pytest.raises(ConfigurationError, match=r"BastinGevers.*'model' must be time invariant"):
+        adaptobs.BastinGeversObserver(ltv, transform, np.ones((3, 1)), np.eye(2), np.zeros(3), np.zeros(2))
+    # Matrices of another size at a later time: ConfigurationError from run(), the estimates kept.
+    shrinking = adaptobs.ContinuousLtvModel(
+        lambda t: matrices_in_numpy(t) if t < 0.5 else (np.eye(3), np.zeros((3, 1)), np.zeros((2, 3))),
+        phi_in_numpy, np=2)
+    observer = adaptobs.ZhangContinuousObserver(shrinking, system["K"], 50.0 * np.eye(2), np.zeros(4), np.zeros(2))
+    run(observer, data, 40)
+    theta = observer.parameters
+    with pytest.raises(ConfigurationError, match=r"'matrices_at\(t\)\[0\]' must be 4x4 \(got 3x3\)"):
+        run(observer, data, 60)
+    assert np.array_equal(observer.parameters, theta)
