@@ -7,14 +7,18 @@
 #include <adaptobs/diagnostics/fault_monitor.hpp>
 #include <adaptobs/observers/guiro.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
+#include <adaptobs/observers/takagi_sugeno.hpp>
 
 #include "models/dey_bhasin.hpp"
 #include "models/guiro.hpp"
 #include "models/satellite.hpp"
 #include "models/unified_designs.hpp"
+#include "models/wwtp.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -335,12 +339,8 @@ TEST(Snapshot, RestoredContinuousTimeObserversContinueBitForBit) {
 // the leakage K_theta: restored mid-run into an observer of other gains and
 // estimates, it continues bit for bit at every later step, samples with a lost
 // output included; the gains come back as given.
-#include <adaptobs/observers/takagi_sugeno.hpp>
 
-#include "models/wwtp.hpp"
 
-#include <cmath>
-#include <limits>
 
 namespace snapshot_test_takagi_sugeno {
 

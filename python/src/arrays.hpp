@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <complex>
 #include <stdexcept>
@@ -199,6 +200,30 @@ using OutputArray = NewArray<double>;
 struct StatusArray : NewArray<std::int8_t> {
   explicit StatusArray(std::size_t n) : NewArray<std::int8_t>({n}) {}
 };
+
+/// (nx, nu, ny, np), as the `sizes` properties give them.
+inline nb::tuple sizes_tuple(const Sizes& s) { return nb::make_tuple(s.nx, s.nu, s.ny, s.np); }
+
+/// The three matrices a Python function of a model returned, as the tuple (A, B, C).
+inline std::array<nb::object, 3> system_tuple(const nb::object& result, std::string_view who,
+                                              std::string_view name) {
+  nb::tuple abc;
+  if (!nb::try_cast(result, abc, false) || abc.size() != 3) fail_type(who, name, result, "a tuple (A, B, C)");
+  return {abc[0], abc[1], abc[2]};
+}
+
+/// Runs `loop` on `object`; if it throws (a Python function it calls raised),
+/// `object` is put back as it was before, and the exception goes on.
+template <class T, class Loop>
+void all_or_nothing(T& object, Loop&& loop) {
+  T before = object;
+  try {
+    loop();
+  } catch (...) {
+    object = std::move(before);
+    throw;
+  }
+}
 
 /// Column j of a 2-D array, as a view.
 inline nb::object column(nb::handle array, std::size_t j) {

@@ -35,7 +35,7 @@ namespace adaptobs::python {
 namespace {
 
 using Report = GuiroConvergenceReport<double>;
-using Bound = PowerBound<double>;  // of U, in the Guiro report
+using GuiroPowerBound = PowerBound<double>;  // of U, in the Guiro report
 using Conditions = SprConditions<double>;
 using Test = SprTest<double>;
 using Sweep = SprSweep<double>;
@@ -289,12 +289,12 @@ void bind_checks(nb::module_& m) {
       .value("fails", ConditionVerdict::fails)
       .value("undetermined", ConditionVerdict::undetermined);
 
-  nb::class_<Bound>(m, "PowerBound", "||U^k||_2 <= M lambda^k for every k >= 0 (the smallest M for that lambda).")
-      .def_ro("lambda_", &Bound::lambda, "the rate lambda in (rho(U), 1)")
-      .def_ro("M", &Bound::M)
-      .def_prop_ro("perturbation_margin", &Bound::perturbation_margin,
+  nb::class_<GuiroPowerBound>(m, "PowerBound", "||U^k||_2 <= M lambda^k for every k >= 0 (the smallest M for that lambda).")
+      .def_ro("lambda_", &GuiroPowerBound::lambda, "the rate lambda in (rho(U), 1)")
+      .def_ro("M", &GuiroPowerBound::M)
+      .def_prop_ro("perturbation_margin", &GuiroPowerBound::perturbation_margin,
                    "(1 - lambda) / M: the ||W(k)|| that v_{k+1} = (U + W(k)) v_k tolerates (proposition 2.1 (i))")
-      .def("__repr__", [](const Bound& b) {
+      .def("__repr__", [](const GuiroPowerBound& b) {
         std::ostringstream os;
         os.precision(17);
         os << "PowerBound(lambda_=" << b.lambda << ", M=" << b.M << ")";

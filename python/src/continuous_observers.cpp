@@ -6,6 +6,7 @@
 // matrix or a Python callable; their canonical forms and SPR gain.
 
 #include "arrays.hpp"
+#include "collected.hpp"
 #include "discrete_observer.hpp"
 #include "snapshot_dict.hpp"
 #include "snapshot_fields.hpp"
@@ -38,20 +39,22 @@ struct PythonRegressor {
   nb::object source;     // what the user gave: the array or the callable (kept for pickling)
   bool callable = false;
   bool signals = false;  // Phi(t, u, y) rather than Phi(t)
+  std::string_view model = "ContinuousLtiModel";  // the class its errors name
   mutable Eigen::MatrixXd value;
 
   const Eigen::MatrixXd& operator()(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& y) const {
     if (!callable) return value;
     nb::gil_scoped_acquire gil;
     const nb::object phi = signals ? source(t, u, y) : source(t);
-    value = matrix(phi, "ContinuousLtiModel", "Phi(t)");
+    value = matrix(phi, model, "Phi(t)");
     return value;
   }
 };
 
-PythonRegressor regressor_of(nb::handle phi) {
+PythonRegressor regressor_of(nb::handle phi, std::string_view model = "ContinuousLtiModel") {
   PythonRegressor r;
   r.source = nb::borrow(phi);
+  r.model = model;
   r.callable = PyCallable_Check(phi.ptr()) != 0;
   if (r.callable) {
     // Phi(t, u, y) when the callable takes three positional arguments; Phi(t) when
@@ -63,7 +66,7 @@ PythonRegressor regressor_of(nb::handle phi) {
       r.signals = false;
     }
   } else {
-    r.value = matrix(phi, "ContinuousLtiModel", "Phi");
+    r.value = matrix(phi, model, "Phi");
   }
   return r;
 }
@@ -75,20 +78,20 @@ using ContinuousModel = ContinuousLtiModel<Dims, PythonRegressor>;
 /// ContinuousLtvModel's Python function matrices_at(t) returns, called (with the
 /// GIL) wherever the integration needs them. Each observer owns its copy, so the
 /// matrices of the last call are cached per observer, and an observer is never
-/// stepped by two threads at once (UseFlag).
-class SharedContinuousModel : public SizedBy<Dims> {
+/// stepped by two threads at once (UseFlag). Its Python class is ContinuousLtvModel.
+class PythonContinuousModel : public SizedBy<Dims> {
  public:
   static constexpr bool time_invariant = false;
 
-  explicit SharedContinuousModel(const ContinuousModel& lti)
-      : system_(lti.system()), phi_(lti.regressor_function()), sizes_(lti.sizes()) {}
+  explicit PythonContinuousModel(const ContinuousModel& lti)
+      : system_(lti.system()), phi_(lti.regressor_function()), sizes_(lti.sizes()), varying_(false) {}
 
   /// Sizes from matrices_at(0); Φ checked at t = 0 as for a constant model.
-  SharedContinuousModel(nb::object matrices_at, PythonRegressor phi, Index np, std::string_view who)
-      : phi_(std::move(phi)), matrices_at_(std::move(matrices_at)) {
+  PythonContinuousModel(nb::object matrices_at, PythonRegressor phi, Index np, std::string_view who)
+      : phi_(std::move(phi)), matrices_at_(std::move(matrices_at)), varying_(true) {
     if (!PyCallable_Check(matrices_at_.ptr()))
       fail_type(who, "matrices_at", matrices_at_, "a callable t -> (A, B, C)");
-    const auto [A, B, C] = call(0.0, who);
+    const auto [A, B, C] = system_tuple(matrices_at_(0.0), who, "matrices_at(0)");
     system_ = {matrix(A, who, "matrices_at(0)[0]"), matrix(B, who, "matrices_at(0)[1]"),
                matrix(C, who, "matrices_at(0)[2]")};
     detail::validate_state_space(system_, who);
@@ -97,7 +100,7 @@ class SharedContinuousModel : public SizedBy<Dims> {
     detail::validate_regressor<Dims>(phi_, sizes_, who);
   }
 
-  [[nodiscard]] bool is_time_invariant() const noexcept { return !matrices_at_.is_valid() || matrices_at_.is_none(); }
+  [[nodiscard]] bool is_time_invariant() const noexcept { return !varying_; }
 
   /// (A(t), B(t), C(t)); matrices of other sizes than at t = 0, or not finite,
   /// raise ConfigurationError naming matrices_at(t).
@@ -105,17 +108,16 @@ class SharedContinuousModel : public SizedBy<Dims> {
     if (is_time_invariant()) return system_;
     constexpr std::string_view who = "ContinuousLtvModel";
     nb::gil_scoped_acquire gil;
-    const auto [A, B, C] = call(t, who);
-    read_matrix(A, sizes_.nx, sizes_.nx, who, "matrices_at(t)[0]", system_.A);
-    read_matrix(B, sizes_.nx, sizes_.nu, who, "matrices_at(t)[1]", system_.B);
-    read_matrix(C, sizes_.ny, sizes_.nx, who, "matrices_at(t)[2]", system_.C);
+    const auto [A, B, C] = system_tuple(matrices_at_(t), who, "matrices_at(t)");
+    read_as_at_zero(A, sizes_.nx, sizes_.nx, "matrices_at(t)[0]", system_.A);
+    read_as_at_zero(B, sizes_.nx, sizes_.nu, "matrices_at(t)[1]", system_.B);
+    read_as_at_zero(C, sizes_.ny, sizes_.nx, "matrices_at(t)[2]", system_.C);
     if (!detail::finite_entries(system_.A) || !detail::finite_entries(system_.B) || !detail::finite_entries(system_.C))
       detail::fail_argument(who, "matrices_at(t)", "returned matrices that are not finite at t = " + std::to_string(t));
     return system_;
   }
-  [[nodiscard]] const ContinuousSystem<Dims>& system() const noexcept { return system_; }
   [[nodiscard]] decltype(auto) regressor(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& y) const {
-    return detail::evaluate_regressor<Dims>(phi_, t, u, y, sizes_, "ContinuousLtiModel");
+    return detail::evaluate_regressor<Dims>(phi_, t, u, y, sizes_, phi_.model);
   }
   [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }
   [[nodiscard]] const PythonRegressor& regressor_function() const noexcept { return phi_; }
@@ -140,38 +142,44 @@ class SharedContinuousModel : public SizedBy<Dims> {
     }
   }
 
-  /// The references to Python objects it holds, for the garbage collector.
-  int traverse(visitproc visit, void* arg) const {
-    Py_VISIT(phi_.source.ptr());
-    if (matrices_at_.is_valid()) Py_VISIT(matrices_at_.ptr());
+  /// The references to Python objects it holds, for the garbage collector (collected.hpp).
+  friend int traverse_python(const PythonContinuousModel& model, visitproc visit, void* arg) {
+    Py_VISIT(model.phi_.source.ptr());
+    if (model.varying_) Py_VISIT(model.matrices_at_.ptr());
     return 0;
   }
-  void clear() {
-    phi_.source = nb::none();
-    phi_.callable = false;  // a collected object is never stepped again; a call would read a zero Phi
-    if (!is_time_invariant()) matrices_at_ = nb::none();
+  friend void clear_python(const PythonContinuousModel& model) {
+    // Part of the model's configuration, const to the library: only the collector
+    // changes it, to break a cycle of an object about to go, never stepped again.
+    auto& self = const_cast<PythonContinuousModel&>(model);
+    self.phi_.source = nb::none();
+    self.phi_.callable = false;
+    if (self.varying_) self.matrices_at_ = nb::none();
   }
 
  private:
-  std::tuple<nb::object, nb::object, nb::object> call(double t, std::string_view who) const {
-    const nb::object result = matrices_at_(t);
-    nb::tuple abc;
-    if (!nb::try_cast(result, abc, false) || abc.size() != 3)
-      fail_type(who, "matrices_at(t)", result, "a tuple (A, B, C)");
-    return {abc[0], abc[1], abc[2]};
+  // A matrix as matrix() reads it at t = 0 (a vector as a column), into `out`.
+  static void read_as_at_zero(nb::handle obj, Index rows, Index cols, std::string_view name, Eigen::MatrixXd& out) {
+    constexpr std::string_view who = "ContinuousLtvModel";
+    const Array a = real_array(obj, who, name);
+    const MatrixView v = view(a, who, name);
+    if (v.rows() != rows || v.cols() != cols)
+      fail_dimensions(who, name, std::to_string(rows) + "x" + std::to_string(cols), shape_of(a));
+    out = v;
   }
 
   mutable ContinuousSystem<Dims> system_;  // of a time-varying model: the matrices of the last call
   PythonRegressor phi_;
-  nb::object matrices_at_;  // null or None: time invariant
+  nb::object matrices_at_;  // of a time-varying model
   Sizes sizes_{};
+  bool varying_;
 };
 
-using BastinGeversPy = BastinGeversObserver<SharedContinuousModel>;
-using MarinoTomeiPy = MarinoTomeiObserver<SharedContinuousModel>;
-using BesanconPy = BesanconObserver<SharedContinuousModel>;
-using ZhangPy = ZhangContinuousObserver<SharedContinuousModel>;
-using KalmanBucyPy = AugmentedKalmanBucyFilter<SharedContinuousModel>;
+using BastinGeversPy = BastinGeversObserver<PythonContinuousModel>;
+using MarinoTomeiPy = MarinoTomeiObserver<PythonContinuousModel>;
+using BesanconPy = BesanconObserver<PythonContinuousModel>;
+using ZhangPy = ZhangContinuousObserver<PythonContinuousModel>;
+using KalmanBucyPy = AugmentedKalmanBucyFilter<PythonContinuousModel>;
 
 // The excitation level of the last window, NaN while unknown (the filter has none).
 template <class Observer>
@@ -220,17 +228,18 @@ UnifiedObserverOptions options_of(const Snapshot<double>& s) {
 }
 
 // The model of a snapshot's "model." fields, around the pickled Φ and matrices_at.
-SharedContinuousModel model_of(const Snapshot<double>& s, nb::handle phi, nb::handle matrices_at) {
+PythonContinuousModel model_of(const Snapshot<double>& s, nb::handle phi, nb::handle matrices_at) {
   if (integer(s, "model.time_invariant") != 0)
-    return SharedContinuousModel(ContinuousModel(field(s, "model.A"), field(s, "model.B"), field(s, "model.C"),
+    return PythonContinuousModel(ContinuousModel(field(s, "model.A"), field(s, "model.B"), field(s, "model.C"),
                                                  regressor_of(phi), integer(s, "model.np")));
-  return SharedContinuousModel(nb::borrow(matrices_at), regressor_of(phi), integer(s, "model.np"), "restore");
+  return PythonContinuousModel(nb::borrow(matrices_at), regressor_of(phi, "ContinuousLtvModel"), integer(s, "model.np"),
+                               "restore");
 }
 
-SharedContinuousModel continuous_model(nb::handle model, std::string_view who) {
+PythonContinuousModel continuous_model(nb::handle model, std::string_view who) {
   ContinuousModel* lti = nullptr;
-  if (nb::try_cast<ContinuousModel*>(model, lti, false) && lti) return SharedContinuousModel(*lti);
-  return object_argument<SharedContinuousModel>(model, who, "model",
+  if (nb::try_cast<ContinuousModel*>(model, lti, false) && lti) return PythonContinuousModel(*lti);
+  return object_argument<PythonContinuousModel>(model, who, "model",
                                                 "an adaptobs.ContinuousLtiModel or ContinuousLtvModel");
 }
 
@@ -242,56 +251,16 @@ Transform transform_of(const Snapshot<double>& s) {
   return Transform(field(s, "algorithm.static_transform.T"), field(s, "algorithm.static_transform.K"));
 }
 
-// Cyclic garbage collection. A model (and so an observer) holds its Python
-// regressor and matrices function; one defined at module level holds that
-// module's globals, where the observer may itself be stored. Python can break
-// such a cycle only if the C++ objects report the references they hold
-// (tp_traverse) and drop them on request (tp_clear); otherwise it lives until
-// exit, when nanobind reports it.
-int traverse_model(const ContinuousModel& model, visitproc visit, void* arg) {
+// The references a ContinuousLtiModel holds, for the garbage collector (collected.hpp).
+int traverse_python(const ContinuousModel& model, visitproc visit, void* arg) {
   Py_VISIT(model.regressor_function().source.ptr());
   return 0;
 }
-void clear_model(const ContinuousModel& model) {
-  // The regressor is part of the model's configuration, const to the library:
-  // only the collector changes it, to break a cycle of an object about to go.
-  auto& phi = const_cast<PythonRegressor&>(model.regressor_function());
+void clear_python(const ContinuousModel& model) {
+  auto& phi = const_cast<PythonRegressor&>(model.regressor_function());  // as PythonContinuousModel's
   phi.source = nb::none();
   phi.callable = false;
 }
-int traverse_model(const SharedContinuousModel& model, visitproc visit, void* arg) {
-  return model.traverse(visit, arg);
-}
-void clear_model(const SharedContinuousModel& model) { const_cast<SharedContinuousModel&>(model).clear(); }
-
-template <class T, class GetModel>
-struct CollectedRegressor {
-  static int traverse(PyObject* self, visitproc visit, void* arg) {
-    Py_VISIT(Py_TYPE(self));
-    if (!nb::inst_ready(self)) return 0;
-    return traverse_model(GetModel{}(*nb::inst_ptr<T>(self)), visit, arg);
-  }
-  static int clear(PyObject* self) {
-    if (nb::inst_ready(self)) clear_model(GetModel{}(*nb::inst_ptr<T>(self)));
-    return 0;
-  }
-  static inline PyType_Slot slots[] = {{Py_tp_traverse, reinterpret_cast<void*>(&traverse)},
-                                       {Py_tp_clear, reinterpret_cast<void*>(&clear)},
-                                       {0, nullptr}};
-};
-
-struct ModelItself {
-  template <class M>
-  const M& operator()(const M& model) const {
-    return model;
-  }
-};
-struct ModelOfObserver {
-  template <class B>
-  const SharedContinuousModel& operator()(const B& bound) const {
-    return bound.observer.model();
-  }
-};
 
 /// The Python object of a continuous-time observer, with a sample sized once.
 template <class Observer>
@@ -327,7 +296,14 @@ UpdateStatus continuous_step(ContinuousBound<Observer>& self, double t, nb::hand
     read_vector(u_mid, s.nu, who, "u_mid", mid.u);
     read_vector(y_mid, s.ny, who, "y_mid", mid.y);
   }
-  return self.observer.update(self.sample);
+  // The output error of the new sample reads C(t_k) after the integration is
+  // committed: with a Python function of the model, which may raise there, the
+  // observer is kept as it was.
+  const PythonContinuousModel& model = self.observer.model();
+  if (model.is_time_invariant() && !model.regressor_function().callable) return self.observer.update(self.sample);
+  UpdateStatus status{};
+  all_or_nothing(self.observer, [&] { status = self.observer.update(self.sample); });
+  return status;
 }
 
 template <class Observer>
@@ -356,8 +332,7 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
   StatusArray status(n);
   // A Python function of the model that raises, or returns matrices of another
   // size, stops the run: the observer is then put back as it was before it.
-  Observer before = self.observer;
-  try {
+  all_or_nothing(self.observer, [&] {
     nb::gil_scoped_release release;  // a callable regressor takes the GIL back for its calls
     auto& sample = self.sample;
     for (Index k = 0; k < samples; ++k) {
@@ -378,10 +353,7 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
       Eigen::Map<Eigen::VectorXd>(error.data + k * s.ny, s.ny) = self.observer.output_error();
       excitation.data[k] = excitation_of(self.observer);
     }
-  } catch (...) {
-    self.observer = std::move(before);
-    throw;
-  }
+  });
   RunResult result;
   result.state = nb::cast(x.array);
   result.parameters = nb::cast(theta.array);
@@ -429,12 +401,7 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
                      const double level = excitation_of(self.observer);
                      return std::isnan(level) ? std::nullopt : std::optional<double>(level);
                    })
-      .def_prop_ro(
-          "sizes",
-          [](const B& self) {
-            const Sizes s = self.observer.sizes();
-            return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
-          })
+      .def_prop_ro("sizes", [](const B& self) { return sizes_tuple(self.observer.sizes()); }, "(nx, nu, ny, np).")
       .def(
           "resynchronize",
           [](B& self) {
@@ -455,7 +422,7 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
       .def("__deepcopy__", [](const B& self, nb::handle) { return B(self.observer); }, nb::arg("memo"))
       .def("__getstate__",
            [](const B& self) {
-             const SharedContinuousModel& model = self.observer.model();
+             const PythonContinuousModel& model = self.observer.model();
              return nb::make_tuple(to_dict(adaptobs::snapshot(self.observer)), model.regressor_function().source,
                                    model.is_time_invariant() ? nb::none() : model.matrices_function());
            })
@@ -472,7 +439,7 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
 
 void bind_continuous_observers(nb::module_& m) {
   nb::class_<ContinuousModel>(m, "ContinuousLtiModel",
-                              nb::type_slots(CollectedRegressor<ContinuousModel, ModelItself>::slots),
+                              nb::type_slots(CollectedReferences<ContinuousModel, ModelItself>::slots),
                               "Continuous-time model d eta/dt = A eta + B u + Phi theta, y = C eta (Zhang 2005, eq. (1)).\n"
                               "Phi is a constant nx x np array, or a callable Phi(t) or Phi(t, u, y) returning one;\n"
                               "a callable is called from C++ at every Runge-Kutta stage (with the GIL), which costs\n"
@@ -494,44 +461,41 @@ void bind_continuous_observers(nb::module_& m) {
       .def_prop_ro("Phi", [](const ContinuousModel& self) { return self.regressor_function().source; },
                    "the regressor as given: the array or the callable");
 
-  nb::class_<SharedContinuousModel>(
-      m, "ContinuousLtvModel", nb::type_slots(CollectedRegressor<SharedContinuousModel, ModelItself>::slots),
+  nb::class_<PythonContinuousModel>(
+      m, "ContinuousLtvModel", nb::type_slots(CollectedReferences<PythonContinuousModel, ModelItself>::slots),
       "Time-varying continuous model d eta/dt = A(t) eta + B(t) u + Phi theta, y = C(t) eta (Zhang 2005,\n"
       "eq. (1)). matrices_at(t) returns the tuple (A(t), B(t), C(t)); it is called from C++ (with the GIL)\n"
       "at every Runge-Kutta stage, about a microsecond a call, and its sizes at t = 0 are the model's.\n"
       "Phi as for ContinuousLtiModel. Pickled with its functions, which must be picklable (module level).")
       .def(
           "__init__",
-          [](SharedContinuousModel* self, nb::handle matrices_at, nb::handle Phi, nb::handle np) {
+          [](PythonContinuousModel* self, nb::handle matrices_at, nb::handle Phi, nb::handle np) {
             constexpr std::string_view who = "ContinuousLtvModel";
-            PythonRegressor phi = regressor_of(Phi);
+            PythonRegressor phi = regressor_of(Phi, who);
             if (np.is_none() && phi.callable) detail::fail_argument(who, "np", "is required when Phi is a callable");
             const Index parameters = np.is_none() ? phi.value.cols() : integer_argument(np, who, "np");
-            new (self) SharedContinuousModel(nb::borrow(matrices_at), std::move(phi), parameters, who);
+            new (self) PythonContinuousModel(nb::borrow(matrices_at), std::move(phi), parameters, who);
           },
           nb::arg("matrices_at"), nb::arg("Phi"), nb::arg("np").none() = nb::none())
       .def(
           "at",
-          [](const SharedContinuousModel& self, double t) {
+          [](const PythonContinuousModel& self, double t) {
             const ContinuousSystem<Dims>& s = self.at(t);
             return nb::make_tuple(Eigen::MatrixXd(s.A), Eigen::MatrixXd(s.B), Eigen::MatrixXd(s.C));
           },
           nb::arg("t"), "(A(t), B(t), C(t)).")
-      .def_prop_ro("matrices_at", [](const SharedContinuousModel& self) { return self.matrices_function(); })
-      .def_prop_ro("Phi", [](const SharedContinuousModel& self) { return self.regressor_function().source; },
+      .def_prop_ro("matrices_at", [](const PythonContinuousModel& self) { return self.matrices_function(); })
+      .def_prop_ro("Phi", [](const PythonContinuousModel& self) { return self.regressor_function().source; },
                    "the regressor as given: the array or the callable")
-      .def_prop_ro("sizes",
-                   [](const SharedContinuousModel& self) {
-                     const Sizes s = self.sizes();
-                     return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
-                   })
+      .def_prop_ro("sizes", [](const PythonContinuousModel& self) { return sizes_tuple(self.sizes()); },
+                   "(nx, nu, ny, np).")
       .def("__getstate__",
-           [](const SharedContinuousModel& self) {
+           [](const PythonContinuousModel& self) {
              return nb::make_tuple(self.matrices_function(), self.regressor_function().source, self.sizes().np);
            })
-      .def("__setstate__", [](SharedContinuousModel& self, const std::tuple<nb::object, nb::object, Index>& state) {
-        new (&self) SharedContinuousModel(std::get<0>(state), regressor_of(std::get<1>(state)), std::get<2>(state),
-                                          "ContinuousLtvModel");
+      .def("__setstate__", [](PythonContinuousModel& self, const std::tuple<nb::object, nb::object, Index>& state) {
+        new (&self) PythonContinuousModel(std::get<0>(state), regressor_of(std::get<1>(state), "ContinuousLtvModel"),
+                                          std::get<2>(state), "ContinuousLtvModel");
       });
 
   nb::class_<Transform>(m, "StaticTransform",
@@ -606,7 +570,7 @@ void bind_continuous_observers(nb::module_& m) {
       "the excitation.";
 
   auto bastin_gevers = nb::class_<ContinuousBound<BastinGeversPy>>(
-      m, "BastinGeversObserver", nb::type_slots(CollectedRegressor<ContinuousBound<BastinGeversPy>, ModelOfObserver>::slots),
+      m, "BastinGeversObserver", nb::type_slots(CollectedReferences<ContinuousBound<BastinGeversPy>, ModelOfObserver>::slots),
       (std::string("Bastin-Gevers adaptive observer, continuous time, SISO: Algorithm 1 of the unified\n"
                    "formulation (Zhang 2005, section III-A, eq. (2)-(6)). `transform` gives the form (5)\n"
                    "(bastin_gevers_form), k the output injection (spr_injection_gain with gamma = e1), gamma\n"
@@ -627,13 +591,13 @@ void bind_continuous_observers(nb::module_& m) {
       nb::arg("model"), nb::arg("transform"), nb::arg("k"), nb::arg("gamma"), nb::arg("eta0"), nb::arg("theta0"),
       nb::kw_only(), nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
       nb::arg("input") = "hold", nb::arg("output") = "linear", nb::arg("excitation_window") = 0);
-  bind_continuous_observer(bastin_gevers, [](const Snapshot<double>& s, SharedContinuousModel model) {
+  bind_continuous_observer(bastin_gevers, [](const Snapshot<double>& s, PythonContinuousModel model) {
     return make_bastin_gevers_observer(std::move(model), transform_of(s), field(s, "algorithm.k"),
                                        field(s, "law.gamma"), field(s, "eta"), field(s, "theta"), options_of(s));
   });
 
   auto marino_tomei = nb::class_<ContinuousBound<MarinoTomeiPy>>(
-      m, "MarinoTomeiObserver", nb::type_slots(CollectedRegressor<ContinuousBound<MarinoTomeiPy>, ModelOfObserver>::slots),
+      m, "MarinoTomeiObserver", nb::type_slots(CollectedReferences<ContinuousBound<MarinoTomeiPy>, ModelOfObserver>::slots),
       (std::string("Marino-Tomei adaptive observer, continuous time, SISO: Algorithm 2 of the unified\n"
                    "formulation (Zhang 2005, section III-B, eq. (2)-(4), (7)). `transform` gives the form (7)\n"
                    "(marino_tomei_form), gamma = (1, gamma_2, ..., gamma_n) a Hurwitz polynomial, k the output\n"
@@ -656,14 +620,14 @@ void bind_continuous_observers(nb::module_& m) {
       nb::arg("eta0"), nb::arg("theta0"), nb::kw_only(), nb::arg("substeps") = 1, nb::arg("max_step") = 0.0,
       nb::arg("max_substeps") = 1'000'000, nb::arg("input") = "hold", nb::arg("output") = "linear",
       nb::arg("excitation_window") = 0);
-  bind_continuous_observer(marino_tomei, [](const Snapshot<double>& s, SharedContinuousModel model) {
+  bind_continuous_observer(marino_tomei, [](const Snapshot<double>& s, PythonContinuousModel model) {
     return make_marino_tomei_observer(std::move(model), transform_of(s), field(s, "algorithm.gamma"),
                                       field(s, "algorithm.k"), field(s, "law.gamma"), field(s, "eta"),
                                       field(s, "theta"), options_of(s));
   });
 
   auto besancon = nb::class_<ContinuousBound<BesanconPy>>(
-      m, "BesanconObserver", nb::type_slots(CollectedRegressor<ContinuousBound<BesanconPy>, ModelOfObserver>::slots),
+      m, "BesanconObserver", nb::type_slots(CollectedReferences<ContinuousBound<BesanconPy>, ModelOfObserver>::slots),
       (std::string("Besancon adaptive observer, continuous time, MIMO: Algorithm 3 of the unified formulation\n"
                    "(Zhang 2005, section III-C, eq. (2)-(4), (8)-(9)). `transform` gives the form (8)\n"
                    "(besancon_form), K1 (m x m) the gain of the measured block, gamma the adaptation gain.") +
@@ -683,13 +647,13 @@ void bind_continuous_observers(nb::module_& m) {
       nb::arg("model"), nb::arg("transform"), nb::arg("K1"), nb::arg("gamma"), nb::arg("eta0"), nb::arg("theta0"),
       nb::kw_only(), nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
       nb::arg("input") = "hold", nb::arg("output") = "linear", nb::arg("excitation_window") = 0);
-  bind_continuous_observer(besancon, [](const Snapshot<double>& s, SharedContinuousModel model) {
+  bind_continuous_observer(besancon, [](const Snapshot<double>& s, PythonContinuousModel model) {
     return make_besancon_observer(std::move(model), transform_of(s), field(s, "algorithm.K1"), field(s, "law.gamma"),
                                   field(s, "eta"), field(s, "theta"), options_of(s));
   });
 
   auto zhang = nb::class_<ContinuousBound<ZhangPy>>(
-      m, "ZhangContinuousObserver", nb::type_slots(CollectedRegressor<ContinuousBound<ZhangPy>, ModelOfObserver>::slots),
+      m, "ZhangContinuousObserver", nb::type_slots(CollectedReferences<ContinuousBound<ZhangPy>, ModelOfObserver>::slots),
       (std::string("Zhang's adaptive observer, continuous time, MIMO: Algorithm 4 of the unified formulation\n"
                    "(Zhang 2005, section III-D, eq. (10)-(15)). K makes A - K C stable (kalman_bucy_gain, for\n"
                    "instance), gamma is the adaptation gain; no coordinate change.") +
@@ -709,13 +673,13 @@ void bind_continuous_observers(nb::module_& m) {
       nb::arg("model"), nb::arg("K"), nb::arg("gamma"), nb::arg("eta0"), nb::arg("theta0"), nb::kw_only(),
       nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
       nb::arg("input") = "hold", nb::arg("output") = "linear", nb::arg("excitation_window") = 0);
-  bind_continuous_observer(zhang, [](const Snapshot<double>& s, SharedContinuousModel model) {
+  bind_continuous_observer(zhang, [](const Snapshot<double>& s, PythonContinuousModel model) {
     return make_zhang_continuous_observer(std::move(model), field(s, "algorithm.static_transform.K"),
                                           field(s, "law.gamma"), field(s, "eta"), field(s, "theta"), options_of(s));
   });
 
   auto kalman_bucy = nb::class_<ContinuousBound<KalmanBucyPy>>(
-      m, "AugmentedKalmanBucyFilter", nb::type_slots(CollectedRegressor<ContinuousBound<KalmanBucyPy>, ModelOfObserver>::slots),
+      m, "AugmentedKalmanBucyFilter", nb::type_slots(CollectedReferences<ContinuousBound<KalmanBucyPy>, ModelOfObserver>::slots),
       "Baseline: the Kalman-Bucy filter on the augmented state [x; theta] (Zhang 2005, appendix), its\n"
       "Riccati equation integrated with the estimates; a step that would leave P indefinite is rejected\n"
       "(indefinite_covariance). P0 and Q are (nx + np) x (nx + np), R is ny x ny. Sampling options as for\n"
@@ -738,7 +702,7 @@ void bind_continuous_observers(nb::module_& m) {
   kalman_bucy.def_prop_ro("covariance",
                           [](const ContinuousBound<KalmanBucyPy>& b) { return Eigen::MatrixXd(b.observer.covariance()); },
                           "P of [x_hat; theta_hat]");
-  bind_continuous_observer(kalman_bucy, [](const Snapshot<double>& s, SharedContinuousModel model) {
+  bind_continuous_observer(kalman_bucy, [](const Snapshot<double>& s, PythonContinuousModel model) {
     return KalmanBucyPy(std::move(model), field(s, "eta"), field(s, "theta"),
                         {field(s, "P0"), field(s, "Q"), field(s, "R")}, options_of(s).sampling);
   });

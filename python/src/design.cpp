@@ -65,7 +65,9 @@ void bind_design(nb::module_& m) {
         return solve_dare(matrix(A, who, "A"), matrix(B, who, "B"), matrix(Q, who, "Q"), matrix(R, who, "R"));
       },
       nb::arg("A"), nb::arg("B"), nb::arg("Q"), nb::arg("R"),
-      "Stabilizing solution of A^T X A - X - A^T X B (R + B^T X B)^-1 B^T X A + Q = 0.");
+      "Stabilizing solution of A^T X A - X - A^T X B (R + B^T X B)^-1 B^T X A + Q = 0: scaled, then\n"
+      "the structure-preserving doubling algorithm (Chu, Fan & Lin 2005) refined by Newton's method\n"
+      "(Hewer's step); refuses a solution whose relative residual exceeds 1e-10.");
   m.def(
       "solve_care",
       [](nb::handle A, nb::handle B, nb::handle Q, nb::handle R) {
@@ -73,7 +75,8 @@ void bind_design(nb::module_& m) {
         return solve_care(matrix(A, who, "A"), matrix(B, who, "B"), matrix(Q, who, "Q"), matrix(R, who, "R"));
       },
       nb::arg("A"), nb::arg("B"), nb::arg("Q"), nb::arg("R"),
-      "Stabilizing solution of A^T X + X A - X B R^-1 B^T X + Q = 0.");
+      "Stabilizing solution of A^T X + X A - X B R^-1 B^T X + Q = 0: the matrix sign function of the\n"
+      "Hamiltonian (Byers 1987), refined by Newton's method (Kleinman 1968).");
   m.def(
       "steady_state_kalman_gain",
       [](nb::handle A, nb::handle C, nb::handle Q, nb::handle R) {
@@ -99,22 +102,26 @@ void bind_design(nb::module_& m) {
         return place_output_injection(matrix(A, who, "A"), matrix(C, who, "C"), complex_vector(poles, who, "poles"));
       },
       nb::arg("A"), nb::arg("C"), nb::arg("poles"),
-      "Gain L such that A - L C has the spectrum `poles` (closed under conjugation); refuses an\n"
-      "unobservable pair or a placement it cannot verify.");
+      "Gain L such that A - L C has the spectrum `poles` (closed under conjugation), by Sylvester's\n"
+      "equation X A - F X = G C, L = X^-1 G (Bhattacharyya & de Souza 1982); refuses an unobservable\n"
+      "pair or a placement it cannot verify.");
   m.def(
       "place_state_feedback",
       [](nb::handle A, nb::handle B, nb::handle poles) {
         constexpr std::string_view who = "place_state_feedback";
         return place_state_feedback(matrix(A, who, "A"), matrix(B, who, "B"), complex_vector(poles, who, "poles"));
       },
-      nb::arg("A"), nb::arg("B"), nb::arg("poles"), "Gain K such that A - B K has the spectrum `poles`.");
+      nb::arg("A"), nb::arg("B"), nb::arg("poles"),
+      "Gain K such that A - B K has the spectrum `poles`: the dual of place_output_injection.");
   m.def(
       "discretize_zoh",
       [](nb::handle A, nb::handle B, nb::handle ts) {
         constexpr std::string_view who = "discretize_zoh";
         return discretize_zoh(matrix(A, who, "A"), matrix(B, who, "B"), real_scalar(ts, who, "ts"));
       },
-      nb::arg("A"), nb::arg("B"), nb::arg("ts"), "Zero-order-hold discretization of (A, B) with period ts.");
+      nb::arg("A"), nb::arg("B"), nb::arg("ts"),
+      "Zero-order-hold discretization of (A, B) with period ts: Ad = exp(A ts), Bd = H B with\n"
+      "H = integral_0^ts exp(A s) ds, as Guyader & Zhang (2003, section 4) sample the satellite.");
   m.def(
       "is_schur_stable",
       [](nb::handle M, nb::handle margin) {

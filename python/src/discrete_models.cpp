@@ -38,6 +38,7 @@ PerStep per_step(nb::handle obj, std::string_view who, std::string_view name) {
   if (p.keep.ndim() != 2 && p.keep.ndim() != 3)
     fail_dimensions(who, name, "steps x rows x cols, or one rows x cols matrix for every step", shape_of(p.keep));
   p.varying = p.keep.ndim() == 3;
+  if (p.varying && p.keep.shape(0) == 0) fail_dimensions(who, name, "at least one step", shape_of(p.keep));
   return p;
 }
 
@@ -45,7 +46,7 @@ SharedDiscreteModel ltv_from_arrays(nb::handle A, nb::handle B, nb::handle C, nb
   constexpr std::string_view who = "DiscreteLtvModel";
   const Index np = integer_argument(np_arg, who, "np");
   const PerStep a = per_step(A, who, "A"), b = per_step(B, who, "B"), c = per_step(C, who, "C");
-  Index steps = 0;
+  Index steps = 0;  // none seen yet: per_step refuses an array of no steps
   for (const auto& [p, name] : {std::pair{&a, "A"}, std::pair{&b, "B"}, std::pair{&c, "C"}}) {
     if (!p->varying) continue;
     if (steps != 0 && p->steps() != steps)
@@ -53,8 +54,8 @@ SharedDiscreteModel ltv_from_arrays(nb::handle A, nb::handle B, nb::handle C, nb
     steps = p->steps();
   }
   if (steps == 0)
-    detail::fail_argument(who, "A", "B or C must be given per step (steps x rows x cols); a model with the same "
-                                    "matrices at every step is a DiscreteLtiModel");
+    detail::fail_argument(who, "A", "(or B or C) must be given per step (steps x rows x cols); a model with the "
+                                    "same matrices at every step is a DiscreteLtiModel");
   SharedDiscreteModel::Systems systems;
   systems.reserve(static_cast<std::size_t>(steps));
   for (Index k = 0; k < steps; ++k) systems.push_back({a.at(k), b.at(k), c.at(k)});
@@ -68,12 +69,9 @@ SharedDiscreteModel ltv_from_function(nb::handle matrices_at, nb::handle steps_a
   if (!PyCallable_Check(matrices_at.ptr())) fail_type(who, "matrices_at", matrices_at, "a callable k -> (A, B, C)");
   SharedDiscreteModel::Systems systems;
   for (Index k = 0; k < steps; ++k) {
-    const nb::object result = matrices_at(k);
     const std::string name = "matrices_at(" + std::to_string(k) + ")";
-    nb::tuple abc;
-    if (!nb::try_cast(result, abc, false) || abc.size() != 3) fail_type(who, name, result, "a tuple (A, B, C)");
-    systems.push_back({matrix(abc[0], who, name + "[0]"), matrix(abc[1], who, name + "[1]"),
-                       matrix(abc[2], who, name + "[2]")});
+    const auto [A, B, C] = system_tuple(matrices_at(k), who, name);
+    systems.push_back({matrix(A, who, name + "[0]"), matrix(B, who, name + "[1]"), matrix(C, who, name + "[2]")});
   }
   return SharedDiscreteModel(std::move(systems), np, who);
 }
@@ -88,8 +86,6 @@ nb::object stacked(const SharedDiscreteModel& model, Index rows, Index cols, Get
         out.data + k * static_cast<std::size_t>(rows * cols), rows, cols) = get(model.systems()[k]);
   return nb::cast(out.array);
 }
-
-nb::tuple sizes_tuple(const Sizes& s) { return nb::make_tuple(s.nx, s.nu, s.ny, s.np); }
 
 }  // namespace
 
@@ -122,7 +118,8 @@ void bind_discrete_models(nb::module_& m) {
       "0 ... N-1. Each of A, B, C is N x rows x cols (one matrix per step) or rows x cols (the same at\n"
       "every step); at least one varies. The matrices are copied once, when the model is built, and\n"
       "shared by the observers built on it. An update beyond step N-1 raises ConfigurationError and\n"
-      "changes nothing.")
+      "changes nothing. The step is the observer's count of accepted samples: a sample rejected as\n"
+      "not finite does not advance it, so mark a lost output with `present` (a time update), not NaN.")
       .def("__init__",
            [](SharedDiscreteModel* self, nb::handle A, nb::handle B, nb::handle C, nb::handle np) {
              new (self) SharedDiscreteModel(ltv_from_arrays(A, B, C, np));

@@ -26,8 +26,7 @@ using System = DiscreteSystem<Dims>;
 
 class SharedDiscreteModel : public SizedBy<Dims> {
  public:
-  /// Either kind, known at run time (`is_time_invariant`); the observers check
-  /// each step's matrices (free here: they were checked once at construction).
+  /// Either kind, known at run time (`is_time_invariant`).
   static constexpr bool time_invariant = false;
   using Systems = std::vector<System>;
 
@@ -75,13 +74,19 @@ class SharedDiscreteModel : public SizedBy<Dims> {
     archive("A", stacked.A);
     archive("B", stacked.B);
     archive("C", stacked.C);
-    if constexpr (Archive::reading) self.systems_ = std::make_shared<const Systems>(stacked.unstacked(self.sizes()));
+    if constexpr (Archive::reading) {
+      detail::require(detail::finite_entries(stacked.A) && detail::finite_entries(stacked.B) &&
+                          detail::finite_entries(stacked.C),
+                      "restore", "snapshot", "holds model matrices that are not finite");
+      self.systems_ = std::make_shared<const Systems>(stacked.unstacked(self.sizes()));
+    }
   }
 
   /// The model a snapshot's fields under `prefix` ("model." in an observer's) describe.
   static SharedDiscreteModel of_snapshot(const Snapshot<double>& s, const std::string& prefix) {
     const Index steps = integer(s, prefix + "steps");
     const Index np = integer(s, prefix + "np");
+    if (steps < 0) detail::fail_argument("restore", "snapshot", "holds a negative number of model steps");
     const Stacked stacked{field(s, prefix + "A"), field(s, prefix + "B"), field(s, prefix + "C")};
     const Index nx = stacked.A.rows();
     const Index count = std::max<Index>(steps, 1);

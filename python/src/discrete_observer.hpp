@@ -15,11 +15,14 @@
 #include <nanobind/nanobind.h>
 #include <nanobind/eigen/dense.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
 
 #include <array>
+#include <concepts>
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace adaptobs::python {
@@ -211,7 +214,9 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
   OutputArray error({n, static_cast<std::size_t>(s.ny)});
   OutputArray diagnostics({n, D::names.size()});
   StatusArray status(n);
-  {
+  // A Python function of the model that raises (a Takagi-Sugeno premise
+  // function) stops the run and leaves the observer as it was before it.
+  all_or_nothing(self.observer, [&] {
     nb::gil_scoped_release release;
     Bound<Observer>& b = self;
     auto& sample = b.sample;
@@ -236,7 +241,7 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
       D::record(b.observer, values.data());
       for (std::size_t j = 0; j < D::names.size(); ++j) diagnostics.data[k * D::names.size() + j] = values[j];
     }
-  }
+  });
   RunResult result;
   result.state = nb::cast(x.array);
   result.parameters = nb::cast(theta.array);
@@ -247,11 +252,21 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
   return result;
 }
 
+/// What an observer's model holds beyond numbers: nothing, unless it says so.
+struct NoPythonPart {
+  template <class Observer>
+  nb::object operator()(const Observer&) const {
+    return nb::none();
+  }
+};
+
 /// The methods and properties every discrete observer has. `construct` builds
 /// an observer of the snapshot's configuration, which `restore` then fills:
-/// what unpickling needs.
-template <class Observer, class Construct>
-void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construct) {
+/// what unpickling needs. `python_part(observer)` is what pickling carries
+/// beside the snapshot (a model's Python function), given back to
+/// `construct(snapshot, python_part)`.
+template <class Observer, class Construct, class PythonPart = NoPythonPart>
+void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construct, PythonPart python_part = {}) {
   using B = Bound<Observer>;
   cls.def(
          "update",
@@ -307,13 +322,7 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
                    "Output error of the last accepted update (absent channels zero).")
       .def_prop_ro("step", [](const B& self) { return self.observer.step(); },
                    "Number of accepted samples since construction or the last reset.")
-      .def_prop_ro(
-          "sizes",
-          [](const B& self) {
-            const Sizes s = self.observer.sizes();
-            return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
-          },
-          "(nx, nu, ny, np).")
+      .def_prop_ro("sizes", [](const B& self) { return sizes_tuple(self.observer.sizes()); }, "(nx, nu, ny, np).")
       .def(
           "snapshot", [](const B& self) { return to_dict(adaptobs::snapshot(self.observer)); },
           "The whole internal state as a dict of arrays (type, version, matrices, integers).")
@@ -328,11 +337,19 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
           "or configuration raises ConfigurationError and changes nothing.")
       .def("__copy__", [](const B& self) { return B(self.observer); })
       .def("__deepcopy__", [](const B& self, nb::handle) { return B(self.observer); }, nb::arg("memo"))
-      .def("__getstate__", [](const B& self) { return to_dict(adaptobs::snapshot(self.observer)); })
-      .def("__setstate__", [construct](B& self, nb::handle state) {
-        const Snapshot<double> s = from_dict(state);
+      .def("__getstate__",
+           [python_part](const B& self) {
+             return nb::make_tuple(to_dict(adaptobs::snapshot(self.observer)), python_part(self.observer));
+           })
+      .def("__setstate__", [construct](B& self, const std::tuple<nb::object, nb::object>& state) {
+        const Snapshot<double> s = from_dict(std::get<0>(state));
         detail::require_snapshot_type<Observer>(s);
-        Observer observer = construct(s);
+        Observer observer = [&] {
+          if constexpr (std::invocable<Construct, const Snapshot<double>&, nb::handle>)
+            return construct(s, std::get<1>(state));
+          else
+            return construct(s);
+        }();
         adaptobs::restore(observer, s);
         new (&self) B(std::move(observer));
       });

@@ -88,7 +88,7 @@ nb::dict guiro_system() {
   return d;
 }
 
-// `samples` samples of the paper's example, regular period T: Y, Psi (H_k, N x 2 x 1) and X.
+// `samples` samples of the paper's example, regular period T: Y, Psi (Psi_k = E H_k, N x 2 x 1) and X.
 nb::dict simulate_guiro(Index samples) {
   detail::require(samples >= 0, "examples.simulate_guiro", "samples", "must be non-negative");
   auto plant = guiro::make_plant();
@@ -258,7 +258,8 @@ void bind_examples(nb::module_& m) {
                "interval and its limit Hbar,\n"
                "the requested poles and the printed gains (Gamma with its decimal point corrected).");
   examples.def("simulate_guiro", &simulate_guiro, nb::arg("samples") = 60,
-               "`samples` noise-free samples: Y, Psi (the interval regressors H_k) and the true states X.");
+               "`samples` noise-free samples: Y, Psi (Psi_k = E H_k, the regressor of each interval as the\n"
+               "observer takes it) and the true states X.");
   examples.def("siso", &siso_system,
                "The third-order SISO plant of the unified formulation's examples (Zhang 2005 prints none):\n"
                "A, B, C, the true theta = (2, -1) and eta(0); Phi(t) = [[sin t, 0], [cos 1.7t, 1], [0, sin 0.6t]]\n"

@@ -297,7 +297,8 @@ void bind_fault_detection(nb::module_& m) {
   nb::class_<Cusum> cusum(m, "CusumDetector",
                           "Two-sided CUSUM on the normalized deviations z = (v - nominal) / scale, per component:\n"
                           "g+ = max(0, g+ + z - drift), g- = max(0, g- - z - drift); alarm when the largest exceeds\n"
-                          "the threshold (Page 1954; thresholds from Siegmund's approximation, calibrate_cusum).");
+                          "the threshold (Page 1954; Basseville & Nikiforov 1993, ch. 2; thresholds from Siegmund's\n"
+                          "1985 approximation, calibrate_cusum).");
   cusum.def(
       "__init__",
       [](Cusum* self, nb::handle nominal, nb::handle scale, nb::handle drift, nb::handle threshold,
@@ -320,7 +321,8 @@ void bind_fault_detection(nb::module_& m) {
 
   nb::class_<Glr> glr(m, "GlrDetector",
                       "Windowed GLR test for a mean change of unknown size on the normalized deviations:\n"
-                      "g = max over the last `window` evaluations m of (sum of z)^2 / (2 m), per component.");
+                      "g = max over the last `window` evaluations m of (sum of z)^2 / (2 m), per component\n"
+                      "(Basseville & Nikiforov 1993, ch. 2; Lai 1995).");
   glr.def(
       "__init__",
       [](Glr* self, nb::handle nominal, nb::handle scale, nb::handle window, nb::handle threshold,

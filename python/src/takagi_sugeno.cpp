@@ -7,6 +7,7 @@
 // adaptobs.examples.
 
 #include "arrays.hpp"
+#include "collected.hpp"
 #include "discrete_observer.hpp"
 #include "snapshot_dict.hpp"
 #include "snapshot_fields.hpp"
@@ -43,8 +44,7 @@ namespace {
 /// A new float64 NumPy array holding v: NumPy's copy of a cached array of v's
 /// length, filled through the buffer protocol. Cheaper than the general
 /// conversion (numpy.asarray of an exported buffer), which an update would pay
-/// three times. With it the call costs about 1.5 us an update beyond the
-/// callable's own time (the waste water plant, run()).
+/// three times.
 nb::object fresh_array(const Eigen::VectorXd& v, nb::object& pattern) {
   if (!pattern.is_valid()) pattern = nb::cast(Eigen::VectorXd(Eigen::VectorXd::Zero(v.size())));
   static PyObject* const copy = PyUnicode_InternFromString("copy");
@@ -210,44 +210,18 @@ TsObserver observer_of(const Snapshot<double>& s, nb::handle premises) {
   return TsObserver(std::move(model), gains, field(s, "x").reshaped(), field(s, "theta").reshaped());
 }
 
-// --- Cyclic garbage collection -------------------------------------------------
-// A model (and so an observer) holds its Python premise function, which holds its
-// module's globals, where the model may itself be stored. Python breaks such a
-// cycle only if the C++ object reports the reference it holds (tp_traverse) and
-// drops it on request (tp_clear).
+// --- Cyclic garbage collection (collected.hpp) -----------------------------------
 
-PythonPremises& premises_in(const TsModel& model) {
-  // The premise function is part of the model's configuration, const to the
-  // library: only the collector changes it, to break a cycle of an object about to go.
-  return const_cast<PythonPremises&>(model.premise_function());
+int traverse_python(const TsModel& model, visitproc visit, void* arg) {
+  Py_VISIT(model.premise_function().source.ptr());
+  return 0;
 }
-
-template <class T, class GetModel>
-struct CollectedPremises {
-  static int traverse(PyObject* self, visitproc visit, void* arg) {
-    Py_VISIT(Py_TYPE(self));
-    if (!nb::inst_ready(self)) return 0;
-    Py_VISIT(premises_in(GetModel{}(*nb::inst_ptr<T>(self))).source.ptr());
-    return 0;
-  }
-  static int clear(PyObject* self) {
-    if (nb::inst_ready(self)) {
-      PythonPremises& z = premises_in(GetModel{}(*nb::inst_ptr<T>(self)));
-      z.source = nb::none();  // a collected object is never stepped again
-    }
-    return 0;
-  }
-  static inline PyType_Slot slots[] = {{Py_tp_traverse, reinterpret_cast<void*>(&traverse)},
-                                       {Py_tp_clear, reinterpret_cast<void*>(&clear)},
-                                       {0, nullptr}};
-};
-
-struct ModelItself {
-  const TsModel& operator()(const TsModel& model) const { return model; }
-};
-struct ModelOfObserver {
-  const TsModel& operator()(const Bound<TsObserver>& bound) const { return bound.observer.model(); }
-};
+void clear_python(const TsModel& model) {
+  // The premise function is part of the model's configuration, const to the
+  // library: only the collector changes it, to break a cycle of an object about
+  // to go, which is never stepped again.
+  const_cast<PythonPremises&>(model.premise_function()).source = nb::none();
+}
 
 // --- The model ------------------------------------------------------------------
 
@@ -271,7 +245,7 @@ void bind_model(nb::module_& m) {
       });
 
   nb::class_<TsModel>(
-      m, "TakagiSugenoModel", nb::type_slots(CollectedPremises<TsModel, ModelItself>::slots),
+      m, "TakagiSugenoModel", nb::type_slots(CollectedReferences<TsModel, ModelItself>::slots),
       "Polytopic (Takagi-Sugeno) model with unknown parameters (Srinivasarengan et al. 2018, eq. (64)):\n"
       "  x_{k+1} = sum_i h_i(z_k, theta) (A_i x_k + B_i u_k),  y_k = C x_k,\n"
       "with r = 2^(nz + np) vertices (A_i, B_i) and the sector-nonlinearity weights h_i of eq. (10) and\n"
@@ -310,12 +284,7 @@ void bind_model(nb::module_& m) {
           },
           nb::arg("vertices"), nb::arg("C"), nb::arg("premises").none(), nb::arg("premise_bounds").none(),
           nb::arg("parameter_bounds").none())
-      .def_prop_ro("sizes",
-                   [](const TsModel& self) {
-                     const Sizes s = self.sizes();
-                     return nb::make_tuple(s.nx, s.nu, s.ny, s.np);
-                   },
-                   "(nx, nu, ny, np).")
+      .def_prop_ro("sizes", [](const TsModel& self) { return sizes_tuple(self.sizes()); }, "(nx, nu, ny, np).")
       .def_prop_ro("premise_count", &TsModel::premise_count, "nz")
       .def_prop_ro("vertex_count", &TsModel::vertex_count, "r = 2^(nz + np)")
       .def(
@@ -442,7 +411,7 @@ void bind_model(nb::module_& m) {
 void bind_observer(nb::module_& m) {
   using B = Bound<TsObserver>;
   auto cls = nb::class_<B>(
-      m, "TakagiSugenoObserver", nb::type_slots(CollectedPremises<B, ModelOfObserver>::slots),
+      m, "TakagiSugenoObserver", nb::type_slots(CollectedReferences<B, ModelOfObserver>::slots),
       "Takagi-Sugeno polytopic adaptive observer of Srinivasarengan, Ragot, Aubrun & Maquin (2018),\n"
       "eq. (65) for constant parameters, eq. (21) with Remark 5 when gains.K_theta is set:\n"
       "  x_{k+1} = sum_i h_i [A_i x_k + B_i u_k + L_i (y_k - C x_k)]\n"
@@ -480,22 +449,10 @@ void bind_observer(nb::module_& m) {
             b.observer.set_gains(ts_gains(gains, who));
           },
           nb::arg("gains"), "Gains used from the next update on (checked as at construction).");
-  bind_discrete_observer(cls, [](const Snapshot<double>& s) { return observer_of(s, nb::none()); });
   // Pickling carries the premise callable beside the snapshot, which holds numbers only.
-  nb::delattr(cls, "__getstate__");
-  nb::delattr(cls, "__setstate__");
-  cls.def("__getstate__",
-          [](const B& self) {
-            return nb::make_tuple(to_dict(adaptobs::snapshot(self.observer)),
-                                  self.observer.model().premise_function().source);
-          })
-      .def("__setstate__", [](B& self, const std::tuple<nb::object, nb::object>& state) {
-        const Snapshot<double> s = from_dict(std::get<0>(state));
-        detail::require_snapshot_type<TsObserver>(s);
-        TsObserver observer = observer_of(s, std::get<1>(state));
-        adaptobs::restore(observer, s);
-        new (&self) B(std::move(observer));
-      });
+  bind_discrete_observer(
+      cls, [](const Snapshot<double>& s, nb::handle premises) { return observer_of(s, premises); },
+      [](const TsObserver& o) { return o.model().premise_function().source; });
 }
 
 // --- The LMIs of theorems 1-2 -------------------------------------------------------

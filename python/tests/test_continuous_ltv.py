@@ -119,7 +119,7 @@ def test_refusals_name_the_argument(periodic):
     system, data = periodic
     with pytest.raises(TypeError, match=r"'matrices_at' must be a callable t -> \(A, B, C\)"):
         adaptobs.ContinuousLtvModel(np.eye(4), system["Phi"], np=2)
-    with pytest.raises(TypeError, match=r"'matrices_at\(t\)' must be a tuple \(A, B, C\)"):
+    with pytest.raises(TypeError, match=r"'matrices_at\(0\)' must be a tuple \(A, B, C\)"):
         adaptobs.ContinuousLtvModel(lambda t: np.eye(4), system["Phi"], np=2)
     # Algorithms 1 and 2 rest on an SPR transfer function: a time-varying model is refused.
     siso = adaptobs.examples.siso()
@@ -137,3 +137,31 @@ def test_refusals_name_the_argument(periodic):
     with pytest.raises(ConfigurationError, match=r"'matrices_at\(t\)\[0\]' must be 4x4 \(got 3x3\)"):
         run(observer, data, 60)
     assert np.array_equal(observer.parameters, theta)
+
+
+def test_a_function_that_raises_in_update_leaves_the_observer_as_it_was(periodic):
+    """C(t_k) is read after the integration: a matrices_at that fails there changes nothing."""
+    system, data = periodic
+
+    def failing_after(limit):
+        def matrices_at(t):
+            if t > limit:
+                raise RuntimeError("outside the function's domain")
+            return matrices_in_numpy(t)
+        return matrices_at
+
+    observer = adaptobs.ZhangContinuousObserver(adaptobs.ContinuousLtvModel(failing_after(0.1), phi_in_numpy, np=2),
+                                                system["K"], 50.0 * np.eye(2), np.zeros(4), np.zeros(2))
+    for k in range(10):
+        assert observer.update(data["t"][k], data["U"][k], data["Y"][k]) == UpdateStatus.accepted
+    before = (observer.internal_state, observer.time, observer.output_error)
+    with pytest.raises(RuntimeError, match="outside the function's domain"):
+        observer.update(data["t"][11], data["U"][11], data["Y"][11])
+    assert np.array_equal(observer.internal_state, before[0]) and observer.time == before[1]
+    assert np.array_equal(observer.output_error, before[2])
+    # A run that fails at its sixth sample leaves no trace of the first five.
+    fresh = adaptobs.ZhangContinuousObserver(adaptobs.ContinuousLtvModel(failing_after(0.05), phi_in_numpy, np=2),
+                                             system["K"], 50.0 * np.eye(2), np.zeros(4), np.zeros(2))
+    with pytest.raises(RuntimeError):
+        fresh.run(data["t"][:10], data["U"][:10], data["Y"][:10])
+    assert fresh.time == 0.0 and not fresh.internal_state.any()

@@ -162,7 +162,7 @@ def test_bad_models_name_the_argument(plant):
     A, B, C = plant["A"], plant["B"], plant["C"]
     with pytest.raises(adaptobs.ConfigurationError, match=r"'C' must be 400 steps.*\(got \(10, 1, 2\)\)"):
         adaptobs.DiscreteLtvModel(A, B, C[:10], np=2)
-    with pytest.raises(adaptobs.ConfigurationError, match=r"'A' B or C must be given per step"):
+    with pytest.raises(adaptobs.ConfigurationError, match=r"'A' \(or B or C\) must be given per step"):
         adaptobs.DiscreteLtvModel(A[0], B, C[0], np=2)
     with pytest.raises(adaptobs.ConfigurationError, match=r"'A' must be steps x rows x cols"):
         adaptobs.DiscreteLtvModel(A[None], B, C, np=2)

@@ -309,6 +309,20 @@ def test_a_nan_sample_or_premise_is_rejected_and_leaves_the_state_bit_identical(
     with pytest.raises(RuntimeError, match="no premise"):
         failing.run(data["U"], data["Y"])
     assert failing.step == 0 and np.array_equal(failing.state, [3, 0.6])
+    # One that raises at the sixth sample of a run: the first five leave no trace either.
+    calls = []
+
+    def raising_late(x, u, th):
+        calls.append(1)
+        if len(calls) > 5:
+            raise RuntimeError("no premise")
+        return np.array([u[0], x[1]])
+    late = adaptobs.TakagiSugenoObserver(
+        adaptobs.TakagiSugenoModel(wwtp["vertices"], wwtp["C"], raising_late, wwtp["premise_bounds"],
+                                   wwtp["parameter_bounds"]), paper_gains(wwtp), [3, 0.6], [0])
+    with pytest.raises(RuntimeError, match="no premise"):
+        late.run(data["U"], data["Y"])
+    assert len(calls) == 6 and late.step == 0 and np.array_equal(late.state, [3, 0.6])
 
 
 def test_a_cycle_through_the_premise_function_is_collected(wwtp):

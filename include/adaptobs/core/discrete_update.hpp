@@ -118,7 +118,8 @@ class DiscreteUpdate : public SizedBy<Dims> {
   void check_system_sizes(const System& system) const {
     using Model = std::remove_cvref_t<decltype(self().model_)>;
     if constexpr (!Dims::is_fixed && !Model::time_invariant)
-      detail::require_system_sizes(system, sizes(), Observer::name_update, "model.at(k)");
+      if (!is_time_invariant(self().model_))
+        detail::require_system_sizes(system, sizes(), Observer::name_update, "model.at(k)");
   }
 
  private:
