@@ -201,6 +201,25 @@ struct StatusArray : NewArray<std::int8_t> {
   explicit StatusArray(std::size_t n) : NewArray<std::int8_t>({n}) {}
 };
 
+/// A list of runs, each an N_r x n array (row k: the vector at sample k), as vectors.
+inline std::vector<std::vector<Eigen::VectorXd>> vector_runs(nb::handle obj, std::string_view who,
+                                                              std::string_view name) {
+  if (!nb::isinstance<nb::sequence>(obj) || nb::isinstance<nb::str>(obj))
+    fail_type(who, name, obj, "a list of arrays, one per run (N_r x n)");
+  std::vector<std::vector<Eigen::VectorXd>> runs;
+  std::size_t r = 0;
+  for (nb::handle run : obj) {
+    const std::string element = detail::element_name(name, r++);
+    const Array a = real_array(run, who, element);
+    if (a.ndim() != 2) fail_dimensions(who, element, "an N x n array", shape_of(a));
+    const MatrixView m = view(a, who, element);
+    std::vector<Eigen::VectorXd>& values = runs.emplace_back();
+    values.reserve(static_cast<std::size_t>(m.rows()));
+    for (Index k = 0; k < m.rows(); ++k) values.emplace_back(m.row(k).transpose());
+  }
+  return runs;
+}
+
 /// (nx, nu, ny, np), as the `sizes` properties give them.
 inline nb::tuple sizes_tuple(const Sizes& s) { return nb::make_tuple(s.nx, s.nu, s.ny, s.np); }
 

@@ -77,23 +77,6 @@ std::vector<Eigen::MatrixXd> regressor_sequence(nb::handle obj, Index n, Index p
   return sequence;
 }
 
-/// A list of runs, each an N_r x n array (row k: the vector at sample k), as vectors.
-std::vector<std::vector<Eigen::VectorXd>> vector_runs(nb::handle obj, std::string_view who, std::string_view name) {
-  if (!nb::isinstance<nb::sequence>(obj) || nb::isinstance<nb::str>(obj))
-    fail_type(who, name, obj, "a list of arrays, one per run (N_r x n)");
-  std::vector<std::vector<Eigen::VectorXd>> runs;
-  std::size_t r = 0;
-  for (nb::handle run : obj) {
-    const std::string element = detail::element_name(name, r++);
-    const Array a = real_array(run, who, element);
-    if (a.ndim() != 2) fail_dimensions(who, element, "an N x n array", shape_of(a));
-    const MatrixView m = view(a, who, element);
-    std::vector<Eigen::VectorXd>& values = runs.emplace_back();
-    values.reserve(static_cast<std::size_t>(m.rows()));
-    for (Index k = 0; k < m.rows(); ++k) values.emplace_back(m.row(k).transpose());
-  }
-  return runs;
-}
 
 /// A count argument that the library takes as an int.
 int int_argument(nb::handle obj, std::string_view who, std::string_view name) {

@@ -121,26 +121,36 @@ nb::dict siso_system() {
   return d;
 }
 
-// The third-order plant sampled every `period` from t = 0: t, U, Y, the signals
-// at the midpoint of the interval ending at each sample (row 0: NaN) and X.
-nb::dict simulate_siso(Index steps, double period, double noise, std::uint64_t seed) {
-  constexpr std::string_view who = "examples.simulate_siso";
+// `steps` samples of a continuous plant made by make_plant(options), every
+// `period` from t = 0: t, U, Y, the signals at the midpoint of the interval
+// ending at each sample (row 0: NaN) and the true states X.
+template <class MakePlant>
+nb::dict simulate_continuous(MakePlant make_plant, Index steps, double period, double noise, std::uint64_t seed,
+                             std::string_view who) {
   detail::require(steps >= 1, who, "steps", "must be at least 1");
   detail::require_positive(period, who, "period");
   detail::require(noise >= 0 && std::isfinite(noise), who, "noise", "must be non-negative and finite");
-  auto plant = siso::make_plant<double>({.period = period, .output_noise = noise, .seed = seed});
+  auto plant = make_plant(ContinuousPlantOptions<double>{.period = period, .output_noise = noise, .seed = seed});
+  const Sizes s = plant.model().sizes();
   const auto n = static_cast<std::size_t>(steps);
-  OutputArray t({n}), u({n, 1}), y({n, 1}), u_mid({n, 1}), y_mid({n, 1}), x({n, 3});
+  const auto nx = static_cast<std::size_t>(s.nx), nu = static_cast<std::size_t>(s.nu),
+             ny = static_cast<std::size_t>(s.ny);
+  OutputArray t({n}), u({n, nu}), y({n, ny}), u_mid({n, nu}), y_mid({n, ny}), x({n, nx});
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (Index k = 0; k < steps; ++k) {
     if (k > 0) plant.advance();
     const auto& sample = plant.sample();
     t.data[k] = sample.t;
-    u.data[k] = sample.u(0);
-    y.data[k] = sample.y(0);
-    u_mid.data[k] = sample.midpoint ? sample.midpoint->u(0) : nan;
-    y_mid.data[k] = sample.midpoint ? sample.midpoint->y(0) : nan;
-    Eigen::Map<Eigen::Vector3d>(x.data + 3 * k) = plant.state();
+    Eigen::Map<Eigen::VectorXd>(u.data + k * s.nu, s.nu) = sample.u;
+    Eigen::Map<Eigen::VectorXd>(y.data + k * s.ny, s.ny) = sample.y;
+    if (sample.midpoint) {
+      Eigen::Map<Eigen::VectorXd>(u_mid.data + k * s.nu, s.nu) = sample.midpoint->u;
+      Eigen::Map<Eigen::VectorXd>(y_mid.data + k * s.ny, s.ny) = sample.midpoint->y;
+    } else {
+      Eigen::Map<Eigen::VectorXd>(u_mid.data + k * s.nu, s.nu).setConstant(nan);
+      Eigen::Map<Eigen::VectorXd>(y_mid.data + k * s.ny, s.ny).setConstant(nan);
+    }
+    Eigen::Map<Eigen::VectorXd>(x.data + k * s.nx, s.nx) = plant.state();
   }
   nb::dict d;
   d["t"] = t.array;
@@ -150,6 +160,11 @@ nb::dict simulate_siso(Index steps, double period, double noise, std::uint64_t s
   d["Y_mid"] = y_mid.array;
   d["X"] = x.array;
   return d;
+}
+
+nb::dict simulate_siso(Index steps, double period, double noise, std::uint64_t seed) {
+  return simulate_continuous([](auto options) { return siso::make_plant<double>(options); }, steps, period, noise,
+                             seed, "examples.simulate_siso");
 }
 
 namespace periodic = adaptobs::examples::periodic;
@@ -174,35 +189,9 @@ nb::dict periodic_system() {
   return d;
 }
 
-// The periodic plant sampled every `period` from t = 0, as simulate_siso.
 nb::dict simulate_periodic(Index steps, double period, double noise, std::uint64_t seed) {
-  constexpr std::string_view who = "examples.simulate_periodic";
-  detail::require(steps >= 1, who, "steps", "must be at least 1");
-  detail::require_positive(period, who, "period");
-  detail::require(noise >= 0 && std::isfinite(noise), who, "noise", "must be non-negative and finite");
-  auto plant = periodic::make_plant<double>({.period = period, .output_noise = noise, .seed = seed});
-  const auto n = static_cast<std::size_t>(steps);
-  OutputArray t({n}), u({n, 1}), y({n, 2}), u_mid({n, 1}), y_mid({n, 2}), x({n, 4});
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (Index k = 0; k < steps; ++k) {
-    if (k > 0) plant.advance();
-    const auto& sample = plant.sample();
-    t.data[k] = sample.t;
-    u.data[k] = sample.u(0);
-    Eigen::Map<Eigen::Vector2d>(y.data + 2 * k) = sample.y;
-    u_mid.data[k] = sample.midpoint ? sample.midpoint->u(0) : nan;
-    Eigen::Map<Eigen::Vector2d>(y_mid.data + 2 * k) =
-        sample.midpoint ? Eigen::Vector2d(sample.midpoint->y) : Eigen::Vector2d::Constant(nan);
-    Eigen::Map<Eigen::Vector4d>(x.data + 4 * k) = plant.state();
-  }
-  nb::dict d;
-  d["t"] = t.array;
-  d["U"] = u.array;
-  d["Y"] = y.array;
-  d["U_mid"] = u_mid.array;
-  d["Y_mid"] = y_mid.array;
-  d["X"] = x.array;
-  return d;
+  return simulate_continuous([](auto options) { return periodic::make_plant<double>(options); }, steps, period, noise,
+                             seed, "examples.simulate_periodic");
 }
 
 nb::dict dey_bhasin_mimo_system() {
@@ -220,25 +209,57 @@ nb::dict dey_bhasin_mimo_system() {
   return d;
 }
 
-// The MIMO plant of Dey & Bhasin (2022) §5, noise free, under the rich input
-// u = (sin 0.3t + sin 1.3t, sin 0.7t + sin 2.1t) or the one that is not rich enough.
+// `steps` samples of a plant of the canonical form of Dey & Bhasin (2022),
+// noise free: U, Y and the true states X, sample k in row k.
+template <class Plant>
+nb::dict record_canonical(Plant plant, Index steps, Index nu, Index ny, Index nx) {
+  const auto n = static_cast<std::size_t>(steps);
+  OutputArray u({n, static_cast<std::size_t>(nu)}), y({n, static_cast<std::size_t>(ny)}),
+      x({n, static_cast<std::size_t>(nx)});
+  for (Index k = 0; k < steps; ++k, plant.advance()) {
+    Eigen::Map<Eigen::VectorXd>(u.data + k * nu, nu) = plant.sample().u;
+    Eigen::Map<Eigen::VectorXd>(y.data + k * ny, ny) = plant.sample().y;
+    Eigen::Map<Eigen::VectorXd>(x.data + k * nx, nx) = plant.state();
+  }
+  nb::dict d;
+  d["U"] = u.array;
+  d["Y"] = y.array;
+  d["X"] = x.array;
+  return d;
+}
+
+// The MIMO plant of §5 under the rich input u = (sin 0.3t + sin 1.3t,
+// sin 0.7t + sin 2.1t) or the one that is not rich enough.
 nb::dict simulate_dey_bhasin_mimo(Index steps, bool rich) {
   detail::require(steps >= 0, "examples.simulate_dey_bhasin_mimo", "steps", "must be non-negative");
   const auto record = [steps](auto plant) {
-    const auto n = static_cast<std::size_t>(steps);
-    OutputArray u({n, mimo::inputs}), y({n, mimo::outputs}), x({n, mimo::states});
-    for (Index k = 0; k < steps; ++k, plant.advance()) {
-      Eigen::Map<Eigen::VectorXd>(u.data + k * mimo::inputs, mimo::inputs) = plant.sample().u;
-      Eigen::Map<Eigen::VectorXd>(y.data + k * mimo::outputs, mimo::outputs) = plant.sample().y;
-      Eigen::Map<Eigen::VectorXd>(x.data + k * mimo::states, mimo::states) = plant.state();
-    }
-    nb::dict d;
-    d["U"] = u.array;
-    d["Y"] = y.array;
-    d["X"] = x.array;
-    return d;
+    return record_canonical(std::move(plant), steps, mimo::inputs, mimo::outputs, mimo::states);
   };
   return rich ? record(mimo::make_plant(mimo::RichInput{})) : record(mimo::make_plant(mimo::NotRichInput{}));
+}
+
+namespace db_siso = adaptobs::examples::dey_bhasin::siso;
+
+nb::dict dey_bhasin_siso_system() {
+  nb::dict d;
+  d["a"] = Eigen::VectorXd(db_siso::a());
+  d["B"] = Eigen::MatrixXd(db_siso::B());
+  d["f"] = Eigen::VectorXd(db_siso::f());
+  d["x0"] = Eigen::VectorXd(db_siso::x0());
+  d["x0_estimate"] = Eigen::VectorXd(db_siso::x0());
+  d["a0_estimate"] = Eigen::VectorXd(db_siso::a_hat0());
+  d["B0_estimate"] = Eigen::MatrixXd(db_siso::B_hat0());
+  d["k0"] = db_siso::k0;
+  d["kmin"] = db_siso::kmin;
+  d["R"] = Eigen::MatrixXd(Eigen::MatrixXd::Identity(1, 1));
+  d["lambda"] = db_siso::lambda;
+  return d;
+}
+
+// The SISO plant of §5 under u_t = sin 0.2t, which is not persistently exciting.
+nb::dict simulate_dey_bhasin_siso(Index steps) {
+  detail::require(steps >= 0, "examples.simulate_dey_bhasin_siso", "steps", "must be non-negative");
+  return record_canonical(db_siso::make_plant(), steps, 1, 1, db_siso::order);
 }
 
 }  // namespace
@@ -281,6 +302,12 @@ void bind_examples(nb::module_& m) {
                "filter coefficients f, the initial state and estimates, k0, kmin and R of the observer.");
   examples.def("simulate_dey_bhasin_mimo", &simulate_dey_bhasin_mimo, nb::arg("steps") = 300, nb::arg("rich") = true,
                "`steps` noise-free samples of that system: U, Y and the true states X.");
+  examples.def("dey_bhasin_siso", &dey_bhasin_siso_system,
+               "The SISO comparison of Dey & Bhasin (2022), section 5, with the observer of Suzuki, Nakamura &\n"
+               "Koga (1980): the true a and B, the filter coefficients f, the initial state and estimates, k0,\n"
+               "kmin and R of the resetting observer and the forgetting factor lambda = sqrt(0.5) of the baseline.");
+  examples.def("simulate_dey_bhasin_siso", &simulate_dey_bhasin_siso, nb::arg("steps") = 3000,
+               "`steps` noise-free samples under u_t = sin 0.2t: U, Y and the true states X.");
 }
 
 }  // namespace adaptobs::python

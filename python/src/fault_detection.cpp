@@ -32,25 +32,7 @@ using ChiSquare = ChiSquareTest<double, X>;
 using Monitor = FaultMonitor<double, X, X>;
 using MonitorDesign = FaultMonitorDesign<double, X, X>;
 using Calibration = CusumCalibration<double, X>;
-using Runs = std::vector<std::vector<Eigen::VectorXd>>;
 
-// A list of runs, each an N_r x n array (row k: the value at sample k).
-Runs runs_of(nb::handle obj, std::string_view who, std::string_view name) {
-  if (!nb::isinstance<nb::sequence>(obj) || nb::isinstance<nb::str>(obj))
-    fail_type(who, name, obj, "a list of arrays, one per run (N_r x n)");
-  Runs runs;
-  std::size_t r = 0;
-  for (nb::handle run : obj) {
-    const std::string element = detail::element_name(name, r++);
-    const Array a = real_array(run, who, element);
-    if (a.ndim() != 2) fail_dimensions(who, element, "an N x n array", shape_of(a));
-    const MatrixView m = view(a, who, element);
-    std::vector<Eigen::VectorXd>& values = runs.emplace_back();
-    values.reserve(static_cast<std::size_t>(m.rows()));
-    for (Index k = 0; k < m.rows(); ++k) values.emplace_back(m.row(k).transpose());
-  }
-  return runs;
-}
 
 // The options of a sequential test from its keywords, named as Python spells them.
 SequentialTestOptions sequential_options(nb::handle stride, nb::handle hold_off, nb::handle reanchor,
@@ -418,7 +400,7 @@ void bind_fault_detection(nb::module_& m) {
       "calibrate_cusum",
       [](nb::handle runs, nb::handle nominal, nb::handle drift, nb::handle mean_evaluations, nb::handle stride) {
         constexpr std::string_view who = "calibrate_cusum";
-        return calibrate_cusum(runs_of(runs, who, "runs"), Eigen::VectorXd(vector(nominal, who, "nominal")),
+        return calibrate_cusum(vector_runs(runs, who, "runs"), Eigen::VectorXd(vector(nominal, who, "nominal")),
                                real_scalar(drift, who, "drift"), real_scalar(mean_evaluations, who, "mean_evaluations"),
                                integer_argument(stride, who, "stride"));
       },
@@ -432,8 +414,8 @@ void bind_fault_detection(nb::module_& m) {
          nb::handle mean_samples_between_false_alarms, nb::handle stride, nb::handle window, nb::handle glr_window) {
         constexpr std::string_view who = "design_fault_monitor";
         FaultFreeRecord<double, X, X> record;
-        record.parameters = runs_of(parameters, who, "parameters");
-        record.output_errors = runs_of(output_errors, who, "output_errors");
+        record.parameters = vector_runs(parameters, who, "parameters");
+        record.output_errors = vector_runs(output_errors, who, "output_errors");
         detail::require(record.parameters.size() == record.output_errors.size(), who, "output_errors",
                         "must hold one array per run of 'parameters'");
         return design_fault_monitor(

@@ -5,10 +5,11 @@ with a callable regressor, garbage collection of a regressor cycle, and
 refusals."""
 
 import copy
-import math
 import os
+import pathlib
 import pickle
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -17,59 +18,13 @@ import adaptobs
 from adaptobs import ConfigurationError, UpdateStatus
 
 
-def regressor(t):
-    """Phi(t) of the third-order plant, with the C library's sin and cos as in C++."""
-    return np.array([[math.sin(t), 0.0], [math.cos(1.7 * t), 1.0], [0.0, math.sin(0.6 * t)]])
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "examples"))
+from unified import bastin_gevers, besancon, kalman_bucy, marino_tomei, model, regressor, run, zhang  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def siso():
     return adaptobs.examples.siso(), adaptobs.examples.simulate_siso(10001)
-
-
-def model(system, phi=regressor):
-    return adaptobs.ContinuousLtiModel(system["A"], system["B"], system["C"], phi, np=2)
-
-
-def bastin_gevers(system, **options):
-    transform = adaptobs.bastin_gevers_form(system["A"], system["C"], [1.0, 4.0, 3.0])  # (s + 1)(s + 3)
-    so = transform.apply(system["A"], system["B"], system["C"])
-    k = adaptobs.spr_injection_gain(so["Ao"], so["Co"], [1.0, 0.0, 0.0], 2.0)
-    return adaptobs.BastinGeversObserver(model(system), transform, k, 5.0 * np.eye(2), np.zeros(3), np.zeros(2),
-                                         input="quadratic", output="quadratic", **options)
-
-
-def marino_tomei(system, **options):
-    transform = adaptobs.marino_tomei_form(system["A"], system["C"])
-    so = transform.apply(system["A"], system["B"], system["C"])
-    gamma = np.array([1.0, 3.0, 2.0])
-    k = adaptobs.spr_injection_gain(so["Ao"], so["Co"], gamma, 5.0)
-    return adaptobs.MarinoTomeiObserver(model(system), transform, gamma, k, 20.0 * np.eye(2), np.zeros(3),
-                                        np.zeros(2), input="quadratic", output="quadratic", **options)
-
-
-def besancon(system, **options):
-    transform = adaptobs.besancon_form(system["A"], system["C"])
-    return adaptobs.BesanconObserver(model(system), transform, [[2.0]], 5.0 * np.eye(2), np.zeros(3), np.zeros(2),
-                                     input="quadratic", output="quadratic", **options)
-
-
-def zhang(system, **options):
-    K = adaptobs.kalman_bucy_gain(system["A"], system["C"], np.eye(3), [[0.1]]).K
-    return adaptobs.ZhangContinuousObserver(model(system), K, 20.0 * np.eye(2), np.zeros(3), np.zeros(2),
-                                            input="quadratic", output="quadratic", **options)
-
-
-def kalman_bucy(system, **options):
-    q = np.eye(5)
-    q[3:, 3:] *= 1e-2
-    return adaptobs.AugmentedKalmanBucyFilter(model(system), np.zeros(3), np.zeros(2), np.eye(5), q, [[0.1]],
-                                              input="quadratic", output="quadratic", **options)
-
-
-def run(observer, data, n=None):
-    n = len(data["t"]) if n is None else n
-    return observer.run(data["t"][:n], data["U"][:n], data["Y"][:n], data["U_mid"][:n], data["Y_mid"][:n])
 
 
 @pytest.mark.parametrize("make", [bastin_gevers, marino_tomei, besancon, zhang, kalman_bucy])

@@ -119,3 +119,24 @@ def test_bad_arguments_name_the_argument(mimo):
         with pytest.raises(ConfigurationError) as error:
             call()
         assert str(error.value).startswith(message), str(error.value)
+
+
+def test_on_the_siso_comparison_forgetting_overflows_and_resetting_does_not():
+    """Section 5, figures 4-5: u_t = sin 0.2t excites two of the four directions. Suzuki's forgetting
+    grows Gamma by 1/lambda a step until it overflows; the observer then rejects every step
+    (nonfinite_result) and keeps its last estimates. Covariance resetting keeps Gamma in [kmin, k0]."""
+    s = adaptobs.examples.dey_bhasin_siso()
+    data = adaptobs.examples.simulate_dey_bhasin_siso(3000)
+    resetting = adaptobs.DeyBhasinObserver(s["f"], s["x0_estimate"], s["a0_estimate"], s["B0_estimate"],
+                                           k0=s["k0"], kmin=s["kmin"], R=s["R"])
+    suzuki = adaptobs.SuzukiObserver(s["f"], s["x0_estimate"], s["a0_estimate"], s["B0_estimate"],
+                                     gamma0=s["k0"] * np.eye(4), R=s["R"], lambda_=s["lambda"])
+    kept = resetting.run(data["U"], data["Y"])
+    forgot = suzuki.run(data["U"], data["Y"])
+    assert np.all(kept.status == UpdateStatus.accepted)
+    assert np.all(np.isfinite(kept.parameters)) and np.all(np.isfinite(kept.state))
+    rejected = np.flatnonzero(forgot.status != UpdateStatus.accepted)
+    # Gamma ~ k0 * 2^(t/2) passes the largest double (1.8e308) near t = 2 log2(1.8e308 / 1e4) = 2021.
+    assert 1900 < rejected[0] < 2200
+    assert np.all(forgot.status[rejected[0]:] == UpdateStatus.nonfinite_result)
+    assert np.array_equal(forgot.parameters[-1], forgot.parameters[rejected[0] - 1])
