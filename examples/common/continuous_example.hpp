@@ -2,7 +2,7 @@
 // What the continuous-time examples share: the run loop, which feeds a
 // simulated plant's samples to several observers and records one CSV row every
 // `every` samples, after the update (the estimates at the sample's time), in the
-// DESIGN.md column order: t, u_*, y_*, x_*, xhat_*, theta_*, thetahat_*, then
+// column order of every example's CSV: t, u_*, y_*, x_*, xhat_*, theta_*, thetahat_*, then
 // the other observers' xhat_<suffix>_*, thetahat_<suffix>_*; the printout of
 // the final errors and of an SPR condition; and the common two-panel figure.
 

@@ -289,6 +289,9 @@ UpdateStatus continuous_step(ContinuousBound<Observer>& self, double t, nb::hand
   if (u_mid.is_none() != y_mid.is_none())
     detail::fail_argument(who, u_mid.is_none() ? "u_mid" : "y_mid", "must be given with the other midpoint signal");
   if (u_mid.is_none()) {
+    if (self.observer.started() && self.observer.sampling_options().needs_midpoint())
+      detail::fail_argument(who, "u_mid", "must be given, with y_mid: a 'quadratic' reconstruction needs the signals "
+                                          "at the midpoint of every interval");
     self.sample.midpoint.reset();
   } else {
     if (!self.sample.midpoint) self.sample.midpoint.emplace();
@@ -321,6 +324,9 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
   if (u_mid.is_none() != y_mid.is_none())
     detail::fail_argument(who, u_mid.is_none() ? "U_mid" : "Y_mid", "must be given with the other midpoint signal");
   const bool midpoints = !u_mid.is_none();
+  if (!midpoints && self.observer.sampling_options().needs_midpoint() && (samples > 1 || self.observer.started()))
+    detail::fail_argument(who, "U_mid", "must be given, with Y_mid: a 'quadratic' reconstruction needs the signals at "
+                                        "the midpoint of every interval");
   const Rows mid_inputs = midpoints ? rows(u_mid, samples, s.nu, who, "U_mid") : Rows{};
   const Rows mid_outputs = midpoints ? rows(y_mid, samples, s.ny, who, "Y_mid") : Rows{};
 

@@ -59,7 +59,7 @@ SharedDiscreteModel ltv_from_arrays(nb::handle A, nb::handle B, nb::handle C, nb
   SharedDiscreteModel::Systems systems;
   systems.reserve(static_cast<std::size_t>(steps));
   for (Index k = 0; k < steps; ++k) systems.push_back({a.at(k), b.at(k), c.at(k)});
-  return SharedDiscreteModel(std::move(systems), np, who);
+  return SharedDiscreteModel(std::move(systems), np, who, SharedDiscreteModel::element_of_arrays);
 }
 
 SharedDiscreteModel ltv_from_function(nb::handle matrices_at, nb::handle steps_arg, nb::handle np_arg) {
@@ -73,7 +73,9 @@ SharedDiscreteModel ltv_from_function(nb::handle matrices_at, nb::handle steps_a
     const auto [A, B, C] = system_tuple(matrices_at(k), who, name);
     systems.push_back({matrix(A, who, name + "[0]"), matrix(B, who, name + "[1]"), matrix(C, who, name + "[2]")});
   }
-  return SharedDiscreteModel(std::move(systems), np, who);
+  return SharedDiscreteModel(std::move(systems), np, who, [](std::size_t k, int i) {
+    return "matrices_at(" + std::to_string(k) + ")[" + std::to_string(i) + "]";
+  });
 }
 
 /// The matrices of every step as one steps × rows × cols array.
@@ -131,6 +133,8 @@ void bind_discrete_models(nb::module_& m) {
       .def(
           "at",
           [](const SharedDiscreteModel& self, Index k) {
+            if (k < 0 || k >= self.steps())
+              detail::fail_argument("DiscreteLtvModel.at", "k", "must lie in [0, " + std::to_string(self.steps()) + ")");
             const System& s = self.at(k);
             return nb::make_tuple(Eigen::MatrixXd(s.A), Eigen::MatrixXd(s.B), Eigen::MatrixXd(s.C));
           },

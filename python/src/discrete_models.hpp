@@ -34,17 +34,24 @@ class SharedDiscreteModel : public SizedBy<Dims> {
   explicit SharedDiscreteModel(const LtiModel& lti)
       : systems_(std::make_shared<const Systems>(Systems{lti.system()})), np_(lti.sizes().np), varying_(false) {}
 
-  /// Steps 0 … systems.size() − 1, each validated (finite, sizes of step 0).
-  SharedDiscreteModel(Systems systems, Index np, std::string_view who) : np_(np), varying_(true) {
+  /// Steps 0 … systems.size() − 1, each validated (finite, sizes of step 0);
+  /// `name(k, i)` is what an error calls matrix i (0: A, 1: B, 2: C) of step k.
+  template <class Name>
+  SharedDiscreteModel(Systems systems, Index np, std::string_view who, Name name) : np_(np), varying_(true) {
     if (systems.empty()) detail::fail_argument(who, "steps", "must be at least 1");
-    detail::validate_system(systems.front(), np, who, "np");
+    detail::require(np >= 0, who, "np", "must be non-negative");
     const Sizes s = sizes_of(systems.front(), np);
     for (std::size_t k = 0; k < systems.size(); ++k) {
-      detail::require_finite_shape(systems[k].A, s.nx, s.nx, who, detail::element_name("A", k));
-      detail::require_finite_shape(systems[k].B, s.nx, s.nu, who, detail::element_name("B", k));
-      detail::require_finite_shape(systems[k].C, s.ny, s.nx, who, detail::element_name("C", k));
+      detail::require_finite_shape(systems[k].A, s.nx, s.nx, who, name(k, 0));
+      detail::require_finite_shape(systems[k].B, s.nx, s.nu, who, name(k, 1));
+      detail::require_finite_shape(systems[k].C, s.ny, s.nx, who, name(k, 2));
     }
     systems_ = std::make_shared<const Systems>(std::move(systems));
+  }
+
+  /// The names of per-step arrays: "A[k]", "B[k]", "C[k]".
+  static std::string element_of_arrays(std::size_t k, int i) {
+    return detail::element_name(i == 0 ? "A" : i == 1 ? "B" : "C", k);
   }
 
   /// (A_k, B_k, C_k). Beyond the last step a time-varying model has no
@@ -95,7 +102,7 @@ class SharedDiscreteModel : public SizedBy<Dims> {
                                                        " steps of one size");
     const Sizes sizes{nx, stacked.B.cols() / count, stacked.C.rows(), np};
     if (steps == 0) return SharedDiscreteModel(LtiModel(stacked.A, stacked.B, stacked.C, np));
-    return SharedDiscreteModel(stacked.unstacked(sizes), np, "restore");
+    return SharedDiscreteModel(stacked.unstacked(sizes), np, "restore", element_of_arrays);
   }
 
  private:

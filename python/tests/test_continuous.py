@@ -152,6 +152,19 @@ def test_bad_arguments_name_the_argument(siso):
     assert np.array_equal(observer.internal_state, before) and observer.time == 0.0
 
 
+def test_a_quadratic_reconstruction_without_midpoints_names_the_python_argument(siso):
+    system, data = siso
+    observer = zhang(system)
+    with pytest.raises(ConfigurationError, match=r"run: argument 'U_mid' must be given, with Y_mid"):
+        observer.run(data["t"][:5], data["U"][:5], data["Y"][:5])
+    assert observer.time == 0.0 and not observer.internal_state.any()
+    assert observer.update(data["t"][0], data["U"][0], data["Y"][0]) == UpdateStatus.accepted  # the time origin
+    state = observer.internal_state
+    with pytest.raises(ConfigurationError, match=r"update: argument 'u_mid' must be given, with y_mid"):
+        observer.update(data["t"][1], data["U"][1], data["Y"][1])
+    assert np.array_equal(observer.internal_state, state)
+
+
 def test_a_cycle_through_the_regressor_is_collected(siso):
     """An observer stored where its regressor can reach it is freed by the garbage collector."""
     import gc

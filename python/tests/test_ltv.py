@@ -170,8 +170,13 @@ def test_bad_models_name_the_argument(plant):
     bad[7, 1, 0] = np.nan
     with pytest.raises(adaptobs.ConfigurationError, match=r"'A\[7\]' must contain only finite numbers"):
         adaptobs.DiscreteLtvModel(bad, B, C, np=2)
-    with pytest.raises(adaptobs.ConfigurationError, match=r"'C' must be 1x2 \(got 1x3\)"):
+    with pytest.raises(adaptobs.ConfigurationError, match=r"'C\[0\]' must be 1x2 \(got 1x3\)"):
         adaptobs.DiscreteLtvModel(A, B, np.zeros((N, 1, 3)), np=2)
+    bad_step = lambda k: (A[k], B, C[k] if k != 4 else np.full((1, 2), np.inf))  # noqa: E731
+    with pytest.raises(adaptobs.ConfigurationError, match=r"'matrices_at\(4\)\[2\]' must contain only finite"):
+        adaptobs.DiscreteLtvModel.from_function(bad_step, steps=6, np=2)
+    with pytest.raises(adaptobs.ConfigurationError, match=r"DiscreteLtvModel.at: argument 'k' must lie in \[0, 400\)"):
+        adaptobs.DiscreteLtvModel(A, B, C, np=2).at(400)
     with pytest.raises(TypeError, match=r"'matrices_at\(2\)' must be a tuple \(A, B, C\)"):
         adaptobs.DiscreteLtvModel.from_function(lambda k: (A[k], B, C[k]) if k < 2 else None, steps=3, np=2)
     with pytest.raises(TypeError, match=r"'model' must be an adaptobs.DiscreteLtiModel or DiscreteLtvModel"):

@@ -64,6 +64,8 @@ class ContinuousUpdate : public SizedBy<Dims> {
   /// Whether an accepted sample has set the time origin: the next sample ends an
   /// interval (and so has a midpoint).
   [[nodiscard]] bool started() const noexcept { return self().integrator_.started(); }
+  /// How the samples are integrated: substeps, step limits, signal reconstruction.
+  [[nodiscard]] const SamplingOptions& sampling_options() const noexcept { return self().integrator_.options(); }
   /// Output error \f$\varepsilon(t_k) = y_k - C(t_k)\hat\eta(t_k)\f$ of the last accepted
   /// sample (0 before the first), at the estimate integrated to \f$t_k\f$ — at the
   /// first sample, the initial estimate: the error that drives the observer (its

@@ -71,6 +71,11 @@ struct SamplingOptions {
   int max_substeps = 1'000'000;  ///< most RK4 steps in one interval; a longer interval is rejected
   SignalReconstruction input = SignalReconstruction::hold;        ///< reconstruction of u
   SignalReconstruction output = SignalReconstruction::linear;     ///< reconstruction of y
+
+  /// Whether a sample that ends an interval must carry its midpoint signals.
+  [[nodiscard]] bool needs_midpoint() const noexcept {
+    return input == SignalReconstruction::quadratic || output == SignalReconstruction::quadratic;
+  }
 };
 
 /// Advances the internal state of a continuous-time observer from one sample
@@ -141,9 +146,7 @@ class SampledIntegrator {
       started_ = true;
       return UpdateStatus::accepted;
     }
-    const bool needs_midpoint = options_.input == SignalReconstruction::quadratic ||
-                                options_.output == SignalReconstruction::quadratic;
-    if (needs_midpoint && !sample.midpoint)
+    if (options_.needs_midpoint() && !sample.midpoint)
       detail::fail_argument(who, "sample.midpoint", "must be set for a quadratic signal reconstruction");
     if (!(sample.t > previous_.t)) return UpdateStatus::nonincreasing_time;
 

@@ -7,11 +7,10 @@
 /// - **tiny** (fixed, every dimension at most 3: the 3 × 3 times 3 × 1 and
 ///   1 × 2 times 2 × 2 products of the third-order and SISO observers): plain
 ///   loops over the coefficients. Eigen's lazy product instantiates an evaluator
-///   and an unrolled reduction per pair of operand types, which made up a sixth
-///   of the compile time of a Bastin–Gevers observer's translation unit; at these
-///   sizes it vectorizes little, and the loops, which the compiler unrolls, ran
-///   as fast or faster in the benchmarks that use them (Bastin–Gevers and
-///   Marino–Tomei updates about 9 % faster, Dey–Bhasin SISO 13 %).
+///   and an unrolled reduction per pair of operand types, a large part of the
+///   compile time of a small observer's translation unit; at these sizes it
+///   vectorizes little, and the loops, which the compiler unrolls, run at least
+///   as fast (docs/performance.md).
 /// - **small** (fixed, every dimension at most 16): Eigen's lazy, coefficient-based
 ///   product, vectorized and unrolled. For fixed-size operands Eigen itself
 ///   switches to its cache-blocked GEMM kernel once rows + cols + depth reaches
