@@ -43,6 +43,9 @@ ADAPTOBS_BUILD_PACKAGES=(cmake:cmake g++:g++ make:make libeigen3-dev)
 ADAPTOBS_TEST_PACKAGES=(ninja-build:ninja libgtest-dev libbenchmark-dev gnuplot-nox:gnuplot libdsdp-dev)
 # Boost.Odeint: the independent integrator of the continuous-time observers' RK4 test.
 ADAPTOBS_TEST_PACKAGES+=(libboost-dev)
+# The formatter whose output the tree is checked against (scripts/format.sh): one
+# version, since each release formats some constructs differently.
+ADAPTOBS_TEST_PACKAGES+=(clang-format-19:clang-format-19)
 # The sanitizer build of scripts/test.sh: clang, its sanitizer runtimes, and LLVM's
 # linker (an instrumented test executable links in about 1 s with it, 6 s with ld.bfd).
 ADAPTOBS_SANITIZER_PACKAGES=(clang:clang++ libclang-rt-dev lld:ld.lld)
