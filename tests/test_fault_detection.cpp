@@ -606,6 +606,68 @@ TEST(FaultMonitor, EstimatesOfTheWrongSizeAreRefusedWithEveryTestUnchanged) {
   EXPECT_EQ(monitor.chi_square().statistic(), 4.0);
 }
 
+// A detector written outside the library: an alarm whenever an entry of the
+// output error exceeds a bound in magnitude.
+struct PeakDetector {
+  double bound = 1;
+  bool alarmed = false;
+  Index alarms = 0;
+  [[nodiscard]] adaptobs::UpdateStatus update(const Eigen::Matrix<double, 1, 1>& e) {
+    if (!std::isfinite(e(0))) return adaptobs::UpdateStatus::nonfinite_input;
+    alarmed = e.cwiseAbs().maxCoeff() > bound;
+    alarms += alarmed ? 1 : 0;
+    return adaptobs::UpdateStatus::accepted;
+  }
+  [[nodiscard]] bool alarm() const noexcept { return alarmed; }
+  [[nodiscard]] Index alarm_count() const noexcept { return alarms; }
+};
+
+struct NoAlarmCount {  // update and alarm, but no alarm_count: not a detector
+  [[nodiscard]] adaptobs::UpdateStatus update(const Eigen::Matrix<double, 1, 1>&) { return adaptobs::UpdateStatus::accepted; }
+  [[nodiscard]] bool alarm() const noexcept { return false; }
+};
+
+using Vector1 = Eigen::Matrix<double, 1, 1>;
+using Cusum1 = adaptobs::CusumDetector<double, 1>;
+using Glr1 = adaptobs::GlrDetector<double, 1>;
+static_assert(adaptobs::ChangeDetector<Cusum1, Vector1>);
+static_assert(adaptobs::ChangeDetector<Glr1, Vector1>);
+static_assert(adaptobs::ChangeDetector<adaptobs::ChiSquareTest<double, 1>, Vector1>);
+static_assert(adaptobs::ChangeDetector<PeakDetector, Vector1>);
+static_assert(!adaptobs::ChangeDetector<NoAlarmCount, Vector1>);
+static_assert(!adaptobs::ChangeDetector<int, Vector1>);
+template <class D>
+concept monitor_takes = requires { typename adaptobs::FaultMonitor<double, 1, 1, Cusum1, Glr1, D>; };
+static_assert(monitor_takes<PeakDetector>);
+static_assert(!monitor_takes<NoAlarmCount>);
+static_assert(!monitor_takes<int>);
+
+TEST(FaultMonitor, DrivesAUserWrittenDetectorBesideTheLibrarysOwn) {
+  const Vector1 nominal(0.0), scale(1.0);
+  const Cusum1 cusum(nominal, scale, 0.5, 5.0);
+  const Glr1 glr(nominal, scale, 5, 100.0);
+  adaptobs::FaultMonitor<double, 1, 1, Cusum1, Glr1, PeakDetector> monitor(1, 1, cusum, glr, PeakDetector{});
+  Cusum1 alone = cusum;
+  const double errors[] = {0.5, 2.0, 0.1, -3.0, 3.0};
+  for (const double e : errors) {
+    ASSERT_TRUE(adaptobs::accepted(monitor.observe(Vector1(1.0), Vector1(e))));
+    ASSERT_TRUE(adaptobs::accepted(alone.update(Vector1(1.0))));
+    EXPECT_EQ(monitor.chi_square().alarm(), std::abs(e) > 1.0);
+  }
+  EXPECT_EQ(monitor.chi_square().alarm_count(), 3);
+  // The CUSUM's upper sum grows by z - drift = 0.5 per value: 2.5 after five.
+  EXPECT_EQ(monitor.cusum().statistic(), 2.5);
+  EXPECT_EQ(monitor.cusum().statistic(), alone.statistic());
+  // A rejected output error moves none of the three.
+  EXPECT_EQ(monitor.observe(Vector1(1.0), Vector1(NAN)), adaptobs::UpdateStatus::nonfinite_input);
+  EXPECT_EQ(monitor.chi_square().alarm_count(), 3);
+  EXPECT_EQ(monitor.cusum().statistic(), 2.5);
+  EXPECT_TRUE(names(configuration_error_of([&] {
+                      (void)adaptobs::FaultMonitor<double, 1, 1, Cusum1, Glr1, PeakDetector>(2, 1, cusum, glr, {});
+                    }),
+                    "parameters"));
+}
+
 TEST(ChiSquareTest, TwoMomentCorrectionRestoresTheRateOnCorrelatedErrors) {
   // Unit-variance AR(1) errors with correlation 0.6 from step to step: the window
   // sums have the right mean but about twice the variance of χ²₂₀, so the plain

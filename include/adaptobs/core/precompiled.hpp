@@ -4,8 +4,13 @@
 ///
 /// The dense decompositions behind design routines (eigenvalues, Schur forms)
 /// cost seconds to compile in every translation unit that calls them. Each such
-/// routine therefore runs on dynamic-size matrices through one function
-/// template per scalar type. The optional library `adaptobs::precompiled`
+/// routine therefore runs on dynamic-size matrices through one public function
+/// template per scalar type, named `<routine>_dynamic` and taking
+/// `Eigen::MatrixX<Scalar>` (`place_output_injection_dynamic`,
+/// `design_guiro_gains_dynamic`, `observability_staircase`, ...); the routine
+/// itself, for fixed-size or expression arguments, copies them and sizes the
+/// result. A `_dynamic` routine's refusals name the routine without the suffix.
+/// The optional library `adaptobs::precompiled`
 /// (src/precompiled.cpp) instantiates those templates for `double` (the matrix
 /// exponential, which sampled float models also call, for `float` too), and whatever
 /// links it is compiled with `ADAPTOBS_PRECOMPILED` defined. That turns the

@@ -107,23 +107,33 @@ struct GuiroConvergenceReport {
   }
 };
 
-namespace detail {
+/// Proposition 2.2 of Guiro et al. (2008) for gains (K, Γ), nominal regressor
+/// \f$\bar H\f$ and the data \f$H_0, H_1, \dots\f$, on run-time sizes (see the
+/// file comment): U by `guiro_error_matrix_dynamic`, its bound
+/// \f$\|U^k\|_2 \le M\lambda^k\f$ by `best_power_bound`,
+/// \f$\|W(k)\|_2 = \|(I-KC)E(H_k-\bar H)\|_2\f$, condition (i) on the longest tail
+/// of the data below \f$(1-\lambda)/M\f$, condition (ii) from the least-squares
+/// slope of \f$\log\|W(k)\|\f$ against \f$\log k\f$ over the second half.
+/// One instance per scalar type (compiled once in `adaptobs::precompiled`);
+/// `check_guiro_convergence` takes fixed-size arguments and any range of H_k.
+/// Refuses (`ConfigurationError` naming `check_guiro_convergence`) arguments
+/// whose sizes do not fit E, a U that is not finite and an \f$H_k\f$ not
+/// finite or not n × p.
 template <typename Scalar>
-GuiroConvergenceReport<Scalar> check_guiro_convergence(const DynamicMatrix<Scalar>& E, const DynamicMatrix<Scalar>& C,
-                                                       const DynamicMatrix<Scalar>& K,
-                                                       const DynamicMatrix<Scalar>& Gamma,
-                                                       const DynamicMatrix<Scalar>& Hbar,
-                                                       const std::vector<DynamicMatrix<Scalar>>& H_sequence) {
-  using Matrix = DynamicMatrix<Scalar>;
+[[nodiscard]] GuiroConvergenceReport<Scalar> check_guiro_convergence_dynamic(
+    const Eigen::MatrixX<Scalar>& E, const Eigen::MatrixX<Scalar>& C, const Eigen::MatrixX<Scalar>& K,
+    const Eigen::MatrixX<Scalar>& Gamma, const Eigen::MatrixX<Scalar>& Hbar,
+    const std::vector<Eigen::MatrixX<Scalar>>& H_sequence) {
+  using Matrix = Eigen::MatrixX<Scalar>;
   constexpr std::string_view who = "check_guiro_convergence";
-  require_square(E, who, "E");
+  detail::require_square(E, who, "E");
   const Index n = E.rows(), m = C.rows(), p = Hbar.cols();
-  require_shape(C, m, n, who, "C");
-  require_shape(Hbar, n, p, who, "Hbar");
-  require_shape(K, n, m, who, "K");
-  require_shape(Gamma, p, m, who, "Gamma");
-  const Matrix u = guiro_error_matrix<Scalar>(E, C, Hbar, K, Gamma);
-  require_finite(u, who, "E, C, Hbar, K, Gamma");
+  detail::require_shape(C, m, n, who, "C");
+  detail::require_shape(Hbar, n, p, who, "Hbar");
+  detail::require_shape(K, n, m, who, "K");
+  detail::require_shape(Gamma, p, m, who, "Gamma");
+  const Matrix u = guiro_error_matrix_dynamic<Scalar>(E, C, Hbar, K, Gamma);
+  detail::require_finite(u, who, "E, C, Hbar, K, Gamma");
 
   GuiroConvergenceReport<Scalar> report;
   report.spectral_radius = spectral_radius(u);
@@ -132,7 +142,7 @@ GuiroConvergenceReport<Scalar> check_guiro_convergence(const DynamicMatrix<Scala
   // ‖W(k)‖₂ = ‖(I − KC) E (H_k − H̄)‖₂.
   const Matrix ikc_e = (Matrix::Identity(n, n) - K * C) * E;
   for (const Matrix& h : H_sequence) {
-    require_finite_shape(h, n, p, who, "H_sequence");
+    detail::require_finite_shape(h, n, p, who, "H_sequence");
     report.w_norms.push_back(detail::largest_singular_value<Scalar>(ikc_e * (h - Hbar)));
   }
   const auto& w = report.w_norms;
@@ -189,23 +199,22 @@ GuiroConvergenceReport<Scalar> check_guiro_convergence(const DynamicMatrix<Scala
   return report;
 }
 #ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE GuiroConvergenceReport<double> check_guiro_convergence<double>(
-    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const DynamicMatrix<double>&,
-    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const std::vector<DynamicMatrix<double>>&);
+ADAPTOBS_INSTANTIATE GuiroConvergenceReport<double> check_guiro_convergence_dynamic<double>(
+    const Eigen::MatrixXd&, const Eigen::MatrixXd&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,
+    const Eigen::MatrixXd&, const std::vector<Eigen::MatrixXd>&);
 #endif
-}  // namespace detail
 
 /// Checks proposition 2.2 for gains (K, Γ), nominal regressor \f$\bar H\f$ and
-/// the sequence \f$H_0, H_1, \dots\f$ of the data (a range of n × p matrices);
-/// see the file comment.
+/// the sequence \f$H_0, H_1, \dots\f$ of the data (a range of n × p matrices):
+/// `check_guiro_convergence_dynamic` on copies; see the file comment.
 template <class DE, class DC, class DK, class DG, class DH, std::ranges::forward_range Range>
 [[nodiscard]] GuiroConvergenceReport<typename DE::Scalar> check_guiro_convergence(
     const Eigen::MatrixBase<DE>& E, const Eigen::MatrixBase<DC>& C, const Eigen::MatrixBase<DK>& K,
     const Eigen::MatrixBase<DG>& Gamma, const Eigen::MatrixBase<DH>& Hbar, const Range& H_sequence) {
   using Scalar = typename DE::Scalar;
-  std::vector<detail::DynamicMatrix<Scalar>> h;
+  std::vector<Eigen::MatrixX<Scalar>> h;
   for (const auto& hk : H_sequence) h.push_back(detail::dynamic_copy(hk));
-  return detail::check_guiro_convergence<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C),
+  return check_guiro_convergence_dynamic<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C),
                                                  detail::dynamic_copy(K), detail::dynamic_copy(Gamma),
                                                  detail::dynamic_copy(Hbar), h);
 }

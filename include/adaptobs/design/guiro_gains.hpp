@@ -83,13 +83,25 @@ struct GuiroGains {
   Scalar eigenvalue_mismatch = 0;  ///< largest |eig(U) − requested| (greedy matching)
 };
 
-namespace detail {
+/// Error matrix \f$U = \begin{bmatrix}(I-KC)E & (I-KC)E\bar H\\ -\Gamma C & I\end{bmatrix}\f$
+/// of Guiro et al. (2008), §2.2 (eq. (5) with \f$H_0\f$ replaced by \f$\bar H\f$),
+/// on run-time sizes; `guiro_error_matrix` is the same for fixed-size
+/// arguments. Refuses, naming `guiro_error_matrix`, arguments whose sizes do
+/// not fit E (n × n), C (m × n), \f$\bar H\f$ (n × p), K (n × m), Γ (p × m).
 template <typename Scalar>
-DynamicMatrix<Scalar> guiro_error_matrix(const DynamicMatrix<Scalar>& E, const DynamicMatrix<Scalar>& C,
-                                         const DynamicMatrix<Scalar>& Hbar, const DynamicMatrix<Scalar>& K,
-                                         const DynamicMatrix<Scalar>& Gamma) {
-  using Matrix = DynamicMatrix<Scalar>;
-  const Index n = E.rows(), p = Hbar.cols();
+[[nodiscard]] Eigen::MatrixX<Scalar> guiro_error_matrix_dynamic(const Eigen::MatrixX<Scalar>& E,
+                                                               const Eigen::MatrixX<Scalar>& C,
+                                                               const Eigen::MatrixX<Scalar>& Hbar,
+                                                               const Eigen::MatrixX<Scalar>& K,
+                                                               const Eigen::MatrixX<Scalar>& Gamma) {
+  using Matrix = Eigen::MatrixX<Scalar>;
+  constexpr std::string_view who = "guiro_error_matrix";
+  detail::require_square(E, who, "E");
+  const Index n = E.rows(), p = Hbar.cols(), m = C.rows();
+  detail::require_shape(C, m, n, who, "C");
+  detail::require_shape(Hbar, n, p, who, "Hbar");
+  detail::require_shape(K, n, m, who, "K");
+  detail::require_shape(Gamma, p, m, who, "Gamma");
   const Matrix ikc_e = (Matrix::Identity(n, n) - K * C) * E;
   Matrix u(n + p, n + p);
   u.topLeftCorner(n, n) = ikc_e;
@@ -99,55 +111,69 @@ DynamicMatrix<Scalar> guiro_error_matrix(const DynamicMatrix<Scalar>& E, const D
   return u;
 }
 #ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE DynamicMatrix<double> guiro_error_matrix<double>(const DynamicMatrix<double>&, const DynamicMatrix<double>&,
-                                                                     const DynamicMatrix<double>&, const DynamicMatrix<double>&,
-                                                                     const DynamicMatrix<double>&);
+ADAPTOBS_INSTANTIATE Eigen::MatrixXd guiro_error_matrix_dynamic<double>(const Eigen::MatrixXd&, const Eigen::MatrixXd&,
+                                                                        const Eigen::MatrixXd&, const Eigen::MatrixXd&,
+                                                                        const Eigen::MatrixXd&);
 #endif
 
-template <typename Scalar>
-struct DynamicGuiroGains {
-  DynamicMatrix<Scalar> K, Gamma, L, U;
-  Scalar cayley_hamilton_residual = 0, spectral_radius = 0, eigenvector_condition = 0, eigenvalue_mismatch = 0;
-};
 
-// The design on dynamic-size matrices, instantiated once per scalar type.
+/// K and Γ such that U (at \f$\bar H\f$) has the spectrum `target` (n + p
+/// values inside the unit circle, closed under conjugation), on run-time sizes:
+/// the reduction of the file comment. The spectrum is placed on
+/// \f$(\bar A, \bar C)\f$ by `PolePlacer` (Bhattacharyya and de Souza 1982);
+/// of its `options.placement.tries` candidates L (one for a single output), the
+/// one with \f$N = I_m - CK\f$ invertible and the best-conditioned eigenvectors
+/// \f$\mathrm{diag}(I-KC, I)X^{-1}\f$ of U is kept, and
+/// \f$K = E^{-1}L_1\f$, \f$\Gamma = L_2N^{-1}\f$. The design runs on C's rows
+/// scaled by powers of two to unit size and returns the gains in C's units.
+/// One instance per scalar type serves every size (compiled once in
+/// `adaptobs::precompiled`); `design_guiro_gains` is the same for fixed-size arguments.
+///
+/// Refusals (`ConfigurationError` naming `design_guiro_gains` and the
+/// argument): E not square or not finite, C or \f$\bar H\f$ not finite or
+/// not fitting E, C without a row, negative tolerances, not n + p poles or a
+/// pole outside the unit circle, (E, C) not observable, p > rank C or the rank
+/// test at the eigenvalue 1 failing (θ not identifiable), E too
+/// ill-conditioned to invert, N singular for every placing gain (Γ would be
+/// infinite), and a design failing its verification (Cayley–Hamilton residual,
+/// \f$\rho(U) < 1\f$) or gains beyond the floating-point range.
 template <typename Scalar>
-DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, const DynamicMatrix<Scalar>& C_given,
-                                             const DynamicMatrix<Scalar>& Hbar, const ComplexVector<Scalar>& target,
-                                             const GuiroDesignOptions& options) {
-  using Matrix = DynamicMatrix<Scalar>;
+[[nodiscard]] GuiroGains<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic> design_guiro_gains_dynamic(
+    const Eigen::MatrixX<Scalar>& E, const Eigen::MatrixX<Scalar>& C_given, const Eigen::MatrixX<Scalar>& Hbar,
+    const ComplexVector<Scalar>& target, const GuiroDesignOptions& options = {}) {
+  using Matrix = Eigen::MatrixX<Scalar>;
   constexpr std::string_view who = "design_guiro_gains";
-  require_square(E, who, "E");
-  require_finite(E, who, "E");
+  detail::require_square(E, who, "E");
+  detail::require_finite(E, who, "E");
   const Index n = E.rows(), m = C_given.rows(), p = Hbar.cols(), na = n + p;
-  require_finite_shape(C_given, m, n, who, "C");
-  require(m >= 1, who, "C", "must have at least one row (output)");
+  detail::require_finite_shape(C_given, m, n, who, "C");
+  detail::require(m >= 1, who, "C", "must have at least one row (output)");
   // The design does not depend on the units of the outputs: with C = D C_given,
   // D diagonal, the gains K D, Γ D and L D for C_given give the same KC, ΓC and U
   // (N = I − CK becomes the similar D⁻¹ND). It runs on the rows of C scaled by
   // powers of two (exactly) to their largest entry in [1, 2), so that the rank
   // of C and the rank test at the eigenvalue 1 judge each output in its own units.
-  const auto output_exponents = row_exponents<Scalar>(C_given);
-  const Matrix C = scaled_by_powers_of_two<Scalar>(C_given, output_exponents, true);
-  require_finite_shape(Hbar, n, p, who, "Hbar");
+  const auto output_exponents = detail::row_exponents<Scalar>(C_given);
+  const Matrix C = detail::scaled_by_powers_of_two<Scalar>(C_given, output_exponents, true);
+  detail::require_finite_shape(Hbar, n, p, who, "Hbar");
   // Compared with `>` below, which a NaN fails: the refusal would blame the data.
-  require_non_negative(options.rank_tolerance, who, "options.rank_tolerance");
-  require_non_negative(options.singularity_tolerance, who, "options.singularity_tolerance");
+  detail::require_non_negative(options.rank_tolerance, who, "options.rank_tolerance");
+  detail::require_non_negative(options.singularity_tolerance, who, "options.singularity_tolerance");
   if (target.size() != na) {
     std::ostringstream os;
     os << "must hold n + p = " << na << " values (got " << target.size() << ")";
-    fail_argument(who, "poles", os.str());
+    detail::fail_argument(who, "poles", os.str());
   }
   for (Index i = 0; i < na; ++i)
-    require(std::abs(target(i)) < Scalar(1), who, "poles",
+    detail::require(std::abs(target(i)) < Scalar(1), who, "poles",
             "must lie inside the unit circle (the error dynamics must be Schur stable)");
 
   // θ identifiable through the eigenvalue 1 of Ā: (E, C) observable, p ≤ rank C,
   // then the exact rank test at 1.
   const auto state_report = observability(E, C, Scalar(options.placement.observability_tolerance));
   if (!state_report.observable()) {
-    fail_argument(who, "E, C",
-                  "is not observable: its mode(s) " + format_complex_list(state_report.unobservable_modes) +
+    detail::fail_argument(who, "E, C",
+                  "is not observable: its mode(s) " + detail::format_complex_list(state_report.unobservable_modes) +
                       " cannot be moved");
   }
   const Scalar c_scale = C.norm();
@@ -158,7 +184,7 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
     std::ostringstream os;
     os << "has p = " << p << " columns but C has rank " << c_rank << ": at least " << p - c_rank
        << " eigenvalue(s) of U stay at 1 for every K and Gamma (the outputs identify at most rank C parameters)";
-    fail_argument(who, "Hbar", os.str());
+    detail::fail_argument(who, "Hbar", os.str());
   }
   Matrix a_bar = Matrix::Zero(na, na);
   a_bar.topLeftCorner(n, n) = E;
@@ -167,7 +193,7 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
   Matrix c_bar = Matrix::Zero(m, na);
   c_bar.leftCols(n) = C;
   if (p > 0 && !(pbh_margin(a_bar, c_bar, Scalar(1)) > Scalar(options.rank_tolerance))) {
-    fail_argument(who, "Hbar",
+    detail::fail_argument(who, "Hbar",
                   "leaves theta unidentifiable: rank [E - I, E Hbar; C, 0] < n + p, so an eigenvalue 1 of U "
                   "cannot be moved by any K and Gamma");
   }
@@ -176,7 +202,7 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
   // I − CK that no draw makes invertible.
   const Eigen::PartialPivLU<Matrix> e_lu(E);
   if (!(e_lu.rcond() > Scalar(100) * std::numeric_limits<Scalar>::epsilon()))
-    fail_argument(who, "E", "is too ill-conditioned to invert (reciprocal condition number at most 100 eps)");
+    detail::fail_argument(who, "E", "is too ill-conditioned to invert (reciprocal condition number at most 100 eps)");
   PolePlacer<Scalar> placer(a_bar, c_bar, target, options.placement, who, "E, C", "observable");
   const Matrix identity_m = Matrix::Identity(m, m);
   struct Choice {
@@ -206,69 +232,60 @@ DynamicGuiroGains<Scalar> design_guiro_gains(const DynamicMatrix<Scalar>& E, con
   }
   if (!best) {
     if (!any_candidate)
-      fail_argument(who, "poles", "could not be placed: the Sylvester transformation was singular in every draw");
-    fail_argument(who, "poles",
+      detail::fail_argument(who, "poles", "could not be placed: the Sylvester transformation was singular in every draw");
+    detail::fail_argument(who, "poles",
                   m == 1 ? "cannot be assigned: I - C K is singular for the only gain that places them "
                            "(Gamma would be infinite)"
                          : "cannot be assigned: I - C K is singular for every placing gain tried "
                            "(Gamma would be infinite)");
   }
 
-  DynamicGuiroGains<Scalar> gains;
+  GuiroGains<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic> gains;
   // Γ = L₂ N⁻¹  ⇔  Nᵀ Γᵀ = L₂ᵀ; then each gain in the caller's output units (columns times D).
   const Matrix gamma = best->N.transpose().fullPivLu().solve(Matrix(best->L.bottomRows(p).transpose())).transpose();
-  gains.U = guiro_error_matrix<Scalar>(E, C, Hbar, best->K, gamma);
+  gains.U = guiro_error_matrix_dynamic<Scalar>(E, C, Hbar, best->K, gamma);
   gains.eigenvector_condition = best->score;
   gains.cayley_hamilton_residual = cayley_hamilton_residual(gains.U, target);
   gains.eigenvalue_mismatch = eigenvalue_mismatch(gains.U, target);
   gains.spectral_radius = spectral_radius(gains.U);
-  const Scalar tol = default_verification_tolerance<Scalar>(options.placement.verification_tolerance);
+  const Scalar tol = detail::default_verification_tolerance<Scalar>(options.placement.verification_tolerance);
   if (!(gains.cayley_hamilton_residual <= tol) || !(gains.spectral_radius < Scalar(1)) || !best->K.allFinite() ||
       !gamma.allFinite()) {
     std::ostringstream os;
     os << "could not be assigned to the required accuracy (Cayley-Hamilton residual " << gains.cayley_hamilton_residual
        << ", tolerance " << tol << ", spectral radius of U " << gains.spectral_radius
        << "): (E, C, Hbar) is too close to a case without solution";
-    fail_argument(who, "poles", os.str());
+    detail::fail_argument(who, "poles", os.str());
   }
-  gains.K = scaled_by_powers_of_two<Scalar>(best->K, output_exponents, false);
-  gains.Gamma = scaled_by_powers_of_two<Scalar>(gamma, output_exponents, false);
-  gains.L = scaled_by_powers_of_two<Scalar>(best->L, output_exponents, false);
+  gains.K = detail::scaled_by_powers_of_two<Scalar>(best->K, output_exponents, false);
+  gains.Gamma = detail::scaled_by_powers_of_two<Scalar>(gamma, output_exponents, false);
+  gains.L = detail::scaled_by_powers_of_two<Scalar>(best->L, output_exponents, false);
   if (!gains.K.allFinite() || !gains.Gamma.allFinite() || !gains.L.allFinite())
-    fail_argument(who, "C", "is so small that the gains for it lie beyond the floating-point range");
+    detail::fail_argument(who, "C", "is so small that the gains for it lie beyond the floating-point range");
   return gains;
 }
 #ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE DynamicGuiroGains<double> design_guiro_gains<double>(const DynamicMatrix<double>&,
-                                                                         const DynamicMatrix<double>&,
-                                                                         const DynamicMatrix<double>&,
-                                                                         const ComplexVector<double>&,
-                                                                         const GuiroDesignOptions&);
+ADAPTOBS_INSTANTIATE GuiroGains<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>
+design_guiro_gains_dynamic<double>(const Eigen::MatrixXd&, const Eigen::MatrixXd&, const Eigen::MatrixXd&,
+                                   const ComplexVector<double>&, const GuiroDesignOptions&);
 #endif
-}  // namespace detail
 
-/// Error matrix \f$U = \begin{bmatrix}(I-KC)E & (I-KC)E\bar H\\ -\Gamma C & I\end{bmatrix}\f$
-/// of Guiro et al. (2008), §2.2 (eq. (5) with \f$H_0\f$ replaced by \f$\bar H\f$).
+/// Error matrix U of Guiro et al. (2008), §2.2: `guiro_error_matrix_dynamic`
+/// on copies, sized (n + p) × (n + p) from E and \f$\bar H\f$.
 template <class DE, class DC, class DH, class DK, class DG>
 [[nodiscard]] auto guiro_error_matrix(const Eigen::MatrixBase<DE>& E, const Eigen::MatrixBase<DC>& C,
                                       const Eigen::MatrixBase<DH>& Hbar, const Eigen::MatrixBase<DK>& K,
                                       const Eigen::MatrixBase<DG>& Gamma) {
   using Scalar = typename DE::Scalar;
   constexpr int na = sum_of_sizes(DE::RowsAtCompileTime, DH::ColsAtCompileTime);
-  constexpr std::string_view who = "guiro_error_matrix";
-  detail::require_square(E, who, "E");
-  const Index n = E.rows(), p = Hbar.cols(), m = C.rows();
-  detail::require_shape(C, m, n, who, "C");
-  detail::require_shape(Hbar, n, p, who, "Hbar");
-  detail::require_shape(K, n, m, who, "K");
-  detail::require_shape(Gamma, p, m, who, "Gamma");
-  return Eigen::Matrix<Scalar, na, na>(
-      detail::guiro_error_matrix<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C), detail::dynamic_copy(Hbar),
-                                         detail::dynamic_copy(K), detail::dynamic_copy(Gamma)));
+  return Eigen::Matrix<Scalar, na, na>(guiro_error_matrix_dynamic<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C),
+                                                                          detail::dynamic_copy(Hbar), detail::dynamic_copy(K),
+                                                                          detail::dynamic_copy(Gamma)));
 }
 
 /// K and Γ such that U (at \f$\bar H\f$) has the spectrum `poles` (n + p values
-/// inside the unit circle, closed under conjugation); see the file comment.
+/// inside the unit circle, closed under conjugation): `design_guiro_gains_dynamic`
+/// on copies, sized by E, C and Hbar; see the file comment.
 /// \param E \f$e^{AT}\f$, \param C output matrix (m × n), \param Hbar nominal
 /// regressor \f$\bar H\f$ (n × p): \f$H_0\f$ as in the paper, or the limit of
 /// \f$H_k\f$ when φ settles. Throws `ConfigurationError` naming the cause when
@@ -279,7 +296,7 @@ template <class DE, class DC, class DH, class DP>
                                       GuiroDesignOptions options = {}) {
   using Scalar = typename DE::Scalar;
   constexpr int NX = DE::RowsAtCompileTime, NY = DC::RowsAtCompileTime, NP = DH::ColsAtCompileTime;
-  const auto d = detail::design_guiro_gains<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C),
+  const auto d = design_guiro_gains_dynamic<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C),
                                                     detail::dynamic_copy(Hbar),
                                                     detail::complex_poles<Scalar>(poles, "design_guiro_gains"),
                                                     options);

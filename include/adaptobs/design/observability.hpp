@@ -97,16 +97,30 @@ template <typename Scalar>
   return std::min(Scalar(1e6) * eps, std::sqrt(eps));
 }
 
-/// The staircase on run-time sizes (see `observability`), one instance per
-/// scalar type (compiled once in adaptobs::precompiled).
+
+}  // namespace detail
+
+/// The orthogonal staircase of the file comment on run-time sizes: the
+/// dimension of the observable subspace of (A, C) and the unobservable modes,
+/// the eigenvalues of the block \f$\tilde A_{22}\f$ it leaves unreached
+/// (Van Dooren 1981). Each step takes the SVD of the block of \f$Q^TA^TQ\f$
+/// (first: of \f$C_s^T\f$, C with its rows scaled by powers of two to their
+/// largest entry in [1, 2)) not yet reached, counts the singular values above
+/// `relative_tolerance` times \f$\|C_s\|_F\f$ (first step) or \f$\|A\|_F\f$
+/// (later steps), and rotates the state by its left singular vectors; 0 selects
+/// \f$\min(10^6\varepsilon, \sqrt\varepsilon)\f$. `observability` is the same
+/// for fixed-size or expression arguments; one instance per scalar type serves
+/// every size (compiled once in `adaptobs::precompiled`). Refuses, naming
+/// `observability`, an A that is not square or a C without A's columns.
 template <typename Scalar>
-[[nodiscard]] ObservabilityReport<Scalar> observability_staircase(const DynamicMatrix<Scalar>& A,
-                                                                  const DynamicMatrix<Scalar>& C,
-                                                                  Scalar relative_tolerance) {
-  using Matrix = DynamicMatrix<Scalar>;
+[[nodiscard]] ObservabilityReport<Scalar> observability_staircase(const Eigen::MatrixX<Scalar>& A,
+                                                                  const Eigen::MatrixX<Scalar>& C,
+                                                                  Scalar relative_tolerance = 0) {
+  using Matrix = Eigen::MatrixX<Scalar>;
+  detail::require_output_pair(A, C, "observability");
   const Index n = A.rows();
-  const Scalar rel = relative_tolerance > 0 ? relative_tolerance : default_observability_tolerance<Scalar>();
-  const Matrix scaled_c = scaled_by_powers_of_two<Scalar>(C, row_exponents<Scalar>(C), true);
+  const Scalar rel = relative_tolerance > 0 ? relative_tolerance : detail::default_observability_tolerance<Scalar>();
+  const Matrix scaled_c = detail::scaled_by_powers_of_two<Scalar>(C, detail::row_exponents<Scalar>(C), true);
   const Scalar c_tol = rel * scaled_c.stableNorm(), a_tol = rel * A.stableNorm();
 
   Matrix a = A.transpose();
@@ -131,16 +145,14 @@ template <typename Scalar>
   report.observable_dimension = offset;
   if (offset < n) {
     const Matrix rest = a.bottomRightCorner(n - offset, n - offset);
-    report.unobservable_modes = dense_eigenvalues(rest);
+    report.unobservable_modes = detail::dense_eigenvalues(rest);
   }
   return report;
 }
 #ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE ObservabilityReport<double> observability_staircase<double>(const DynamicMatrix<double>&,
-                                                                                const DynamicMatrix<double>&, double);
+ADAPTOBS_INSTANTIATE ObservabilityReport<double> observability_staircase<double>(const Eigen::MatrixXd&, const Eigen::MatrixXd&,
+                                                                                double);
 #endif
-
-}  // namespace detail
 
 /// Staircase observability analysis of (A, C) (see file comment). A singular
 /// value of C counts as zero below `relative_tolerance` × ‖C‖_F (each row of C
@@ -155,7 +167,7 @@ template <class DA, class DC>
   using Scalar = typename DA::Scalar;
   constexpr std::string_view who = "observability";
   detail::require_output_pair(A, C, who);
-  return detail::observability_staircase<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C), relative_tolerance);
+  return observability_staircase<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C), relative_tolerance);
 }
 
 /// Popov–Belevitch–Hautus margin at a real μ:

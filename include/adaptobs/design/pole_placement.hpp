@@ -129,10 +129,9 @@ Scalar default_eigenvalue_tolerance(double requested) {
 template <typename Scalar>
 std::vector<Index> pole_multiplicities(const ComplexVector<Scalar>& poles) {
   const Scalar tol = std::sqrt(std::numeric_limits<Scalar>::epsilon());
-  std::vector<Index> k(std::size_t(poles.size()), 0);
+  std::vector<Index> k(std::size_t(poles.size()));
   for (Index i = 0; i < poles.size(); ++i)
-    for (Index j = 0; j < poles.size(); ++j)
-      if (std::abs(poles(j) - poles(i)) <= tol * std::max(Scalar(1), std::abs(poles(i)))) ++k[std::size_t(i)];
+    k[std::size_t(i)] = ((poles.array() - poles(i)).abs() <= tol * std::max(Scalar(1), std::abs(poles(i)))).count();
   return k;
 }
 
@@ -173,18 +172,24 @@ std::string format_complex_list(const ComplexVector<Scalar>& values) {
 template <typename Scalar, class DP>
 ComplexVector<Scalar> complex_poles(const Eigen::MatrixBase<DP>& poles, std::string_view who) {
   require_vector(poles, who, "poles");
-  ComplexVector<Scalar> p(poles.size());
-  for (Index i = 0; i < poles.size(); ++i) p(i) = std::complex<Scalar>(poles.derived().reshaped()(i));
-  for (Index i = 0; i < p.size(); ++i)
-    if (!std::isfinite(p(i).real()) || !std::isfinite(p(i).imag()))
-      fail_argument(who, "poles", "must contain only finite numbers");
+  const ComplexVector<Scalar> p = poles.derived().reshaped().template cast<std::complex<Scalar>>();
+  if (!p.allFinite()) fail_argument(who, "poles", "must contain only finite numbers");
   return p;
 }
 
-/// A real block-diagonal matrix with the given conjugate-closed spectrum (see file comment).
+}  // namespace detail
+
+/// The real matrix F of the file comment whose spectrum is `poles`: block
+/// diagonal, a 1 × 1 block per real pole and
+/// \f$\begin{bmatrix}\alpha&\beta\\-\beta&\alpha\end{bmatrix}\f$ per pair \f$\alpha\pm i\beta\f$
+/// (complex pairs first, then by real and imaginary part), with a 1 on the
+/// superdiagonal between the blocks of a repeated pole (equal within
+/// \f$\sqrt\varepsilon\max(1, |p|)\f$), so that F is nonderogatory. A pole is
+/// real when its imaginary part is at most \f$100\varepsilon\max(1, |p|)\f$.
+/// Refuses, naming `who` and `poles`, a list not closed under conjugation.
 template <typename Scalar>
-Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> real_matrix_with_spectrum(const ComplexVector<Scalar>& poles,
-                                                                               std::string_view who) {
+[[nodiscard]] Eigen::MatrixX<Scalar> real_matrix_with_spectrum(const ComplexVector<Scalar>& poles,
+                                                              std::string_view who = "real_matrix_with_spectrum") {
   using std::abs;
   const Scalar pair_tol = std::sqrt(std::numeric_limits<Scalar>::epsilon());
   struct Block {
@@ -204,7 +209,7 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> real_matrix_with_spectrum(
     Index partner = -1;
     for (Index j = i + 1; j < poles.size() && partner < 0; ++j)
       if (!used[std::size_t(j)] && abs(poles(j) - std::conj(p)) <= pair_tol * scale) partner = j;
-    if (partner < 0) fail_argument(who, "poles", "must be closed under complex conjugation (a real gain is sought)");
+    if (partner < 0) detail::fail_argument(who, "poles", "must be closed under complex conjugation (a real gain is sought)");
     used[std::size_t(partner)] = true;
     blocks.push_back({p.real(), abs(p.imag())});
   }
@@ -214,7 +219,7 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> real_matrix_with_spectrum(
     return a.im < b.im;
   });
   const Index n = poles.size();
-  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> f = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>::Zero(n, n);
+  Eigen::MatrixX<Scalar> f = Eigen::MatrixX<Scalar>::Zero(n, n);
   Index at = 0;
   for (std::size_t b = 0; b < blocks.size(); ++b) {
     const Block& blk = blocks[b];
@@ -236,8 +241,6 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> real_matrix_with_spectrum(
   }
   return f;
 }
-
-}  // namespace detail
 
 /// Coefficients \f$(1, q_1, \dots, q_N)\f$ of the monic real polynomial
 /// \f$q(z) = \prod_i (z - \lambda_i) = z^N + q_1 z^{N-1} + \dots + q_N\f$.
@@ -342,7 +345,7 @@ class PolePlacer {
                             "is not " + std::string(property) + ": its mode(s) " +
                                 detail::format_complex_list(report.unobservable_modes) + " cannot be moved");
     }
-    f_ = detail::real_matrix_with_spectrum(poles, who);
+    f_ = real_matrix_with_spectrum(poles, who);
     // The placement works with C's rows scaled by powers of two to unit size, as
     // the observability staircase does, and returns L in C's units: outputs in
     // other units (C scaled row by row) then get the same design, with L's
@@ -357,8 +360,7 @@ class PolePlacer {
       if (n == 0) return std::numeric_limits<Scalar>::infinity();
       const ComplexVector<Scalar> e = detail::dense_eigenvalues(m);
       Scalar gap = std::numeric_limits<Scalar>::infinity();
-      for (Index i = 0; i < e.size(); ++i)
-        for (Index j = 0; j < poles.size(); ++j) gap = std::min(gap, std::abs(e(i) - poles(j)));
+      for (Index i = 0; i < e.size(); ++i) gap = std::min(gap, (poles.array() - e(i)).abs().minCoeff());
       return gap / scale;
     };
     Scalar gap = separation(a0);
@@ -434,17 +436,41 @@ struct OutputInjectionGain {
   Scalar eigenvalue_mismatch = 0;      ///< largest |computed − requested| eigenvalue (greedy matching; tests 2–3)
 };
 
-namespace detail {
+/// The names the refusals of `place_output_injection_dynamic` use:
+/// "<who>: argument '<pair>' is not <property>", and `closed_loop` for the
+/// placed matrix. `place_state_feedback_dynamic` passes those of the problem
+/// it dualizes.
+struct PlacementNames {
+  std::string_view who = "place_output_injection";
+  std::string_view pair = "A, C";
+  std::string_view property = "observable";
+  std::string_view closed_loop = "A - LC";
+};
+
+/// Gain L (N × m) such that \f$A - LC\f$ has the spectrum `poles` (closed
+/// under conjugation), on run-time sizes: the Sylvester placement of the file
+/// comment (Bhattacharyya and de Souza 1982: \f$XA_0 - FX = GC\f$,
+/// \f$L = L_0 + X^{-1}G\f$ by `PolePlacer`), keeping among `options.tries` draws
+/// of G (one for a single output) the one whose X is best conditioned, then
+/// verified by the three tests of the file comment. One instance per scalar
+/// type serves every size (compiled once in `adaptobs::precompiled`);
+/// `place_output_injection` is the same for fixed-size arguments.
+///
+/// Refusals (`ConfigurationError` naming `names.who`): A not square or not
+/// finite, C not finite or without A's columns, not one pole per state, a
+/// pair that is not observable (naming its unobservable modes), an
+/// `options.eigenvalue_tolerance` outside [0, 1), a transformation X singular
+/// in every draw, and a placement that fails test 1 (the pair nearly not
+/// observable) or tests 2–3 (the poles too clustered for the pair's conditioning).
 template <typename Scalar>
-OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(const DynamicMatrix<Scalar>& A,
-                                                                           const DynamicMatrix<Scalar>& C,
-                                                                           const ComplexVector<Scalar>& poles,
-                                                                           const PolePlacementOptions& options,
-                                                                           std::string_view who, std::string_view pair,
-                                                                           std::string_view property,
-                                                                           std::string_view closed_loop) {
-  using Matrix = DynamicMatrix<Scalar>;
-  const Scalar eig_tol = default_eigenvalue_tolerance<Scalar>(options.eigenvalue_tolerance);
+[[nodiscard]] OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_output_injection_dynamic(
+    const Eigen::MatrixX<Scalar>& A, const Eigen::MatrixX<Scalar>& C, const ComplexVector<Scalar>& poles,
+    const PolePlacementOptions& options = {}, const PlacementNames& names = {}) {
+  using Matrix = Eigen::MatrixX<Scalar>;
+  using detail::fail_argument;
+  const std::string_view who = names.who, pair = names.pair, property = names.property,
+                         closed_loop = names.closed_loop;
+  const Scalar eig_tol = detail::default_eigenvalue_tolerance<Scalar>(options.eigenvalue_tolerance);
   if (!(options.eigenvalue_tolerance >= 0 && eig_tol < Scalar(1)))
     fail_argument(who, "options.eigenvalue_tolerance", "must be in [0, 1) (0 selects the default)");
   PolePlacer<Scalar> placer(A, C, poles, options, who, pair, property);
@@ -459,7 +485,7 @@ OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(cons
   result.L = best->L;
   result.transformation_condition = best->x_condition;
   result.cayley_hamilton_residual = cayley_hamilton_residual(closed, poles);
-  const Scalar tol = default_verification_tolerance<Scalar>(options.verification_tolerance);
+  const Scalar tol = detail::default_verification_tolerance<Scalar>(options.verification_tolerance);
   if (!(result.cayley_hamilton_residual <= tol)) {
     std::ostringstream os;
     os << "could not be placed to the required accuracy (Cayley-Hamilton residual "
@@ -473,7 +499,7 @@ OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(cons
        << "' (the transformation that places them has condition number " << result.transformation_condition << ")";
     fail_argument(who, "poles", os.str());
   };
-  const ComplexVector<Scalar> eig = dense_eigenvalues(closed);
+  const ComplexVector<Scalar> eig = detail::dense_eigenvalues(closed);
   // Test 2: the stability region of the request is kept.
   if ((poles.array().abs() < Scalar(1)).all() && !(eig.array().abs().maxCoeff() < Scalar(1))) {
     std::ostringstream os;
@@ -489,8 +515,8 @@ OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(cons
   }
   // Test 3: each pole of multiplicity k within τ^(1/k)‖A − LC‖_F of its matched eigenvalue.
   const Scalar scale = closed.norm();
-  const std::vector<Scalar> distance = matched_eigenvalue_distances(eig, poles);
-  const std::vector<Index> multiplicity = pole_multiplicities(poles);
+  const std::vector<Scalar> distance = detail::matched_eigenvalue_distances(eig, poles);
+  const std::vector<Index> multiplicity = detail::pole_multiplicities(poles);
   Scalar worst = 0;
   for (const Scalar d : distance) worst = std::max(worst, d);
   result.eigenvalue_mismatch = worst;
@@ -509,7 +535,7 @@ OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(cons
     const Index k = multiplicity[std::size_t(i)];
     std::ostringstream os;
     os << "could not be placed to the required accuracy: the eigenvalue of " << closed_loop
-       << " matched to the requested pole " << format_complex_list<Scalar>(ComplexVector<Scalar>::Constant(1, poles(i)))
+       << " matched to the requested pole " << detail::format_complex_list<Scalar>(ComplexVector<Scalar>::Constant(1, poles(i)))
        << " (multiplicity " << k << ") is " << distance[std::size_t(i)] << " away, beyond the tolerance "
        << std::pow(eig_tol, Scalar(1) / Scalar(k)) * scale << " (eigenvalue tolerance " << eig_tol << " to the power 1/"
        << k << ", times ||" << closed_loop << "||_F)";
@@ -518,11 +544,10 @@ OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_injection(cons
   return result;
 }
 #ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE OutputInjectionGain<double, Eigen::Dynamic, Eigen::Dynamic> place_injection<double>(
-    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const ComplexVector<double>&,
-    const PolePlacementOptions&, std::string_view, std::string_view, std::string_view, std::string_view);
+ADAPTOBS_INSTANTIATE OutputInjectionGain<double, Eigen::Dynamic, Eigen::Dynamic> place_output_injection_dynamic<double>(
+    const Eigen::MatrixXd&, const Eigen::MatrixXd&, const ComplexVector<double>&, const PolePlacementOptions&,
+    const PlacementNames&);
 #endif
-}  // namespace detail
 
 /// Gain L (N × m) such that \f$A - LC\f$ has the spectrum `poles` (real or
 /// complex vector, closed under conjugation). Throws `ConfigurationError` when
@@ -534,10 +559,9 @@ template <class DA, class DC, class DP>
 [[nodiscard]] auto place_output_injection(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
                                           const Eigen::MatrixBase<DP>& poles, PolePlacementOptions options = {}) {
   using Scalar = typename DA::Scalar;
-  constexpr std::string_view who = "place_output_injection";
-  const auto d = detail::place_injection<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C),
-                                                 detail::complex_poles<Scalar>(poles, who), options, who, "A, C",
-                                                 "observable", "A - LC");
+  const auto d = place_output_injection_dynamic<Scalar>(
+      detail::dynamic_copy(A), detail::dynamic_copy(C), detail::complex_poles<Scalar>(poles, "place_output_injection"),
+      options);
   OutputInjectionGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime> result;
   result.L = d.L;
   result.cayley_hamilton_residual = d.cayley_hamilton_residual;
@@ -555,10 +579,31 @@ struct StateFeedbackGain {
   Scalar eigenvalue_mismatch = 0;
 };
 
-/// Gain K (m × N) such that \f$A - BK\f$ has the spectrum `poles`, by duality
-/// (\f$K^T\f$ places \f$A^T - K^TB^T\f$). Throws `ConfigurationError` when (A, B)
-/// is not controllable or the placement cannot be verified (the tests of the
-/// file comment, applied to \f$A^T - K^TB^T\f$, whose spectrum is that of A − BK).
+/// Gain K (m × N) such that \f$A - BK\f$ has the spectrum `poles`, on
+/// run-time sizes, by duality: \f$K^T\f$ is `place_output_injection_dynamic`
+/// for \f$(A^T, B^T)\f$, since \f$A^T - K^TB^T\f$ has the spectrum of A − BK.
+/// Its refusals, in the terms of (A, B): A not square or not finite, B not
+/// finite or without A's rows, (A, B) not controllable, and a placement
+/// failing the tests of the file comment.
+template <typename Scalar>
+[[nodiscard]] StateFeedbackGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> place_state_feedback_dynamic(
+    const Eigen::MatrixX<Scalar>& A, const Eigen::MatrixX<Scalar>& B, const ComplexVector<Scalar>& poles,
+    const PolePlacementOptions& options = {}) {
+  constexpr std::string_view who = "place_state_feedback";
+  detail::require_square(A, who, "A");
+  detail::require_finite(A, who, "A");
+  // Checked before the dual problem, which would name Bᵀ as its C.
+  detail::require_finite_shape(B, A.rows(), B.cols(), who, "B");
+  const auto dual = place_output_injection_dynamic<Scalar>(A.transpose(), B.transpose(), poles, options,
+                                                           {who, "A, B", "controllable", "A - BK"});
+  return {dual.L.transpose(), dual.cayley_hamilton_residual, dual.transformation_condition, dual.eigenvalue_mismatch};
+}
+
+/// Gain K (m × N) such that \f$A - BK\f$ has the spectrum `poles`:
+/// `place_state_feedback_dynamic` on copies, sized as A and B. Throws
+/// `ConfigurationError` when (A, B) is not controllable or the placement
+/// cannot be verified (the tests of the file comment, applied to
+/// \f$A^T - K^TB^T\f$, whose spectrum is that of A − BK).
 template <class DA, class DB, class DP>
 [[nodiscard]] auto place_state_feedback(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
                                         const Eigen::MatrixBase<DP>& poles, PolePlacementOptions options = {}) {
@@ -566,18 +611,20 @@ template <class DA, class DB, class DP>
   constexpr std::string_view who = "place_state_feedback";
   detail::require_square(A, who, "A");
   detail::require_finite(A, who, "A");
-  // Checked before the dual problem, which would name Bᵀ as its C.
   detail::require_finite_shape(B, A.rows(), B.cols(), who, "B");
-  const auto dual = detail::place_injection<Scalar>(detail::dynamic_copy(A.transpose()),
-                                                    detail::dynamic_copy(B.transpose()),
-                                                    detail::complex_poles<Scalar>(poles, who), options, who, "A, B",
-                                                    "controllable", "A - BK");
+  const auto d = place_state_feedback_dynamic<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(B),
+                                                      detail::complex_poles<Scalar>(poles, who), options);
   StateFeedbackGain<Scalar, DA::RowsAtCompileTime, DB::ColsAtCompileTime> result;
-  result.K = dual.L.transpose();
-  result.cayley_hamilton_residual = dual.cayley_hamilton_residual;
-  result.transformation_condition = dual.transformation_condition;
-  result.eigenvalue_mismatch = dual.eigenvalue_mismatch;
+  result.K = d.K;
+  result.cayley_hamilton_residual = d.cayley_hamilton_residual;
+  result.transformation_condition = d.transformation_condition;
+  result.eigenvalue_mismatch = d.eigenvalue_mismatch;
   return result;
 }
+
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE StateFeedbackGain<double, Eigen::Dynamic, Eigen::Dynamic> place_state_feedback_dynamic<double>(
+    const Eigen::MatrixXd&, const Eigen::MatrixXd&, const ComplexVector<double>&, const PolePlacementOptions&);
+#endif
 
 }  // namespace adaptobs

@@ -62,20 +62,25 @@ struct KypCertificate {
   Scalar max_eigenvalue_lyapunov = 0;  ///< \f$\lambda_{\max}(A^TP + PA)\f$ (< 0)
 };
 
-namespace detail {
-// The sweep, the residuals and the certificate on run-time sizes, one instance
-// per scalar type (compiled once in adaptobs::precompiled); the templates
-// below check and copy their arguments and size the result.
-
+/// The frequency sweep of `spr_frequency_sweep` on run-time sizes:
+/// \f$(1 + \omega^2)\,\mathrm{Re}\,G(j\omega)\f$ with \f$G(j\omega) = c(j\omega I - A)^{-1}b\f$
+/// (an LU solve per frequency) at ω = 0 and on `points` logarithmically spaced
+/// frequencies of [omega_min, omega_max]; strictly positive real when A is
+/// Hurwitz, the minimum is positive and \f$-cAb\f$ exceeds \f$10^{-9}\f$ times
+/// the scales of A, b and c. One instance per scalar type (compiled once in
+/// `adaptobs::precompiled`). Refuses (naming `spr_frequency_sweep`) a triple
+/// that is not SISO or not finite, and a grid without
+/// 0 < omega_min < omega_max < ∞ and points ≥ 2.
 template <typename Scalar>
-[[nodiscard]] SprSweep<Scalar> spr_frequency_sweep_dense(const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& b,
-                                                         const DynamicMatrix<Scalar>& c, Scalar omega_min,
-                                                         Scalar omega_max, int points) {
+[[nodiscard]] SprSweep<Scalar> spr_frequency_sweep_dynamic(const Eigen::MatrixX<Scalar>& A,
+                                                           const Eigen::MatrixX<Scalar>& b,
+                                                           const Eigen::MatrixX<Scalar>& c, Scalar omega_min = 1e-4,
+                                                           Scalar omega_max = 1e4, int points = 2001) {
   using Complex = std::complex<Scalar>;
   using ComplexMatrix = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "spr_frequency_sweep";
-  const Index n = require_siso_triple(A, b, c, who);
-  require(omega_min > 0 && omega_max > omega_min && std::isfinite(omega_max) && points >= 2, who,
+  const Index n = detail::require_siso_triple(A, b, c, who);
+  detail::require(omega_min > 0 && omega_max > omega_min && std::isfinite(omega_max) && points >= 2, who,
           "omega_min, omega_max, points", "must satisfy 0 < omega_min < omega_max < ∞ and points ≥ 2");
   SprSweep<Scalar> r;
   if (n == 0) {  // G = 0: not strictly positive real; an empty A has no unstable mode
@@ -107,12 +112,23 @@ template <typename Scalar>
   return r;
 }
 
+/// The residuals of a candidate KYP certificate P of \f$c(sI - A)^{-1}b\f$ on
+/// run-time sizes: \f$\|Pb - c^T\|_\infty\f$, \f$\lambda_{\min}\f$ of the
+/// symmetric part of P and \f$\lambda_{\max}\f$ of that of \f$A^TP + PA\f$
+/// (`symmetric_eigenvalues`). Refuses (naming `kyp_residuals`) sizes that do
+/// not fit P (n × n), A (n × n), b (n × 1) and c (1 × n).
 template <typename Scalar>
-[[nodiscard]] KypCertificate<Scalar, Eigen::Dynamic> kyp_residuals_dense(const DynamicMatrix<Scalar>& P,
-                                                                         const DynamicMatrix<Scalar>& A,
-                                                                         const DynamicMatrix<Scalar>& b,
-                                                                         const DynamicMatrix<Scalar>& c) {
-  using Matrix = DynamicMatrix<Scalar>;
+[[nodiscard]] KypCertificate<Scalar, Eigen::Dynamic> kyp_residuals_dynamic(const Eigen::MatrixX<Scalar>& P,
+                                                                           const Eigen::MatrixX<Scalar>& A,
+                                                                           const Eigen::MatrixX<Scalar>& b,
+                                                                           const Eigen::MatrixX<Scalar>& c) {
+  using Matrix = Eigen::MatrixX<Scalar>;
+  constexpr std::string_view who = "kyp_residuals";
+  detail::require_square(P, who, "P");
+  const Index n = P.rows();
+  detail::require_shape(A, n, n, who, "A");
+  detail::require_shape(b, n, 1, who, "b");
+  detail::require_shape(c, 1, n, who, "c");
   KypCertificate<Scalar, Eigen::Dynamic> k;
   k.P = P;
   k.equality_residual = (P * b - c.transpose()).cwiseAbs().template maxCoeff<Eigen::PropagateNaN>();
@@ -122,13 +138,20 @@ template <typename Scalar>
   return k;
 }
 
+/// The KYP certificate of `kyp_certificate` on run-time sizes, or nothing
+/// when \f$c(sI - A)^{-1}b\f$ is not SPR (or no certificate is found): the
+/// construction by a Riccati equation solved from its Hamiltonian
+/// (`solve_riccati_hamiltonian`) described there, verified by
+/// `kyp_residuals_dynamic`. One instance per scalar type (compiled once in
+/// `adaptobs::precompiled`). Refuses (naming `kyp_certificate`) a triple
+/// that is not SISO or not finite.
 template <typename Scalar>
-[[nodiscard]] std::optional<KypCertificate<Scalar, Eigen::Dynamic>> kyp_certificate_dense(
-    const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& b, const DynamicMatrix<Scalar>& c) {
-  using Matrix = DynamicMatrix<Scalar>;
+[[nodiscard]] std::optional<KypCertificate<Scalar, Eigen::Dynamic>> kyp_certificate_dynamic(
+    const Eigen::MatrixX<Scalar>& A, const Eigen::MatrixX<Scalar>& b, const Eigen::MatrixX<Scalar>& c) {
+  using Matrix = Eigen::MatrixX<Scalar>;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   constexpr std::string_view who = "kyp_certificate";
-  const Index n = require_siso_triple(A, b, c, who);
+  const Index n = detail::require_siso_triple(A, b, c, who);
   const Scalar cb = (c * b)(0, 0);
   if (!(cb > 0)) return std::nullopt;
 
@@ -154,7 +177,7 @@ template <typename Scalar>
   const auto verified = [&](const Matrix& pp) -> std::optional<KypCertificate<Scalar, Eigen::Dynamic>> {
     const Matrix p_dynamic = tn.transpose() * pp * tn;
     const Matrix p = Scalar(0.5) * (p_dynamic + p_dynamic.transpose());
-    auto k = kyp_residuals_dense<Scalar>(p, A, b, c);
+    auto k = kyp_residuals_dynamic<Scalar>(p, A, b, c);
     const Scalar margin = p_norm_tol * p.norm() * std::max(Scalar(1), A.norm());
     if (k.equality_residual <= Scalar(1e-10) * std::max(Scalar(1), c.cwiseAbs().maxCoeff()) &&
         k.min_eigenvalue_P > 0 && k.max_eigenvalue_lyapunov < -margin)
@@ -182,24 +205,23 @@ template <typename Scalar>
   return std::nullopt;
 }
 
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE SprSweep<double> spr_frequency_sweep_dynamic<double>(const Eigen::MatrixXd&,
+                                                                          const Eigen::MatrixXd&,
+                                                                          const Eigen::MatrixXd&, double, double, int);
+ADAPTOBS_INSTANTIATE KypCertificate<double, Eigen::Dynamic> kyp_residuals_dynamic<double>(
+    const Eigen::MatrixXd&, const Eigen::MatrixXd&, const Eigen::MatrixXd&, const Eigen::MatrixXd&);
+ADAPTOBS_INSTANTIATE std::optional<KypCertificate<double, Eigen::Dynamic>> kyp_certificate_dynamic<double>(
+    const Eigen::MatrixXd&, const Eigen::MatrixXd&, const Eigen::MatrixXd&);
+#endif
+
+namespace detail {
 /// The certificate with P of `N` rows.
 template <int N, typename Scalar>
 [[nodiscard]] KypCertificate<Scalar, N> sized_certificate(const KypCertificate<Scalar, Eigen::Dynamic>& k) {
   return {Eigen::Matrix<Scalar, N, N>(k.P), k.equality_residual, k.min_eigenvalue_P, k.max_eigenvalue_lyapunov};
 }
 
-#ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE SprSweep<double> spr_frequency_sweep_dense<double>(const DynamicMatrix<double>&,
-                                                                        const DynamicMatrix<double>&,
-                                                                        const DynamicMatrix<double>&, double, double,
-                                                                        int);
-ADAPTOBS_INSTANTIATE KypCertificate<double, Eigen::Dynamic> kyp_residuals_dense<double>(const DynamicMatrix<double>&,
-                                                                                        const DynamicMatrix<double>&,
-                                                                                        const DynamicMatrix<double>&,
-                                                                                        const DynamicMatrix<double>&);
-ADAPTOBS_INSTANTIATE std::optional<KypCertificate<double, Eigen::Dynamic>> kyp_certificate_dense<double>(
-    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const DynamicMatrix<double>&);
-#endif
 }  // namespace detail
 
 /// Samples \f$(1 + \omega^2)\,\mathrm{Re}\,G(j\omega)\f$ at ω = 0 and on a
@@ -212,7 +234,7 @@ template <class DA, class DB, class DC>
                                                                 const Eigen::MatrixBase<DC>& c,
                                                                 typename DA::Scalar omega_min = 1e-4,
                                                                 typename DA::Scalar omega_max = 1e4, int points = 2001) {
-  return detail::spr_frequency_sweep_dense<typename DA::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(b),
+  return spr_frequency_sweep_dynamic<typename DA::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(b),
                                                                 detail::dynamic_copy(c), omega_min, omega_max, points);
 }
 
@@ -221,7 +243,7 @@ template <class DP, class DA, class DB, class DC>
 [[nodiscard]] KypCertificate<typename DP::Scalar, DP::RowsAtCompileTime> kyp_residuals(
     const Eigen::MatrixBase<DP>& P, const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b,
     const Eigen::MatrixBase<DC>& c) {
-  return detail::sized_certificate<DP::RowsAtCompileTime>(detail::kyp_residuals_dense<typename DP::Scalar>(
+  return detail::sized_certificate<DP::RowsAtCompileTime>(kyp_residuals_dynamic<typename DP::Scalar>(
       detail::dynamic_copy(P), detail::dynamic_copy(A), detail::dynamic_copy(b), detail::dynamic_copy(c)));
 }
 
@@ -241,7 +263,7 @@ template <class DP, class DA, class DB, class DC>
 template <class DA, class DB, class DC>
 [[nodiscard]] std::optional<KypCertificate<typename DA::Scalar, DA::RowsAtCompileTime>> kyp_certificate(
     const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b, const Eigen::MatrixBase<DC>& c) {
-  const auto k = detail::kyp_certificate_dense<typename DA::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(b),
+  const auto k = kyp_certificate_dynamic<typename DA::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(b),
                                                                     detail::dynamic_copy(c));
   if (!k) return std::nullopt;
   return detail::sized_certificate<DA::RowsAtCompileTime>(*k);

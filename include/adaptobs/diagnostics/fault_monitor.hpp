@@ -16,14 +16,17 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/observer.hpp>
 #include <adaptobs/diagnostics/calibration.hpp>
+#include <adaptobs/diagnostics/change_detector.hpp>
 #include <adaptobs/diagnostics/chi_square_test.hpp>
 #include <adaptobs/diagnostics/cusum.hpp>
 #include <adaptobs/diagnostics/glr.hpp>
 
 #include <Eigen/Core>
 
+#include <concepts>
 #include <sstream>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace adaptobs {
@@ -168,14 +171,43 @@ template <typename Scalar, int NY, int NP>
   return design;
 }
 
-template <typename Scalar, int NY, int NP>
+/// Three change detectors fed together after each accepted update: two on the
+/// parameter estimates (NP entries) and one on the output errors (NY entries).
+/// By default the CUSUM, the GLR and the χ² test of a `FaultMonitorDesign`;
+/// any `ChangeDetector` of the right vectors may take a slot (the accessors
+/// keep the names of the default detectors: `cusum()` is the first parameter
+/// detector, `glr()` the second, `chi_square()` the output-error detector).
+template <typename Scalar, int NY, int NP,
+          ChangeDetector<Eigen::Matrix<Scalar, NP, 1>> ParameterDetector = CusumDetector<Scalar, NP>,
+          ChangeDetector<Eigen::Matrix<Scalar, NP, 1>> SecondParameterDetector = GlrDetector<Scalar, NP>,
+          ChangeDetector<Eigen::Matrix<Scalar, NY, 1>> OutputErrorDetector = ChiSquareTest<Scalar, NY>>
 class FaultMonitor {
  public:
+  /// The three default tests of `design`.
   explicit FaultMonitor(const FaultMonitorDesign<Scalar, NY, NP>& design)
+    requires std::same_as<ParameterDetector, CusumDetector<Scalar, NP>> &&
+                 std::same_as<SecondParameterDetector, GlrDetector<Scalar, NP>> &&
+                 std::same_as<OutputErrorDetector, ChiSquareTest<Scalar, NY>>
       : cusum_(design.nominal, design.cusum.scale, design.cusum.drift, design.cusum.threshold, design.cusum_options),
         glr_(design.nominal, design.cusum.scale, design.glr_window, design.glr_threshold, design.cusum_options),
         chi_square_(design.output_error_covariance, design.window, design.false_alarm_probability,
-                    design.chi_square_options) {}
+                    design.chi_square_options),
+        parameters_(design.nominal.size()),
+        outputs_(design.output_error_covariance.rows()) {}
+
+  /// Any three detectors, for estimates of `parameters` entries and output
+  /// errors of `outputs` entries (checked by `observe`; a negative size, or one
+  /// other than a fixed NP or NY, is refused naming it).
+  FaultMonitor(Index parameters, Index outputs, ParameterDetector parameter_detector,
+               SecondParameterDetector second_parameter_detector, OutputErrorDetector output_error_detector)
+      : cusum_(std::move(parameter_detector)),
+        glr_(std::move(second_parameter_detector)),
+        chi_square_(std::move(output_error_detector)),
+        parameters_(parameters),
+        outputs_(outputs) {
+    detail::require_size<NP>(parameters, "FaultMonitor", "parameters");
+    detail::require_size<NY>(outputs, "FaultMonitor", "outputs");
+  }
 
   /// Feeds the observer's estimates after an accepted update to the three tests.
   /// Returns `nonfinite_input`, with every test unchanged, when one would reject them;
@@ -193,12 +225,12 @@ class FaultMonitor {
     return observe(parameters.derived(), output_error.derived(), "parameters", "output_error");
   }
 
-  [[nodiscard]] const CusumDetector<Scalar, NP>& cusum() const noexcept { return cusum_; }
-  [[nodiscard]] CusumDetector<Scalar, NP>& cusum() noexcept { return cusum_; }
-  [[nodiscard]] const GlrDetector<Scalar, NP>& glr() const noexcept { return glr_; }
-  [[nodiscard]] GlrDetector<Scalar, NP>& glr() noexcept { return glr_; }
-  [[nodiscard]] const ChiSquareTest<Scalar, NY>& chi_square() const noexcept { return chi_square_; }
-  [[nodiscard]] ChiSquareTest<Scalar, NY>& chi_square() noexcept { return chi_square_; }
+  [[nodiscard]] const ParameterDetector& cusum() const noexcept { return cusum_; }
+  [[nodiscard]] ParameterDetector& cusum() noexcept { return cusum_; }
+  [[nodiscard]] const SecondParameterDetector& glr() const noexcept { return glr_; }
+  [[nodiscard]] SecondParameterDetector& glr() noexcept { return glr_; }
+  [[nodiscard]] const OutputErrorDetector& chi_square() const noexcept { return chi_square_; }
+  [[nodiscard]] OutputErrorDetector& chi_square() noexcept { return chi_square_; }
 
   /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): its three tests'.
   using SnapshotScalar = Scalar;
@@ -216,8 +248,8 @@ class FaultMonitor {
   UpdateStatus observe(const P& parameters, const E& output_error, std::string_view parameters_name,
                        std::string_view output_error_name) {
     constexpr std::string_view who = "FaultMonitor::observe";
-    detail::require_shape(parameters, cusum_.nominal().size(), 1, who, parameters_name);
-    detail::require_shape(output_error, chi_square_.outputs(), 1, who, output_error_name);
+    detail::require_shape(parameters, parameters_, 1, who, parameters_name);
+    detail::require_shape(output_error, outputs_, 1, who, output_error_name);
     if (!detail::all_finite(parameters, output_error)) return UpdateStatus::nonfinite_input;
     const UpdateStatus chi = chi_square_.update(output_error);
     if (!accepted(chi)) return chi;  // an overflowing weighted error: the others have not moved either
@@ -225,9 +257,10 @@ class FaultMonitor {
     return cusum_.update(parameters);
   }
 
-  CusumDetector<Scalar, NP> cusum_;
-  GlrDetector<Scalar, NP> glr_;
-  ChiSquareTest<Scalar, NY> chi_square_;
+  ParameterDetector cusum_;
+  SecondParameterDetector glr_;
+  OutputErrorDetector chi_square_;
+  Index parameters_, outputs_;
 };
 
 }  // namespace adaptobs

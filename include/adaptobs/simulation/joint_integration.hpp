@@ -12,23 +12,45 @@
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
+#include <adaptobs/core/sampled_integration.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/simulation/plant.hpp>
 
 #include <Eigen/Core>
 
+#include <concepts>
+
 namespace adaptobs {
 
-template <class Plant, class Observer>
+/// What the joint integration needs beyond a `Plant` and a
+/// `ContinuousTimeObserver`: the plant's right-hand side `derivative(η, η̇, t)`,
+/// its signals `signals(t, η, u, y)` at a state and time and `set_state(η, t)`;
+/// the observer's stacked internal state s, which `set_internal_state(s)`
+/// takes back or refuses (false).
+template <class P, class O>
+concept JointlyIntegrable =
+    Plant<P> && ContinuousTimeObserver<O> &&
+    requires(P& p, const P& cp, const typename P::State& eta, typename P::State& deta, typename P::Scalar t,
+             typename P::Input& u, typename P::Output& y, O& o, const O& co) {
+      cp.derivative(eta, deta, t);
+      cp.signals(t, eta, u, y);
+      p.set_state(eta, t);
+      { co.internal_state() } -> std::convertible_to<const typename O::InternalState&>;
+      { o.set_internal_state(co.internal_state()) } -> std::convertible_to<bool>;
+    };
+
+template <class PlantType, class ObserverType>
+  requires JointlyIntegrable<PlantType, ObserverType>
 class JointIntegration {
  public:
-  using Scalar = typename Plant::Scalar;
-  using PlantState = typename Plant::State;
-  using ObserverState = typename Observer::InternalState;
+  using Scalar = typename PlantType::Scalar;
+  using PlantState = typename PlantType::State;
+  using ObserverState = typename ObserverType::InternalState;
   static constexpr int size = sum_of_sizes(PlantState::RowsAtCompileTime, ObserverState::RowsAtCompileTime);
   using JointState = Eigen::Matrix<Scalar, size, 1>;
 
-  JointIntegration(Plant& plant, Observer& observer)
+  JointIntegration(PlantType& plant, ObserverType& observer)
       : plant_(plant), observer_(observer), x_(pack()), rk4_(x_), t_(Scalar(plant.time())) {
     u_.setZero(plant.sample().u.rows());
     y_.setZero(plant.sample().y.rows());
@@ -76,14 +98,14 @@ class JointIntegration {
     return x;
   }
 
-  Plant& plant_;
-  Observer& observer_;
+  PlantType& plant_;
+  ObserverType& observer_;
   JointState x_;
   JointState trial_ = x_;  ///< the step's result, kept only once both sides accept it
   RungeKutta4<JointState> rk4_;
   Scalar t_;
-  typename Plant::Input u_;
-  typename Plant::Output y_;
+  typename PlantType::Input u_;
+  typename PlantType::Output y_;
   PlantState eta_, deta_;
   ObserverState s_, ds_;
 };
