@@ -97,8 +97,8 @@ namespace detail {
 using CusumOptions = SequentialTestOptions;
 
 template <typename Scalar, int N = Eigen::Dynamic>
-class CusumDetector : public detail::SequentialTest<CusumDetector<Scalar, N>, Scalar, N> {
-  using Base = detail::SequentialTest<CusumDetector<Scalar, N>, Scalar, N>;
+class CusumDetector : public SequentialTest<CusumDetector<Scalar, N>, Scalar, N> {
+  using Base = SequentialTest<CusumDetector<Scalar, N>, Scalar, N>;
   friend Base;
 
  public:

@@ -60,8 +60,8 @@ namespace detail {
 }  // namespace detail
 
 template <typename Scalar, int N = Eigen::Dynamic>
-class GlrDetector : public detail::SequentialTest<GlrDetector<Scalar, N>, Scalar, N> {
-  using Base = detail::SequentialTest<GlrDetector<Scalar, N>, Scalar, N>;
+class GlrDetector : public SequentialTest<GlrDetector<Scalar, N>, Scalar, N> {
+  using Base = SequentialTest<GlrDetector<Scalar, N>, Scalar, N>;
   friend Base;
 
  public:

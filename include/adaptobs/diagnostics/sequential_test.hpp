@@ -33,12 +33,16 @@ struct SequentialTestOptions {
   bool reanchor = false;
 };
 
-namespace detail {
-
-/// Base of `CusumDetector` and `GlrDetector`. `Derived` provides
-/// `Scalar evaluate(const Vector& z, Index& component, int& sign)`, which
-/// updates its statistics with the normalized value z and returns the largest
-/// (with its component and sign), and `void clear_statistics()`.
+/// Base of `CusumDetector` and `GlrDetector`, and of any other sequential test
+/// on an estimate (CRTP). `Derived` provides two hooks:
+/// - `Scalar evaluate(const Vector& z, Index& component, int& sign)`, which
+///   updates its statistics with the normalized value
+///   \f$z = (v - \bar v) / \sigma\f$ and returns the largest (with its component
+///   and sign);
+/// - `void clear_statistics()`.
+///
+/// The base does the rest: the checks, the schedule, the alarm. Such a type is a
+/// `ChangeDetector` (diagnostics/change_detector.hpp), so `FaultMonitor` takes it.
 template <class Derived, typename Scalar, int N>
 class SequentialTest : public ThresholdAlarm<Scalar> {
  public:
@@ -48,7 +52,7 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   /// for a NaN or Inf in it; a value of the wrong size is a `ConfigurationError`.
   [[nodiscard]] UpdateStatus update(const Vector& value) {
     if constexpr (N == Eigen::Dynamic)
-      if (value.size() != nominal_.size()) require_shape(value, nominal_.size(), 1, std::string(name_) + "::update", "value");
+      if (value.size() != nominal_.size()) detail::require_shape(value, nominal_.size(), 1, std::string(name_) + "::update", "value");
     if (!detail::all_finite(value)) return UpdateStatus::nonfinite_input;
     this->clear_alarm();
     // Every stride-th value is evaluated: a countdown, not a division per value.
@@ -116,17 +120,17 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
       : ThresholdAlarm<Scalar>(threshold), name_(who), nominal_(std::move(nominal)), initial_nominal_(nominal_),
         options_(options) {
     const Index n = nominal_.size();
-    require(n >= 1, who, "nominal", "must have at least one component");
-    require_finite(nominal_, who, "nominal");
-    require_shape(scale, n, 1, who, "scale");
-    require(((scale.array() > Scalar(0)) && scale.array().isFinite()).all(), who, "scale",
+    detail::require(n >= 1, who, "nominal", "must have at least one component");
+    detail::require_finite(nominal_, who, "nominal");
+    detail::require_shape(scale, n, 1, who, "scale");
+    detail::require(((scale.array() > Scalar(0)) && scale.array().isFinite()).all(), who, "scale",
             "must be positive and finite");
     inverse_scale_ = scale.cwiseInverse();
     // A subnormal scale has no finite reciprocal: every deviation would read ∞.
-    require(inverse_scale_.allFinite(), who, "scale", "must have finite reciprocals (no subnormal entries)");
-    require_positive(threshold, who, "threshold");
-    require(options.stride >= 1, who, "options.stride", "must be at least 1");
-    require(options.hold_off >= 0, who, "options.hold_off", "must be non-negative");
+    detail::require(inverse_scale_.allFinite(), who, "scale", "must have finite reciprocals (no subnormal entries)");
+    detail::require_positive(threshold, who, "threshold");
+    detail::require(options.stride >= 1, who, "options.stride", "must be at least 1");
+    detail::require(options.hold_off >= 0, who, "options.hold_off", "must be non-negative");
     z_.setZero(n);
   }
 
@@ -151,7 +155,7 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
     archive("alarm_statistic", self.alarm_statistic_);
     archive("reanchor_pending", self.reanchor_pending_);
     if constexpr (Archive::reading)
-      require(self.skip_ >= 0 && self.skip_ < self.options_.stride && self.holding_ >= 0 &&
+      detail::require(self.skip_ >= 0 && self.skip_ < self.options_.stride && self.holding_ >= 0 &&
                   self.holding_ <= self.options_.hold_off,
               "restore", "snapshot", "holds a stride or hold-off position outside its option");
     ThresholdAlarm<Scalar>::visit_alarm_state(self, archive);
@@ -182,5 +186,4 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   bool reanchor_pending_ = false;
 };
 
-}  // namespace detail
 }  // namespace adaptobs
