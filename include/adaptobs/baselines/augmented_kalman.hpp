@@ -188,7 +188,7 @@ class AugmentedKalmanFilter
     detail::subtract_product(w.joseph.leftCols(nx), w.gain, c);
     detail::set_product(w.scratch, w.joseph, p_);
     detail::set_product(w.p, w.scratch, w.joseph.transpose());
-    w.pht.noalias() = w.gain * r;  // reuse as L R
+    detail::set_product(w.pht, w.gain, r);  // reuse as L R
     detail::add_product(w.p, w.pht, w.gain.transpose());
 
     // Prediction with F_k = [A Ψ; 0 I].

@@ -36,6 +36,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/discrete_update.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
@@ -203,8 +204,8 @@ class GuyaderZhangObserver
     // Output error y_k − C_k x̂_k and C_k Υ_k, shared by (2a)–(2c); with a mask,
     // their absent rows are those of C̄_k = D_kC_k, i.e. zero.
     w.innovation = sample.y;
-    w.innovation.noalias() -= system.C * x_;
-    w.c_upsilon.noalias() = system.C * upsilon_;
+    detail::subtract_product(w.innovation, system.C, x_);
+    detail::set_product(w.c_upsilon, system.C, upsilon_);
     detail::zero_absent_rows<Dims>(w.innovation, present);
     detail::zero_absent_rows<Dims>(w.c_upsilon, present);
 
@@ -218,7 +219,7 @@ class GuyaderZhangObserver
       // would freeze θ̂: the step is then taken as √μ_k C̄Υᵀ(√μ_k ε).
       if (!(mu_k > Scalar(0))) mu_k = error_scale = inverse_frobenius_norm(w.c_upsilon);
     }
-    w.theta_step.noalias() = w.c_upsilon.transpose() * (error_scale * w.innovation);
+    detail::set_product(w.theta_step, w.c_upsilon.transpose(), error_scale * w.innovation);
     w.theta_step *= mu_k;
     w.theta = theta_ + w.theta_step;
 
@@ -226,19 +227,19 @@ class GuyaderZhangObserver
     /// mask evaluated as \f$A_k\Upsilon_k - K_k(\bar C_k\Upsilon_k)\f$, reusing \f$\bar C_k\Upsilon_k\f$.
     w.upsilon = sample.Psi;
     if (is_time_invariant(model_) && present == nullptr) {
-      w.upsilon.noalias() += closed_loop_ * upsilon_;
+      detail::add_product(w.upsilon, closed_loop_, upsilon_);
     } else {
-      w.upsilon.noalias() += system.A * upsilon_;
-      w.upsilon.noalias() -= gain_ * w.c_upsilon;
+      detail::add_product(w.upsilon, system.A, upsilon_);
+      detail::subtract_product(w.upsilon, gain_, w.c_upsilon);
     }
 
     /// (2c) \f$\hat x_{k+1} = A_k\hat x_k + B_ku_k + \Psi_k\hat\theta_k + K_k(y_k - C_k\hat x_k)
     ///        + \Upsilon_{k+1}(\hat\theta_{k+1} - \hat\theta_k)\f$
-    w.x.noalias() = system.A * x_;
-    w.x.noalias() += system.B * sample.u;
-    w.x.noalias() += sample.Psi * theta_;
-    w.x.noalias() += gain_ * w.innovation;
-    w.x.noalias() += w.upsilon * w.theta_step;
+    detail::set_product(w.x, system.A, x_);
+    detail::add_product(w.x, system.B, sample.u);
+    detail::add_product(w.x, sample.Psi, theta_);
+    detail::add_product(w.x, gain_, w.innovation);
+    detail::add_product(w.x, w.upsilon, w.theta_step);
 
     // A non-finite C_kΥ_k would make θ̂_{k+1} non-finite too (∞·0 is NaN): the check of
     // θ̂ covers it, so the excitation monitor below never sees one.
