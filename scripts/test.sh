@@ -3,7 +3,8 @@
 # and runs the CTest suite, then builds them again with clang++ under
 # AddressSanitizer and UndefinedBehaviorSanitizer, with the benchmarks
 # (uninstrumented) and every public header compiled on its own, and runs the
-# suite there, the benchmark smoke run included.
+# suite there, the benchmark smoke run included; last, under ThreadSanitizer,
+# two threads sharing one observer's odeint_system (tests/tsan).
 #
 # Between the two, the Python package is installed with `pip install .` into a
 # virtual environment of its own (build/venv, made on first use) and its pytest
@@ -104,6 +105,13 @@ if ((sanitize)); then
   cmake --build "$root/build/sanitize" -j "$jobs"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$root/build/sanitize" --output-on-failure -j "$jobs"
+
+  echo "== clang++ ThreadSanitizer: two threads sharing one observer's odeint_system"
+  # A project of its own (tests/tsan): ThreadSanitizer excludes AddressSanitizer,
+  # and its one executable compiles in about half a minute of CPU.
+  cmake -S "$root/tests/tsan" -B "$root/build/tsan" -G Ninja -DCMAKE_CXX_COMPILER=clang++ >/dev/null
+  cmake --build "$root/build/tsan"
+  TSAN_OPTIONS=halt_on_error=1 "$root/build/tsan/tsan_shared_system"
 fi
 
 echo "== all tests passed in $((SECONDS - start)) s"

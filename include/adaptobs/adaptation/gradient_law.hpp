@@ -10,7 +10,6 @@
 /// An update law is any type with `derivative(R, epsilon, theta, dtheta)`;
 /// this one is the default of `UnifiedAdaptiveObserver`.
 
-#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -38,14 +37,18 @@ class GradientLaw {
 
   explicit GradientLaw(ParameterMatrix gamma) : gamma_(std::move(gamma)) {
     detail::require_positive_definite(gamma_, "GradientLaw", "gamma");
-    scratch_.setZero(gamma_.rows());
   }
 
+  /// \f$\dot{\hat\theta} = \Gamma R^T\varepsilon = \sum_j \Gamma_{:,j}\,(r_j^T\varepsilon)\f$, with
+  /// \f$r_j\f$ the j-th column of R: summed column by column, so that no
+  /// intermediate vector \f$R^T\varepsilon\f$ is stored (none allocated with
+  /// run-time sizes) and the law writes only `dtheta`, safe to call from
+  /// several threads at once.
   template <class DR, class DE, class DT, class DOut>
   void derivative(const Eigen::MatrixBase<DR>& R, const Eigen::MatrixBase<DE>& epsilon,
                   const Eigen::MatrixBase<DT>& /*theta*/, Eigen::MatrixBase<DOut>& dtheta) const {
-    detail::set_product(scratch_, R.transpose(), epsilon);
-    detail::set_product(dtheta, gamma_, scratch_);
+    dtheta.setZero();
+    for (Index j = 0; j < R.cols(); ++j) dtheta += gamma_.col(j) * R.col(j).dot(epsilon);
   }
 
   [[nodiscard]] const ParameterMatrix& gamma() const noexcept { return gamma_; }
@@ -58,7 +61,6 @@ class GradientLaw {
 
  private:
   ParameterMatrix gamma_;
-  mutable typename D::Parameters scratch_;
 };
 
 }  // namespace adaptobs

@@ -78,26 +78,11 @@ class AugmentedKalmanFilter
       : model_(std::move(model)), x_(std::move(x0)), theta_(std::move(theta0)), cov_(std::move(covariances)) {
     constexpr std::string_view who = "AugmentedKalmanFilter";
     const Sizes s = model_.sizes();
-    const Index n = s.nx + s.np;
     detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
     cov_.validate(s, who);
     p_ = cov_.P0;
-    w_.xi.setZero(n);
-    w_.p.setZero(n, n);
-    w_.f.setZero(n, n);
-    w_.f.bottomRightCorner(s.np, s.np).setIdentity();
-    w_.joseph.setZero(n, n);
-    w_.scratch.setZero(n, n);
-    w_.pht.setZero(n, s.ny);
-    w_.gain.setZero(n, s.ny);
-    w_.s.setZero(s.ny, s.ny);
-    w_.r_masked.setZero(s.ny, s.ny);
-    w_.c_masked.setZero(s.ny, s.nx);
-    w_.innovation.setZero(s.ny);
     this->output_error_.setZero(s.ny);
-    w_.x.setZero(s.nx);
-    w_.theta.setZero(s.np);
-    w_.cholesky = detail::CholeskyFactor<typename Dims::OutputMatrixSquare>(s.ny);
+    work_.resize(s);
   }
 
   [[nodiscard]] const State& state() const noexcept { return x_; }
@@ -130,15 +115,45 @@ class AugmentedKalmanFilter
     p_ = cov_.P0;
   }
 
+  // Kept between steps whatever the sizes: F_k's last rows [0 I] are written once.
+  struct Workspace {
+    AugmentedVector xi;
+    AugmentedMatrix p, f, joseph, scratch;
+    Eigen::Matrix<Scalar, na, Dims::ny> pht, gain;
+    typename Dims::OutputMatrixSquare s, r_masked;
+    typename Dims::OutputMatrix c_masked;
+    detail::CholeskyFactor<typename Dims::OutputMatrixSquare> cholesky;
+    typename Dims::Output innovation;
+    State x;
+    Parameters theta;
+    void resize(const Sizes& sz) {
+      const Index n = sz.nx + sz.np;
+      xi.setZero(n);
+      p.setZero(n, n);
+      f.setZero(n, n);
+      f.bottomRightCorner(sz.np, sz.np).setIdentity();
+      joseph.setZero(n, n);
+      scratch.setZero(n, n);
+      pht.setZero(n, sz.ny);
+      gain.setZero(n, sz.ny);
+      s.setZero(sz.ny, sz.ny);
+      r_masked.setZero(sz.ny, sz.ny);
+      c_masked.setZero(sz.ny, sz.nx);
+      innovation.setZero(sz.ny);
+      x.setZero(sz.nx);
+      theta.setZero(sz.np);
+      cholesky = detail::CholeskyFactor<typename Dims::OutputMatrixSquare>(sz.ny);
+    }
+  };
+
   /// Correction with \f$y_k\f$, then prediction to step k + 1 with
   /// \f$(A_k, B_k, \Psi_k, u_k)\f$; `present` is null when every channel is. A step
   /// whose covariance would not be positive definite is rejected
   /// (`UpdateStatus::indefinite_covariance`) and changes nothing.
-  UpdateStatus step_with(const Sample& sample, const OutputMask<Dims>* present) {
+  UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
     const auto& system = model_.at(this->step());
     this->check_system_sizes(system);
     const Index nx = x_.rows();
-    Workspace& w = w_;
 
     // C̄ = DC and R̄ = DRD + (I − D) with a mask; C and R without.
     if (present) {
@@ -173,7 +188,7 @@ class AugmentedKalmanFilter
     detail::subtract_product(w.joseph.leftCols(nx), w.gain, c);
     detail::set_product(w.scratch, w.joseph, p_);
     detail::set_product(w.p, w.scratch, w.joseph.transpose());
-    w.pht.noalias() = w.gain * r;  // reuse as L R
+    detail::set_product(w.pht, w.gain, r);  // reuse as L R
     detail::add_product(w.p, w.pht, w.gain.transpose());
 
     // Prediction with F_k = [A Ψ; 0 I].
@@ -201,24 +216,12 @@ class AugmentedKalmanFilter
     return UpdateStatus::accepted;
   }
 
-  struct Workspace {
-    AugmentedVector xi;
-    AugmentedMatrix p, f, joseph, scratch;
-    Eigen::Matrix<Scalar, na, Dims::ny> pht, gain;
-    typename Dims::OutputMatrixSquare s, r_masked;
-    typename Dims::OutputMatrix c_masked;
-    detail::CholeskyFactor<typename Dims::OutputMatrixSquare> cholesky;
-    typename Dims::Output innovation;
-    State x;
-    Parameters theta;
-  };
-
   Model model_;
   State x_;
   Parameters theta_;
   Covariances cov_;
   AugmentedMatrix p_;
-  Workspace w_;
+  detail::UpdateWorkspace<Workspace, false> work_;
 };
 
 }  // namespace adaptobs

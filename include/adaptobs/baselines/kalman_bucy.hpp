@@ -65,49 +65,24 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
         internal_(InternalState::Zero((sizes_.nx + sizes_.np) * (1 + sizes_.nx + sizes_.np))),
         integrator_(internal_, sizes_, options, name) {
     const Sizes& s = sizes_;
-    const Index n = s.nx + s.np;
     detail::require_initial_estimates(eta0, s.nx, theta0, s.np, name, "eta0", "theta0");
     cov_.validate(s, name);
     (void)r_factor_.compute(cov_.R);  // positive definite: checked above
-    w_.ae.setZero(n, n);
-    w_.factor.setZero(n, n);
-    w_.pct.setZero(n, s.ny);
-    w_.gain.setZero(n, s.ny);
-    w_.epsilon.setZero(s.ny);
+    work_.resize(s);
     output_error_.setZero(s.ny);
     eta_ = eta0;
     theta_ = theta0;
     set_initial(eta0, theta0);
   }
 
-  /// Right-hand side of \f$(\hat x, \hat\theta, P)\f$ (see the file comment).
+  /// Right-hand side of \f$(\hat x, \hat\theta, P)\f$ (see the file comment). It
+  /// writes only `ds`, so that threads may share one filter (and its
+  /// `odeint_system`); with run-time sizes its scratch is allocated at each
+  /// call (`update` keeps its own and allocates nothing).
   void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) const {
-    const Index nx = sizes_.nx, np = sizes_.np, n = nx + np;
-    const auto x = detail::segment<Dims::nx>(s, 0, nx);
-    const auto theta = detail::segment<Dims::np>(s, nx, np);
-    const Eigen::Map<const AugmentedMatrix> P(s.data() + n, n, n);
-    auto dx = detail::segment<Dims::nx>(ds, 0, nx);
-    auto dtheta = detail::segment<Dims::np>(ds, nx, np);
-    Eigen::Map<AugmentedMatrix> dP(ds.data() + n, n, n);
-    Workspace& w = w_;
-    decltype(auto) sys = model_.at(t);
-    w.ae.topLeftCorner(nx, nx) = sys.A;
-    w.ae.topRightCorner(nx, np) = model_.regressor(t, u, y);
-    // L = P C_eᵀ R⁻¹ with C_e = [C 0].
-    detail::set_product(w.pct, P.leftCols(nx), sys.C.transpose());
-    w.gain = w.pct;
-    r_factor_.solve_on_the_right_in_place(w.gain);
-    w.epsilon = y;
-    detail::subtract_product(w.epsilon, sys.C, x);
-    detail::set_product(dx, sys.A, x);
-    detail::add_product(dx, sys.B, u);
-    detail::add_product(dx, w.ae.topRightCorner(nx, np), theta);
-    detail::add_product(dx, w.gain.topRows(nx), w.epsilon);
-    detail::set_product(dtheta, w.gain.bottomRows(np), w.epsilon);
-    dP = cov_.Q;
-    detail::add_product(dP, w.ae, P);
-    detail::add_product(dP, P, w.ae.transpose());
-    detail::subtract_product(dP, w.gain, w.pct.transpose());
+    Workspace w;
+    w.resize(sizes_);
+    derivative(s, ds, t, u, y, w);
   }
 
   /// Covariance P of \f$[\hat x; \hat\theta]\f$.
@@ -142,10 +117,50 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
 
  private:
   struct Workspace {
-    AugmentedMatrix ae, factor;
+    AugmentedMatrix ae, factor;  // A_e (its last np rows stay 0); P's Cholesky factor in check_step
     Eigen::Matrix<Scalar, na, Dims::ny> pct, gain;
     Output epsilon;
+    void resize(const Sizes& s) {
+      const Index n = s.nx + s.np;
+      ae.setZero(n, n);
+      factor.setZero(n, n);
+      pct.setZero(n, s.ny);
+      gain.setZero(n, s.ny);
+      epsilon.setZero(s.ny);
+    }
   };
+
+  // The right-hand side with the scratch `w` (the update's `work_`, or the
+  // public overload's own).
+  void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y,
+                  Workspace& w) const {
+    const Index nx = sizes_.nx, np = sizes_.np, n = nx + np;
+    const auto x = detail::segment<Dims::nx>(s, 0, nx);
+    const auto theta = detail::segment<Dims::np>(s, nx, np);
+    const Eigen::Map<const AugmentedMatrix> P(s.data() + n, n, n);
+    auto dx = detail::segment<Dims::nx>(ds, 0, nx);
+    auto dtheta = detail::segment<Dims::np>(ds, nx, np);
+    Eigen::Map<AugmentedMatrix> dP(ds.data() + n, n, n);
+    decltype(auto) sys = model_.at(t);
+    w.ae.topLeftCorner(nx, nx) = sys.A;
+    w.ae.topRightCorner(nx, np) = model_.regressor(t, u, y);
+    // L = P C_eᵀ R⁻¹ with C_e = [C 0].
+    detail::set_product(w.pct, P.leftCols(nx), sys.C.transpose());
+    w.gain = w.pct;
+    r_factor_.solve_on_the_right_in_place(w.gain);
+    w.epsilon = y;
+    detail::subtract_product(w.epsilon, sys.C, x);
+    detail::set_product(dx, sys.A, x);
+    detail::add_product(dx, sys.B, u);
+    detail::add_product(dx, w.ae.topRightCorner(nx, np), theta);
+    detail::add_product(dx, w.gain.topRows(nx), w.epsilon);
+    detail::set_product(dtheta, w.gain.bottomRows(np), w.epsilon);
+    dP = cov_.Q;
+    detail::add_product(dP, w.ae, P);
+    detail::add_product(dP, P, w.ae.transpose());
+    detail::subtract_product(dP, w.gain, w.pct.transpose());
+  }
+
 
   // P of an integrated step made exactly symmetric, then tested by a Cholesky
   // factorization: RK4 on the Riccati equation keeps P neither symmetric nor,
@@ -156,8 +171,8 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     Eigen::Map<AugmentedMatrix> p(candidate.data() + n, n, n);
     for (Index j = 0; j < n; ++j)
       for (Index i = j + 1; i < n; ++i) p(i, j) = p(j, i) = Scalar(0.5) * (p(i, j) + p(j, i));
-    w_.factor = p;
-    return detail::cholesky_in_place(w_.factor) ? UpdateStatus::accepted : UpdateStatus::indefinite_covariance;
+    work_.factor = p;
+    return detail::cholesky_in_place(work_.factor) ? UpdateStatus::accepted : UpdateStatus::indefinite_covariance;
   }
 
   auto covariance_map() {
@@ -173,7 +188,7 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
   }
 
   // The output error \f$y_k - C_e\hat\chi(t_k)\f$ at the integrated estimate
-  // (w_.epsilon holds the last RK4 stage's).
+  // (work_.epsilon holds the last RK4 stage's).
   void finish_update(const Sample& sample, bool) {
     output_error_ = sample.y;
     detail::subtract_product(output_error_, model_.at(sample.t).C, eta_);
@@ -193,7 +208,7 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
   State eta_;
   Parameters theta_;
   Output output_error_;  // ε(t_k) of the last accepted sample
-  mutable Workspace w_;
+  Workspace work_;
 };
 
 }  // namespace adaptobs

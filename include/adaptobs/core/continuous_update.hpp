@@ -18,15 +18,22 @@ namespace adaptobs {
 /// own. The observer stacks everything it integrates in one vector
 /// `internal_` of type `InternalState`, advanced by a `SampledIntegrator`
 /// named `integrator_`, and keeps its estimates in `sizes_`, `eta_` (original
-/// coordinates), `theta_` and `output_error_`. It supplies
+/// coordinates), `theta_` and `output_error_`. It supplies, each under this
+/// name (the base is its friend; there is no optional hook):
 /// - `Observer::name` and `Observer::name_reset`, the names its errors give;
-/// - `derivative(s, ds, t, u, y)`, the right-hand side of `internal_`;
+/// - `work_`, the scratch of its right-hand side, kept and sized at
+///   construction so that no update allocates;
+/// - `derivative(s, ds, t, u, y, work) const`, the right-hand side of
+///   `internal_`, which writes only `ds` and the scratch `work` it is handed:
+///   the update hands it `work_`. Its public `derivative(s, ds, t, u, y) const`
+///   (the one `odeint_system` calls) computes in a workspace of its own and
+///   writes only `ds`, so that concurrent calls on one observer are safe;
 /// - `refresh_estimates()`, which reads `eta_` and `theta_` out of `internal_`;
 /// - `finish_update(sample, stepping)`, run after an accepted sample (the
 ///   output error at the sample, per-step diagnostics);
 /// - `set_initial(eta0, theta0)`, which restarts `internal_` and its diagnostics;
-/// - optionally `check_step(candidate)`, which may adjust an integrated state
-///   and returns `accepted` or the reason to reject it.
+/// - `check_step(candidate)`, which may adjust an integrated state and returns
+///   `accepted` or the reason to reject it.
 template <class Observer, StateSpace Dims>
 class ContinuousUpdate : public SizedBy<Dims> {
   using Scalar = typename Dims::Scalar;
@@ -44,8 +51,8 @@ class ContinuousUpdate : public SizedBy<Dims> {
     Observer& o = self();
     const bool stepping = o.integrator_.started();
     const auto rhs = [&o](const InternalState& s, InternalState& ds, Scalar t, const typename Dims::Input& u,
-                          const typename Dims::Output& y) { o.derivative(s, ds, t, u, y); };
-    const auto check = [&o](InternalState& candidate) { return check_step(o, candidate); };
+                          const typename Dims::Output& y) { o.derivative(s, ds, t, u, y, o.work_); };
+    const auto check = [&o](InternalState& candidate) { return o.check_step(candidate); };
     const UpdateStatus status = o.integrator_.advance(sample, o.internal_, rhs, Observer::name, check);
     if (status != UpdateStatus::accepted) return status;
     o.refresh_estimates();
@@ -89,7 +96,7 @@ class ContinuousUpdate : public SizedBy<Dims> {
     detail::require_shape(s, o.internal_.rows(), 1, Observer::name, "s");
     if (!detail::all_finite(s)) return false;
     typename O::InternalState candidate = s;  // the check may adjust it (symmetrize P)
-    if (check_step(o, candidate) != UpdateStatus::accepted) return false;
+    if (o.check_step(candidate) != UpdateStatus::accepted) return false;
     o.internal_ = candidate;
     o.refresh_estimates();
     return true;
@@ -116,15 +123,6 @@ class ContinuousUpdate : public SizedBy<Dims> {
   }
 
  private:
-  /// The observer's own check of an integrated step (`check_step`), if it has one.
-  template <class InternalState>
-  static UpdateStatus check_step(Observer& o, InternalState& candidate) {
-    if constexpr (requires { o.check_step(candidate); })
-      return o.check_step(candidate);
-    else
-      return UpdateStatus::accepted;
-  }
-
   Observer& self() noexcept { return static_cast<Observer&>(*this); }
   const Observer& self() const noexcept { return static_cast<const Observer&>(*this); }
 };

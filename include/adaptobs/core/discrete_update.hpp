@@ -16,20 +16,32 @@
 
 namespace adaptobs {
 
+namespace detail {
+/// The name `reset` gives the initial state in errors: the paper's letter
+/// when the observer's declaration names one, else "x0".
+constexpr std::string_view initial_state_name() { return "x0"; }
+constexpr std::string_view initial_state_name(std::string_view paper_letter) { return paper_letter; }
+}  // namespace detail
+
 /// The declarations an observer deriving from `DiscreteUpdate` makes, written
 /// once: the friendship the base needs to reach its private members (`model_`,
-/// `theta_`, `work_`, `restart` and the step); the names its errors give
-/// (`Observer::update`, `Observer::reset`); and the common types. A class
-/// template does not see the members of a dependent base without
-/// qualification, so each observer would otherwise restate them (Eigen's
-/// `EIGEN_DENSE_PUBLIC_INTERFACE` answers the same problem). Use it in a public
-/// section of a class template whose model parameter is named `Model`:
+/// `theta_`, `work_`, `restart` and `advance`); the names its errors give
+/// (`Observer::update`, `Observer::reset`, and the initial state's, by default
+/// "x0"); and the common types. A class template does not see the members of a
+/// dependent base without qualification, so each observer would otherwise
+/// restate them (Eigen's `EIGEN_DENSE_PUBLIC_INTERFACE` answers the same
+/// problem). Use it in a public section of a class template whose model
+/// parameter is named `Model`:
 /// `ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuyaderZhangObserver, DiscreteSample);`
+/// or, naming the initial state as the paper does,
+/// `ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuiroObserver, DiscreteSample, "z0");`
 /// (outside namespace adaptobs, qualify the sample: `adaptobs::DiscreteSample`).
-#define ADAPTOBS_DISCRETE_UPDATE_INTERFACE(Observer, SampleOf)                                    \
+#define ADAPTOBS_DISCRETE_UPDATE_INTERFACE(Observer, SampleOf, ...)                               \
   friend ::adaptobs::DiscreteUpdate<Observer, typename Model::Dims, SampleOf>;                    \
   static constexpr std::string_view name_update = #Observer "::update";                           \
   static constexpr std::string_view name_reset = #Observer "::reset";                             \
+  static constexpr std::string_view name_initial_state =                                          \
+      ::adaptobs::detail::initial_state_name(__VA_ARGS__);                                        \
   using Dims = typename Model::Dims;                                                              \
   using typename ::adaptobs::SizedBy<Dims>::Scalar, typename ::adaptobs::SizedBy<Dims>::State,    \
       typename ::adaptobs::SizedBy<Dims>::Parameters, typename ::adaptobs::SizedBy<Dims>::Output; \
@@ -37,25 +49,32 @@ namespace adaptobs {
 
 /// Base of a discrete-time observer with a model (CRTP), not used on its own:
 /// `update(sample)`, its masked form, `reset` and the accessors every discrete
-/// observer has, with the run-time size checks of the sample and the mask. The
-/// observer supplies `model_`, `theta_`, `Observer::name_update` and
-/// `Observer::name_reset` (the names its errors give; the macro above declares
-/// them with the friendship and the types), `restart(x0, theta0)`
-/// (the rest of `reset`) and its step, which on accepting a sample writes the
-/// base's `output_error_` (sized by the observer's constructor); the base
-/// counts the accepted steps. The step comes in one of two forms, which the
-/// base calls with a sample of the right shape whose measured entries are
-/// finite (mask null: every channel present):
-/// - `advance(sample, mask, workspace)` with a `detail::UpdateWorkspace` named
-///   `work_`, which the base hands the step (on the stack for fixed sizes);
-/// - `step_with(sample, mask)`, which keeps its scratch itself.
+/// observer has, with the run-time size checks of the sample and the mask.
+/// The observer supplies, each under this name (the base reaches them through
+/// the friendship the macro above declares; there is no optional hook and no
+/// alternative form):
+/// - `model_` and `theta_`, its model and parameter estimate;
+/// - `Observer::name_update`, `Observer::name_reset` and
+///   `Observer::name_initial_state`, the names its errors give (the macro
+///   declares them);
+/// - `restart(x0, theta0)`, the rest of `reset`;
+/// - `work_`, a `detail::UpdateWorkspace` of the step's scratch
+///   (core/detail/update_workspace.hpp: built on the stack for each step with
+///   fixed sizes, kept and sized at construction otherwise, so that no step
+///   allocates);
+/// - the step `advance(sample, mask, workspace) -> UpdateStatus`, which the
+///   base calls with a sample of the right shape whose measured entries are
+///   finite (mask null: every channel present) and with `work_`'s workspace.
+///   On accepting the sample it writes the base's `output_error_` (sized by the
+///   observer's constructor); a rejected step changes nothing. The base counts
+///   the accepted steps.
 template <class Observer, StateSpace Dims, template <StateSpace> class SampleOf>
 class DiscreteUpdate : public SizedBy<Dims> {
  public:
   using Sample = SampleOf<Dims>;
 
-  /// One step of the observer's law with the sample (its `advance` or
-  /// `step_with` cites the equations). Returns `UpdateStatus::accepted`, or the
+  /// One step of the observer's law with the sample (its `advance` cites the
+  /// equations). Returns `UpdateStatus::accepted`, or the
   /// reason the sample was rejected (`nonfinite_input` for a NaN/Inf in it,
   /// `nonfinite_result` when the step would produce one, ...); a rejected step
   /// leaves the observer exactly as it was. With run-time sizes, a sample of
@@ -89,7 +108,7 @@ class DiscreteUpdate : public SizedBy<Dims> {
   void reset(const typename Dims::State& x0, const typename Dims::Parameters& theta0, Index start_step = 0) {
     constexpr std::string_view who = Observer::name_reset;
     const Sizes s = sizes();
-    detail::require_initial_estimates(x0, s.nx, theta0, s.np, who, initial_state_name());
+    detail::require_initial_estimates(x0, s.nx, theta0, s.np, who, Observer::name_initial_state);
     detail::require(start_step >= 0, who, "start_step", "must be non-negative");
     self().restart(x0, theta0);
     output_error_.setZero();
@@ -126,22 +145,9 @@ class DiscreteUpdate : public SizedBy<Dims> {
   UpdateStatus checked_step(const Sample& sample, const OutputMask<Dims>* present) {
     if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, sizes(), Observer::name_update);
     if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
-    UpdateStatus status;
-    if constexpr (requires(Observer& o) { o.work_; })
-      status = self().work_.run([&](auto& w) { return self().advance(sample, present, w); });
-    else
-      status = self().step_with(sample, present);
+    const UpdateStatus status = self().work_.run([&](auto& w) { return self().advance(sample, present, w); });
     if (status == UpdateStatus::accepted) ++step_;
     return status;
-  }
-
-  // The name `reset` gives its initial state in errors: the observer's
-  // `name_initial_state` (the paper's letter) or "x0".
-  static constexpr std::string_view initial_state_name() {
-    if constexpr (requires { Observer::name_initial_state; })
-      return Observer::name_initial_state;
-    else
-      return "x0";
   }
 
   Observer& self() noexcept { return static_cast<Observer&>(*this); }

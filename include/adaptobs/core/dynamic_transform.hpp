@@ -56,22 +56,26 @@ class DynamicTransform {
   /// True when G = H = I (Algorithm 4): the products by G and H are skipped.
   [[nodiscard]] bool identity() const noexcept { return may_be_identity && identity_; }
 
-  /// F at the instant where the transformed system has matrix \f$A_o\f$.
+  /// F at the instant where the transformed system has matrix \f$A_o\f$; `AoH`
+  /// (n × r) is the caller's scratch for the projected \f$F = G(A_oH)\f$, which
+  /// keeps this function free of stored state (and of allocation: the
+  /// observers size it once).
   template <class DA>
-  void filter_matrix(const Eigen::MatrixBase<DA>& Ao, FilterMatrix& F) const {
+  void filter_matrix(const Eigen::MatrixBase<DA>& Ao, FilterMatrix& F, OutputMatrix& AoH) const {
     if (f_) {
       F = *f_;
     } else if (identity()) {
       if constexpr (may_be_identity) F = Ao;
     } else {
-      detail::set_product(scratch_, Ao, h_);
-      detail::set_product(F, g_, scratch_);
+      detail::set_product(AoH, Ao, h_);
+      detail::set_product(F, g_, AoH);
     }
   }
 
   [[nodiscard]] FilterMatrix filter_matrix(const StateMatrix& Ao) const {
     FilterMatrix F(rows(), rows());
-    filter_matrix(Ao, F);
+    OutputMatrix AoH(state_size(), rows());
+    filter_matrix(Ao, F, AoH);
     return F;
   }
 
@@ -136,14 +140,12 @@ class DynamicTransform {
                   (g_.array() == InjectionMatrix::Identity(g_.rows(), g_.cols()).array()).all() &&
                   (h_.array() == OutputMatrix::Identity(h_.rows(), h_.cols()).array()).all();
     }
-    scratch_.setZero(g_.cols(), g_.rows());
   }
 
   std::optional<FilterMatrix> f_;
   InjectionMatrix g_;
   OutputMatrix h_;
   bool identity_ = false;
-  mutable OutputMatrix scratch_;  // A_o H
 };
 
 namespace detail {

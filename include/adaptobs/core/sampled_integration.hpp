@@ -271,17 +271,20 @@ concept ContinuousTimeObserver =
     };
 
 /// The right-hand side of `observer` as a Boost.Odeint system `f(s, ds, t)`, with
-/// `signals(t, u, y)` writing the input and output at time t: to integrate the
-/// observer with any Odeint stepper, e.g. as a reference for its own
-/// integration. The system refers to `observer`, which must outlive it.
+/// `signals(t, u, y)` (const) writing the input and output at time t: to
+/// integrate the observer with any Odeint stepper, e.g. as a reference for its
+/// own integration. The system refers to `observer`, which must outlive it. It
+/// is const and writes only `ds` (u and y are its call's own, allocated at each
+/// call with run-time sizes): one system, or one observer, may be shared by
+/// threads integrating at once, as long as nothing updates the observer then.
 template <ContinuousTimeObserver O, class Signals>
 [[nodiscard]] auto odeint_system(const O& observer, Signals signals) {
   using Input = typename O::Input;
   using Output = typename O::Output;
-  const Sizes sizes = observer.sizes();
-  return [&observer, signals = std::move(signals), u = Input(Input::Zero(sizes.nu)),
-          y = Output(Output::Zero(sizes.ny))](const typename O::InternalState& s, typename O::InternalState& ds,
-                                              typename O::Scalar t) mutable {
+  return [&observer, signals = std::move(signals), sizes = observer.sizes()](
+             const typename O::InternalState& s, typename O::InternalState& ds, typename O::Scalar t) {
+    Input u = Input::Zero(sizes.nu);
+    Output y = Output::Zero(sizes.ny);
     signals(t, u, y);
     observer.derivative(s, ds, t, u, y);
   };

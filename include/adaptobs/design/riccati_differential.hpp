@@ -68,7 +68,7 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
     detail::require(std::isfinite(t0) && std::isfinite(t1) && t1 >= t0, who, "t1", "must be finite and not before t0");
     const auto field = [&](const StateMatrix& p, StateMatrix& dp, Scalar t) {
       decltype(auto) s = model.at(t);
-      derivative(s.A, s.C, p, dp);
+      derivative(s.A, s.C, p, dp, cp_, r_inv_cp_);
     };
     const Scalar nominal = (t1 - t0) / Scalar(min_steps);
     trial_ = p_;  // P moves only once the whole interval is crossed
@@ -97,17 +97,14 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
     return steps;
   }
 
-  /// \f$\dot P = AP + PA^T + Q - PC^TR^{-1}CP\f$.
+  /// \f$\dot P = AP + PA^T + Q - PC^TR^{-1}CP\f$. It writes only `dp`, so that
+  /// threads may share one equation; with run-time sizes its scratch CP and
+  /// \f$R^{-1}CP\f$ is allocated at each call (`advance` keeps its own).
   template <class DA, class DC>
   void derivative(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C, const StateMatrix& p,
                   StateMatrix& dp) const {
-    cp_.noalias() = C * p;
-    r_inv_cp_ = cp_;
-    r_factor_.solve_in_place(r_inv_cp_);
-    dp = q_;
-    dp.noalias() += A * p;
-    dp.noalias() += p * A.transpose();
-    dp.noalias() -= cp_.transpose() * r_inv_cp_;
+    typename D::OutputMatrix cp(r_.rows(), p_.rows()), r_inv_cp(r_.rows(), p_.rows());
+    derivative(A, C, p, dp, cp, r_inv_cp);
   }
 
   /// \f$K = PC^TR^{-1}\f$ for the output matrix C of the current instant.
@@ -117,6 +114,19 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
   }
 
  private:
+  // The right-hand side with the caller's scratch for CP and R⁻¹CP.
+  template <class DA, class DC>
+  void derivative(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C, const StateMatrix& p,
+                  StateMatrix& dp, typename D::OutputMatrix& cp, typename D::OutputMatrix& r_inv_cp) const {
+    cp.noalias() = C * p;
+    r_inv_cp = cp;
+    r_factor_.solve_in_place(r_inv_cp);
+    dp = q_;
+    dp.noalias() += A * p;
+    dp.noalias() += p * A.transpose();
+    dp.noalias() -= cp.transpose() * r_inv_cp;
+  }
+
   template <class DC>
   const GainMatrix& gain_of(const Eigen::MatrixBase<DC>& C, const StateMatrix& p) {
     cp_.noalias() = C * p;
@@ -127,7 +137,7 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
 
   detail::CholeskyFactor<OutputCovariance> r_factor_;  // of R
   RungeKutta4<StateMatrix> rk4_;
-  mutable typename D::OutputMatrix cp_, r_inv_cp_;
+  typename D::OutputMatrix cp_, r_inv_cp_;  // the scratch of `advance`
   GainMatrix gain_;
   StateMatrix trial_;        ///< P along the interval being crossed
   StateMatrix closed_loop_;  ///< A − KC at the start of a step

@@ -24,6 +24,7 @@
 /// enters \f$A_oH\f$), so any first column is accepted; `spr_injection_gain`
 /// absorbs it in k.
 
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/detail/segments.hpp>
@@ -75,7 +76,7 @@ struct BastinGevers {
                  const Eigen::MatrixBase<DOmega>& /*Omega*/, const Eigen::MatrixBase<DPsi>& Psi,
                  Eigen::MatrixBase<DR>& R) const {
     const Index r = Xi.rows();
-    R.noalias() = detail::segment<filter_rows>(so.Ao.row(0), 1, r) * Xi;
+    detail::set_product(R, detail::segment<filter_rows>(so.Ao.row(0), 1, r), Xi);
     R += Psi.row(0);
   }
 

@@ -23,6 +23,7 @@
 /// constant model; this is the library's own sufficient condition for the V above,
 /// not one the paper states), Λ persistently exciting (`excitation_level()`).
 
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/static_transform.hpp>
@@ -79,7 +80,7 @@ struct Besancon {
                  const Eigen::MatrixBase<DOmega>& /*Omega*/, const Eigen::MatrixBase<DPsi>& Psi,
                  Eigen::MatrixBase<DR>& R) const {
     const Index m = K1.rows(), r = Xi.rows();
-    R.noalias() = so.Ao.template topRightCorner<D::ny, filter_rows>(m, r) * Xi;
+    detail::set_product(R, so.Ao.template topRightCorner<D::ny, filter_rows>(m, r), Xi);
     R += Psi.template topRows<D::ny>(m);
   }
 

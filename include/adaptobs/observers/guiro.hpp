@@ -43,7 +43,6 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/discrete_update.hpp>
-#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/snapshot.hpp>
@@ -71,9 +70,8 @@ template <DiscreteModel Model>
 class GuiroObserver
     : public DiscreteUpdate<GuiroObserver<Model>, typename Model::Dims, DiscreteSample> {
  public:
-  ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuiroObserver, DiscreteSample);
+  ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuiroObserver, DiscreteSample, "z0");
   using typename SizedBy<Dims>::GainMatrix;
-  static constexpr std::string_view name_initial_state = "z0";
   using ParameterGain = typename Dims::template Matrix<Dims::np, Dims::ny>;  ///< Γ, p × m
 
   /// \param model sampled model \f$(e^{AT}, B_d, C)\f$, e.g. from `sampled_lti_model`;
@@ -169,25 +167,26 @@ class GuiroObserver
     this->check_system_sizes(system);
 
     /// Eq. (2), second line: \f$z_k = z^-_k - K(Cz^-_k - y_k)\f$ (skipped for the
-    /// paper's uncorrected \f$z_0\f$).
+    /// paper's uncorrected \f$z_0\f$), with the innovation \f$y_k - Cz^-_k\f$.
     w.innovation = sample.y;
-    w.innovation.noalias() -= system.C * z_;  // innovation y_k − C z⁻_k
+    w.innovation.noalias() -= system.C * z_;
     detail::zero_absent_rows<Dims>(w.innovation, present);
     w.corrected = z_;
     if (started_ || options_.correct_initial_estimate) w.corrected.noalias() += gain_ * w.innovation;
-    detail::set_product(w.residual, system.C, w.corrected);
-    w.residual -= sample.y;  // a-posteriori output error C z_k − y_k
-    detail::zero_absent_rows<Dims>(w.residual, present);
 
-    /// Eq. (2), third line: \f$\hat\theta_{k+1} = \hat\theta_k - \Gamma(Cz_k - y_k)\f$.
+    /// Eq. (2), third line: \f$\hat\theta_{k+1} = \hat\theta_k - \Gamma(Cz_k - y_k)\f$, with the
+    /// a-posteriori output error \f$Cz_k - y_k\f$.
+    w.residual.noalias() = system.C * w.corrected;
+    w.residual -= sample.y;
+    detail::zero_absent_rows<Dims>(w.residual, present);
     w.theta = theta_;
-    detail::subtract_product(w.theta, parameter_gain_, w.residual);
+    w.theta.noalias() -= parameter_gain_ * w.residual;
 
     /// Eq. (2), first line integrated over the period with \f$\hat\theta_k\f$:
     /// \f$z^-_{k+1} = Ez_k + \Psi_k\hat\theta_k + B_du_k\f$, \f$\Psi_k = EH_k\f$.
-    detail::set_product(w.predicted, system.A, w.corrected);
-    detail::add_product(w.predicted, sample.Psi, theta_);
-    detail::add_product(w.predicted, system.B, sample.u);
+    w.predicted.noalias() = system.A * w.corrected;
+    w.predicted.noalias() += sample.Psi * theta_;
+    w.predicted.noalias() += system.B * sample.u;
 
     if (!detail::all_finite(w.predicted, w.corrected, w.theta)) return UpdateStatus::nonfinite_result;
     detail::commit(z_, w.predicted);

@@ -137,7 +137,7 @@ class UnifiedAdaptiveObserver
     output_error_.setZero(s.ny);
     refresh_time_invariant_system();
     // The algorithm's own convergence conditions (form of C_o, stability, SPR, ...).
-    const TransformedSystem<Dims>& so0 = system_at(Scalar(0));
+    const TransformedSystem<Dims>& so0 = system_at(Scalar(0), work_);
     algorithm_.check(so0, s, is_time_invariant(model_));
     eta_ = eta0;
     theta_ = theta0;
@@ -145,38 +145,13 @@ class UnifiedAdaptiveObserver
   }
 
   /// Right-hand side of the internal state at time t for the signals u(t), y(t).
+  /// It writes only `ds`, so that threads may share one observer (and its
+  /// `odeint_system`); with run-time sizes its scratch is allocated at each
+  /// call (`update` keeps its own and allocates nothing).
   void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) const {
-    const Index n = sizes_.nx, p = sizes_.np;
-    const auto x = detail::segment<Dims::nx>(s, 0, n);
-    const Eigen::Map<const FilterState> Xi(s.data() + n, r_, p);
-    const auto theta = detail::segment<Dims::np>(s, n + r_ * p, p);
-    auto dx = detail::segment<Dims::nx>(ds, 0, n);
-    Eigen::Map<FilterState> dXi(ds.data() + n, r_, p);
-    auto dtheta = detail::segment<Dims::np>(ds, n + r_ * p, p);
-    Workspace& w = work_;
-    const auto& st = algorithm_.static_transform;
-    const auto& dt = algorithm_.dynamic_transform;
-
-    /// (2): \f$A_o, C_o\f$ at t, \f$\Psi = T\Phi\f$, \f$\varphi = TBu + Ky\f$.
-    const TransformedSystem<Dims>& so = system_at(t);
-    st.regressor(model_.regressor(t, u, y), w.Psi);
-    st.drive(so, u, y, w.phi);
-    /// (3b): \f$\Omega = H\Xi\f$; output error \f$\varepsilon = y - C_o\hat x\f$.
-    dt.output(Xi, w.Omega);
-    w.epsilon = y;
-    detail::subtract_product(w.epsilon, so.Co, x);
-    /// Update law: \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$ with the algorithm's R.
-    algorithm_.regressor(so, Xi, w.Omega, w.Psi, w.R);
-    law_.derivative(w.R, w.epsilon, theta, dtheta);
-    /// (3a): \f$\dot\Xi = F\Xi + G\Psi\f$.
-    dt.derivative(is_time_invariant(model_) ? f_ : w.F, Xi, w.Psi, dXi);
-    /// \f$\dot{\hat x} = A_o\hat x + \varphi + \Psi\hat\theta + L\varepsilon + \Omega\dot{\hat\theta}\f$.
-    algorithm_.injection_gain(so, t, w.L);
-    detail::set_product(dx, so.Ao, x);
-    dx += w.phi;
-    detail::add_product(dx, w.Psi, theta);
-    detail::add_product(dx, w.L, w.epsilon);
-    detail::add_product(dx, w.Omega, dtheta);
+    Workspace w;
+    w.resize(sizes_, r_);
+    derivative(s, ds, t, u, y, w);
   }
 
   /// \f$\hat x\f$ in the coordinates of system (2).
@@ -196,7 +171,11 @@ class UnifiedAdaptiveObserver
     return State(transformed_state() - omega() * theta_);
   }
   /// Matrices of (2) at time t.
-  [[nodiscard]] TransformedSystem<Dims> transformed_system(Scalar t) const { return system_at(t); }
+  [[nodiscard]] TransformedSystem<Dims> transformed_system(Scalar t) const {
+    Workspace w;
+    w.resize(sizes_, r_);
+    return system_at(t, w);
+  }
   [[nodiscard]] const Algorithm& algorithm() const noexcept { return algorithm_; }
   [[nodiscard]] const Law& law() const noexcept { return law_; }
   [[nodiscard]] const Model& model() const noexcept { return model_; }
@@ -262,9 +241,11 @@ class UnifiedAdaptiveObserver
     Output epsilon;
     typename Dims::OutputRegressor R;
     GainMatrix L;
+    typename DynamicTransform<Scalar, Dims::nx, nr>::OutputMatrix AoH;  // A_o H of a projected F
     void resize(const Sizes& s, Index r) {
       so.resize(s);
       F.setZero(r, r);
+      AoH.setZero(s.nx, r);
       Psi.setZero(s.nx, s.np);
       Omega.setZero(s.nx, s.np);
       phi.setZero(s.nx);
@@ -278,19 +259,61 @@ class UnifiedAdaptiveObserver
     return InternalState::Zero(s.nx + r * s.np + s.np);
   }
 
-  const TransformedSystem<Dims>& system_at(Scalar t) const {
+  // The matrices of (2) at t: the cached ones of a time-invariant model, else
+  // computed into `w` (and F(t) with them).
+  const TransformedSystem<Dims>& system_at(Scalar t, Workspace& w) const {
     if (is_time_invariant(model_)) return so_;
-    algorithm_.static_transform.apply(model_.at(t), work_.so);
-    algorithm_.dynamic_transform.filter_matrix(work_.so.Ao, work_.F);
-    return work_.so;
+    algorithm_.static_transform.apply(model_.at(t), w.so);
+    algorithm_.dynamic_transform.filter_matrix(w.so.Ao, w.F, w.AoH);
+    return w.so;
   }
+
+  // The right-hand side with the scratch `w` (the update's `work_`, or the
+  // public overload's own).
+  void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y,
+                  Workspace& w) const {
+    const Index n = sizes_.nx, p = sizes_.np;
+    const auto x = detail::segment<Dims::nx>(s, 0, n);
+    const Eigen::Map<const FilterState> Xi(s.data() + n, r_, p);
+    const auto theta = detail::segment<Dims::np>(s, n + r_ * p, p);
+    auto dx = detail::segment<Dims::nx>(ds, 0, n);
+    Eigen::Map<FilterState> dXi(ds.data() + n, r_, p);
+    auto dtheta = detail::segment<Dims::np>(ds, n + r_ * p, p);
+    const auto& st = algorithm_.static_transform;
+    const auto& dt = algorithm_.dynamic_transform;
+
+    /// (2): \f$A_o, C_o\f$ at t, \f$\Psi = T\Phi\f$, \f$\varphi = TBu + Ky\f$.
+    const TransformedSystem<Dims>& so = system_at(t, w);
+    st.regressor(model_.regressor(t, u, y), w.Psi);
+    st.drive(so, u, y, w.phi);
+    /// (3b): \f$\Omega = H\Xi\f$; output error \f$\varepsilon = y - C_o\hat x\f$.
+    dt.output(Xi, w.Omega);
+    w.epsilon = y;
+    detail::subtract_product(w.epsilon, so.Co, x);
+    /// Update law: \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$ with the algorithm's R.
+    algorithm_.regressor(so, Xi, w.Omega, w.Psi, w.R);
+    law_.derivative(w.R, w.epsilon, theta, dtheta);
+    /// (3a): \f$\dot\Xi = F\Xi + G\Psi\f$.
+    dt.derivative(is_time_invariant(model_) ? f_ : w.F, Xi, w.Psi, dXi);
+    /// \f$\dot{\hat x} = A_o\hat x + \varphi + \Psi\hat\theta + L\varepsilon + \Omega\dot{\hat\theta}\f$.
+    algorithm_.injection_gain(so, t, w.L);
+    detail::set_product(dx, so.Ao, x);
+    dx += w.phi;
+    detail::add_product(dx, w.Psi, theta);
+    detail::add_product(dx, w.L, w.epsilon);
+    detail::add_product(dx, w.Omega, dtheta);
+  }
+
+
+  // No check of its own: every finite integrated state is accepted.
+  UpdateStatus check_step(InternalState&) const noexcept { return UpdateStatus::accepted; }
 
   void refresh_time_invariant_system() {
     if (is_time_invariant(model_)) {
       so_.resize(sizes_);
       algorithm_.static_transform.apply(model_.at(Scalar(0)), so_);
       f_.setZero(r_, r_);
-      algorithm_.dynamic_transform.filter_matrix(so_.Ao, f_);
+      algorithm_.dynamic_transform.filter_matrix(so_.Ao, f_, work_.AoH);
     }
   }
 
@@ -300,7 +323,7 @@ class UnifiedAdaptiveObserver
   void finish_update(const Sample& sample, bool stepping) {
     if (stepping && excitation_) excitation_->add(work_.R);
     output_error_ = sample.y;
-    detail::subtract_product(output_error_, system_at(sample.t).Co, transformed_state());
+    detail::subtract_product(output_error_, system_at(sample.t, work_).Co, transformed_state());
   }
 
   // Ξ = 0, and the excitation monitor empty.
@@ -330,7 +353,7 @@ class UnifiedAdaptiveObserver
   TransformedSystem<Dims> so_;  // cached for a time-invariant model
   FilterMatrix f_;
   std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;
-  mutable Workspace work_;
+  Workspace work_;
 };
 
 namespace detail {
