@@ -183,8 +183,11 @@ class TakagiSugenoObserver
     /// Weights \f$\hat h_i = h_i(\hat z_k, \hat\theta_k)\f$ with \f$\hat z_k, \hat\theta_k\f$ clipped to their sectors (10), Remark 1.
     model_.weights(w.z, theta_, w.h);
 
+    // Every product is Eigen's coefficient-based lazyProduct: with run-time sizes
+    // a plain product inside a sum allocates a temporary, and a noalias() one
+    // dispatches to the general matrix-vector kernel, slow for these few entries.
     /// (65) third line, \f$\hat y_k = C\hat x_k\f$: the output error \f$e_k = D_k(y_k - C\hat x_k)\f$.
-    w.e.noalias() = sample.y - model_.C() * x_;
+    w.e = sample.y - model_.C().lazyProduct(x_);
     if (present)
       for (Index j = 0; j < w.e.size(); ++j)
         if (!(*present)(j)) w.e(j) = Scalar(0);
@@ -196,16 +199,14 @@ class TakagiSugenoObserver
     /// \f$\sum_i\hat h_i = 1\f$ (11).
     w.x.setZero();
     w.theta = theta_;
-    if (gains_.K_theta) w.theta.noalias() -= *gains_.K_theta * theta_;  // (21)
+    if (gains_.K_theta) w.theta -= gains_.K_theta->lazyProduct(theta_);  // (21)
     for (Index i = 0; i < model_.vertex_count(); ++i) {
       const auto& A = model_.A(i);
       const auto& B = model_.B(i);
       const auto& L = gains_.L[static_cast<std::size_t>(i)];
       const auto& K = gains_.K[static_cast<std::size_t>(i)];
-      // Coefficient-based products: with run-time sizes, a sum of plain
-      // products would allocate a temporary for each.
       w.x += w.h(i) * (A.lazyProduct(x_) + B.lazyProduct(sample.u) + L.lazyProduct(w.e));  // (65)
-      w.theta.noalias() += w.h(i) * K * w.e;                                                // (65)
+      w.theta += w.h(i) * K.lazyProduct(w.e);                                                // (65)
     }
 
     if (!detail::all_finite(w.x, w.theta)) return UpdateStatus::nonfinite_result;
