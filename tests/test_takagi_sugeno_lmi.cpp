@@ -31,6 +31,16 @@ using Eigen::MatrixXd;
 namespace wwtp = adaptobs::examples::wwtp;
 namespace lmi = adaptobs::lmi;
 
+// The designs take a Takagi–Sugeno model (a `TakagiSugenoSystem`): any other
+// model is refused at the call, by the constraint.
+template <class M>
+concept HasLmiData = requires(const M& m) { adaptobs::takagi_sugeno_lmi_data(m); };
+template <class M>
+concept HasLmiSynthesis = requires(const M& m) { adaptobs::synthesize_takagi_sugeno_gains(m); };
+using LtiModel = adaptobs::DiscreteLtiModel<adaptobs::Dimensions<double, 2, 1, 1, 1>>;
+static_assert(HasLmiData<wwtp::Model<double>> && HasLmiSynthesis<wwtp::Model<double>>);
+static_assert(!HasLmiData<LtiModel> && !HasLmiSynthesis<LtiModel>);
+
 // --- The DSDP interface on problems with known solutions ----------------------
 
 // min tr P s.t. P ⪰ I, AᵀPA − P ⪯ −I for A = diag(0.5, 0.9): the optimum is

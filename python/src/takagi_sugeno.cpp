@@ -175,6 +175,15 @@ const TsGains& ts_gains(nb::handle gains, std::string_view who) {
   return object_argument<TsGains>(gains, who, "gains", "an adaptobs.TakagiSugenoGains");
 }
 
+/// The vertex matrices of `model` side by side, [M_1 ... M_r] (eq. (24)-(25)), with M_i = (model.*vertex)(i).
+Eigen::MatrixXd side_by_side(const TsModel& model, const Eigen::MatrixXd& (TsModel::*vertex)(Index) const) {
+  const Index r = model.vertex_count();
+  const Index rows = (model.*vertex)(0).rows(), cols = (model.*vertex)(0).cols();
+  Eigen::MatrixXd out(rows, cols * r);
+  for (Index i = 0; i < r; ++i) out.middleCols(i * cols, cols) = (model.*vertex)(i);
+  return out;
+}
+
 // --- Snapshots -----------------------------------------------------------------
 
 /// The model of a snapshot's fields under `prefix` ("" or "model."), with the premise callable.
@@ -304,9 +313,9 @@ void bind_model(nb::module_& m) {
           },
           nb::arg("i"), "Vertex matrix B_i (0-based).")
       .def_prop_ro("C", [](const TsModel& self) { return Eigen::MatrixXd(self.C()); })
-      .def_prop_ro("vertex_state_matrices", [](const TsModel& self) { return Eigen::MatrixXd(self.vertex_state_matrices()); },
+      .def_prop_ro("vertex_state_matrices", [](const TsModel& self) { return side_by_side(self, &TsModel::A); },
                    "[A_1 ... A_r] (eq. (24)).")
-      .def_prop_ro("vertex_input_matrices", [](const TsModel& self) { return Eigen::MatrixXd(self.vertex_input_matrices()); },
+      .def_prop_ro("vertex_input_matrices", [](const TsModel& self) { return side_by_side(self, &TsModel::B); },
                    "[B_1 ... B_r] (eq. (25)).")
       .def_prop_ro("premise_bounds", [](const TsModel& self) { return sector_tuple(self.premise_bounds()); },
                    "(lower, upper) of the premise variables.")

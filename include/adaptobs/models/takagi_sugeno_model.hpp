@@ -27,7 +27,6 @@
 /// model at the nearest point of the box.
 
 #include <adaptobs/core/dimensions.hpp>
-#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -212,9 +211,6 @@ template <StateSpace D, int NZ, class F>
 /// has \f$z_2 = x_1/(x_2 + b)\f$); an observer then evaluates it at the estimates
 /// \f$(\hat x, u, \hat\theta)\f$. It is called as `premises(x, u, theta)` and returns the
 /// \f$n_z\f$ premise variables.
-///
-/// The vertex matrices are stored side by side as
-/// \f$\mathcal{A} = [A_1 \cdots A_r]\f$ and \f$\mathcal{B} = [B_1 \cdots B_r]\f$ (eq. (24)–(25)).
 template <StateSpace D, int NZ, class PremiseFn>
 class TakagiSugenoModel : public SizedBy<D> {
  public:
@@ -225,8 +221,7 @@ class TakagiSugenoModel : public SizedBy<D> {
   static constexpr int vertices_at_compile_time = takagi_sugeno_vertex_count(NZ, D::np);
   using PremiseVector = Eigen::Matrix<Scalar, NZ, 1>;
   using Weights = Eigen::Matrix<Scalar, vertices_at_compile_time, 1>;
-  using VertexStateMatrices = Eigen::Matrix<Scalar, D::nx, product_of_sizes(D::nx, vertices_at_compile_time)>;
-  using VertexInputMatrices = Eigen::Matrix<Scalar, D::nx, product_of_sizes(D::nu, vertices_at_compile_time)>;
+  using Vertex = TakagiSugenoVertex<D>;
   using PremiseSectors = SectorBounds<Scalar, NZ>;
   using ParameterSectors = SectorBounds<Scalar, D::np>;
 
@@ -238,7 +233,8 @@ class TakagiSugenoModel : public SizedBy<D> {
   /// \param premise_bounds, parameter_bounds the sectors of \f$z\f$ and \f$\theta\f$.
   TakagiSugenoModel(const std::vector<TakagiSugenoVertex<D>>& vertices, OutputMatrix C, PremiseFn premises,
                     PremiseSectors premise_bounds, ParameterSectors parameter_bounds)
-      : C_(std::move(C)),
+      : vertices_(vertices),
+        C_(std::move(C)),
         premises_(std::move(premises)),
         premise_bounds_(std::move(premise_bounds)),
         parameter_bounds_(std::move(parameter_bounds)) {
@@ -249,22 +245,17 @@ class TakagiSugenoModel : public SizedBy<D> {
     detail::require(k <= 20, who, "premise_bounds", "with parameter_bounds gives more than 2^20 vertices");
     const Index r = Index(1) << k;
     if (std::ssize(vertices) != r) detail::fail_count(r, vertices.size(), "2^(nz + np) vertices", who, "vertices");
-    const Index nx = vertices.front().A.rows();
-    const Index nu = vertices.front().B.cols();
-    A_.resize(nx, nx * r);
-    B_.resize(nx, nu * r);
-    for (Index i = 0; i < r; ++i) {
-      const auto& v = vertices[static_cast<std::size_t>(i)];
+    const Index nx = vertices_.front().A.rows();
+    const Index nu = vertices_.front().B.cols();
+    for (const Vertex& v : vertices_) {
       detail::require_finite_shape(v.A, nx, nx, who, "vertices[i].A");
       detail::require_finite_shape(v.B, nx, nu, who, "vertices[i].B");
-      detail::copy_entries(A_, 0, i * nx, v.A);
-      detail::copy_entries(B_, 0, i * nu, v.B);
     }
     detail::require_finite_shape(C_, C_.rows(), nx, who, "C");
   }
 
   [[nodiscard]] Sizes sizes() const noexcept {
-    return {A_.rows(), input_count(), C_.rows(), parameter_bounds_.size()};
+    return {vertices_.front().A.rows(), vertices_.front().B.cols(), C_.rows(), parameter_bounds_.size()};
   }
   [[nodiscard]] Index premise_count() const noexcept { return premise_bounds_.size(); }
   /// \f$r = 2^{n_z + n_\theta}\f$.
@@ -272,13 +263,10 @@ class TakagiSugenoModel : public SizedBy<D> {
     return Index(1) << (premise_bounds_.size() + parameter_bounds_.size());
   }
 
-  /// Vertex matrices \f$A_i\f$, \f$B_i\f$ (0-based i) and the output matrix C.
-  [[nodiscard]] auto A(Index i) const { return A_.middleCols(i * A_.rows(), A_.rows()); }
-  [[nodiscard]] auto B(Index i) const { return B_.middleCols(i * input_count(), input_count()); }
+  /// Vertex matrices \f$A_i\f$, \f$B_i\f$ of (64) (0-based i) and the output matrix C.
+  [[nodiscard]] const StateMatrix& A(Index i) const { return vertices_[static_cast<std::size_t>(i)].A; }
+  [[nodiscard]] const InputMatrix& B(Index i) const { return vertices_[static_cast<std::size_t>(i)].B; }
   [[nodiscard]] const OutputMatrix& C() const noexcept { return C_; }
-  /// \f$\mathcal{A} = [A_1 \cdots A_r]\f$ and \f$\mathcal{B} = [B_1 \cdots B_r]\f$ (eq. (24)–(25)).
-  [[nodiscard]] const VertexStateMatrices& vertex_state_matrices() const noexcept { return A_; }
-  [[nodiscard]] const VertexInputMatrices& vertex_input_matrices() const noexcept { return B_; }
   [[nodiscard]] const PremiseSectors& premise_bounds() const noexcept { return premise_bounds_; }
   [[nodiscard]] const ParameterSectors& parameter_bounds() const noexcept { return parameter_bounds_; }
   [[nodiscard]] const PremiseFn& premise_function() const noexcept { return premises_; }
@@ -308,28 +296,39 @@ class TakagiSugenoModel : public SizedBy<D> {
   /// \f$\sum_i h_i A_i\f$ and \f$\sum_i h_i B_i\f$ for given weights.
   template <class DH>
   [[nodiscard]] StateMatrix blended_A(const Eigen::MatrixBase<DH>& h) const {
-    StateMatrix a = StateMatrix::Zero(A_.rows(), A_.rows());
+    const Index nx = sizes().nx;
+    StateMatrix a = StateMatrix::Zero(nx, nx);
     for (Index i = 0; i < vertex_count(); ++i) a += h(i) * A(i);
     return a;
   }
   template <class DH>
   [[nodiscard]] InputMatrix blended_B(const Eigen::MatrixBase<DH>& h) const {
-    InputMatrix b = InputMatrix::Zero(B_.rows(), input_count());
+    const Sizes s = sizes();
+    InputMatrix b = InputMatrix::Zero(s.nx, s.nu);
     for (Index i = 0; i < vertex_count(); ++i) b += h(i) * B(i);
     return b;
   }
 
-  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the stacked
-  /// vertex matrices \f$[A_1 \cdots A_r]\f$, \f$[B_1 \cdots B_r]\f$ (24)–(25), C and the
-  /// sectors (9). The premise function is code, not state: a restored model keeps
-  /// its own. The values read are checked as the constructor checks them, so that
-  /// a damaged snapshot cannot give weights that do not sum to 1 (11).
+  /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the vertex
+  /// matrices side by side as \f$\mathcal{A} = [A_1 \cdots A_r]\f$ and
+  /// \f$\mathcal{B} = [B_1 \cdots B_r]\f$ (24)–(25), C and the sectors (9). The premise
+  /// function is code, not state: a restored model keeps its own. The values read
+  /// are checked as the constructor checks them, so that a damaged snapshot cannot
+  /// give weights that do not sum to 1 (11).
   static constexpr std::string_view snapshot_type = "TakagiSugenoModel";
   static constexpr int snapshot_version = 1;
   template <class Self, class Archive>
   static void visit_state(Self& self, Archive& archive) {
-    archive("A", self.A_);
-    archive("B", self.B_);
+    const Sizes s = self.sizes();
+    const Index r = self.vertex_count();
+    Eigen::Matrix<Scalar, D::nx, product_of_sizes(D::nx, vertices_at_compile_time)> A(s.nx, s.nx * r);
+    Eigen::Matrix<Scalar, D::nx, product_of_sizes(D::nu, vertices_at_compile_time)> B(s.nx, s.nu * r);
+    for (Index i = 0; i < r; ++i) {
+      A.middleCols(i * s.nx, s.nx) = self.A(i);
+      B.middleCols(i * s.nu, s.nu) = self.B(i);
+    }
+    archive("A", A);
+    archive("B", B);
     archive("C", self.C_);
     archive("premise_bounds.lower", self.premise_bounds_.lower);
     archive("premise_bounds.upper", self.premise_bounds_.upper);
@@ -337,12 +336,17 @@ class TakagiSugenoModel : public SizedBy<D> {
     archive("parameter_bounds.upper", self.parameter_bounds_.upper);
     if constexpr (Archive::reading) {
       constexpr std::string_view who = "restore";
-      detail::require_finite(self.A_, who, "snapshot field 'A'");
-      detail::require_finite(self.B_, who, "snapshot field 'B'");
+      detail::require_finite(A, who, "snapshot field 'A'");
+      detail::require_finite(B, who, "snapshot field 'B'");
       detail::require_finite(self.C_, who, "snapshot field 'C'");
       detail::validate_sectors(self.premise_bounds_, self.premise_bounds_.size(), who, "snapshot field 'premise_bounds'");
       detail::validate_sectors(self.parameter_bounds_, self.parameter_bounds_.size(), who,
                                "snapshot field 'parameter_bounds'");
+      for (Index i = 0; i < r; ++i) {
+        Vertex& v = self.vertices_[static_cast<std::size_t>(i)];
+        v.A = A.middleCols(i * s.nx, s.nx);
+        v.B = B.middleCols(i * s.nu, s.nu);
+      }
     }
   }
 
@@ -356,20 +360,17 @@ class TakagiSugenoModel : public SizedBy<D> {
   }
 
  private:
-  [[nodiscard]] Index input_count() const noexcept { return B_.cols() / vertex_count(); }
-
-  VertexStateMatrices A_;
-  VertexInputMatrices B_;
+  std::vector<Vertex> vertices_;  // (A_i, B_i), i = 0..r−1, in the vertex order of this file
   OutputMatrix C_;
   PremiseFn premises_;
   PremiseSectors premise_bounds_;
   ParameterSectors parameter_bounds_;
 };
 
-/// What a Takagi–Sugeno observer reads of its model: sizes, the vertex matrices
-/// stacked as \f$[A_1 \cdots A_r]\f$ and \f$[B_1 \cdots B_r]\f$, and C, the premise
-/// variables \f$z(x, u, \theta)\f$, their weights \f$h_i(z, \theta)\f$ and the sectors
-/// of z and θ (`TakagiSugenoModel` is one).
+/// A polytopic model (64) as a Takagi–Sugeno observer and its LMI design read
+/// it: its sizes and number of vertices \f$r\f$, the matrices \f$A_i\f$, \f$B_i\f$ of
+/// vertex i and C, the premise variables \f$z(x, u, \theta)\f$, their weights
+/// \f$h_i(z, \theta)\f$ and the sectors of z and θ (`TakagiSugenoModel` is one).
 template <class M>
 concept TakagiSugenoSystem =
     StateSpace<typename M::Dims> &&
@@ -380,9 +381,9 @@ concept TakagiSugenoSystem =
       { m.sizes() } -> std::same_as<Sizes>;
       { m.vertex_count() } -> std::convertible_to<Index>;
       { m.premise_count() } -> std::convertible_to<Index>;
-      m.vertex_state_matrices()(i, i);
-      m.vertex_input_matrices()(i, i);
-      m.C();
+      { m.A(i) } -> std::convertible_to<const typename M::Dims::StateMatrix&>;
+      { m.B(i) } -> std::convertible_to<const typename M::Dims::InputMatrix&>;
+      { m.C() } -> std::convertible_to<const typename M::Dims::OutputMatrix&>;
       { m.premises(x, u, theta) } -> std::convertible_to<typename M::PremiseVector>;
       m.weights(z, theta, h);
       m.premise_bounds();

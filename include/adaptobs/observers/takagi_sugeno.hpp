@@ -46,6 +46,7 @@
 #include <iterator>
 #include <optional>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -67,12 +68,12 @@ class TakagiSugenoObserver
   /// \param gains \f$L_i, K_{y,i}\f$ per vertex (and \f$K_\theta\f$ for eq. (21));
   /// \param x0, theta0 initial estimates \f$\hat x_0, \hat\theta_0\f$.
   TakagiSugenoObserver(Model model, const Gains& gains, State x0, Parameters theta0)
-      : model_(std::move(model)), K_theta_(gains.K_theta), x_(std::move(x0)), theta_(std::move(theta0)) {
+      : model_(std::move(model)), x_(std::move(x0)), theta_(std::move(theta0)) {
     constexpr std::string_view who = "TakagiSugenoObserver";
     const Sizes s = model_.sizes();
     detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
     check_gains(gains, who);
-    fill_vertex_maps(gains);
+    gains_ = gains;
     detail::zero_resize(weights_, model_.vertex_count());
     detail::zero_resize(premises_, model_.premise_count());
     detail::zero_resize(this->output_error_, s.ny);
@@ -88,47 +89,23 @@ class TakagiSugenoObserver
   /// False when the last accepted update had to clip \f$\hat z_k\f$ or \f$\hat\theta_k\f$ to its sector
   /// (the estimates left the region where the model is exact; Remark 8).
   [[nodiscard]] bool premises_in_sectors() const noexcept { return in_sectors_; }
-  /// The gains in use, read back from the vertex maps \f$V_i\f$ the update runs on.
-  /// Returned by value: the observer keeps no second copy of them, and a
-  /// program that never asks compiles no copy of their vectors.
-  [[nodiscard]] Gains gains() const {
-    const Sizes s = model_.sizes();
-    const Index r = model_.vertex_count(), nv = s.nx + s.nu + s.ny;
-    Gains g;
-    g.L.resize(static_cast<std::size_t>(r));
-    g.K.resize(static_cast<std::size_t>(r));
-    for (Index i = 0; i < r; ++i) {
-      auto& L = g.L[static_cast<std::size_t>(i)];
-      auto& K = g.K[static_cast<std::size_t>(i)];
-      L.resize(s.nx, s.ny);
-      K.resize(s.np, s.ny);
-      const Index first = i * nv + s.nx + s.nu;
-      for (Index j = 0; j < s.ny; ++j) {
-        for (Index a = 0; a < s.nx; ++a) L(a, j) = vertex_maps_(a, first + j);
-        for (Index a = 0; a < s.np; ++a) K(a, j) = vertex_maps_(s.nx + a, first + j);
-      }
-    }
-    g.K_theta = K_theta_;
-    return g;
-  }
+  /// The gains the update runs on: \f$L_i\f$ and \f$K_{y,i}\f$ of vertex i, and \f$K_\theta\f$.
+  [[nodiscard]] const Gains& gains() const noexcept { return gains_; }
   /// True for the time-varying-parameter observer (eq. (21), \f$K_\theta\f$ set).
-  [[nodiscard]] bool has_leakage() const noexcept { return K_theta_.has_value(); }
+  [[nodiscard]] bool has_leakage() const noexcept { return gains_.K_theta.has_value(); }
 
   /// Replaces the gains (checked as at construction) from the next update on;
   /// bad gains throw `ConfigurationError` naming the vertex (`gains.L[i]`) and
   /// change nothing.
   void set_gains(const Gains& gains) {
     check_gains(gains, "TakagiSugenoObserver::set_gains");
-    K_theta_ = gains.K_theta;
-    fill_vertex_maps(gains);
+    gains_ = gains;
   }
 
   /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the model, the
   /// gains of eq. (65)/(21) as the per-vertex \f$L_i\f$ and \f$K_{y,i}\f$ (lists "L" and "K_y")
   /// and \f$K_\theta\f$, the estimates and the weights and premises of the last
-  /// update. The gains are written as `gains()` gives them, not as the vertex maps
-  /// the update runs on, so that a snapshot does not depend on how those are
-  /// packed; reading checks them as `set_gains` does and packs them again.
+  /// update. Reading checks the gains as `set_gains` does.
   /// Whether \f$K_\theta\f$ is set (eq. (21) rather than (65)) is a setting.
   static constexpr std::string_view snapshot_type = "TakagiSugenoObserver";
   static constexpr int snapshot_version = 1;
@@ -136,17 +113,16 @@ class TakagiSugenoObserver
     requires Snapshottable<Model>
   static void visit_state(Self& self, Archive& archive) {
     archive.object("model", self.model_);
-    // The current gains give the shapes a reading is checked against.
-    Gains gains = self.gains();
+    // A reading fills a copy of the current gains, whose shapes the snapshot's
+    // must have, kept only once checked against the model just read.
+    std::conditional_t<Archive::reading, Gains, const Gains&> gains = self.gains_;
     archive("L", gains.L);
     archive("K_y", gains.K);
     archive.setting("has_leakage", gains.K_theta ? 1 : 0);
     if (gains.K_theta) archive("K_theta", *gains.K_theta);
     if constexpr (Archive::reading) {
-      // After the model: the vertex maps pack its A_i, B_i with the gains.
       self.check_gains(gains, "restore");
-      self.K_theta_ = gains.K_theta;
-      self.fill_vertex_maps(gains);
+      self.gains_ = std::move(gains);
     }
     archive("x", self.x_);
     archive("theta", self.theta_);
@@ -171,27 +147,6 @@ class TakagiSugenoObserver
     }
   }
 
-  void fill_vertex_maps(const Gains& gains) {
-    const Sizes s = model_.sizes();
-    const Index r = model_.vertex_count();
-    // [V_1 … V_r], V_i = [[A_i, B_i, L_i], [0, 0, K_{y,i}]], so that
-    // [x̂⁺; Δθ̂] = Σ ĥ_i V_i [x̂; u; y − Cx̂].
-    // Read from the stacked [A_1 … A_r] and [B_1 … B_r], entry by entry: no block type per vertex.
-    const auto& A = model_.vertex_state_matrices();
-    const auto& B = model_.vertex_input_matrices();
-    const Index nv = s.nx + s.nu + s.ny;
-    detail::zero_resize(vertex_maps_, s.nx + s.np, nv * r);
-    for (Index i = 0; i < r; ++i) {
-      const Index first = i * nv;
-      for (Index a = 0; a < s.nx; ++a) {
-        for (Index j = 0; j < s.nx; ++j) vertex_maps_(a, first + j) = A(a, i * s.nx + j);
-        for (Index j = 0; j < s.nu; ++j) vertex_maps_(a, first + s.nx + j) = B(a, i * s.nu + j);
-      }
-      detail::copy_entries(vertex_maps_, 0, first + s.nx + s.nu, gains.L[static_cast<std::size_t>(i)]);
-      detail::copy_entries(vertex_maps_, s.nx, first + s.nx + s.nu, gains.K[static_cast<std::size_t>(i)]);
-    }
-  }
-
   // The rest of `reset`: no weights or premises yet.
   void restart(const State& x0, const Parameters& theta0) {
     x_ = x0;
@@ -200,11 +155,6 @@ class TakagiSugenoObserver
     premises_.setZero();
     in_sectors_ = true;
   }
-
-  static constexpr int nv_at_compile_time = sum_of_sizes(sum_of_sizes(Dims::nx, Dims::nu), Dims::ny);
-  static constexpr int na_at_compile_time = sum_of_sizes(Dims::nx, Dims::np);
-  using VertexMaps =
-      Eigen::Matrix<Scalar, na_at_compile_time, product_of_sizes(nv_at_compile_time, vertices_at_compile_time)>;
 
   // Intermediate results of one step, committed only when all are finite.
   struct Workspace {
@@ -227,31 +177,37 @@ class TakagiSugenoObserver
   /// \f$\hat z_k\f$, `nonfinite_result` when the step would produce one; both
   /// change nothing.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
-    const Index nx = x_.rows(), ny = sample.y.rows(), np = theta_.rows();
-
     // Premise variables at the estimates, ẑ_k = z(x̂_k, u_k, θ̂_k) (they may use unmeasured states).
     w.z = model_.premises(x_, sample.u, theta_);
     if (!detail::all_finite(w.z)) return UpdateStatus::nonfinite_input;
     /// Weights \f$\hat h_i = h_i(\hat z_k, \hat\theta_k)\f$ with \f$\hat z_k, \hat\theta_k\f$ clipped to their sectors (10), Remark 1.
     model_.weights(w.z, theta_, w.h);
 
-    // e = D_k(y_k − C x̂_k).
-    for (Index i = 0; i < ny; ++i) {
-      Scalar e = sample.y(i);
-      for (Index j = 0; j < nx; ++j) e -= model_.C()(i, j) * x_(j);
-      w.e(i) = (present && !(*present)(i)) ? Scalar(0) : e;
-    }
+    // Every product is Eigen's coefficient-based lazyProduct: with run-time sizes
+    // a plain product inside a sum allocates a temporary, and a noalias() one
+    // dispatches to the general matrix-vector kernel, slow for these few entries.
+    /// (65) third line, \f$\hat y_k = C\hat x_k\f$: the output error \f$e_k = D_k(y_k - C\hat x_k)\f$.
+    w.e = sample.y - model_.C().lazyProduct(x_);
+    if (present)
+      for (Index j = 0; j < w.e.size(); ++j)
+        if (!(*present)(j)) w.e(j) = Scalar(0);
 
-    /// (65) \f$\hat x_{k+1} = \sum_i\hat h_i[A_i\hat x_k + B_iu_k + L_i(y_k - C\hat x_k)]\f$ and
-    /// \f$\hat\theta_{k+1} = \hat\theta_k + \sum_i\hat h_iK_{y,i}(y_k - C\hat x_k)\f$ in one sum:
-    /// \f$[\hat x_{k+1}; \hat\theta_{k+1} - \hat\theta_k] = \sum_i\hat h_i(V_iv)\f$ with
-    /// \f$V_i = \begin{bmatrix} A_i & B_i & L_i \\ 0 & 0 & K_{y,i}\end{bmatrix}\f$.
-    for (Index a = 0; a < nx; ++a) w.x(a) = weighted_vertex_row(a, w.h, sample.u, w.e);
-    for (Index a = 0; a < np; ++a) w.theta(a) = theta_(a) + weighted_vertex_row(nx + a, w.h, sample.u, w.e);
-    /// (21) adds the leakage \f$-\sum_i\hat h_iK_\theta\hat\theta_k = -K_\theta\hat\theta_k\f$ (\f$\sum_i\hat h_i = 1\f$).
-    if (K_theta_)
-      for (Index i = 0; i < np; ++i)
-        for (Index j = 0; j < np; ++j) w.theta(i) -= (*K_theta_)(i, j) * theta_(j);
+    /// (65) first and second lines, summed vertex by vertex:
+    /// \f$\hat x_{k+1} = \sum_i\hat h_i[A_i\hat x_k + B_iu_k + L_ie_k]\f$,
+    /// \f$\hat\theta_{k+1} = \hat\theta_k + \sum_i\hat h_iK_{y,i}e_k\f$. (21) adds
+    /// \f$-\sum_i\hat h_iK_\theta\hat\theta_k\f$ to the second, which is \f$-K_\theta\hat\theta_k\f$ since
+    /// \f$\sum_i\hat h_i = 1\f$ (11).
+    w.x.setZero();
+    w.theta = theta_;
+    if (gains_.K_theta) w.theta -= gains_.K_theta->lazyProduct(theta_);  // (21)
+    for (Index i = 0; i < model_.vertex_count(); ++i) {
+      const auto& A = model_.A(i);
+      const auto& B = model_.B(i);
+      const auto& L = gains_.L[static_cast<std::size_t>(i)];
+      const auto& K = gains_.K[static_cast<std::size_t>(i)];
+      w.x += w.h(i) * (A.lazyProduct(x_) + B.lazyProduct(sample.u) + L.lazyProduct(w.e));  // (65)
+      w.theta += w.h(i) * K.lazyProduct(w.e);                                                // (65)
+    }
 
     if (!detail::all_finite(w.x, w.theta)) return UpdateStatus::nonfinite_result;
 
@@ -264,26 +220,8 @@ class TakagiSugenoObserver
     return UpdateStatus::accepted;
   }
 
-  // Row a of Σ_i ĥ_i (V_i v), v = [x̂; u; e]. Plain loops over the stored entries:
-  // they run as fast as Eigen's block expressions here (r small blocks of a few
-  // entries each) and cost a fraction of their compile time.
-  Scalar weighted_vertex_row(Index a, const Weights& h, const typename Dims::Input& u, const Output& e) const {
-    const Index nx = x_.size(), nu = u.size(), ny = e.size(), nv = nx + nu + ny;
-    Scalar sum(0);
-    for (Index i = 0; i < h.size(); ++i) {
-      const Index first = i * nv;
-      Scalar row(0);
-      for (Index j = 0; j < nx; ++j) row += vertex_maps_(a, first + j) * x_(j);
-      for (Index j = 0; j < nu; ++j) row += vertex_maps_(a, first + nx + j) * u(j);
-      for (Index j = 0; j < ny; ++j) row += vertex_maps_(a, first + nx + nu + j) * e(j);
-      sum += h(i) * row;
-    }
-    return sum;
-  }
-
-  Model model_;
-  std::optional<typename Dims::ParameterMatrix> K_theta_;  // K_θ of eq. (21), empty for (65)
-  VertexMaps vertex_maps_;
+  Model model_;  // A_i, B_i, C of (64)
+  Gains gains_;  // L_i, K_{y,i} of (65), and K_θ of (21) (empty for (65))
   State x_;
   Parameters theta_;
   Weights weights_;

@@ -291,7 +291,7 @@ inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSu
 
 /// The problem data of a polytopic model for the LMIs: its vertices and C in double
 /// precision, \f$Q_e\f$ and the theorem's choices from `options`.
-template <class Model>
+template <TakagiSugenoSystem Model>
 [[nodiscard]] TakagiSugenoLmiData takagi_sugeno_lmi_data(const Model& model, const TakagiSugenoLmiOptions& options = {}) {
   constexpr std::string_view who = "takagi_sugeno_lmi_data";
   TakagiSugenoLmiData data;
@@ -362,7 +362,7 @@ struct TakagiSugenoSynthesis {
 ///
 /// Bad options throw `ConfigurationError`; an infeasible, unverified or failed
 /// solve returns its status with no gains.
-template <class Model>
+template <TakagiSugenoSystem Model>
 [[nodiscard]] TakagiSugenoSynthesis<typename Model::Dims> synthesize_takagi_sugeno_gains(
     const Model& model, const TakagiSugenoLmiOptions& options = {}) {
   using Dims = typename Model::Dims;
