@@ -80,6 +80,11 @@ struct DareOptions {
 
 namespace detail {
 
+// The products here (and in stein.hpp, schur_stability.hpp, polynomial.hpp) are
+// Eigen's lazy, coefficient-based ones: the few dozen rows of a design problem
+// do not need the cache-blocked product, which a header-only program would
+// otherwise compile once per combination of transposed operands.
+
 inline constexpr RiccatiRoles control_dare_roles{
     "solve_dare", "B",
     "must be stabilizable: a mode of A on or outside the unit circle is not reached by B, so no gain makes A - BK Schur",
@@ -100,13 +105,13 @@ DareEvaluation<Scalar> evaluate_dare(const DynamicMatrix<Scalar>& X, const Dynam
                                      const DynamicMatrix<Scalar>& R) {
   using Square = DynamicMatrix<Scalar>;
   DareEvaluation<Scalar> e;
-  const Square xa = X * A;
-  const Eigen::LLT<Square> s(R + B.transpose() * X * B);
+  const Square xa = X.lazyProduct(A);
+  const Eigen::LLT<Square> s(R + B.transpose().lazyProduct(X).lazyProduct(B));
   if (s.info() != Eigen::Success) return e;
-  const Square btxa = B.transpose() * xa;
+  const Square btxa = B.transpose().lazyProduct(xa);
   e.gain = s.solve(btxa);
-  const Square ata = A.transpose() * xa;
-  const Square correction = btxa.transpose() * e.gain;
+  const Square ata = A.transpose().lazyProduct(xa);
+  const Square correction = btxa.transpose().lazyProduct(e.gain);
   e.residual = symmetric_part<Scalar>(ata - correction + Q - X);
   const Scalar scale = X.norm() + ata.norm() + correction.norm() + Q.norm();
   const Scalar residual_norm = e.residual.norm();
@@ -127,16 +132,16 @@ std::optional<DynamicMatrix<Scalar>> structure_preserving_doubling(const Dynamic
   const Index n = A.rows();
   const Square identity = Square::Identity(n, n);
   Square a = A;
-  Square g = symmetric_part<Scalar>(B * Eigen::LLT<Square>(R).solve(B.transpose()));
+  Square g = symmetric_part<Scalar>(B.lazyProduct(Eigen::LLT<Square>(R).solve(B.transpose())));
   Square h = Q;
   for (int j = 0; j < max_iterations; ++j) {
-    const Eigen::PartialPivLU<Square> w(identity + g * h);
+    const Eigen::PartialPivLU<Square> w(identity + g.lazyProduct(h));
     if (!has_regular_pivots(w)) return std::nullopt;
     const Square w_inv_a = w.solve(a);
     const Square w_inv_g = w.solve(g);
-    const Square h_next = h + a.transpose() * h * w_inv_a;
-    const Square g_next = g + a * w_inv_g * a.transpose();
-    a = a * w_inv_a;
+    const Square h_next = h + a.transpose().lazyProduct(h).lazyProduct(w_inv_a);
+    const Square g_next = g + a.lazyProduct(w_inv_g).lazyProduct(a.transpose());
+    a = a.lazyProduct(w_inv_a).eval();
     const Scalar change = (h_next - h).norm();
     h = symmetric_part(h_next);
     g = symmetric_part(g_next);
@@ -159,7 +164,7 @@ std::optional<DynamicMatrix<Scalar>> stabilizing_gain(const DynamicMatrix<Scalar
   const auto x = structure_preserving_doubling<Scalar>(A, B, q, r, max_iterations, tolerance, iterations);
   if (!x) return std::nullopt;
   const auto e = evaluate_dare<Scalar>(*x, A, B, q, r);
-  if (!e.valid || !is_schur_stable(DynamicMatrix<Scalar>(A - B * e.gain), stabilizability_margin<Scalar>))
+  if (!e.valid || !is_schur_stable(DynamicMatrix<Scalar>(A - B.lazyProduct(e.gain)), stabilizability_margin<Scalar>))
     return std::nullopt;
   return e.gain;
 }
@@ -220,7 +225,7 @@ template <typename Scalar>
   const Square q = Q / sigma, r = R / sigma;
 
   auto stabilizing = [&](const Square& gain, Scalar radius_margin) {
-    return is_schur_stable(Square(A - B * gain), radius_margin);
+    return is_schur_stable(Square(A - B.lazyProduct(gain)), radius_margin);
   };
 
   // Stage 2: a start whose closed loop is Schur.
@@ -245,8 +250,8 @@ template <typename Scalar>
       fail_not_stabilizable(roles);
     }
     stabilizable = true;
-    const Square closed = A - B * *k0;
-    start = solve_stein_doubling<Scalar>(closed, symmetric_part<Scalar>(q + k0->transpose() * r * *k0));
+    const Square closed = A - B.lazyProduct(*k0);
+    start = solve_stein_doubling<Scalar>(closed, symmetric_part<Scalar>(q + k0->transpose().lazyProduct(r).lazyProduct(*k0)));
   }
 
   // Stage 3: Newton steps while the residual decreases. No stop at a small
@@ -255,7 +260,7 @@ template <typename Scalar>
   Square x = *start;
   auto e = evaluate_dare<Scalar>(x, A, B, q, r);
   for (int step = 0; step < 50 && e.valid; ++step) {
-    const Square closed = A - B * e.gain;
+    const Square closed = A - B.lazyProduct(e.gain);
     if (!is_schur_stable(closed)) break;
     const Square candidate = symmetric_part<Scalar>(x + solve_stein_doubling<Scalar>(closed, e.residual));
     auto next = evaluate_dare<Scalar>(candidate, A, B, q, r);
@@ -284,7 +289,7 @@ template <typename Scalar>
   const Square at = A.transpose();
   if (!stabilizable_pair(at, q) && stabilizable_pair(Square(at / Scalar(1 + 1e-6)), q)) fail_unreached_mode(roles);
   fail_ill_conditioned(roles, e.relative, residual_tolerance, "spectral radius",
-                       e.valid ? spectral_radius_bound(Square(A - B * e.gain)) : std::numeric_limits<Scalar>::infinity(),
+                       e.valid ? spectral_radius_bound(Square(A - B.lazyProduct(e.gain))) : std::numeric_limits<Scalar>::infinity(),
                        Scalar(1) - margin);
 }
 
@@ -366,10 +371,10 @@ template <typename Scalar>
                                   R.size() ? R.cwiseAbs().maxCoeff() : Scalar(0));
   const Scalar scale = largest > Scalar(1) ? std::ldexp(Scalar(1), 2 * (std::ilogb(largest) / 2)) : Scalar(1);
   const Matrix p_scaled = result.P / scale;
-  const Eigen::LLT<Matrix> s(detail::symmetric_part<Scalar>(C * p_scaled * ct + R / scale));
+  const Eigen::LLT<Matrix> s(detail::symmetric_part<Scalar>(C.lazyProduct(p_scaled).lazyProduct(ct) + R / scale));
   if (s.info() != Eigen::Success) detail::fail_out_of_range(roles);
   // Kᵀ = S⁻¹ C P Aᵀ (S and P symmetric).
-  result.K = s.solve(C * p_scaled * at).transpose();
+  result.K = s.solve(C.lazyProduct(p_scaled).lazyProduct(at)).transpose();
   if (!result.K.allFinite()) detail::fail_out_of_range(roles);
   return result;
 }

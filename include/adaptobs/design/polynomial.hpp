@@ -46,7 +46,7 @@ Polynomial<Scalar> faddeev_leverrier(const DynamicMatrix<Scalar>& A, Visit&& vis
   DynamicMatrix<Scalar> b = DynamicMatrix<Scalar>::Identity(n, n);
   for (Index k = 1; k <= n; ++k) {
     visit(k - 1, b);
-    b = A * b;
+    b = A.lazyProduct(b).eval();
     p(k) = -b.trace() / Scalar(k);
     b.diagonal().array() += p(k);
   }

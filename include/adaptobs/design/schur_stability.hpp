@@ -41,7 +41,7 @@ template <class Derived>
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   for (int k = 1; k <= 64 && !(bound < target); ++k) {
     power /= norm;
-    power = power * power;
+    power = power.lazyProduct(power).eval();
     log_scale = Scalar(2) * (log_scale + std::log(norm));
     exponent *= Scalar(2);
     norm = power.norm();

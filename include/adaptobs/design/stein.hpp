@@ -34,7 +34,7 @@ template <typename Scalar>
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   const Index n = F.rows();
   for (int j = 0; j < 64; ++j) {
-    Matrix term = f.transpose() * x * f;
+    Matrix term = f.transpose().lazyProduct(x).lazyProduct(f);
     term = Scalar(0.5) * (term + term.transpose()).eval();
     x += term;
     // The tail left after 2^(j+1) terms is at most about the term: stop once
@@ -50,7 +50,7 @@ template <typename Scalar>
         converged = std::abs(term(r, c)) <= eps * (scale > Scalar(0) ? scale : largest);
       }
     if (converged) return x;
-    f = f * f;
+    f = f.lazyProduct(f).eval();
   }
   return Matrix::Constant(F.rows(), F.cols(), std::numeric_limits<Scalar>::quiet_NaN());
 }
