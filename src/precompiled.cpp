@@ -6,6 +6,7 @@
 #define ADAPTOBS_INSTANTIATE template
 
 #include <adaptobs/core/matrix_exponential.hpp>
+#include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/design/canonical_forms.hpp>
 #include <adaptobs/design/care.hpp>
 #include <adaptobs/design/dare.hpp>
@@ -16,6 +17,9 @@
 #include <adaptobs/design/pole_placement.hpp>
 #include <adaptobs/design/positive_real.hpp>
 #include <adaptobs/design/power_bound.hpp>
+#include <adaptobs/design/schur_stability.hpp>
+#include <adaptobs/design/spr_test.hpp>
+#include <adaptobs/design/stein.hpp>
 
 #ifndef ADAPTOBS_PRECOMPILED
 #error "src/precompiled.cpp is compiled with ADAPTOBS_PRECOMPILED defined (target adaptobs_precompiled)"

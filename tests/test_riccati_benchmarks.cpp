@@ -567,7 +567,7 @@ TEST(RiccatiHostile, CareOnBadlyScaledStatesAndUndampedOscillators) {
 // small diagonal block were summed to the largest entry's accuracy: with
 // W = diag(1, 1e-20) and F = diag(0.1, 0.999), X(1, 1) read 1.58e-19 for 5.0e-18.
 TEST(RiccatiHostile, SteinDoublingSumsEverySemidefiniteEntryToItsOwnScale) {
-  const Matrix x = adaptobs::detail::solve_stein_doubling<double>(diagonal({0.1, 0.999}), diagonal({1, 1e-20}));
+  const Matrix x = adaptobs::solve_stein_doubling<double>(diagonal({0.1, 0.999}), diagonal({1, 1e-20}));
   EXPECT_NEAR(x(0, 0) * (1 - 0.01), 1.0, 1e-14);
   EXPECT_NEAR(x(1, 1) * (1 - 0.999 * 0.999) / 1e-20, 1.0, 1e-12);
 }

@@ -385,9 +385,8 @@ void bind_checks(nb::module_& m) {
         constexpr std::string_view who = "spr_conditions";
         const Polynomial<double> n = coefficients_argument(numerator, who, "numerator");
         const Polynomial<double> d = coefficients_argument(denominator, who, "denominator");
-        detail::Coefficients<double> q;
         try {
-          return detail::spr_conditions(detail::coefficients_of(n), detail::coefficients_of(d), q);
+          return SprConditions<double>(strictly_positive_real(n, d));
         } catch (const ConfigurationError& e) {
           // The shared test names itself strictly_positive_real; the caller called this.
           constexpr std::string_view shared = "strictly_positive_real";

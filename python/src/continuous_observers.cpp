@@ -112,7 +112,7 @@ class PythonContinuousModel : public SizedBy<Dims> {
     read_as_at_zero(A, sizes_.nx, sizes_.nx, "matrices_at(t)[0]", system_.A);
     read_as_at_zero(B, sizes_.nx, sizes_.nu, "matrices_at(t)[1]", system_.B);
     read_as_at_zero(C, sizes_.ny, sizes_.nx, "matrices_at(t)[2]", system_.C);
-    if (!detail::finite_entries(system_.A) || !detail::finite_entries(system_.B) || !detail::finite_entries(system_.C))
+    if (!detail::all_finite(system_.A) || !detail::all_finite(system_.B) || !detail::all_finite(system_.C))
       detail::fail_argument(who, "matrices_at(t)", "returned matrices that are not finite at t = " + std::to_string(t));
     return system_;
   }

@@ -82,8 +82,8 @@ class SharedDiscreteModel : public SizedBy<Dims> {
     archive("B", stacked.B);
     archive("C", stacked.C);
     if constexpr (Archive::reading) {
-      detail::require(detail::finite_entries(stacked.A) && detail::finite_entries(stacked.B) &&
-                          detail::finite_entries(stacked.C),
+      detail::require(detail::all_finite(stacked.A) && detail::all_finite(stacked.B) &&
+                          detail::all_finite(stacked.C),
                       "restore", "snapshot", "holds model matrices that are not finite");
       self.systems_ = std::make_shared<const Systems>(stacked.unstacked(self.sizes()));
     }

@@ -2,7 +2,8 @@
 /// \file
 /// Design routines compiled once, for programs that link `adaptobs::precompiled`.
 ///
-/// The dense decompositions behind design routines (eigenvalues, Schur forms)
+/// The dense decompositions behind design routines (eigenvalues, Schur forms,
+/// LU and Cholesky factorizations on dynamic sizes)
 /// cost seconds to compile in every translation unit that calls them. Each such
 /// routine therefore runs on dynamic-size matrices through one public function
 /// template per scalar type, named `<routine>_dynamic` and taking

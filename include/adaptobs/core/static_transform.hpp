@@ -11,10 +11,13 @@
 
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -43,54 +46,23 @@ struct TransformedSystem {
 
 namespace detail {
 
-/// \f$T^{-1}\f$ by Gauss–Jordan elimination with partial pivoting, or nothing when T
-/// is singular to working precision: \f$\kappa_1(T) = \|T\|_1\|T^{-1}\|_1 > 1/(n\varepsilon)\f$,
-/// the rank threshold of a pivoted LU. Plain loops: the constructor that checks T
-/// compiles at the cost of the products it guards, not of an LU decomposition.
-template <class Matrix>
-[[nodiscard]] std::optional<Matrix> well_conditioned_inverse(const Matrix& t) {
-  using Scalar = typename Matrix::Scalar;
-  const Index n = t.rows();
-  Matrix a = t;
-  Matrix inverse = Matrix::Identity(n, n);
-  for (Index j = 0; j < n; ++j) {
-    Index pivot = j;
-    for (Index i = j + 1; i < n; ++i)
-      if (std::abs(a(i, j)) > std::abs(a(pivot, j))) pivot = i;
-    if (!(a(pivot, j) != Scalar(0))) return std::nullopt;
-    // Row operations coefficient by coefficient: each would otherwise be its own
-    // Eigen expression type, instantiated for every fixed size T comes in.
-    for (Index k = 0; k < n; ++k) {
-      std::swap(a(j, k), a(pivot, k));
-      std::swap(inverse(j, k), inverse(pivot, k));
-    }
-    const Scalar scale = Scalar(1) / a(j, j);
-    for (Index k = 0; k < n; ++k) {
-      a(j, k) *= scale;
-      inverse(j, k) *= scale;
-    }
-    for (Index i = 0; i < n; ++i) {
-      if (i == j || a(i, j) == Scalar(0)) continue;
-      const Scalar factor = a(i, j);
-      for (Index k = 0; k < n; ++k) {
-        a(i, k) -= factor * a(j, k);
-        inverse(i, k) -= factor * inverse(j, k);
-      }
-    }
-  }
-  const auto one_norm = [n](const Matrix& m) {
-    Scalar largest = 0;
-    for (Index k = 0; k < n; ++k) {
-      Scalar column = 0;
-      for (Index i = 0; i < n; ++i) column += std::abs(m(i, k));
-      largest = std::max(largest, column);
-    }
-    return largest;
-  };
-  const Scalar condition = n == 0 ? Scalar(1) : one_norm(t) * one_norm(inverse);
-  if (!(condition * Scalar(n) * std::numeric_limits<Scalar>::epsilon() < Scalar(1))) return std::nullopt;
+/// \f$T^{-1}\f$ from a partial-pivoting LU (`Eigen::PartialPivLU`), or nothing when T
+/// is singular to working precision: its estimated reciprocal condition number
+/// \f$1/\kappa_1(T)\f$ (`rcond`, Hager's estimate of \f$\|T^{-1}\|_1\f$) at most nε, the rank
+/// threshold of a pivoted LU. On a dynamic-size copy: one instance per scalar
+/// type, whatever fixed sizes T comes in.
+template <typename Scalar>
+[[nodiscard]] std::optional<DynamicMatrix<Scalar>> well_conditioned_inverse(const DynamicMatrix<Scalar>& t) {
+  if (t.size() == 0) return t;
+  const Eigen::PartialPivLU<DynamicMatrix<Scalar>> lu(t);
+  if (!(Scalar(t.rows()) * std::numeric_limits<Scalar>::epsilon() < lu.rcond())) return std::nullopt;
+  DynamicMatrix<Scalar> inverse = lu.inverse();
+  if (!inverse.allFinite()) return std::nullopt;
   return inverse;
 }
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE std::optional<DynamicMatrix<double>> well_conditioned_inverse<double>(const DynamicMatrix<double>&);
+#endif
 
 /// c_o = e1ᵀ (or C_o = [I 0]) to a relative tolerance: the output matrix the
 /// forms of Algorithms 1–3 ask of the static transform.
@@ -120,9 +92,9 @@ class StaticTransform : public SizedBy<D> {
     detail::require_square(t_, who, "T");
     detail::require_finite(t_, who, "T");
     detail::require_finite_shape(k_, t_.rows(), k_.cols(), who, "K");
-    auto inverse = detail::well_conditioned_inverse(t_);
+    const auto inverse = detail::well_conditioned_inverse(detail::dynamic_copy(t_));
     detail::require(inverse.has_value(), who, "T", "must be invertible (condition number below 1/(n eps))");
-    t_inverse_ = std::move(*inverse);
+    t_inverse_ = *inverse;
     identity_ = (t_.array() == StateMatrix::Identity(t_.rows(), t_.cols()).array()).all();
   }
 

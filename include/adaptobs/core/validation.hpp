@@ -117,7 +117,7 @@ void require_vector(const Eigen::EigenBase<Derived>& m, std::string_view who, st
 
 template <class Derived>
 void require_finite(const Eigen::DenseBase<Derived>& m, std::string_view who, std::string_view argument) {
-  if (!finite_entries(m)) fail_argument(who, argument, "must contain only finite numbers");
+  if (!all_finite(m)) fail_argument(who, argument, "must contain only finite numbers");
 }
 
 /// The shape check, then the finiteness check, of one argument: the pair that
@@ -134,7 +134,7 @@ void require_finite_shape(const Eigen::DenseBase<Derived>& m, Index rows, Index 
 template <class Derived>
 void require_finite_shape(const Eigen::DenseBase<Derived>& m, Index rows, Index cols, std::string_view who,
                           std::string_view list, std::size_t index) {
-  if (m.rows() != rows || m.cols() != cols || !finite_entries(m))
+  if (m.rows() != rows || m.cols() != cols || !all_finite(m))
     require_finite_shape(m, rows, cols, who, element_name(list, index));
 }
 
@@ -218,7 +218,7 @@ void require_initial_estimates(const Eigen::DenseBase<X>& x0, Index nx, const Ei
 template <class Derived>
 [[nodiscard]] bool is_symmetric(const Eigen::MatrixBase<Derived>& m) {
   using Scalar = typename Derived::Scalar;
-  if (m.rows() != m.cols() || !finite_entries(m)) return false;
+  if (m.rows() != m.cols() || !all_finite(m)) return false;
   if (m.size() == 0) return true;
   const Scalar scale = m.cwiseAbs().maxCoeff();
   const Scalar tol = Scalar(100) * std::numeric_limits<Scalar>::epsilon() * (scale > Scalar(0) ? scale : Scalar(1));

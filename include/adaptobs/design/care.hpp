@@ -34,7 +34,6 @@
 
 #include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
-#include <adaptobs/core/small_dense.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/lyapunov.hpp>
 #include <adaptobs/design/riccati_support.hpp>
@@ -42,6 +41,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <Eigen/QR>
 
 #include <algorithm>
@@ -74,11 +74,9 @@ template <typename Scalar>
 CareEvaluation<Scalar> evaluate_care(const DynamicMatrix<Scalar>& X, const DynamicMatrix<Scalar>& A,
                                      const DynamicMatrix<Scalar>& G, const DynamicMatrix<Scalar>& Q) {
   CareEvaluation<Scalar> e;
-  const DynamicMatrix<Scalar> atx = multiply_transposed(A, X);
-  const DynamicMatrix<Scalar> gx = multiply(G, X);
-  const DynamicMatrix<Scalar> xgx = multiply(X, gx);
-  e.residual = atx + atx.transpose() - xgx + Q;
-  e.residual = Scalar(0.5) * (e.residual + e.residual.transpose()).eval();
+  const DynamicMatrix<Scalar> atx = A.transpose() * X;
+  const DynamicMatrix<Scalar> gx = G * X;
+  e.residual = symmetric_part<Scalar>(atx + atx.transpose() - X * gx + Q);
   e.closed_loop = A - gx;
   const Scalar x_norm = X.norm();
   const Scalar scale = Scalar(2) * A.norm() * x_norm + G.norm() * x_norm * x_norm + Q.norm();
@@ -122,10 +120,12 @@ std::optional<DynamicMatrix<Scalar>> care_sign_function_start(const DynamicMatri
   const Scalar eps = std::numeric_limits<Scalar>::epsilon();
   bool converged = false;
   for (int it = 0; it < max_iterations && !converged; ++it) {
-    const LuFactorization<Scalar> lu(z);
-    if (lu.singular) return std::nullopt;  // eigenvalue at 0: not hyperbolic
-    const Scalar c = std::exp(-lu.log_abs_determinant() / Scalar(2 * n));
-    const Matrix next = Scalar(0.5) * (c * z + lu.solve(Matrix::Identity(2 * n, 2 * n)) / c);
+    const Eigen::PartialPivLU<Matrix> lu(z);
+    if (!has_regular_pivots(lu)) return std::nullopt;  // eigenvalue at 0: not hyperbolic
+    // |det Z| from the pivots' logarithms, which cannot overflow.
+    const Scalar log_abs_determinant = lu.matrixLU().diagonal().cwiseAbs().array().log().sum();
+    const Scalar c = std::exp(-log_abs_determinant / Scalar(2 * n));
+    const Matrix next = Scalar(0.5) * (c * z + lu.inverse() / c);
     if (!next.allFinite()) return std::nullopt;
     const Scalar change = (next - z).cwiseAbs().colwise().sum().maxCoeff();
     converged = change <= Scalar(1000) * Scalar(2 * n) * eps * next.cwiseAbs().colwise().sum().maxCoeff();
@@ -135,8 +135,7 @@ std::optional<DynamicMatrix<Scalar>> care_sign_function_start(const DynamicMatri
   Matrix lhs(2 * n, n), rhs(2 * n, n);
   lhs << z.topRightCorner(n, n), z.bottomRightCorner(n, n) + Matrix::Identity(n, n);
   rhs << -(z.topLeftCorner(n, n) + Matrix::Identity(n, n)), -z.bottomLeftCorner(n, n);
-  Matrix x = lhs.colPivHouseholderQr().solve(rhs);
-  x = Scalar(0.5) * (x + x.transpose()).eval();
+  const Matrix x = symmetric_part<Scalar>(lhs.colPivHouseholderQr().solve(rhs));
   if (!x.allFinite()) return std::nullopt;
   return x;
 }
@@ -154,8 +153,7 @@ CareEvaluation<Scalar> care_newton_refinement(DynamicMatrix<Scalar>& x, const Dy
     if (!is_hurwitz_with_margin(e.closed_loop)) break;
     const auto step_matrix = lyapunov_if_regular<Scalar>(e.closed_loop, e.residual);
     if (!step_matrix) break;
-    DynamicMatrix<Scalar> candidate = x + *step_matrix;
-    candidate = Scalar(0.5) * (candidate + candidate.transpose()).eval();
+    DynamicMatrix<Scalar> candidate = symmetric_part<Scalar>(x + *step_matrix);
     auto next = evaluate_care<Scalar>(candidate, a, g, q);
     if (!(next.relative < e.relative)) break;
     x = std::move(candidate);
@@ -190,24 +188,39 @@ std::optional<DynamicMatrix<Scalar>> continuous_stabilizing_gain(const DynamicMa
     if (!is_hurwitz_with_margin(A, stabilizability_margin<Scalar>)) return std::nullopt;
     return Matrix::Zero(B.cols(), n);
   }
-  Matrix a = A, g = multiply(B, Matrix(B.transpose())) / b2, q = Matrix::Identity(n, n);
+  Matrix a = A, g = B * B.transpose() / b2, q = Matrix::Identity(n, n);
   const auto d = balance_hamiltonian<Scalar>(a, g, q);
   auto x = care_sign_function_start<Scalar>(a, g, q, 100, iterations);
   if (!x) return std::nullopt;
   (void)care_newton_refinement<Scalar>(*x, a, g, q, iterations);
   // Back to the caller's states, K = BᵀX / ‖B‖² with X = D⁻¹X̃D⁻¹; an A − BK
   // Hurwitz beyond rounding proves stabilizability.
-  Matrix k = multiply_transposed(B, unbalance(*x, d)) / b2;
-  if (!k.allFinite() || !is_hurwitz_with_margin(Matrix(A - multiply(B, k)), stabilizability_margin<Scalar>))
+  const Matrix k = B.transpose() * unbalance(*x, d) / b2;
+  if (!k.allFinite() || !is_hurwitz_with_margin(Matrix(A - B * k), stabilizability_margin<Scalar>))
     return std::nullopt;
   return k;
 }
 
+}  // namespace detail
+
+/// Stabilizing solution of the control CARE on dynamic-size matrices: the design
+/// routine behind every `solve_care`, one instance per scalar type (compiled once
+/// for `double` in `adaptobs::precompiled`). The algorithm is the file comment's:
+/// X scaled by a power of two and the states balanced (design/riccati_support.hpp),
+/// the sign function of the Hamiltonian by Byers' scaled Newton iteration (1987;
+/// `Eigen::PartialPivLU` for the inverses and determinants) or, when it fails,
+/// Kleinman's step from a stabilizing gain, then Newton–Kleinman refinement
+/// (Kleinman 1968) with Bartels–Stewart Lyapunov steps (design/lyapunov.hpp).
+/// `roles` gives the names a refusal uses (the Kalman–Bucy gain, which solves the
+/// dual equation, passes its own). Throws as the fixed-size `solve_care` below.
 template <typename Scalar>
-CareSolution<Scalar, Eigen::Dynamic> solve_care(const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& B,
-                                                const DynamicMatrix<Scalar>& Q, const DynamicMatrix<Scalar>& R,
-                                                const RiccatiRoles& roles = control_care_roles) {
-  using Matrix = DynamicMatrix<Scalar>;
+[[nodiscard]] CareSolution<Scalar, Eigen::Dynamic> solve_care(const detail::DynamicMatrix<Scalar>& A,
+                                                              const detail::DynamicMatrix<Scalar>& B,
+                                                              const detail::DynamicMatrix<Scalar>& Q,
+                                                              const detail::DynamicMatrix<Scalar>& R,
+                                                              const detail::RiccatiRoles& roles = detail::control_care_roles) {
+  using Matrix = detail::DynamicMatrix<Scalar>;
+  using namespace detail;
   validate_riccati_data(A, B, Q, R, roles);
   CareSolution<Scalar, Eigen::Dynamic> result;
   const Index n = A.rows();
@@ -217,8 +230,8 @@ CareSolution<Scalar, Eigen::Dynamic> solve_care(const DynamicMatrix<Scalar>& A, 
 
   // X = σ D⁻¹X̃D⁻¹: X̃ solves the scaled, balanced equation (a, g, q).
   const Scalar sigma = riccati_solution_scale<Scalar>(B, Q, R);
-  Matrix a = A, g = multiply(B, CholeskyFactorization<Scalar>(R / sigma).solve(B.transpose())), q = Q / sigma;
-  g = Scalar(0.5) * (g + g.transpose()).eval();
+  const Matrix r = R / sigma;
+  Matrix a = A, g = symmetric_part<Scalar>(B * Eigen::LLT<Matrix>(r).solve(B.transpose())), q = Q / sigma;
   const auto d = balance_hamiltonian<Scalar>(a, g, q);
   auto start = care_sign_function_start<Scalar>(a, g, q, 100, result.iterations);
   bool stabilizable = false;  // proven by a gain that makes A − BK Hurwitz
@@ -233,8 +246,8 @@ CareSolution<Scalar, Eigen::Dynamic> solve_care(const DynamicMatrix<Scalar>& A, 
     stabilizable = true;
     // Kleinman's first step, in the scaled and balanced coordinates: K̃ = K₀D.
     const Matrix k = *k0 * d.asDiagonal();
-    start = lyapunov_if_regular<Scalar>(Matrix(a - multiply(Matrix(d.cwiseInverse().asDiagonal() * B), k)),
-                                        Matrix(q + congruence(k, Matrix(R / sigma))));
+    const Matrix b = d.cwiseInverse().asDiagonal() * B;
+    start = lyapunov_if_regular<Scalar>(Matrix(a - b * k), symmetric_part<Scalar>(q + k.transpose() * r * k));
     if (!start) start = Matrix::Constant(n, n, std::numeric_limits<Scalar>::infinity());  // refused below
   }
   Matrix x = *start;
@@ -262,34 +275,15 @@ CareSolution<Scalar, Eigen::Dynamic> solve_care(const DynamicMatrix<Scalar>& A, 
                        finite ? -std::sqrt(eps) * e.closed_loop.norm() : Scalar(0));
 }
 
-#ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE CareSolution<double, Eigen::Dynamic> solve_care<double>(const DynamicMatrix<double>&,
-                                                                            const DynamicMatrix<double>&,
-                                                                            const DynamicMatrix<double>&,
-                                                                            const DynamicMatrix<double>&,
-                                                                            const RiccatiRoles&);
-ADAPTOBS_INSTANTIATE std::optional<DynamicMatrix<double>> care_sign_function_start<double>(
-    const DynamicMatrix<double>&, const DynamicMatrix<double>&, const DynamicMatrix<double>&, int, int&);
-ADAPTOBS_INSTANTIATE CareEvaluation<double> care_newton_refinement<double>(DynamicMatrix<double>&,
-                                                                          const DynamicMatrix<double>&,
-                                                                          const DynamicMatrix<double>&,
-                                                                          const DynamicMatrix<double>&, int&);
-#endif
-
-}  // namespace detail
-
-/// Stabilizing solution of \f$A^TX + XA - XGX + Q = 0\f$ (G, Q symmetric, either
-/// possibly indefinite): the sign-function start refined by Newton's method, or nothing
-/// when the Hamiltonian has eigenvalues on the imaginary axis or the result
-/// fails its residual (√ε) or stability check. A, G, Q not square, finite and
-/// of one size, G or Q not symmetric, or `max_iterations` < 1 throw a
-/// `ConfigurationError` naming the argument.
-template <class DA, class DG, class DQ>
-[[nodiscard]] std::optional<CareSolution<typename DA::Scalar, DA::RowsAtCompileTime>> solve_riccati_hamiltonian(
-    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DG>& G, const Eigen::MatrixBase<DQ>& Q,
-    int max_iterations = 100) {
-  using Scalar = typename DA::Scalar;
-  using Matrix = detail::DynamicMatrix<Scalar>;
+/// Stabilizing solution of \f$A^TX + XA - XGX + Q = 0\f$ on dynamic-size matrices
+/// (G, Q symmetric, either possibly indefinite): Byers' sign-function start refined
+/// by Newton–Kleinman steps (file comment), or nothing when the Hamiltonian has
+/// eigenvalues on the imaginary axis or the result fails its residual (√ε) or
+/// stability check. Throws as the overload below.
+template <typename Scalar>
+[[nodiscard]] std::optional<CareSolution<Scalar, Eigen::Dynamic>> solve_riccati_hamiltonian(
+    const detail::DynamicMatrix<Scalar>& A, const detail::DynamicMatrix<Scalar>& G,
+    const detail::DynamicMatrix<Scalar>& Q, int max_iterations = 100) {
   constexpr std::string_view who = "solve_riccati_hamiltonian";
   detail::require_square(A, who, "A");
   detail::require_finite(A, who, "A");
@@ -298,29 +292,16 @@ template <class DA, class DG, class DQ>
   detail::require_finite_shape(Q, A.rows(), A.rows(), who, "Q");
   detail::require_symmetric(Q, who, "Q");
   detail::require(max_iterations >= 1, who, "max_iterations", "must be at least 1");
-  const Matrix a = detail::dynamic_copy(A), g = detail::dynamic_copy(G), q = detail::dynamic_copy(Q);
-  CareSolution<Scalar, DA::RowsAtCompileTime> result;
-  if (a.rows() == 0) return result;
-  auto x = detail::care_sign_function_start<Scalar>(a, g, q, max_iterations, result.iterations);
+  CareSolution<Scalar, Eigen::Dynamic> result;
+  if (A.rows() == 0) return result;
+  auto x = detail::care_sign_function_start<Scalar>(A, G, Q, max_iterations, result.iterations);
   if (!x) return std::nullopt;
-  const auto e = detail::care_newton_refinement<Scalar>(*x, a, g, q, result.iterations);
+  const auto e = detail::care_newton_refinement<Scalar>(*x, A, G, Q, result.iterations);
   if (!(e.relative <= std::sqrt(std::numeric_limits<Scalar>::epsilon())) || !is_hurwitz_stable(e.closed_loop))
     return std::nullopt;
   result.X = *x;
   result.relative_residual = e.relative;
   return result;
-}
-
-/// Stabilizing solution of the control CARE \f$A^TX + XA - XBR^{-1}B^TX + Q = 0\f$
-/// (see file comment). Throws `ConfigurationError` on invalid arguments, and
-/// refuses, naming the reason, when no stabilizing solution exists or the
-/// working precision cannot reach the stated residual.
-template <class DA, class DB, class DQ, class DR>
-[[nodiscard]] auto solve_care(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
-                              const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R) {
-  using detail::dynamic_copy;
-  return detail::with_order<DA::RowsAtCompileTime>(
-      detail::solve_care(dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R)));
 }
 
 /// Steady-state Kalman–Bucy gain of \f$\dot x = Ax + w,\ y = Cx + v\f$ (spectral
@@ -333,12 +314,13 @@ struct KalmanBucyGain {
   Scalar relative_residual = 0;
 };
 
-template <class DA, class DC, class DQ, class DR>
-[[nodiscard]] auto kalman_bucy_gain(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
-                                    const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R) {
-  using Scalar = typename DA::Scalar;
-  constexpr int N = DA::RowsAtCompileTime;
-  constexpr int M = DC::RowsAtCompileTime;
+/// The steady-state Kalman–Bucy gain on dynamic-size matrices: P from the dual
+/// CARE \f$(A^T, C^T, Q, R)\f$ (`solve_care` above), \f$K^T = R^{-1}CP\f$ by `Eigen::LLT`.
+template <typename Scalar>
+[[nodiscard]] KalmanBucyGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> kalman_bucy_gain(
+    const detail::DynamicMatrix<Scalar>& A, const detail::DynamicMatrix<Scalar>& C,
+    const detail::DynamicMatrix<Scalar>& Q, const detail::DynamicMatrix<Scalar>& R) {
+  using Matrix = detail::DynamicMatrix<Scalar>;
   // The dual equation (Aᵀ, Cᵀ, Q, R), with its refusals in the filter's terms.
   static constexpr detail::RiccatiRoles roles{
       "kalman_bucy_gain", "C",
@@ -348,16 +330,64 @@ template <class DA, class DC, class DQ, class DR>
       "solution"};
   detail::require_square(A, roles.who, "A");
   detail::require_shape(C, C.rows(), A.cols(), roles.who, "C");
-  using detail::dynamic_copy;
-  const auto dual = detail::solve_care<Scalar>(detail::DynamicMatrix<Scalar>(dynamic_copy(A).transpose()),
-                                               detail::DynamicMatrix<Scalar>(dynamic_copy(C).transpose()),
-                                               dynamic_copy(Q), dynamic_copy(R), roles);
-  KalmanBucyGain<Scalar, N, M> result;
+  const auto dual = solve_care(Matrix(A.transpose()), Matrix(C.transpose()), Q, R, roles);
+  KalmanBucyGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> result;
   result.P = dual.X;
   result.relative_residual = dual.relative_residual;
   // K = P Cᵀ R⁻¹  ⇔  Kᵀ = R⁻¹ C P.
-  result.K = R.llt().solve(C * result.P).transpose();
+  result.K = Eigen::LLT<Matrix>(R).solve(C * result.P).transpose();
   return result;
+}
+
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE CareSolution<double, Eigen::Dynamic> solve_care<double>(
+    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
+    const detail::DynamicMatrix<double>&, const detail::RiccatiRoles&);
+ADAPTOBS_INSTANTIATE std::optional<CareSolution<double, Eigen::Dynamic>> solve_riccati_hamiltonian<double>(
+    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
+    int);
+ADAPTOBS_INSTANTIATE KalmanBucyGain<double, Eigen::Dynamic, Eigen::Dynamic> kalman_bucy_gain<double>(
+    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
+    const detail::DynamicMatrix<double>&);
+#endif
+
+/// Stabilizing solution of \f$A^TX + XA - XGX + Q = 0\f$ sized as the caller's A
+/// (the dynamic-size overload above does the work). A, G, Q not square, finite and
+/// of one size, G or Q not symmetric, or `max_iterations` < 1 throw a
+/// `ConfigurationError` naming the argument.
+template <class DA, class DG, class DQ>
+[[nodiscard]] std::optional<CareSolution<typename DA::Scalar, DA::RowsAtCompileTime>> solve_riccati_hamiltonian(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DG>& G, const Eigen::MatrixBase<DQ>& Q,
+    int max_iterations = 100) {
+  using detail::dynamic_copy;
+  const auto dynamic = solve_riccati_hamiltonian(dynamic_copy(A), dynamic_copy(G), dynamic_copy(Q), max_iterations);
+  if (!dynamic) return std::nullopt;
+  return detail::with_order<DA::RowsAtCompileTime>(*dynamic);
+}
+
+/// Stabilizing solution of the control CARE \f$A^TX + XA - XBR^{-1}B^TX + Q = 0\f$
+/// (see file comment), sized as the caller's A; the dynamic-size overload above
+/// does the work. Throws `ConfigurationError` on invalid arguments, and
+/// refuses, naming the reason, when no stabilizing solution exists or the
+/// working precision cannot reach the stated residual.
+template <class DA, class DB, class DQ, class DR>
+[[nodiscard]] auto solve_care(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
+                              const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R) {
+  using detail::dynamic_copy;
+  return detail::with_order<DA::RowsAtCompileTime>(
+      solve_care(dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R)));
+}
+
+/// The steady-state Kalman–Bucy gain sized as the caller's A and C (the
+/// dynamic-size overload above does the work).
+template <class DA, class DC, class DQ, class DR>
+[[nodiscard]] auto kalman_bucy_gain(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
+                                    const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R) {
+  using Scalar = typename DA::Scalar;
+  using detail::dynamic_copy;
+  const auto dynamic = kalman_bucy_gain(dynamic_copy(A), dynamic_copy(C), dynamic_copy(Q), dynamic_copy(R));
+  return KalmanBucyGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime>{dynamic.K, dynamic.P,
+                                                                               dynamic.relative_residual};
 }
 
 }  // namespace adaptobs

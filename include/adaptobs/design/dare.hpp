@@ -43,13 +43,14 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
 #include <adaptobs/core/precompiled.hpp>
-#include <adaptobs/core/small_dense.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/riccati_support.hpp>
 #include <adaptobs/design/schur_stability.hpp>
 #include <adaptobs/design/stein.hpp>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -79,10 +80,10 @@ struct DareOptions {
 
 namespace detail {
 
-// Design-time computations run on dynamic-size matrices (DynamicMatrix, from
-// core/detail/dynamic_copy.hpp) whatever the caller's sizes: the factorizations they
-// use are costly to compile, and one instantiation per scalar type then serves
-// every size.
+// The products here (and in stein.hpp, schur_stability.hpp, polynomial.hpp) are
+// Eigen's lazy, coefficient-based ones: the few dozen rows of a design problem
+// do not need the cache-blocked product, which a header-only program would
+// otherwise compile once per combination of transposed operands.
 
 inline constexpr RiccatiRoles control_dare_roles{
     "solve_dare", "B",
@@ -102,29 +103,21 @@ template <typename Scalar>
 DareEvaluation<Scalar> evaluate_dare(const DynamicMatrix<Scalar>& X, const DynamicMatrix<Scalar>& A,
                                      const DynamicMatrix<Scalar>& B, const DynamicMatrix<Scalar>& Q,
                                      const DynamicMatrix<Scalar>& R) {
+  using Square = DynamicMatrix<Scalar>;
   DareEvaluation<Scalar> e;
-  const DynamicMatrix<Scalar> xa = multiply(X, A);
-  const CholeskyFactorization<Scalar> s(R + multiply(multiply_transposed(B, X), B));
-  if (!s.positive_definite) return e;
-  const DynamicMatrix<Scalar> btxa = multiply_transposed(B, xa);
+  const Square xa = X.lazyProduct(A);
+  const Eigen::LLT<Square> s(R + B.transpose().lazyProduct(X).lazyProduct(B));
+  if (s.info() != Eigen::Success) return e;
+  const Square btxa = B.transpose().lazyProduct(xa);
   e.gain = s.solve(btxa);
-  const DynamicMatrix<Scalar> ata = multiply_transposed(A, xa);
-  const DynamicMatrix<Scalar> correction = multiply_transposed(btxa, e.gain);
-  e.residual = ata - correction + Q - X;
-  e.residual = Scalar(0.5) * (e.residual + e.residual.transpose()).eval();
+  const Square ata = A.transpose().lazyProduct(xa);
+  const Square correction = btxa.transpose().lazyProduct(e.gain);
+  e.residual = symmetric_part<Scalar>(ata - correction + Q - X);
   const Scalar scale = X.norm() + ata.norm() + correction.norm() + Q.norm();
   const Scalar residual_norm = e.residual.norm();
   e.relative = scale > Scalar(0) ? residual_norm / scale : residual_norm;
   e.valid = X.allFinite() && std::isfinite(e.relative) && e.gain.allFinite();
   return e;
-}
-
-template <typename Scalar>
-Scalar dare_relative_residual(const DynamicMatrix<Scalar>& X, const DynamicMatrix<Scalar>& A,
-                              const DynamicMatrix<Scalar>& B, const DynamicMatrix<Scalar>& Q,
-                              const DynamicMatrix<Scalar>& R) {
-  const auto e = evaluate_dare<Scalar>(X, A, B, Q, R);
-  return e.valid ? e.relative : std::numeric_limits<Scalar>::infinity();
 }
 
 /// SDA (file comment, stage 2) on G = B R⁻¹ Bᵀ, H = Q: the limit of H_j, or
@@ -139,20 +132,19 @@ std::optional<DynamicMatrix<Scalar>> structure_preserving_doubling(const Dynamic
   const Index n = A.rows();
   const Square identity = Square::Identity(n, n);
   Square a = A;
-  Square g = multiply(B, CholeskyFactorization<Scalar>(R).solve(B.transpose()));
-  g = Scalar(0.5) * (g + g.transpose()).eval();
+  Square g = symmetric_part<Scalar>(B.lazyProduct(Eigen::LLT<Square>(R).solve(B.transpose())));
   Square h = Q;
   for (int j = 0; j < max_iterations; ++j) {
-    const LuFactorization<Scalar> w(identity + multiply(g, h));
-    if (w.singular) return std::nullopt;
+    const Eigen::PartialPivLU<Square> w(identity + g.lazyProduct(h));
+    if (!has_regular_pivots(w)) return std::nullopt;
     const Square w_inv_a = w.solve(a);
     const Square w_inv_g = w.solve(g);
-    const Square h_next = h + multiply(multiply_transposed(a, h), w_inv_a);
-    const Square g_next = g + multiply(multiply(a, w_inv_g), Square(a.transpose()));
-    a = multiply(a, w_inv_a);
+    const Square h_next = h + a.transpose().lazyProduct(h).lazyProduct(w_inv_a);
+    const Square g_next = g + a.lazyProduct(w_inv_g).lazyProduct(a.transpose());
+    a = a.lazyProduct(w_inv_a).eval();
     const Scalar change = (h_next - h).norm();
-    h = Scalar(0.5) * (h_next + h_next.transpose());
-    g = Scalar(0.5) * (g_next + g_next.transpose());
+    h = symmetric_part(h_next);
+    g = symmetric_part(g_next);
     ++iterations;
     if (!h.allFinite() || !g.allFinite() || !a.allFinite()) return std::nullopt;
     if (change <= tolerance * h.norm()) return h;
@@ -172,16 +164,44 @@ std::optional<DynamicMatrix<Scalar>> stabilizing_gain(const DynamicMatrix<Scalar
   const auto x = structure_preserving_doubling<Scalar>(A, B, q, r, max_iterations, tolerance, iterations);
   if (!x) return std::nullopt;
   const auto e = evaluate_dare<Scalar>(*x, A, B, q, r);
-  if (!e.valid || !is_schur_stable(DynamicMatrix<Scalar>(A - multiply(B, e.gain)), stabilizability_margin<Scalar>))
+  if (!e.valid || !is_schur_stable(DynamicMatrix<Scalar>(A - B.lazyProduct(e.gain)), stabilizability_margin<Scalar>))
     return std::nullopt;
   return e.gain;
 }
 
+}  // namespace detail
+
+/// Per-term relative residual of X in the DARE (A, B, Q, R) on dynamic-size
+/// matrices of fitting shapes (unchecked): \f$\|\mathcal R(X)\|_F /
+/// (\|X\|_F + \|A^TXA\|_F + \|A^TXBK\|_F + \|Q\|_F)\f$ (see file comment); infinite when
+/// \f$R + B^TXB\f$ is not positive definite (Cholesky, `Eigen::LLT`).
 template <typename Scalar>
-DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, const DynamicMatrix<Scalar>& B,
-                                                const DynamicMatrix<Scalar>& Q, const DynamicMatrix<Scalar>& R,
-                                                DareOptions options, const RiccatiRoles& roles = control_dare_roles) {
-  using Square = DynamicMatrix<Scalar>;
+[[nodiscard]] Scalar dare_relative_residual(const detail::DynamicMatrix<Scalar>& X, const detail::DynamicMatrix<Scalar>& A,
+                                            const detail::DynamicMatrix<Scalar>& B, const detail::DynamicMatrix<Scalar>& Q,
+                                            const detail::DynamicMatrix<Scalar>& R) {
+  const auto e = detail::evaluate_dare<Scalar>(X, A, B, Q, R);
+  return e.valid ? e.relative : std::numeric_limits<Scalar>::infinity();
+}
+
+/// Stabilizing solution of the control-form DARE on dynamic-size matrices: the
+/// design routine behind every `solve_dare`, one instance per scalar type
+/// (compiled once for `double` in `adaptobs::precompiled`). The algorithm is
+/// the file comment's: scaling by a power of two, the structure-preserving
+/// doubling of Chu, Fan and Lin (2005) or, when it fails, Hewer's step from a
+/// stabilizing gain, then Newton–Hewer refinement (Hewer 1971) with Stein steps
+/// by Smith's doubling (design/stein.hpp). The factorizations are Eigen's: `LLT`
+/// for \f$R + B^TXB\f$ and R, `PartialPivLU` for \f$I + G_jH_j\f$. `roles` gives the
+/// names a refusal uses (the Kalman gain, which solves the dual equation, passes its own).
+/// Throws `ConfigurationError` as the fixed-size `solve_dare` below.
+template <typename Scalar>
+[[nodiscard]] DareSolution<Scalar, Eigen::Dynamic> solve_dare(const detail::DynamicMatrix<Scalar>& A,
+                                                              const detail::DynamicMatrix<Scalar>& B,
+                                                              const detail::DynamicMatrix<Scalar>& Q,
+                                                              const detail::DynamicMatrix<Scalar>& R,
+                                                              DareOptions options = {},
+                                                              const detail::RiccatiRoles& roles = detail::control_dare_roles) {
+  using Square = detail::DynamicMatrix<Scalar>;
+  using namespace detail;
   validate_riccati_data(A, B, Q, R, roles);
   // Checked first: a bad limit would otherwise surface as a refusal of the data
   // (with no doubling step allowed no stabilizing gain is found, and the pair
@@ -205,7 +225,7 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   const Square q = Q / sigma, r = R / sigma;
 
   auto stabilizing = [&](const Square& gain, Scalar radius_margin) {
-    return is_schur_stable(Square(A - multiply(B, gain)), radius_margin);
+    return is_schur_stable(Square(A - B.lazyProduct(gain)), radius_margin);
   };
 
   // Stage 2: a start whose closed loop is Schur.
@@ -230,8 +250,8 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
       fail_not_stabilizable(roles);
     }
     stabilizable = true;
-    const Square closed = A - multiply(B, *k0);
-    start = solve_stein_doubling<Scalar>(closed, Square(q + congruence(*k0, r)));
+    const Square closed = A - B.lazyProduct(*k0);
+    start = solve_stein_doubling<Scalar>(closed, symmetric_part<Scalar>(q + k0->transpose().lazyProduct(r).lazyProduct(*k0)));
   }
 
   // Stage 3: Newton steps while the residual decreases. No stop at a small
@@ -240,13 +260,12 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   Square x = *start;
   auto e = evaluate_dare<Scalar>(x, A, B, q, r);
   for (int step = 0; step < 50 && e.valid; ++step) {
-    const Square closed = A - multiply(B, e.gain);
+    const Square closed = A - B.lazyProduct(e.gain);
     if (!is_schur_stable(closed)) break;
-    Square candidate = x + solve_stein_doubling<Scalar>(closed, e.residual);
-    candidate = Scalar(0.5) * (candidate + candidate.transpose()).eval();
+    const Square candidate = symmetric_part<Scalar>(x + solve_stein_doubling<Scalar>(closed, e.residual));
     auto next = evaluate_dare<Scalar>(candidate, A, B, q, r);
     if (!(next.valid && next.relative < e.relative)) break;
-    x = std::move(candidate);
+    x = candidate;
     e = std::move(next);
     ++result.iterations;
   }
@@ -270,22 +289,12 @@ DareSolution<Scalar, Eigen::Dynamic> solve_dare(const DynamicMatrix<Scalar>& A, 
   const Square at = A.transpose();
   if (!stabilizable_pair(at, q) && stabilizable_pair(Square(at / Scalar(1 + 1e-6)), q)) fail_unreached_mode(roles);
   fail_ill_conditioned(roles, e.relative, residual_tolerance, "spectral radius",
-                       e.valid ? spectral_radius_bound(Square(A - multiply(B, e.gain))) : std::numeric_limits<Scalar>::infinity(),
+                       e.valid ? spectral_radius_bound(Square(A - B.lazyProduct(e.gain))) : std::numeric_limits<Scalar>::infinity(),
                        Scalar(1) - margin);
 }
-#ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE DareSolution<double, Eigen::Dynamic> solve_dare<double>(const DynamicMatrix<double>&,
-                                                                            const DynamicMatrix<double>&,
-                                                                            const DynamicMatrix<double>&,
-                                                                            const DynamicMatrix<double>&, DareOptions,
-                                                                            const RiccatiRoles&);
-#endif
 
-}  // namespace detail
-
-/// Per-term relative residual of X in the DARE (A, B, Q, R): \f$\|\mathcal R(X)\|_F /
-/// (\|X\|_F + \|A^TXA\|_F + \|A^TXBK\|_F + \|Q\|_F)\f$ (see file comment); infinite when
-/// \f$R + B^TXB\f$ is not positive definite. Throws `ConfigurationError` naming the
+/// Per-term relative residual of X in the DARE (A, B, Q, R) (see file comment
+/// and the dynamic-size overload above). Throws `ConfigurationError` naming the
 /// first argument whose shape does not fit A (n × n) and B (n × m).
 template <class DX, class DA, class DB, class DQ, class DR>
 [[nodiscard]] typename DX::Scalar dare_relative_residual(const Eigen::MatrixBase<DX>& X, const Eigen::MatrixBase<DA>& A,
@@ -299,11 +308,11 @@ template <class DX, class DA, class DB, class DQ, class DR>
   detail::require_shape(X, n, n, who, "X");
   detail::require_shape(Q, n, n, who, "Q");
   detail::require_shape(R, m, m, who, "R");
-  return detail::dare_relative_residual<typename DA::Scalar>(dynamic_copy(X), dynamic_copy(A), dynamic_copy(B),
-                                                             dynamic_copy(Q), dynamic_copy(R));
+  return dare_relative_residual(dynamic_copy(X), dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R));
 }
 
-/// Stabilizing solution of the control-form DARE (see file comment).
+/// Stabilizing solution of the control-form DARE (see file comment), sized as
+/// the caller's A; it runs the dynamic-size overload above.
 /// Throws `ConfigurationError` on invalid arguments, and refuses, naming the
 /// reason, when no stabilizing solution exists ((A, B) not stabilizable, or a
 /// mode on the unit circle unobserved by Q) or when the working precision
@@ -315,7 +324,7 @@ template <class DA, class DB, class DQ, class DR>
                               DareOptions options = {}) {
   using detail::dynamic_copy;
   return detail::with_order<DA::RowsAtCompileTime>(
-      detail::solve_dare(dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R), options));
+      solve_dare(dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R), options));
 }
 
 /// Steady-state Kalman gain of \f$x_{k+1} = A x_k + w_k,\ y_k = C x_k + v_k\f$,
@@ -329,25 +338,27 @@ struct KalmanGain {
   Scalar relative_residual = 0;
 };
 
-namespace detail {
+/// The steady-state Kalman gain on dynamic-size matrices: P solves the dual
+/// DARE \f$(A^T, C^T, Q, R)\f$ (`solve_dare` above) and
+/// \f$K = A P C^T (C P C^T + R)^{-1}\f$, with the innovation covariance factored
+/// by `Eigen::LLT`. Compiled once for `double` in `adaptobs::precompiled`.
 template <typename Scalar>
-KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> steady_state_kalman_gain(const DynamicMatrix<Scalar>& A,
-                                                                            const DynamicMatrix<Scalar>& C,
-                                                                            const DynamicMatrix<Scalar>& Q,
-                                                                            const DynamicMatrix<Scalar>& R,
-                                                                            DareOptions options) {
+[[nodiscard]] KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> steady_state_kalman_gain(
+    const detail::DynamicMatrix<Scalar>& A, const detail::DynamicMatrix<Scalar>& C,
+    const detail::DynamicMatrix<Scalar>& Q, const detail::DynamicMatrix<Scalar>& R, DareOptions options = {}) {
+  using Matrix = detail::DynamicMatrix<Scalar>;
   // The dual equation (Aᵀ, Cᵀ, Q, R): its stabilizability is the detectability
   // of (A, C), and its "unobserved by Q" is "not excited by the process noise".
-  static constexpr RiccatiRoles roles{
+  static constexpr detail::RiccatiRoles roles{
       "steady_state_kalman_gain", "C",
       "must be detectable: a mode of A on or outside the unit circle is not seen by C, so no gain makes A - KC Schur",
       "leave a mode of A on the unit circle unexcited by the process noise Q: the filter DARE has no stabilizing "
       "solution"};
-  require_square(A, roles.who, "A");
-  require_shape(C, C.rows(), A.cols(), roles.who, "C");
-  const DynamicMatrix<Scalar> at = A.transpose();
-  const DynamicMatrix<Scalar> ct = C.transpose();
-  const auto dual = detail::solve_dare<Scalar>(at, ct, Q, R, options, roles);
+  detail::require_square(A, roles.who, "A");
+  detail::require_shape(C, C.rows(), A.cols(), roles.who, "C");
+  const Matrix at = A.transpose();
+  const Matrix ct = C.transpose();
+  const auto dual = solve_dare(at, ct, Q, R, options, roles);
   KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> result;
   result.P = dual.X;
   result.relative_residual = dual.relative_residual;
@@ -359,26 +370,37 @@ KalmanGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> steady_state_kalman_gain(cons
   const Scalar largest = std::max(result.P.size() ? result.P.cwiseAbs().maxCoeff() : Scalar(0),
                                   R.size() ? R.cwiseAbs().maxCoeff() : Scalar(0));
   const Scalar scale = largest > Scalar(1) ? std::ldexp(Scalar(1), 2 * (std::ilogb(largest) / 2)) : Scalar(1);
-  const DynamicMatrix<Scalar> p_scaled = result.P / scale;
-  const CholeskyFactorization<Scalar> s(DynamicMatrix<Scalar>(congruence(ct, p_scaled) + R / scale));
-  if (!s.positive_definite) fail_out_of_range(roles);
+  const Matrix p_scaled = result.P / scale;
+  const Eigen::LLT<Matrix> s(detail::symmetric_part<Scalar>(C.lazyProduct(p_scaled).lazyProduct(ct) + R / scale));
+  if (s.info() != Eigen::Success) detail::fail_out_of_range(roles);
   // Kᵀ = S⁻¹ C P Aᵀ (S and P symmetric).
-  result.K = s.solve(multiply_transposed(ct, multiply(p_scaled, at))).transpose();
-  if (!result.K.allFinite()) fail_out_of_range(roles);
+  result.K = s.solve(C.lazyProduct(p_scaled).lazyProduct(at)).transpose();
+  if (!result.K.allFinite()) detail::fail_out_of_range(roles);
   return result;
 }
-}  // namespace detail
+
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE DareSolution<double, Eigen::Dynamic> solve_dare<double>(
+    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
+    const detail::DynamicMatrix<double>&, DareOptions, const detail::RiccatiRoles&);
+ADAPTOBS_INSTANTIATE double dare_relative_residual<double>(
+    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
+    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&);
+ADAPTOBS_INSTANTIATE KalmanGain<double, Eigen::Dynamic, Eigen::Dynamic> steady_state_kalman_gain<double>(
+    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
+    const detail::DynamicMatrix<double>&, DareOptions);
+#endif
 
 /// \f$P\f$ solves the dual DARE \f$(A^T, C^T, Q, R)\f$ and
-/// \f$K = A P C^T (C P C^T + R)^{-1}\f$.
+/// \f$K = A P C^T (C P C^T + R)^{-1}\f$, sized as the caller's A and C (the
+/// dynamic-size overload above does the work).
 template <class DA, class DC, class DQ, class DR>
 [[nodiscard]] auto steady_state_kalman_gain(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
                                             const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DR>& R,
                                             DareOptions options = {}) {
   using Scalar = typename DA::Scalar;
   using detail::dynamic_copy;
-  const auto dynamic =
-      detail::steady_state_kalman_gain<Scalar>(dynamic_copy(A), dynamic_copy(C), dynamic_copy(Q), dynamic_copy(R), options);
+  const auto dynamic = steady_state_kalman_gain(dynamic_copy(A), dynamic_copy(C), dynamic_copy(Q), dynamic_copy(R), options);
   return KalmanGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime>{dynamic.K, dynamic.P,
                                                                            dynamic.relative_residual};
 }

@@ -18,6 +18,7 @@
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -96,6 +97,21 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> balance_hamiltonian(DynamicMatrix<Scala
     if (!changed) break;
   }
   return d;
+}
+
+/// \f$\tfrac12(M + M^T)\f$: the iterates of both solvers are symmetric in exact
+/// arithmetic, and are kept so against rounding.
+template <typename Scalar>
+[[nodiscard]] DynamicMatrix<Scalar> symmetric_part(const DynamicMatrix<Scalar>& m) {
+  return Scalar(0.5) * (m + m.transpose());
+}
+
+/// True when the partial-pivoting LU has no zero or non-finite pivot, so that
+/// its solves are defined (PartialPivLU itself divides by whatever pivot it finds).
+template <typename Scalar>
+[[nodiscard]] bool has_regular_pivots(const Eigen::PartialPivLU<DynamicMatrix<Scalar>>& lu) {
+  const auto pivots = lu.matrixLU().diagonal();
+  return pivots.allFinite() && (pivots.array() != Scalar(0)).all();
 }
 
 /// Relative distance from the stability boundary below which a closed-loop

@@ -10,14 +10,13 @@
 /// representable. This needs nothing beyond matrix products, so it is cheap
 /// to compile, unlike a real Schur decomposition.
 
-#include <adaptobs/core/small_dense.hpp>
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
 
 #include <cmath>
 #include <limits>
-#include <type_traits>
 
 namespace adaptobs {
 
@@ -36,22 +35,13 @@ template <class Derived>
   // M^(2^k) = exp(log_scale) · power with ‖power‖ = norm, so the bound is
   // exp((log_scale + log norm) / 2^k). Starting from M / max|m_ij| keeps the
   // Frobenius norm itself from overflowing.
-  // Run-time sizes square with the plain-loop product (no GEMM kernel for a design-time check).
-  constexpr bool run_time_sized =
-      Derived::RowsAtCompileTime == Eigen::Dynamic || Derived::ColsAtCompileTime == Eigen::Dynamic;
-  using Power = std::conditional_t<run_time_sized, detail::DynamicMatrix<Scalar>,
-                                   Eigen::Matrix<Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime>>;
-  Power power = m / largest;
+  Eigen::Matrix<Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> power = m / largest;
   Scalar norm = power.norm();
   Scalar log_scale = std::log(largest), exponent = 1, bound = std::exp(log_scale + std::log(norm));
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   for (int k = 1; k <= 64 && !(bound < target); ++k) {
     power /= norm;
-    if constexpr (run_time_sized) {
-      power = detail::multiply(power, power);
-    } else {
-      power = power.lazyProduct(power).eval();
-    }
+    power = power.lazyProduct(power).eval();
     log_scale = Scalar(2) * (log_scale + std::log(norm));
     exponent *= Scalar(2);
     norm = power.norm();
@@ -71,5 +61,9 @@ template <class Derived>
   const Scalar radius = Scalar(1) - margin;
   return spectral_radius_bound(m, radius) < radius;
 }
+
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE double spectral_radius_bound<Eigen::MatrixXd>(const Eigen::MatrixBase<Eigen::MatrixXd>&, double);
+#endif
 
 }  // namespace adaptobs

@@ -15,6 +15,7 @@
 /// D is tested by Routh–Hurwitz and the real roots of q are counted by a Sturm
 /// sequence: exact in rational arithmetic, no root finding.
 
+#include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/polynomial.hpp>
 
@@ -22,7 +23,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <limits>
 #include <string_view>
 
@@ -46,76 +46,68 @@ struct SprTest : SprConditions<Scalar> {
   Polynomial<Scalar> q;  ///< \f$q(w) = \mathrm{Re}\,G(j\sqrt w)\,|D(j\sqrt w)|^2\f$, highest power first
 };
 
-namespace detail {
-/// The exact SPR test of \f$G = N/D\f$ (D monic of degree n, deg N < n) on
-/// coefficient vectors; q receives \f$q(w)\f$, highest power first.
+/// Exact SPR test of \f$G = N/D\f$ (D monic of degree n, deg N < n), as in the
+/// file comment: Routh–Hurwitz on D (`is_hurwitz_polynomial`), then the Sturm
+/// count of the real roots of q on [0, ∞) (`count_real_roots_above`).
 template <typename Scalar>
-[[nodiscard]] SprConditions<Scalar> spr_conditions(const Coefficients<Scalar>& numerator,
-                                                   const Coefficients<Scalar>& denominator, Coefficients<Scalar>& q) {
+[[nodiscard]] SprTest<Scalar> strictly_positive_real(const Polynomial<Scalar>& numerator,
+                                                     const Polynomial<Scalar>& denominator) {
   constexpr std::string_view who = "strictly_positive_real";
-  require(denominator.size() >= 2 && denominator[0] == Scalar(1), who, "denominator",
-          "must be monic of degree at least 1");
-  const Index n = std::ssize(denominator) - 1;
-  require(std::ssize(numerator) <= n, who, "numerator", "must have degree below the denominator's");
-  require(all_finite_coefficients(numerator), who, "numerator", "must contain only finite numbers");
-  require(all_finite_coefficients(denominator), who, "denominator", "must contain only finite numbers");
+  detail::require(denominator.size() >= 2 && denominator(0) == Scalar(1), who, "denominator",
+                  "must be monic of degree at least 1");
+  const Index n = denominator.size() - 1;
+  detail::require(numerator.size() <= n, who, "numerator", "must have degree below the denominator's");
+  detail::require_finite(numerator, who, "numerator");
+  detail::require_finite(denominator, who, "denominator");
   // N padded to n coefficients (degree ≤ n − 1).
-  Coefficients<Scalar> num(static_cast<std::size_t>(n), Scalar(0));
-  std::copy(numerator.begin(), numerator.end(), num.end() - std::ssize(numerator));
-  const Scalar scale = std::max(max_abs_coefficient(num), std::numeric_limits<Scalar>::min());
+  Polynomial<Scalar> num = Polynomial<Scalar>::Zero(n);
+  num.tail(numerator.size()) = numerator;
+  const Scalar scale = std::max(detail::max_abs(num), std::numeric_limits<Scalar>::min());
   const Scalar zero_tol = Scalar(1e-10) * scale;
 
-  SprConditions<Scalar> r;
-  r.denominator_hurwitz = is_hurwitz(denominator);
+  SprTest<Scalar> r;
+  r.denominator_hurwitz = is_hurwitz_polynomial(denominator);
   Index lead = 0;
-  while (lead < n && std::abs(num[lead]) <= zero_tol) ++lead;
-  q.clear();
+  while (lead < n && std::abs(num(lead)) <= zero_tol) ++lead;
   if (lead == n) return r;  // G = 0
   r.relative_degree = n - (n - 1 - lead);
-  r.high_frequency_gain = num[lead];
+  r.high_frequency_gain = num(lead);
 
   // R(s) = ½[N(s)D(−s) + N(−s)D(s)], highest power first.
-  const auto reflect = [](Coefficients<Scalar> p) {  // coefficients of p(−s)
-    const Index d = std::ssize(p) - 1;
+  const auto reflect = [](Polynomial<Scalar> p) {  // coefficients of p(−s)
+    const Index d = p.size() - 1;
     for (Index i = 0; i <= d; ++i)
-      if ((d - i) % 2 == 1) p[i] = -p[i];
+      if ((d - i) % 2 == 1) p(i) = -p(i);
     return p;
   };
-  const Coefficients<Scalar> first = multiply_coefficients(num, reflect(denominator));
-  const Coefficients<Scalar> second = multiply_coefficients(reflect(num), denominator);
+  const Polynomial<Scalar> first = multiply_polynomials<Scalar>(num, reflect(denominator));
+  const Polynomial<Scalar> second = multiply_polynomials<Scalar>(reflect(num), denominator);
   // q(w), ascending powers: q_k = (−1)^k R_{2k}, with R_{2k} the coefficient of s^{2k}.
-  const Index last = std::ssize(first) - 1;
-  const Index q_terms = (std::ssize(first) + 1) / 2;
-  Coefficients<Scalar> q_asc(static_cast<std::size_t>(q_terms));
+  const Index last = first.size() - 1;
+  const Index q_terms = (first.size() + 1) / 2;
+  Polynomial<Scalar> q_asc(q_terms);
   for (Index k = 0; k < q_terms; ++k)
-    q_asc[k] = (k % 2 == 0 ? Scalar(1) : Scalar(-1)) * (Scalar(0.5) * (first[last - 2 * k] + second[last - 2 * k]));
-  const Scalar q_scale = std::max(max_abs_coefficient(q_asc), std::numeric_limits<Scalar>::min());
+    q_asc(k) = (k % 2 == 0 ? Scalar(1) : Scalar(-1)) * (Scalar(0.5) * (first(last - 2 * k) + second(last - 2 * k)));
+  const Scalar q_scale = std::max(detail::max_abs(q_asc), std::numeric_limits<Scalar>::min());
   Index degree = q_terms - 1;
-  while (degree > 0 && std::abs(q_asc[degree]) <= Scalar(1e-10) * q_scale) --degree;
-  q.assign(q_asc.rend() - (degree + 1), q_asc.rend());
+  while (degree > 0 && std::abs(q_asc(degree)) <= Scalar(1e-10) * q_scale) --degree;
+  r.q = q_asc.head(degree + 1).reverse();
   // The Sturm count below needs finite coefficients (its root scaling reads their exponents).
-  require(all_finite_coefficients(q), who, "numerator",
-          "times the denominator overflows the floating-point range (Re G(jw) |D(jw)|^2)");
+  detail::require(r.q.allFinite(), who, "numerator",
+                  "times the denominator overflows the floating-point range (Re G(jw) |D(jw)|^2)");
 
   // q(0) > 0 is checked below, so a root on [0, ∞) is a root in (0, ∞) (Sturm count).
-  const bool nonnegative_root = count_real_roots_above<Scalar>(q, Scalar(0), Scalar(1e-10)) > 0;
-  r.q_positive_on_nonnegative_axis = q_asc[0] > 0 && !nonnegative_root;
-  r.strict_at_infinity = degree == n - 1 && q[0] > 0;
+  const bool nonnegative_root = count_real_roots_above<Scalar>(r.q, Scalar(0), Scalar(1e-10)) > 0;
+  r.q_positive_on_nonnegative_axis = q_asc(0) > 0 && !nonnegative_root;
+  r.strict_at_infinity = degree == n - 1 && r.q(0) > 0;
   r.strictly_positive_real = r.denominator_hurwitz && r.relative_degree == 1 && r.high_frequency_gain > 0 &&
                              r.q_positive_on_nonnegative_axis && r.strict_at_infinity;
   return r;
 }
-}  // namespace detail
 
-/// Exact SPR test of \f$G = N/D\f$ (D monic of degree n, deg N < n).
-template <typename Scalar>
-[[nodiscard]] SprTest<Scalar> strictly_positive_real(const Polynomial<Scalar>& numerator,
-                                                     const Polynomial<Scalar>& denominator) {
-  detail::Coefficients<Scalar> q;
-  // A braced list is evaluated left to right: q is filled before it is converted.
-  return SprTest<Scalar>{detail::spr_conditions(detail::coefficients_of(numerator), detail::coefficients_of(denominator), q),
-                         detail::polynomial_of(q)};
-}
+#ifdef ADAPTOBS_PRECOMPILED
+ADAPTOBS_INSTANTIATE SprTest<double> strictly_positive_real<double>(const Polynomial<double>&, const Polynomial<double>&);
+#endif
 
 /// Exact SPR test of \f$c(sI - A)^{-1}b\f$.
 template <class DA, class DB, class DC>

@@ -35,10 +35,8 @@ void require_spr_error_system(const TransformedSystem<D>& so, const typename D::
                               std::string_view name) {
   const typename D::StateMatrix closed = so.Ao - k * so.Co;
   // The transform and the gains are validated, so the triple's shapes hold; a closed
-  // loop that overflows is refused by spr_conditions, naming its numerator.
-  const auto g = transfer_coefficients(closed, gamma, so.Co);
-  Coefficients<typename D::Scalar> q;
-  if (!spr_conditions(g.numerator, g.denominator, q))
+  // loop that overflows is refused by the test, naming its numerator.
+  if (!strictly_positive_real(closed, gamma, so.Co))
     fail_argument(name, "k",
                   std::string("must make c_o (sI - A_o + k c_o)^-1 ").append(gamma_name).append(" strictly positive real"));
 }
