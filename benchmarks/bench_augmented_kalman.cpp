@@ -15,10 +15,10 @@ namespace satellite = adaptobs::examples::satellite;
 
 auto satellite_filter() {
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
-  return adaptobs::AugmentedKalmanFilter(satellite::model<double>(), satellite::initial_state_estimate<double>(),
-                                         satellite::initial_parameter_estimate<double>(),
-                                         {Matrix6::Identity(), Matrix6::Identity() * 1e-10,
-                                          Eigen::Matrix2d::Identity() * 1e-4});
+  return adaptobs::AugmentedKalmanFilter(
+      satellite::model<double>(), satellite::initial_state_estimate<double>(),
+      satellite::initial_parameter_estimate<double>(),
+      {Matrix6::Identity(), Matrix6::Identity() * 1e-10, Eigen::Matrix2d::Identity() * 1e-4});
 }
 
 void BM_AugmentedKalman_Satellite(benchmark::State& state) {
@@ -55,6 +55,10 @@ void BM_AugmentedKalman_Sweep(benchmark::State& state) {
 BENCHMARK(BM_AugmentedKalman_Sweep<2>)->Name("BM_AugmentedKalman_Sweep/fixed/2");
 BENCHMARK(BM_AugmentedKalman_Sweep<4>)->Name("BM_AugmentedKalman_Sweep/fixed/4");
 BENCHMARK(BM_AugmentedKalman_Sweep<8>)->Name("BM_AugmentedKalman_Sweep/fixed/8");
-BENCHMARK(BM_AugmentedKalman_Sweep<Eigen::Dynamic>)->Name("BM_AugmentedKalman_Sweep/dynamic")->Arg(16)->Arg(32)->Arg(64);
+BENCHMARK(BM_AugmentedKalman_Sweep<Eigen::Dynamic>)
+    ->Name("BM_AugmentedKalman_Sweep/dynamic")
+    ->Arg(16)
+    ->Arg(32)
+    ->Arg(64);
 
 }  // namespace

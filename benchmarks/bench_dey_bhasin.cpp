@@ -243,9 +243,9 @@ void BM_Law_NormalizedGradient(benchmark::State& state) {
   time_law(state, law, p);
 }
 
-#define ADAPTOBS_LAW_SWEEP(name)                                              \
-  BENCHMARK(name<4>)->Name(#name "/fixed/4");                                \
-  BENCHMARK(name<16>)->Name(#name "/fixed/16");                              \
+#define ADAPTOBS_LAW_SWEEP(name)                \
+  BENCHMARK(name<4>)->Name(#name "/fixed/4");   \
+  BENCHMARK(name<16>)->Name(#name "/fixed/16"); \
   BENCHMARK(name<Eigen::Dynamic>)->Name(#name "/dynamic")->Arg(64)
 
 ADAPTOBS_LAW_SWEEP(BM_Law_Rls);

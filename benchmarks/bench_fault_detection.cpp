@@ -116,8 +116,8 @@ void BM_DetectionEvaluation_Satellite(benchmark::State& state) {
                                                 seeds, static_cast<unsigned>(state.range(0)));
     benchmark::DoNotOptimize(summary.detection_rate);
   }
-  state.counters["seeds_per_second"] = benchmark::Counter(static_cast<double>(seeds * state.iterations()),
-                                                          benchmark::Counter::kIsRate);
+  state.counters["seeds_per_second"] =
+      benchmark::Counter(static_cast<double>(seeds * state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_DetectionEvaluation_Satellite)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 

@@ -5,10 +5,10 @@
 // the paper's sizes (n = 2, m = p = 1) and at n = 6, m = p = 3.
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
-#include <adaptobs/models/regressor_integral.hpp>
 #include <adaptobs/core/sampled_model.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
 #include <adaptobs/design/pole_placement.hpp>
+#include <adaptobs/models/regressor_integral.hpp>
 #include <adaptobs/observers/guiro.hpp>
 #include <adaptobs/simulation/plant.hpp>
 
@@ -29,9 +29,7 @@ using PaperDims = g::Dims<double>;
 using PaperSample = adaptobs::DiscreteSample<PaperDims>;
 constexpr Index ring_size = 256;
 
-std::vector<PaperSample> paper_samples() {
-  return adaptobs::record_samples(g::make_plant<double>(), ring_size);
-}
+std::vector<PaperSample> paper_samples() { return adaptobs::record_samples(g::make_plant<double>(), ring_size); }
 
 adaptobs::GuiroObserver<adaptobs::DiscreteLtiModel<PaperDims>> paper_observer() {
   const auto model = g::model<double>();
@@ -78,9 +76,8 @@ void time_updates_recomputing_psi(benchmark::State& state, Recompute&& recompute
 // Each iteration integrates H_k (and Ψ_k) for φ(t) = ((t+1)/(t+2), 0) over its period, then updates.
 void BM_Guiro_Paper_RecomputeH_Quadrature(benchmark::State& state) {
   adaptobs::RegressorIntegral<double, 2, 1> integral(g::continuous_dynamics<double>(), g::period);
-  time_updates_recomputing_psi(state, [&](double t, adaptobs::SampledRegressor<double, 2, 1>& h) {
-    integral.integrate(g::Regressor{}, t, h);
-  });
+  time_updates_recomputing_psi(
+      state, [&](double t, adaptobs::SampledRegressor<double, 2, 1>& h) { integral.integrate(g::Regressor{}, t, h); });
 }
 BENCHMARK(BM_Guiro_Paper_RecomputeH_Quadrature);
 
@@ -98,10 +95,9 @@ BENCHMARK(BM_Guiro_Paper_RecomputeH_PiecewiseLinear);
 
 void BM_AugmentedKalman_GuiroPaper(benchmark::State& state) {
   using Matrix3 = Eigen::Matrix3d;
-  adaptobs::AugmentedKalmanFilter filter(g::model<double>(), g::initial_state_estimate<double>(),
-                                         g::initial_parameter_estimate<double>(),
-                                         {Matrix3::Identity(), Matrix3::Identity() * 1e-10,
-                                          Eigen::Matrix<double, 1, 1>(1e-4)});
+  adaptobs::AugmentedKalmanFilter filter(
+      g::model<double>(), g::initial_state_estimate<double>(), g::initial_parameter_estimate<double>(),
+      {Matrix3::Identity(), Matrix3::Identity() * 1e-10, Eigen::Matrix<double, 1, 1>(1e-4)});
   SampleRing ring(paper_samples());
   adaptobs::bench::time_updates(state, filter, ring);
 }
@@ -151,11 +147,9 @@ MimoProblem make_mimo() {
 void BM_Guiro_Mimo6(benchmark::State& state) {
   const MimoProblem problem = make_mimo();
   const auto& system = problem.model.system();
-  const MimoRegressor h_nominal = adaptobs::RegressorIntegral<double, 6, 3>(problem.a, 0.5)
-                                      .integrate(problem, 0.0)
-                                      .H;
-  const auto gains = adaptobs::design_guiro_gains(system.A, system.C, h_nominal,
-                                                  adaptobs::spread_poles<double>(9, 0.6));
+  const MimoRegressor h_nominal = adaptobs::RegressorIntegral<double, 6, 3>(problem.a, 0.5).integrate(problem, 0.0).H;
+  const auto gains =
+      adaptobs::design_guiro_gains(system.A, system.C, h_nominal, adaptobs::spread_poles<double>(9, 0.6));
   adaptobs::GuiroObserver observer(problem.model, gains.K, gains.Gamma, Eigen::Matrix<double, 6, 1>::Zero().eval(),
                                    Eigen::Vector3d::Zero().eval());
   SampleRing ring(problem.samples);
@@ -189,10 +183,9 @@ BENCHMARK(BM_Guiro_Mimo6_RecomputeH_Quadrature);
 void BM_AugmentedKalman_GuiroMimo6(benchmark::State& state) {
   const MimoProblem problem = make_mimo();
   using Matrix9 = Eigen::Matrix<double, 9, 9>;
-  adaptobs::AugmentedKalmanFilter filter(problem.model, Eigen::Matrix<double, 6, 1>::Zero().eval(),
-                                         Eigen::Vector3d::Zero().eval(),
-                                         {Matrix9::Identity(), Matrix9::Identity() * 1e-10,
-                                          Eigen::Matrix3d::Identity() * 1e-4});
+  adaptobs::AugmentedKalmanFilter filter(
+      problem.model, Eigen::Matrix<double, 6, 1>::Zero().eval(), Eigen::Vector3d::Zero().eval(),
+      {Matrix9::Identity(), Matrix9::Identity() * 1e-10, Eigen::Matrix3d::Identity() * 1e-4});
   SampleRing ring(problem.samples);
   adaptobs::bench::time_updates(state, filter, ring);
 }

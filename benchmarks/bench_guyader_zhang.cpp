@@ -48,8 +48,7 @@ void BM_GuyaderZhang_Sweep(benchmark::State& state) {
   using Dims = adaptobs::bench::SweepDims<N>;
   const Index n = N == Eigen::Dynamic ? state.range(0) : N;
   auto problem = adaptobs::bench::make_sweep_problem<Dims>(n);
-  adaptobs::GuyaderZhangObserver observer(problem.model, problem.gain, 0.01,
-                                          typename Dims::State(Dims::State::Zero(n)),
+  adaptobs::GuyaderZhangObserver observer(problem.model, problem.gain, 0.01, typename Dims::State(Dims::State::Zero(n)),
                                           typename Dims::Parameters(Dims::Parameters::Zero(n / 2)));
   adaptobs::bench::time_updates(state, observer, problem.ring);
   state.counters["n"] = double(n);

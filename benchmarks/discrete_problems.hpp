@@ -22,9 +22,9 @@ inline SampleRing<DiscreteSample<examples::satellite::Dims<double>>> satellite_r
 
 /// n states, p = m = n/2 (one input); all sizes dynamic when N is.
 template <int N>
-using SweepDims = Dimensions<double, N, (N == Eigen::Dynamic ? Eigen::Dynamic : 1),
-                             (N == Eigen::Dynamic ? Eigen::Dynamic : N / 2),
-                             (N == Eigen::Dynamic ? Eigen::Dynamic : N / 2)>;
+using SweepDims =
+    Dimensions<double, N, (N == Eigen::Dynamic ? Eigen::Dynamic : 1), (N == Eigen::Dynamic ? Eigen::Dynamic : N / 2),
+               (N == Eigen::Dynamic ? Eigen::Dynamic : N / 2)>;
 
 template <class Dims>
 struct SweepProblem {

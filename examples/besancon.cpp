@@ -27,7 +27,9 @@ int main(int argc, char** argv) {
   print_value("C_o", observer.transformed_system(0.0).Co);
   print_value("K1", algorithm.K1);
   print_value("Gamma", observer.law().gamma());
-  const auto a22 = [](double t) { return Eigen::Matrix2d(periodic::form8_dynamics<double>(t).bottomRightCorner(2, 2)); };
+  const auto a22 = [](double t) {
+    return Eigen::Matrix2d(periodic::form8_dynamics<double>(t).bottomRightCorner(2, 2));
+  };
   print_value("floquet_exponents_A22", adaptobs::floquet_exponents(a22, periodic::period).transpose());
 
   auto plant = periodic::make_plant<double>(

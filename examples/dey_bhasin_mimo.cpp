@@ -45,8 +45,8 @@ namespace {
 struct RunResult {
   adaptobs::SeriesTable table;
   double max_parameter_error = 0;
-  double beta_phi = 0;  // sup ‖φ_t‖₂
-  double beta_w = 0;    // sup ‖W_t‖₂
+  double beta_phi = 0;           // sup ‖φ_t‖₂
+  double beta_w = 0;             // sup ‖W_t‖₂
   double final_state_error = 0;  // ‖x_T − x̂_T‖ at the last sample T
 };
 
@@ -137,9 +137,11 @@ int main(int argc, char** argv) {
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
   const Matrix6 a_matrix = adaptobs::block_companion_matrix<2>(mimo::a());
   const Matrix6 f_matrix = adaptobs::block_companion_matrix<2>(mimo::f());
-  print_text("reading", "first block of A = 0.4 I2 (printed 4 I2 gives an unstable plant); B = printed array transposed");
+  print_text("reading",
+             "first block of A = 0.4 I2 (printed 4 I2 gives an unstable plant); B = printed array transposed");
   print_value("spectral_radius_A", adaptobs::spectral_radius(a_matrix));
-  print_value("spectral_radius_A_printed", adaptobs::spectral_radius(Matrix6(adaptobs::block_companion_matrix<2>(mimo::printed_a()))));
+  print_value("spectral_radius_A_printed",
+              adaptobs::spectral_radius(Matrix6(adaptobs::block_companion_matrix<2>(mimo::printed_a()))));
   print_value("spectral_radius_F", adaptobs::spectral_radius(f_matrix));
   print_value("A", a_matrix);
   print_value("B", mimo::B());

@@ -59,7 +59,6 @@ std::string format_eigenvalues(const Eigen::Matrix3d& u) {
   return os.str();
 }
 
-
 using Regressor = adaptobs::SampledRegressor<double, 2, 1>;
 using Integral = adaptobs::RegressorIntegral<double, 2, 1>;
 
@@ -100,8 +99,8 @@ void compare_printed_gains(const Eigen::Matrix2d& E, const Eigen::RowVector2d& C
       adaptobs::guiro_error_matrix(E, C, H0, g::printed_K(), Eigen::Matrix<double, 1, 1>(g::printed_Gamma));
   print_text("eigenvalues_U_printed", format_eigenvalues(u_printed));
   print_value("spectral_radius_U_printed", adaptobs::spectral_radius(u_printed));
-  const Eigen::Matrix3d u_shifted = adaptobs::guiro_error_matrix(
-      E, C, H0, g::printed_K(), Eigen::Matrix<double, 1, 1>(g::corrected_printed_Gamma));
+  const Eigen::Matrix3d u_shifted =
+      adaptobs::guiro_error_matrix(E, C, H0, g::printed_K(), Eigen::Matrix<double, 1, 1>(g::corrected_printed_Gamma));
   print_value("Gamma_printed_decimal_shifted", g::corrected_printed_Gamma);
   print_text("eigenvalues_U_printed_decimal_shifted", format_eigenvalues(u_shifted));
   print_value("K_difference_designed_minus_printed", Eigen::Vector2d(gains.K - g::printed_K()));
@@ -149,7 +148,7 @@ std::optional<Run> simulate(const std::vector<double>& t, const SampledIntervals
                             bool jittered, adaptobs::OutputLoss& loss) {
   const auto model_at = [&](Index k) {
     return adaptobs::DiscreteSystem<g::Dims<double>>{intervals.transitions[std::size_t(k)],
-                                                      Eigen::Matrix<double, 2, 0>(), C};
+                                                     Eigen::Matrix<double, 2, 0>(), C};
   };
   const auto sampled = adaptobs::make_discrete_ltv_model<g::Dims<double>>(model_at);
   const auto make_observer = [&](const Eigen::Vector2d& K, double gamma) {
@@ -160,8 +159,8 @@ std::optional<Run> simulate(const std::vector<double>& t, const SampledIntervals
   std::vector<adaptobs::GuiroGains<double, 2, 1, 1>> interval_gains;
   if (jittered)
     for (std::size_t k = 0; k < intervals.regressors.size(); ++k)
-      interval_gains.push_back(adaptobs::design_guiro_gains(intervals.transitions[k], C, intervals.regressors[k].H,
-                                                            g::requested_poles()));
+      interval_gains.push_back(
+          adaptobs::design_guiro_gains(intervals.transitions[k], C, intervals.regressors[k].H, g::requested_poles()));
 
   auto observer = make_observer(gains.K, gains.Gamma(0, 0));
   auto printed_shifted = make_observer(g::printed_K(), g::corrected_printed_Gamma);
@@ -261,7 +260,8 @@ unset multiplot)");
 int main(int argc, char** argv) {
   const adaptobs::examples::Arguments args(
       argc, argv, "guiro",
-      adaptobs::examples::with_output_loss({{"samples", "60"}, {"tolerance", "1e-12"}, {"jitter", "0"}, {"seed", "1"}}));
+      adaptobs::examples::with_output_loss(
+          {{"samples", "60"}, {"tolerance", "1e-12"}, {"jitter", "0"}, {"seed", "1"}}));
   const auto samples = static_cast<Index>(std::llround(args.number("samples")));
   const bool jittered = args.number("jitter") != 0;
   const auto seed = static_cast<std::uint64_t>(args.number("seed"));

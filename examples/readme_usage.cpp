@@ -16,8 +16,8 @@ int main() {
   const Eigen::Vector2d theta{1.0, 1.5};  // the true thrust efficiencies, unknown to the observer
 
   // A − KC Schur stable (assumption 1), from the steady-state Kalman gain.
-  const auto kalman = adaptobs::steady_state_kalman_gain(A, C, Eigen::Matrix4d::Identity() * 1e-4,
-                                                         Eigen::Matrix2d::Identity() * 1e-2);
+  const auto kalman =
+      adaptobs::steady_state_kalman_gain(A, C, Eigen::Matrix4d::Identity() * 1e-4, Eigen::Matrix2d::Identity() * 1e-2);
   adaptobs::DiscreteLtiModel<Dims> model(A, Eigen::Matrix<double, 4, 2>::Zero(), C);
   adaptobs::GuyaderZhangObserver observer(model, kalman.K, /*mu=*/4.0, Eigen::Vector4d{0.9, 0, 0, 3.14e-4},
                                           Eigen::Vector2d{0.5, 0.5}, {.excitation_window = 100});

@@ -120,10 +120,9 @@ int main(int argc, char** argv) {
 
   const Eigen::Matrix<double, 4, 2> gain = satellite::paper_gain<double>();
   print_design(gain);
-  adaptobs::GuyaderZhangObserver observer(satellite::model<double>(), gain, satellite::mu,
-                                          satellite::initial_state_estimate<double>(),
-                                          satellite::initial_parameter_estimate<double>(),
-                                          {.excitation_window = 100, .normalized_step = !loss.lossless()});
+  adaptobs::GuyaderZhangObserver observer(
+      satellite::model<double>(), gain, satellite::mu, satellite::initial_state_estimate<double>(),
+      satellite::initial_parameter_estimate<double>(), {.excitation_window = 100, .normalized_step = !loss.lossless()});
   auto akf = augmented_kalman_filter(noise);
 
   auto plant = satellite::make_plant<double>(noise, seed);

@@ -13,9 +13,9 @@
 // --seeds N it runs N seeds and their fault-free twins instead and prints the
 // detection, delay, isolation and false-alarm figures of each test.
 
+#include "models/satellite_fault.hpp"
 #include "common/example_support.hpp"
 #include "common/fault_scenario.hpp"
-#include "models/satellite_fault.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -36,7 +36,8 @@ void write_figure(const adaptobs::SeriesTable& table, const satellite::MonitorDe
   std::ostringstream band;  // θ̂ ± 2 scales: its spread without a fault
   band.precision(10);
   band << "s1 = " << design.cusum.scale(0) << "; s2 = " << design.cusum.scale(1) << "\n";
-  adaptobs::examples::write_outputs(table, args.out_dir(), "satellite_fault", band.str() + R"(
+  adaptobs::examples::write_outputs(table, args.out_dir(), "satellite_fault",
+                                    band.str() + R"(
 set multiplot layout 3,1 title 'Thruster fault on the satellite: tests on the Guyader-Zhang estimates (Guyader and Zhang 2003, section 4)'
 set grid
 set xlabel 't (s)'
@@ -59,26 +60,26 @@ void one_run(const satellite::MonitorDesign& design, const satellite::ThrusterFa
   double first_alarm = -1;
   adaptobs::Index isolated = -1;
   const auto steps = static_cast<adaptobs::Index>(std::llround(args.number("seconds") / satellite::sampling_period));
-  satellite::Simulation{fault}(
-      static_cast<std::uint64_t>(args.number("seed")), true, steps,
-      [&](adaptobs::Index k, const auto& observer, const auto& plant, const auto& sample) {
-        const double t = static_cast<double>(k) * satellite::sampling_period;
-        const bool watching = k >= satellite::monitor_from && adaptobs::accepted(monitor.observe(observer));
-        if (watching && monitor.cusum().alarm() && first_alarm < 0) {
-          first_alarm = t;
-          isolated = monitor.cusum().isolated();
-        }
-        table.begin_row()
-            .add("t", t)
-            .add("u", sample.u)
-            .add("y", sample.y)
-            .add("x", plant.state())
-            .add("xhat", observer.state())
-            .add("theta", fault.parameters_at(t))
-            .add("thetahat", observer.parameters());
-        adaptobs::examples::add_monitor_columns(table, monitor, watching);
-        return true;
-      });
+  satellite::Simulation{fault}(static_cast<std::uint64_t>(args.number("seed")), true, steps,
+                               [&](adaptobs::Index k, const auto& observer, const auto& plant, const auto& sample) {
+                                 const double t = static_cast<double>(k) * satellite::sampling_period;
+                                 const bool watching =
+                                     k >= satellite::monitor_from && adaptobs::accepted(monitor.observe(observer));
+                                 if (watching && monitor.cusum().alarm() && first_alarm < 0) {
+                                   first_alarm = t;
+                                   isolated = monitor.cusum().isolated();
+                                 }
+                                 table.begin_row()
+                                     .add("t", t)
+                                     .add("u", sample.u)
+                                     .add("y", sample.y)
+                                     .add("x", plant.state())
+                                     .add("xhat", observer.state())
+                                     .add("theta", fault.parameters_at(t))
+                                     .add("thetahat", observer.parameters());
+                                 adaptobs::examples::add_monitor_columns(table, monitor, watching);
+                                 return true;
+                               });
   print_value("first_alarm_time", first_alarm);
   print_value("detection_delay", first_alarm >= 0 ? first_alarm - fault.time : -1.0);
   print_value("isolated_parameter", double(isolated + 1));

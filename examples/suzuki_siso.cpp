@@ -123,8 +123,8 @@ int main(int argc, char** argv) {
 
   auto resetting = siso::make_observer();
   auto suzuki = siso::make_suzuki(lambda);
-  RawForgettingLaw raw{adaptobs::ExponentialForgettingRls<double, 4, 1>(resetting.parameters(),
-                                                                        siso::suzuki_options(lambda))};
+  RawForgettingLaw raw{
+      adaptobs::ExponentialForgettingRls<double, 4, 1>(resetting.parameters(), siso::suzuki_options(lambda))};
   auto plant = siso::make_plant();
   const Eigen::Vector4d p = resetting.parameters_of(siso::a(), siso::B());
   print_problem(p, resetting.parameters(), lambda);
@@ -171,7 +171,8 @@ int main(int argc, char** argv) {
   print_step("suzuki_covariance_nonfinite_step", raw.covariance_nonfinite);
   print_step("suzuki_estimates_nonfinite_step", raw.estimate_nonfinite);
   print_step("suzuki_observer_first_rejected_step", first_rejected);
-  print_value("thetahat_norm_suzuki_observer_final", db::normalized_estimates(suzuki, siso::a(), siso::B()).transpose());
+  print_value("thetahat_norm_suzuki_observer_final",
+              db::normalized_estimates(suzuki, siso::a(), siso::B()).transpose());
 
   write_figure(table, args);
   return 0;

@@ -28,9 +28,9 @@
 // shown by the largest-margin formulation with Γ = 1e8 (printed below).
 
 #include <adaptobs/adaptobs.hpp>
+#include <adaptobs/design/lmi/takagi_sugeno_synthesis.hpp>
 #include <adaptobs/design/stability.hpp>
 #include <adaptobs/simulation.hpp>
-#include <adaptobs/design/lmi/takagi_sugeno_synthesis.hpp>
 
 #include "common/example_support.hpp"
 #include "models/wwtp.hpp"
@@ -73,8 +73,10 @@ int settled_from(const adaptobs::SeriesTable& table, const std::string& suffix) 
     const bool ok = std::abs(table.at(r, t + "_1") - table.at(r, "theta_1")) < 0.01 &&
                     std::abs(table.at(r, x + "_1") - table.at(r, "x_1")) < 1e-3 &&
                     std::abs(table.at(r, x + "_2") - table.at(r, "x_2")) < 1e-3;
-    if (!ok) first = -1;
-    else if (first < 0) first = int(r);
+    if (!ok)
+      first = -1;
+    else if (first < 0)
+      first = int(r);
   }
   return first;
 }
@@ -139,7 +141,8 @@ void print_paper_sector_design(const Model& model) {
 
 void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::Arguments& args,
                   const adaptobs::OutputLoss& loss) {
-  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp", adaptobs::examples::gap_shading(table, loss.options()) + R"(
+  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp",
+                                    adaptobs::examples::gap_shading(table, loss.options()) + R"(
 set multiplot layout 3,2 title 'Takagi-Sugeno adaptive observer, waste water treatment plant (Srinivasarengan et al. 2018, section 6)'
 set grid
 set xlabel 'k'

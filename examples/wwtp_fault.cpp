@@ -12,9 +12,9 @@
 // columns, common/fault_scenario.hpp) and wwtp_fault.png; --seeds N runs N
 // seeds and their fault-free twins and prints the detection figures.
 
+#include "models/wwtp_fault.hpp"
 #include "common/example_support.hpp"
 #include "common/fault_scenario.hpp"
-#include "models/wwtp_fault.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -44,31 +44,31 @@ void run_once(const adaptobs::examples::Arguments& args, const wwtp::MonitorDesi
   auto monitor = adaptobs::examples::rearming_monitor(design);
   adaptobs::SeriesTable table;
   double first_alarm = -1;
-  wwtp::Simulation{fault}(static_cast<std::uint64_t>(args.number("seed")), true,
-                          static_cast<adaptobs::Index>(args.number("steps")),
-                          [&](adaptobs::Index k, const auto& observer, const auto& plant, const auto& sample) {
-                            const bool watching =
-                                k >= wwtp::monitor_from && adaptobs::accepted(monitor.observe(observer));
-                            if (watching && monitor.cusum().alarm() && first_alarm < 0) first_alarm = double(k);
-                            table.begin_row()
-                                .add("t", double(k))
-                                .add("u", sample.u)
-                                .add("y", sample.y)
-                                .add("x", plant.state())
-                                .add("xhat", observer.state())
-                                .add("theta", Eigen::Matrix<double, 1, 1>(fault.theta_at(k)))
-                                .add("thetahat", observer.parameters());
-                            adaptobs::examples::add_monitor_columns(table, monitor, watching);
-                            return true;
-                          });
+  wwtp::Simulation{fault}(
+      static_cast<std::uint64_t>(args.number("seed")), true, static_cast<adaptobs::Index>(args.number("steps")),
+      [&](adaptobs::Index k, const auto& observer, const auto& plant, const auto& sample) {
+        const bool watching = k >= wwtp::monitor_from && adaptobs::accepted(monitor.observe(observer));
+        if (watching && monitor.cusum().alarm() && first_alarm < 0) first_alarm = double(k);
+        table.begin_row()
+            .add("t", double(k))
+            .add("u", sample.u)
+            .add("y", sample.y)
+            .add("x", plant.state())
+            .add("xhat", observer.state())
+            .add("theta", Eigen::Matrix<double, 1, 1>(fault.theta_at(k)))
+            .add("thetahat", observer.parameters());
+        adaptobs::examples::add_monitor_columns(table, monitor, watching);
+        return true;
+      });
   print_value("first_alarm_time", first_alarm);
   print_value("detection_delay", first_alarm >= 0 ? first_alarm - double(fault.step) : -1.0);
   print_value("cusum_alarms", double(monitor.cusum().alarm_count()));
   print_value("chi_square_alarms", double(monitor.chi_square().alarm_count()));
 
   const std::string band = "s1 = " + std::to_string(design.cusum.scale(0)) + "\n";
-  adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp_fault", band + estimate_panel +
-                                        std::string(adaptobs::examples::monitor_panels) + "unset multiplot");
+  adaptobs::examples::write_outputs(
+      table, args.out_dir(), "wwtp_fault",
+      band + estimate_panel + std::string(adaptobs::examples::monitor_panels) + "unset multiplot");
 }
 
 }  // namespace

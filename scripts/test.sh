@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds the library, tests and examples with g++ (-O2, warnings as errors)
+# Checks that every C++ file is formatted (scripts/format.sh), then builds the
+# library, tests and examples with g++ (-O2, warnings as errors)
 # and runs the CTest suite, then builds them again with clang++ under
 # AddressSanitizer and UndefinedBehaviorSanitizer, with the benchmarks
 # (uninstrumented) and every public header compiled on its own, and runs the
@@ -42,6 +43,9 @@ ensure_packages "${packages[@]}"
 
 jobs=$(nproc 2>/dev/null || echo 2)
 start=$SECONDS
+
+echo "== formatting (clang-format 19, .clang-format)"
+"$root/scripts/format.sh" --check
 
 # configure DIR CMAKE_ARGUMENT...: a tree left by another generator is configured afresh.
 configure() {

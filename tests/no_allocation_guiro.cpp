@@ -2,8 +2,8 @@
 // observer for fixed sizes: the update itself, and the regressor integrals
 // that recompute Ψ_k = e^{AT}H_k each period (quadrature and polynomial form).
 
-#include <adaptobs/models/regressor_integral.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
+#include <adaptobs/models/regressor_integral.hpp>
 #include <adaptobs/observers/guiro.hpp>
 #include <adaptobs/simulation/plant.hpp>
 

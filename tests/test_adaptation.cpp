@@ -27,17 +27,19 @@ namespace {
 using adaptobs::Index;
 using adaptobs::testing::RandomMatrices;
 
-template <typename S> using Rls = adaptobs::RecursiveLeastSquares<S, 4, 2>;
-template <typename S> using Resetting = adaptobs::CovarianceResettingRls<S, 4, 2>;
+template <typename S>
+using Rls = adaptobs::RecursiveLeastSquares<S, 4, 2>;
+template <typename S>
+using Resetting = adaptobs::CovarianceResettingRls<S, 4, 2>;
 using Forgetting = adaptobs::ExponentialForgettingRls<double, 4, 2>;
 using Gradient = adaptobs::NormalizedGradient<double, 4, 2>;
 using DynamicResetting = adaptobs::CovarianceResettingRls<double, Eigen::Dynamic, Eigen::Dynamic>;
 
-static_assert(adaptobs::AdaptationLaw<Rls<double>>);
-static_assert(adaptobs::AdaptationLaw<Resetting<double>>);
-static_assert(adaptobs::AdaptationLaw<Forgetting>);
-static_assert(adaptobs::AdaptationLaw<Gradient>);
-static_assert(adaptobs::AdaptationLaw<DynamicResetting>);
+static_assert(adaptobs::DiscreteAdaptationLaw<Rls<double>>);
+static_assert(adaptobs::DiscreteAdaptationLaw<Resetting<double>>);
+static_assert(adaptobs::DiscreteAdaptationLaw<Forgetting>);
+static_assert(adaptobs::DiscreteAdaptationLaw<Gradient>);
+static_assert(adaptobs::DiscreteAdaptationLaw<DynamicResetting>);
 
 using Matrix4 = Eigen::Matrix4d;
 using Regressor = Eigen::Matrix<double, 4, 2>;
@@ -190,7 +192,7 @@ TEST(ExponentialForgetting, LambdaOneIsPlainRls) {
 TEST(ExponentialForgetting, CovarianceGrowsAsInverseLambdaWhereUnexcited) {
   const double lambda = std::sqrt(0.5);
   adaptobs::ExponentialForgettingRls<double, 4, 1> law(Vector4::Zero(),
-                                                      {Matrix4::Identity(), Eigen::Matrix<double, 1, 1>(1.0), lambda});
+                                                       {Matrix4::Identity(), Eigen::Matrix<double, 1, 1>(1.0), lambda});
   RandomMatrices rng(5);
   for (int t = 0; t < 200; ++t) {
     Vector4 phi = Vector4::Zero();
@@ -279,10 +281,8 @@ TEST(CovarianceResetting, ScreeningChangesNothingButTheCost) {
   RandomMatrices rng(7);
   const Vector4 p = rng.uniform<Vector4>();
   Resetting<double> screened(Vector4::Zero(), {.k0 = 1e3, .kmin = 1e-2, .R = Eigen::Matrix2d::Identity()});
-  Resetting<double> unscreened(Vector4::Zero(), {.k0 = 1e3,
-                                                 .kmin = 1e-2,
-                                                 .R = Eigen::Matrix2d::Identity(),
-                                                 .screen_reset_test = false});
+  Resetting<double> unscreened(Vector4::Zero(),
+                               {.k0 = 1e3, .kmin = 1e-2, .R = Eigen::Matrix2d::Identity(), .screen_reset_test = false});
   const Stream data = random_stream(70, 20000, p);
   for (std::size_t t = 0; t < data.phi.size(); ++t) {
     ASSERT_TRUE(screened.propose(data.phi[t], data.z[t]));
@@ -480,7 +480,6 @@ TEST(AdaptationLaws, DynamicSizesGiveTheSameNumbersAsFixedSizes) {
 
 using adaptobs::testing::configuration_error_of;
 
-
 TEST(AdaptationLaws, BadConfigurationNamesTheArgument) {
   const Vector4 p0 = Vector4::Zero();
   const Eigen::Matrix2d identity = Eigen::Matrix2d::Identity();
@@ -507,8 +506,9 @@ TEST(AdaptationLaws, BadConfigurationNamesTheArgument) {
   EXPECT_CONFIGURATION_ERROR_NAMES(Resetting<double>(p0, {.k0 = 1, .kmin = 2, .R = identity}), "kmin");
   EXPECT_CONFIGURATION_ERROR_NAMES(Resetting<double>(p0, {.k0 = 1, .kmin = 1e-3, .R = indefinite_r}), "R");
   EXPECT_CONFIGURATION_ERROR_NAMES(Resetting<double>(p0, {.k0 = 1, .kmin = 1e-3, .R = non_symmetric_r}), "R");
-  EXPECT_CONFIGURATION_ERROR_NAMES(DynamicResetting(Eigen::VectorXd::Zero(4), {.k0 = 1, .kmin = 1e-3, .R = Eigen::MatrixXd::Identity(2, 2)}, 3),
-                 "R");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      DynamicResetting(Eigen::VectorXd::Zero(4), {.k0 = 1, .kmin = 1e-3, .R = Eigen::MatrixXd::Identity(2, 2)}, 3),
+      "R");
   EXPECT_CONFIGURATION_ERROR_NAMES(Gradient(p0, {.mu = 2.0, .offset = 1.0}), "mu");
   EXPECT_CONFIGURATION_ERROR_NAMES(Gradient(p0, {.mu = 1.0, .offset = 0.0}), "offset");
 }

@@ -86,24 +86,24 @@ TEST(Polynomials, CharacteristicPolynomialAndTransferFunction) {
 // imaginary axis and a pair just to the right of it.
 TEST(Polynomials, RouthHurwitzAndSturmCounts) {
   using adaptobs::is_hurwitz_polynomial;
-  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 6, 11, 6})));          // -1, -2, -3
-  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({-2, -12, -22, -12})));    // same roots, negative lead
-  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 0.2, 100.01})));       // -0.1 ± 10j
-  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, -0.2, 100.01})));     // +0.1 ± 10j
-  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, 1, 4, 4})));          // -1, ±2j
-  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, 3, 2, 0})));          // 0, -1, -2
-  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, 1, 1, 21})));         // -3, 1 ± 2.45j (all coefficients positive)
-  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({0, 1, 1})));             // leading zero
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 6, 11, 6})));        // -1, -2, -3
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({-2, -12, -22, -12})));  // same roots, negative lead
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 0.2, 100.01})));     // -0.1 ± 10j
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, -0.2, 100.01})));   // +0.1 ± 10j
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, 1, 4, 4})));        // -1, ±2j
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, 3, 2, 0})));        // 0, -1, -2
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, 1, 1, 21})));       // -3, 1 ± 2.45j (all coefficients positive)
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({0, 1, 1})));           // leading zero
   // (s+1)^2 (s^2 + 0.02 s + 1.0001) (s+4): a lightly damped pair, fifth order.
   const Vector lightly = adaptobs::multiply_polynomials<double>(
       adaptobs::multiply_polynomials<double>(poly({1, 2, 1}), poly({1, 0.02, 1.0001})), poly({1, 4}));
   EXPECT_TRUE(is_hurwitz_polynomial<double>(lightly));
   // Scale invariance: the roots scaled by 1e-10 or 1e15 are judged as the
   // unscaled ones (an absolute tolerance refused the first pair and the last).
-  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 2e-10, 1e-20})));        // -1e-10 (double)
-  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 1e10, 1e30})));          // Re = -5e9, |s| = 1e15
-  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 1e-20})));               // -1e-20
-  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, -2e-10, 1e-20})));      // +1e-10 (double)
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 2e-10, 1e-20})));              // -1e-10 (double)
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 1e10, 1e30})));                // Re = -5e9, |s| = 1e15
+  EXPECT_TRUE(is_hurwitz_polynomial<double>(poly({1, 1e-20})));                     // -1e-20
+  EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1, -2e-10, 1e-20})));            // +1e-10 (double)
   EXPECT_FALSE(is_hurwitz_polynomial<double>(poly({1e-30, 1e-30, 4e-30, 4e-30})));  // -1, ±2j, scaled
   EXPECT_TRUE(adaptobs::has_hurwitz_characteristic_polynomial(siso::dynamics<double>()));
   EXPECT_FALSE(adaptobs::has_hurwitz_characteristic_polynomial(Eigen::Matrix2d(Eigen::Matrix2d::Identity())));
@@ -111,10 +111,10 @@ TEST(Polynomials, RouthHurwitzAndSturmCounts) {
   using adaptobs::count_real_roots_above;
   EXPECT_EQ(count_real_roots_above<double>(poly({1, -6, 11, -6}), 0.0), 3);  // 1, 2, 3
   EXPECT_EQ(count_real_roots_above<double>(poly({1, -6, 11, -6}), 1.5), 2);
-  EXPECT_EQ(count_real_roots_above<double>(poly({1, 6, 11, 6}), 0.0), 0);    // -1, -2, -3
-  EXPECT_EQ(count_real_roots_above<double>(poly({1, 0, 1}), 0.0), 0);        // ±j
-  EXPECT_EQ(count_real_roots_above<double>(poly({1, -2, 1}), 0.0), 1);       // double root 1
-  EXPECT_EQ(count_real_roots_above<double>(poly({1, 1, -2}), 0.0), 1);       // 1, -2
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, 6, 11, 6}), 0.0), 0);  // -1, -2, -3
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, 0, 1}), 0.0), 0);      // ±j
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, -2, 1}), 0.0), 1);     // double root 1
+  EXPECT_EQ(count_real_roots_above<double>(poly({1, 1, -2}), 0.0), 1);     // 1, -2
   // Scale invariance: ±1e-6 were taken for a double root (the remainder 1e-12
   // was trimmed against the leading 1), and so were roots scaled by 1e100.
   EXPECT_EQ(count_real_roots_above<double>(poly({1, 0, -1e-12}), -1.0), 2);
@@ -154,10 +154,11 @@ TEST(Polynomials, HelpersRefuseDataOfTheWrongShapeOrNotFiniteByName) {
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::characteristic_polynomial(a_nan), "A");
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::count_real_roots_above(poly({1, nan, 1}), -1.0), "p");
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::count_real_roots_above(poly({1, 0, -1}), nan), "a");
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::strictly_positive_real<double>(poly({1, 1}), poly({1, nan, 6})), "denominator");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::strictly_positive_real<double>(poly({1, 1}), poly({1, nan, 6})),
+                                   "denominator");
   // Finite coefficients whose product N(s)D(-s) overflows: refused, not judged.
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::strictly_positive_real<double>(poly({1e200, 1e200}), poly({1, 1e200, 1e200})),
-                                   "numerator");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::strictly_positive_real<double>(poly({1e200, 1e200}), poly({1, 1e200, 1e200})), "numerator");
   EXPECT_CONFIGURATION_ERROR_NAMES((void)adaptobs::has_hurwitz_characteristic_polynomial(a_nan), "m");
   EXPECT_TRUE(adaptobs::has_hurwitz_characteristic_polynomial(Eigen::MatrixXd(0, 3)));  // empty: no eigenvalue
   EXPECT_EQ(adaptobs::observability_matrix(a, Eigen::RowVector3d(1, 0, 0)).rows(), 3);
@@ -217,8 +218,8 @@ TEST(CanonicalForms, BastinGeversFormOfTheThirdOrderPlant) {
   using D = siso::Dims<double>;
   Matrix w(3, 2);
   w << 0, 1, 1, 0, 0, -1;
-  const auto st = adaptobs::bastin_gevers_form<D>(siso::dynamics<double>(), siso::output_matrix<double>(),
-                                                  poly({1, 4, 3}), w);
+  const auto st =
+      adaptobs::bastin_gevers_form<D>(siso::dynamics<double>(), siso::output_matrix<double>(), poly({1, 4, 3}), w);
   Eigen::Matrix3d t_expected;
   t_expected << 1, 0, 1, -4.0 / 25, 1, -4.0 / 25, -3.0 / 25, 0, -28.0 / 25;
   EXPECT_MATRIX_NEAR(st.T(), t_expected, 1e-12, 0);
@@ -230,12 +231,13 @@ TEST(CanonicalForms, BastinGeversFormOfTheThirdOrderPlant) {
   EXPECT_MATRIX_NEAR(so.Co, Eigen::RowVector3d(1, 0, 0), 1e-12, 0);
 
   // Default (orthonormal) kernel basis: another T, the same structure and zeros.
-  const auto st2 = adaptobs::bastin_gevers_form<D>(siso::dynamics<double>(), siso::output_matrix<double>(), poly({1, 4, 3}));
+  const auto st2 =
+      adaptobs::bastin_gevers_form<D>(siso::dynamics<double>(), siso::output_matrix<double>(), poly({1, 4, 3}));
   const auto so2 = st2.apply(siso::model<double>().system());
   EXPECT_MATRIX_NEAR(so2.Co, Eigen::RowVector3d(1, 0, 0), 1e-12, 0);
   EXPECT_MATRIX_NEAR(so2.Ao.col(0), Eigen::Vector3d::Zero(), 1e-12, 0);
-  EXPECT_MATRIX_NEAR(adaptobs::characteristic_polynomial(Eigen::Matrix2d(so2.Ao.bottomRightCorner(2, 2))), poly({1, 4, 3}),
-                     1e-10, 0);
+  EXPECT_MATRIX_NEAR(adaptobs::characteristic_polynomial(Eigen::Matrix2d(so2.Ao.bottomRightCorner(2, 2))),
+                     poly({1, 4, 3}), 1e-10, 0);
 
   // c in other units has the same kernel: 1e12 c was refused as 'kernel', and
   // with 1e-12 c a W outside the kernel was accepted (an absolute test).
@@ -247,16 +249,16 @@ TEST(CanonicalForms, BastinGeversFormOfTheThirdOrderPlant) {
     const Eigen::RowVector3d co = cs * t_inv;
     const Eigen::Matrix3d ao = st3.T() * a3 * t_inv - st3.K() * co;
     EXPECT_MATRIX_NEAR(co, Eigen::RowVector3d(1, 0, 0), 1e-12, 0) << s;
-    EXPECT_MATRIX_NEAR(adaptobs::characteristic_polynomial(Eigen::Matrix2d(ao.bottomRightCorner(2, 2))), poly({1, 4, 3}),
-                       1e-9, 0)
+    EXPECT_MATRIX_NEAR(adaptobs::characteristic_polynomial(Eigen::Matrix2d(ao.bottomRightCorner(2, 2))),
+                       poly({1, 4, 3}), 1e-9, 0)
         << s;
   }
   Matrix not_kernel = Matrix::Zero(3, 2);
   not_kernel(0, 0) = 1;
   not_kernel(1, 1) = 1;
   EXPECT_CONFIGURATION_ERROR_NAMES(
-      (void)adaptobs::bastin_gevers_form<D>(a3, Eigen::RowVector3d(1e-12 * siso::output_matrix<double>()), poly({1, 4, 3}),
-                                            not_kernel),
+      (void)adaptobs::bastin_gevers_form<D>(a3, Eigen::RowVector3d(1e-12 * siso::output_matrix<double>()),
+                                            poly({1, 4, 3}), not_kernel),
       "kernel");
 
   EXPECT_NE(configuration_error_of([&] {
@@ -329,11 +331,13 @@ TEST(CanonicalForms, GradedObservablePairsAreNotRefusedAsUnobservable) {
   };
   Matrix last = Matrix::Zero(1, 5);
   last(0, 4) = 1;
-  refused_as_ill_conditioned(configuration_error_of([&] { (void)adaptobs::marino_tomei_form<D>(graded_chain(3, 1e3), Matrix(last.rightCols(3))); }));
-  refused_as_ill_conditioned(
-      configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(graded_chain(5, 1e2), last, poly({1, 4, 6, 4, 1})); }));
   refused_as_ill_conditioned(configuration_error_of(
-      [&] { (void)adaptobs::ackermann_observer_gain(graded_chain(4, 1e2), Matrix(last.rightCols(4)), poly({1, 10, 35, 50, 24})); }));
+      [&] { (void)adaptobs::marino_tomei_form<D>(graded_chain(3, 1e3), Matrix(last.rightCols(3))); }));
+  refused_as_ill_conditioned(configuration_error_of(
+      [&] { (void)adaptobs::bastin_gevers_form<D>(graded_chain(5, 1e2), last, poly({1, 4, 6, 4, 1})); }));
+  refused_as_ill_conditioned(configuration_error_of([&] {
+    (void)adaptobs::ackermann_observer_gain(graded_chain(4, 1e2), Matrix(last.rightCols(4)), poly({1, 10, 35, 50, 24}));
+  }));
 
   // Unobservable pairs stay refused as such, whatever the units of c.
   Matrix cut = graded_chain(4, 10);
@@ -346,7 +350,8 @@ TEST(CanonicalForms, GradedObservablePairsAreNotRefusedAsUnobservable) {
   refused_as_unobservable(
       configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(cut, tiny, poly({1, 3, 3, 1})); }), "A, c");
   refused_as_unobservable(
-      configuration_error_of([&] { (void)adaptobs::ackermann_observer_gain(cut, tiny, poly({1, 10, 35, 50, 24})); }), "A, c");
+      configuration_error_of([&] { (void)adaptobs::ackermann_observer_gain(cut, tiny, poly({1, 10, 35, 50, 24})); }),
+      "A, c");
   Matrix c2 = Matrix::Zero(2, 4);
   c2(0, 3) = 1e-12;
   c2(1, 2) = 1e-12;
@@ -365,10 +370,10 @@ TEST(CanonicalForms, NonFiniteDataOfTheSisoDesignsIsRefusedByName) {
     EXPECT_NE(message.find("'" + argument + "'"), std::string::npos) << message;
     EXPECT_NE(message.find("finite"), std::string::npos) << message;
   };
-  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(a_nan, c, poly({1, 4, 3})); }),
-                        "A");
-  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(a, c_inf, poly({1, 4, 3})); }),
-                        "c");
+  refused_as_not_finite(
+      configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(a_nan, c, poly({1, 4, 3})); }), "A");
+  refused_as_not_finite(
+      configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(a, c_inf, poly({1, 4, 3})); }), "c");
   refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::bastin_gevers_form<D>(a, c, poly({1, nan, 3})); }),
                         "zeros");
   refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::marino_tomei_form<D>(a_nan, c); }), "A");
@@ -376,11 +381,12 @@ TEST(CanonicalForms, NonFiniteDataOfTheSisoDesignsIsRefusedByName) {
   const Eigen::Vector3d gamma(1, 3, 2);
   refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::spr_injection_gain(a_nan, c, gamma, 2.0); }), "A");
   refused_as_not_finite(
-      configuration_error_of([&] { (void)adaptobs::spr_injection_gain(a, c, Eigen::Vector3d(1, nan, 2), 2.0); }), "gamma");
-  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::ackermann_observer_gain(a, c_inf, poly({1, 6, 11, 6})); }),
-                        "c");
-  refused_as_not_finite(configuration_error_of([&] { (void)adaptobs::ackermann_observer_gain(a, c, poly({1, 6, nan, 6})); }),
-                        "p");
+      configuration_error_of([&] { (void)adaptobs::spr_injection_gain(a, c, Eigen::Vector3d(1, nan, 2), 2.0); }),
+      "gamma");
+  refused_as_not_finite(
+      configuration_error_of([&] { (void)adaptobs::ackermann_observer_gain(a, c_inf, poly({1, 6, 11, 6})); }), "c");
+  refused_as_not_finite(
+      configuration_error_of([&] { (void)adaptobs::ackermann_observer_gain(a, c, poly({1, 6, nan, 6})); }), "p");
   refused_as_not_finite(
       configuration_error_of([&] { (void)adaptobs::transfer_function(a, Eigen::Vector3d(0, nan, 1), c); }), "b");
 }
@@ -418,8 +424,9 @@ TEST(CanonicalForms, BesanconFormOfRandomMimoSystems) {
   }
   // One output for two-output dimensions: refused, naming C.
   const Eigen::Matrix4d a = rng.uniform<Eigen::Matrix4d>();
-  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::besancon_form<D>(a, Eigen::RowVector4d(1, 0, 0, 0), 0.5); })
-                .find("'C'"),
+  EXPECT_NE(configuration_error_of([&] {
+              (void)adaptobs::besancon_form<D>(a, Eigen::RowVector4d(1, 0, 0, 0), 0.5);
+            }).find("'C'"),
             std::string::npos);
   // A C without full row rank, or not finite, is refused naming C (with
   // assertions on, a refusal inside the transform's comma initializer aborted).
@@ -431,8 +438,8 @@ TEST(CanonicalForms, BesanconFormOfRandomMimoSystems) {
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::besancon_form<D>(a, not_finite, 0.5), "C");
   Eigen::Matrix4d a_not_finite = a;
   a_not_finite(3, 0) = std::numeric_limits<double>::infinity();
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::besancon_form<D>(a_not_finite, Eigen::Matrix<double, 2, 4>::Identity(), 0.5),
-                                   "A");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::besancon_form<D>(a_not_finite, Eigen::Matrix<double, 2, 4>::Identity(), 0.5), "A");
 }
 
 // A decay the pair's scale cannot carry is refused naming decay, with its true
@@ -497,8 +504,9 @@ TEST(SprDesign, GainsOfAlgorithmsOneAndTwo) {
   using D = siso::Dims<double>;
   const Eigen::Vector3d e1(1, 0, 0);
   // Algorithm 1 in the form (5) of the plant: k = λ e1, G = 1/(s + λ).
-  const auto so1 = adaptobs::bastin_gevers_form<D>(siso::dynamics<double>(), siso::output_matrix<double>(), poly({1, 4, 3}))
-                       .apply(siso::model<double>().system());
+  const auto so1 =
+      adaptobs::bastin_gevers_form<D>(siso::dynamics<double>(), siso::output_matrix<double>(), poly({1, 4, 3}))
+          .apply(siso::model<double>().system());
   const Eigen::Vector3d k1 = adaptobs::spr_injection_gain(so1.Ao, so1.Co, e1, 2.0);
   EXPECT_MATRIX_NEAR(k1, Eigen::Vector3d(2, 0, 0), 1e-12, 0);
   const auto g1 = adaptobs::transfer_function(Eigen::Matrix3d(so1.Ao - k1 * so1.Co), e1, so1.Co);
@@ -506,7 +514,8 @@ TEST(SprDesign, GainsOfAlgorithmsOneAndTwo) {
   EXPECT_MATRIX_NEAR(g1.denominator, poly({1, 6, 11, 6}), 1e-12, 0);
   EXPECT_TRUE(adaptobs::strictly_positive_real(Eigen::Matrix3d(so1.Ao - k1 * so1.Co), e1, so1.Co));
   for (const Eigen::Vector3d& bad : {Eigen::Vector3d(-0.5, 0, 0), Eigen::Vector3d(2, -4, 4)})
-    EXPECT_FALSE(adaptobs::strictly_positive_real(Eigen::Matrix3d(so1.Ao - bad * so1.Co), e1, so1.Co)) << bad.transpose();
+    EXPECT_FALSE(adaptobs::strictly_positive_real(Eigen::Matrix3d(so1.Ao - bad * so1.Co), e1, so1.Co))
+        << bad.transpose();
 
   // Algorithm 2 with γ = (1, 3, 2).
   const auto so2 = adaptobs::marino_tomei_form<D>(siso::dynamics<double>(), siso::output_matrix<double>())
@@ -516,14 +525,17 @@ TEST(SprDesign, GainsOfAlgorithmsOneAndTwo) {
   EXPECT_MATRIX_NEAR(adaptobs::spr_injection_gain(so2.Ao, so2.Co, gamma, 5.0), Eigen::Vector3d(8, 17, 10), 1e-12, 0);
 
   // No gain exists: c γ ≤ 0, or a non-Hurwitz N_γ.
-  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::spr_injection_gain(so2.Ao, so2.Co, Eigen::Vector3d(-1, 3, 2), 2.0); })
-                .find("'gamma'"),
+  EXPECT_NE(configuration_error_of([&] {
+              (void)adaptobs::spr_injection_gain(so2.Ao, so2.Co, Eigen::Vector3d(-1, 3, 2), 2.0);
+            }).find("'gamma'"),
             std::string::npos);
-  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::spr_injection_gain(so2.Ao, so2.Co, Eigen::Vector3d(1, -1, 2), 2.0); })
-                .find("'gamma'"),
+  EXPECT_NE(configuration_error_of([&] {
+              (void)adaptobs::spr_injection_gain(so2.Ao, so2.Co, Eigen::Vector3d(1, -1, 2), 2.0);
+            }).find("'gamma'"),
             std::string::npos);
-  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::spr_injection_gain(so2.Ao, so2.Co, gamma, 0.0); }).find("'lambda'"),
-            std::string::npos);
+  EXPECT_NE(
+      configuration_error_of([&] { (void)adaptobs::spr_injection_gain(so2.Ao, so2.Co, gamma, 0.0); }).find("'lambda'"),
+      std::string::npos);
 }
 
 TEST(Riccati, CareAndKalmanBucyGainOnRandomSystems) {
@@ -595,8 +607,8 @@ TEST(Riccati, LyapunovSolverResidual) {
   // The solution is symmetrized: a non-symmetric Q gave an X that solves nothing.
   Eigen::Matrix2d q_skewed;
   q_skewed << 1, 2, 0, 1;
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::solve_continuous_lyapunov(Eigen::Matrix2d(-Eigen::Matrix2d::Identity()), q_skewed),
-                                   "Q");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::solve_continuous_lyapunov(Eigen::Matrix2d(-Eigen::Matrix2d::Identity()), q_skewed), "Q");
 }
 
 // P of the Riccati differential equation tends to the CARE solution for a constant system.
@@ -673,7 +685,9 @@ TEST(LtvStability, FloquetExponents) {
   EXPECT_NEAR(adaptobs::floquet_exponents(markus_yamabe, std::numbers::pi)(0), 0.5, 1e-6);
   EXPECT_FALSE(adaptobs::is_exponentially_stable_periodic(markus_yamabe, std::numbers::pi));
   // Plant of the MIMO examples: A22(t) has exponents −2, −2; A − KC's largest is −1.98.
-  const auto a22 = [](double t) { return Eigen::Matrix2d(periodic::form8_dynamics<double>(t).bottomRightCorner(2, 2)); };
+  const auto a22 = [](double t) {
+    return Eigen::Matrix2d(periodic::form8_dynamics<double>(t).bottomRightCorner(2, 2));
+  };
   EXPECT_MATRIX_NEAR(adaptobs::floquet_exponents(a22, periodic::period), Eigen::Vector2d(-2, -2), 1e-6, 0);
   const auto closed = [](double t) {
     const auto s = periodic::system<double>(t);
@@ -759,8 +773,8 @@ TEST(LtvStability, AStiffStableModeIsFoundOrRefusedNotReportedUnstable) {
   EXPECT_NEAR(fast(1), -1 + std::log(2 * std::numeric_limits<double>::epsilon()), 1e-5);
   EXPECT_TRUE(adaptobs::is_exponentially_stable_periodic([&](double) { return coupled; }, 1.0, 0.9));
   // The period is checked whatever the order.
-  EXPECT_CONFIGURATION_ERROR_NAMES(
-      adaptobs::floquet_exponents([](double) { return Eigen::MatrixXd(0, 0); }, -1.0), "period");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::floquet_exponents([](double) { return Eigen::MatrixXd(0, 0); }, -1.0),
+                                   "period");
 }
 
 // A(t) is checked at every evaluation, not only at t0: a later A(t) of another
@@ -793,7 +807,8 @@ TEST(SprDesign, FrequencySweepRefusesAnInfiniteRangeOrNonFiniteSystem) {
   const Eigen::RowVector3d c(1, 0.01, 1);
   EXPECT_FALSE(adaptobs::spr_frequency_sweep(a, b, c).strictly_positive_real);
   EXPECT_CONFIGURATION_ERROR_NAMES(
-      adaptobs::spr_frequency_sweep(a, b, c, 1e-4, std::numeric_limits<double>::infinity()), "omega_min, omega_max, points");
+      adaptobs::spr_frequency_sweep(a, b, c, 1e-4, std::numeric_limits<double>::infinity()),
+      "omega_min, omega_max, points");
   Eigen::Matrix3d a_not_finite = a;
   a_not_finite(2, 0) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::spr_frequency_sweep(a_not_finite, b, c), "A");

@@ -2,14 +2,13 @@
 // time-varying gains, stability checks, and the excitation monitor.
 
 #include <adaptobs/core/detail/cholesky.hpp>
-#include <adaptobs/design/companion_matrix.hpp>
-#include <adaptobs/design/dare.hpp>
-#include <adaptobs/diagnostics/excitation_monitor.hpp>
-#include <adaptobs/design/riccati_recursion.hpp>
-#include <adaptobs/design/stability.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
-
+#include <adaptobs/design/companion_matrix.hpp>
+#include <adaptobs/design/dare.hpp>
+#include <adaptobs/design/riccati_recursion.hpp>
+#include <adaptobs/design/stability.hpp>
+#include <adaptobs/diagnostics/excitation_monitor.hpp>
 
 #include "support/eigen_testing.hpp"
 
@@ -99,8 +98,8 @@ TEST(Dare, FixedSizeAgreesWithDynamic) {
   const Eigen::Matrix4d a = random_dynamics(rng, 4, 1.2);
   const Eigen::Matrix<double, 2, 4> c = rng.uniform<Eigen::Matrix<double, 2, 4>>();
   const auto fixed = adaptobs::steady_state_kalman_gain(a, c, Eigen::Matrix4d::Identity(), Eigen::Matrix2d::Identity());
-  const auto dynamic = adaptobs::steady_state_kalman_gain(Eigen::MatrixXd(a), Eigen::MatrixXd(c),
-                                                          Eigen::MatrixXd::Identity(4, 4), Eigen::MatrixXd::Identity(2, 2));
+  const auto dynamic = adaptobs::steady_state_kalman_gain(
+      Eigen::MatrixXd(a), Eigen::MatrixXd(c), Eigen::MatrixXd::Identity(4, 4), Eigen::MatrixXd::Identity(2, 2));
   EXPECT_MATRIX_NEAR(fixed.K, dynamic.K, 1e-12, 1e-12);
 }
 
@@ -112,15 +111,19 @@ TEST(Dare, RefusesUnstabilizablePairAndBadWeights) {
   const Eigen::Vector2d b(0, 1);
   const Eigen::Matrix2d q = Eigen::Matrix2d::Identity();
   const Eigen::Matrix<double, 1, 1> r = Eigen::Matrix<double, 1, 1>::Ones();
-  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, q, r); }).find("stabilizable"), std::string::npos);
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, q, r); }).find("stabilizable"),
+            std::string::npos);
   const Eigen::Matrix<double, 1, 1> negative_r(-1.0);
-  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, q, negative_r); }).find("'R'"), std::string::npos);
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, q, negative_r); }).find("'R'"),
+            std::string::npos);
   Eigen::Matrix2d indefinite_q;
   indefinite_q << 1, 0, 0, -1;
-  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, indefinite_q, r); }).find("'Q'"), std::string::npos);
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, indefinite_q, r); }).find("'Q'"),
+            std::string::npos);
   Eigen::Matrix2d asymmetric_q;
   asymmetric_q << 1, 0.5, 0, 1;
-  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, asymmetric_q, r); }).find("symmetric"), std::string::npos);
+  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_dare(a, b, asymmetric_q, r); }).find("symmetric"),
+            std::string::npos);
 }
 
 // Q = R near the largest number. X of (A, B) = (0.99, 1) is found in scaled
@@ -131,7 +134,8 @@ TEST(Dare, RefusesUnstabilizablePairAndBadWeights) {
 TEST(Dare, ASolutionBeyondTheFloatingPointRangeIsRefusedAndAGainNearItIsExact) {
   using Scalar1 = Eigen::Matrix<double, 1, 1>;
   const Scalar1 one(1);
-  const auto message = configuration_error_of([&] { (void)adaptobs::solve_dare(Scalar1(0.99), one, Scalar1(1.2e308), Scalar1(1.2e308)); });
+  const auto message = configuration_error_of(
+      [&] { (void)adaptobs::solve_dare(Scalar1(0.99), one, Scalar1(1.2e308), Scalar1(1.2e308)); });
   EXPECT_NE(message.find("'Q, R'"), std::string::npos) << message;
   EXPECT_NE(message.find("floating-point range"), std::string::npos) << message;
   const auto near_limit = adaptobs::steady_state_kalman_gain(Scalar1(0.9), one, Scalar1(1e308), Scalar1(1e308));
@@ -345,8 +349,8 @@ TEST(SymmetricEigenvalues, NonFiniteEntryGivesNaN) {
       Eigen::Matrix3d m = Eigen::Vector3d(1, 2, 3).asDiagonal();
       m(i, j) = bad;
       const Eigen::Vector3d lambda = adaptobs::symmetric_eigenvalues(m);
-      EXPECT_TRUE(lambda.array().isNaN().all()) << "entry (" << i << ", " << j << ") = " << bad << ": "
-                                                 << lambda.transpose();
+      EXPECT_TRUE(lambda.array().isNaN().all())
+          << "entry (" << i << ", " << j << ") = " << bad << ": " << lambda.transpose();
     }
   }
   // Entries near the ends of the range: the rotation test once multiplied two
@@ -510,7 +514,8 @@ TEST(ExcitationMonitor, AHugeContributionLeavingTheWindowTakesNoSmallOneWithIt) 
     Eigen::Matrix2d expected = Eigen::Matrix2d::Zero();
     for (const auto& g : last) expected += g;
     expected /= double(last.size());
-    EXPECT_NEAR(decaying.level(), expected.diagonal().minCoeff(), 1e-12 * expected.diagonal().minCoeff()) << "k = " << k;
+    EXPECT_NEAR(decaying.level(), expected.diagonal().minCoeff(), 1e-12 * expected.diagonal().minCoeff())
+        << "k = " << k;
   }
 }
 

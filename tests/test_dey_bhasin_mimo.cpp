@@ -158,7 +158,7 @@ struct LiteralFilters {
   void advance(const Eigen::VectorXd& y, const Eigen::VectorXd& u) {
     Eigen::MatrixXd y_kron = Eigen::MatrixXd::Zero(n, r);  // Y_t = I_r ⊗ y_t
     for (Index k = 0; k < r; ++k) y_kron.block(k * q, k, q, 1) = y;
-    Sy = F * Sy + y_kron;                                                     // (8)
+    Sy = F * Sy + y_kron;  // (8)
     for (Index i = 0; i < m; ++i)
       Su[std::size_t(i)] = F * Su[std::size_t(i)] + u(i) * Eigen::MatrixXd::Identity(n, n);  // (9)
     free = F * free;
@@ -217,8 +217,8 @@ struct RunSummary {
   Index state_error_small_from = -1;   // first step after which ‖x̃_t‖ < 1e-6 ‖x̃_0‖ stays true
   double initial_state_error = 0;
   double final_state_error = 0;
-  double final_deviation = 0;          // max |θ̂/θ − 1| at the end
-  double max_parameter_error = 0;      // max_t ‖p̃_t‖
+  double final_deviation = 0;      // max |θ̂/θ − 1| at the end
+  double max_parameter_error = 0;  // max_t ‖p̃_t‖
   Index resets = 0;
 };
 
@@ -241,14 +241,17 @@ RunSummary run_example(Observer& observer, Input input, Index steps, Presence pr
     EXPECT_EQ(present.all() ? observer.update(plant.sample()) : observer.update(plant.sample(), present),
               UpdateStatus::accepted)
         << "step " << t;
-    const double deviation =
-        (db::normalized_estimates(observer, mimo::a(), mimo::B()).array() - 1.0).abs().maxCoeff();
+    const double deviation = (db::normalized_estimates(observer, mimo::a(), mimo::B()).array() - 1.0).abs().maxCoeff();
     const double state_error = (plant.state() - observer.current_state()).norm();
     s.max_parameter_error = std::max(s.max_parameter_error, (p - observer.parameters()).norm());
-    if (deviation >= 0.01) s.within_one_percent_from = -1;
-    else if (s.within_one_percent_from < 0) s.within_one_percent_from = t;
-    if (state_error >= 1e-6 * s.initial_state_error) s.state_error_small_from = -1;
-    else if (s.state_error_small_from < 0) s.state_error_small_from = t;
+    if (deviation >= 0.01)
+      s.within_one_percent_from = -1;
+    else if (s.within_one_percent_from < 0)
+      s.within_one_percent_from = t;
+    if (state_error >= 1e-6 * s.initial_state_error)
+      s.state_error_small_from = -1;
+    else if (s.state_error_small_from < 0)
+      s.state_error_small_from = t;
     s.final_deviation = deviation;
     s.final_state_error = state_error;
     plant.advance();
@@ -360,8 +363,8 @@ TEST(DeyBhasinMissing, RichInputStillIdentifiesWithDroppedSamplesAndChannels) {
 // (the rest of the masked contract: DeyBhasinContract below).
 TEST(DeyBhasinMissing, RunTimeSizedMaskOfTheWrongLengthNamesPresent) {
   static_assert(adaptobs::PartialOutputObserver<Observer>);
-  DynamicObserver dynamic(Eigen::VectorXd(mimo::f()), Eigen::VectorXd(mimo::x_hat0()),
-                          Eigen::VectorXd(mimo::a_hat0()), Eigen::MatrixXd(mimo::B_hat0()),
+  DynamicObserver dynamic(Eigen::VectorXd(mimo::f()), Eigen::VectorXd(mimo::x_hat0()), Eigen::VectorXd(mimo::a_hat0()),
+                          Eigen::MatrixXd(mimo::B_hat0()),
                           {.k0 = 10, .kmin = 1e-3, .R = Eigen::MatrixXd::Identity(2, 2)});
   const std::string message = adaptobs::testing::configuration_error_of([&] {
     (void)dynamic.update(DynamicObserver::Sample{Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2)},
@@ -380,10 +383,10 @@ TEST(DeyBhasinMissing, ASampleOfAnyTypeWithVectorsOfTheWrongLengthIsRefusedByNam
   };
   const auto readings = [&] { return std::pair{Eigen::VectorXd(observer.state()), observer.step()}; };
   const auto before = readings();
-  EXPECT_CONFIGURATION_ERROR_NAMES((void)observer.update(RunTimeSample{Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1)}),
-                                   "sample.y");
-  EXPECT_CONFIGURATION_ERROR_NAMES((void)observer.update(RunTimeSample{Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(2)}),
-                                   "sample.u");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      (void)observer.update(RunTimeSample{Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1)}), "sample.y");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      (void)observer.update(RunTimeSample{Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(2)}), "sample.u");
   EXPECT_TRUE(readings() == before);
   EXPECT_EQ(observer.update(RunTimeSample{Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2)}), UpdateStatus::accepted);
 }
@@ -584,10 +587,10 @@ namespace {
 
 using adaptobs::testing::configuration_error_of;
 
-
 TEST(DeyBhasin, BadConfigurationNamesTheArgument) {
   const auto options = mimo::law_options();
-  EXPECT_CONFIGURATION_ERROR_NAMES(Observer(mimo::printed_a(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(), options), "f");
+  EXPECT_CONFIGURATION_ERROR_NAMES(Observer(mimo::printed_a(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(), options),
+                                   "f");
   Eigen::Vector3d nan_a0 = mimo::a_hat0();
   nan_a0(1) = std::nan("");
   EXPECT_CONFIGURATION_ERROR_NAMES(Observer(mimo::f(), mimo::x_hat0(), nan_a0, mimo::B_hat0(), options), "a0");
@@ -603,46 +606,49 @@ TEST(DeyBhasin, BadConfigurationNamesTheArgument) {
   EXPECT_CONFIGURATION_ERROR_NAMES(Observer(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(), bad_r), "R");
   auto bad_kmin = options;
   bad_kmin.kmin = 2 * bad_kmin.k0;
-  EXPECT_CONFIGURATION_ERROR_NAMES(Observer(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(), bad_kmin), "kmin");
+  EXPECT_CONFIGURATION_ERROR_NAMES(Observer(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(), bad_kmin),
+                                   "kmin");
   using RlsObserver = adaptobs::DeyBhasinObserver<double, 3, 2, 2, adaptobs::RecursiveLeastSquares>;
   Eigen::Matrix<double, 15, 15> gamma0 = Eigen::Matrix<double, 15, 15>::Identity();
   gamma0(3, 3) = -1;
   EXPECT_CONFIGURATION_ERROR_NAMES(RlsObserver(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(),
-                             {.gamma0 = gamma0, .R = Eigen::Matrix2d::Identity()}),
-                 "gamma0");
+                                               {.gamma0 = gamma0, .R = Eigen::Matrix2d::Identity()}),
+                                   "gamma0");
   gamma0 = Eigen::Matrix<double, 15, 15>::Identity();
   gamma0(2, 7) = 0.1;
   EXPECT_CONFIGURATION_ERROR_NAMES(RlsObserver(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(),
-                             {.gamma0 = gamma0, .R = Eigen::Matrix2d::Identity()}),
-                 "gamma0");
+                                               {.gamma0 = gamma0, .R = Eigen::Matrix2d::Identity()}),
+                                   "gamma0");
   // Dynamic sizes: shapes that do not fit together.
   const auto dyn_options = DynamicObserver::LawOptions{.k0 = 10, .kmin = 1e-3, .R = Eigen::MatrixXd::Identity(2, 2)};
-  EXPECT_CONFIGURATION_ERROR_NAMES(DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(7), Eigen::VectorXd(mimo::a_hat0()),
-                                 Eigen::MatrixXd::Zero(7, 2), dyn_options),
-                 "x0");
-  EXPECT_CONFIGURATION_ERROR_NAMES(DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6), Eigen::VectorXd::Zero(2),
-                                 Eigen::MatrixXd::Zero(6, 2), dyn_options),
-                 "a0");
-  EXPECT_CONFIGURATION_ERROR_NAMES(DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6), Eigen::VectorXd(mimo::a_hat0()),
-                                 Eigen::MatrixXd::Zero(5, 2), dyn_options),
-                 "B0");
-  EXPECT_CONFIGURATION_ERROR_NAMES(DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6), Eigen::VectorXd(mimo::a_hat0()),
-                                 Eigen::MatrixXd::Zero(6, 2),
-                                 {.k0 = 10, .kmin = 1e-3, .R = Eigen::MatrixXd::Identity(3, 3)}),
-                 "R");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(7), Eigen::VectorXd(mimo::a_hat0()),
+                      Eigen::MatrixXd::Zero(7, 2), dyn_options),
+      "x0");
+  EXPECT_CONFIGURATION_ERROR_NAMES(DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6),
+                                                   Eigen::VectorXd::Zero(2), Eigen::MatrixXd::Zero(6, 2), dyn_options),
+                                   "a0");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6), Eigen::VectorXd(mimo::a_hat0()),
+                      Eigen::MatrixXd::Zero(5, 2), dyn_options),
+      "B0");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      DynamicObserver(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6), Eigen::VectorXd(mimo::a_hat0()),
+                      Eigen::MatrixXd::Zero(6, 2), {.k0 = 10, .kmin = 1e-3, .R = Eigen::MatrixXd::Identity(3, 3)}),
+      "R");
   DynamicObserver observer(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(6), Eigen::VectorXd(mimo::a_hat0()),
                            Eigen::MatrixXd::Zero(6, 2), dyn_options);
-  EXPECT_CONFIGURATION_ERROR_NAMES(observer.update(DynamicObserver::Sample{Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(2)}),
-                 "sample.u");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      observer.update(DynamicObserver::Sample{Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(2)}), "sample.u");
   EXPECT_CONFIGURATION_ERROR_NAMES(observer.reset(Eigen::VectorXd::Zero(6), Eigen::VectorXd::Zero(14)), "p0");
   EXPECT_CONFIGURATION_ERROR_NAMES(observer.state_with(Eigen::VectorXd::Zero(14)), "p");
   // A run-time order with a compile-time output count q = 2: x0 needs r·q = 6
   // entries, even where another q would divide its length.
   using RunTimeOrder = adaptobs::DeyBhasinObserver<double, Eigen::Dynamic, 2, 2>;
-  EXPECT_CONFIGURATION_ERROR_NAMES(RunTimeOrder(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(9),
-                                                Eigen::VectorXd(mimo::a_hat0()), Eigen::MatrixXd::Zero(6, 2),
-                                                {.k0 = 10, .kmin = 1e-3, .R = Eigen::Matrix2d::Identity()}),
-                                   "x0");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      RunTimeOrder(Eigen::VectorXd(mimo::f()), Eigen::VectorXd::Zero(9), Eigen::VectorXd(mimo::a_hat0()),
+                   Eigen::MatrixXd::Zero(6, 2), {.k0 = 10, .kmin = 1e-3, .R = Eigen::Matrix2d::Identity()}),
+      "x0");
 }
 
 }  // namespace

@@ -151,8 +151,7 @@ TYPED_TEST(DeyBhasinSisoTyped, RichInputConvergesInBothPrecisions) {
     ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted) << "step " << t;
     plant.advance();
   }
-  const Eigen::VectorXd normalized =
-      db::normalized_estimates(observer, siso::a<double>(), siso::B<double>());
+  const Eigen::VectorXd normalized = db::normalized_estimates(observer, siso::a<double>(), siso::B<double>());
   const double tolerance = std::is_same_v<S, float> ? 1e-2 : 1e-8;
   EXPECT_LT((normalized.array() - 1).abs().maxCoeff(), tolerance);
   const S state_tolerance = std::is_same_v<S, float> ? S(1e-2) : S(1e-8);
@@ -212,4 +211,3 @@ struct SuzukiDesign {
 }  // namespace
 
 ADAPTOBS_OBSERVER_CONTRACT(DeyBhasinSiso, DeyBhasinSisoContract<ResettingDesign>, DeyBhasinSisoContract<SuzukiDesign>);
-

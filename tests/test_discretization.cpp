@@ -9,7 +9,6 @@
 
 #include <gtest/gtest.h>
 
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,8 +22,8 @@ using adaptobs::ConfigurationError;
 using adaptobs::discretize_zoh;
 using adaptobs::integral_of_exponential;
 using adaptobs::matrix_exponential;
-using adaptobs::testing::RandomMatrices;
 using adaptobs::testing::configuration_error_of;
+using adaptobs::testing::RandomMatrices;
 namespace satellite = adaptobs::examples::satellite;
 
 TEST(MatrixExponential, NilpotentMatchesFiniteSeries) {
@@ -82,7 +81,8 @@ double worst_relative_error(const Eigen::MatrixXd& got, const Eigen::MatrixXd& e
   for (Eigen::Index i = 0; i < exact.size(); ++i) {
     const double e = exact.data()[i];
     const double error = std::abs(got.data()[i] - e);
-    worst = std::max(worst, e == 0 ? (error == 0 ? 0.0 : std::numeric_limits<double>::infinity()) : error / std::abs(e));
+    worst =
+        std::max(worst, e == 0 ? (error == 0 ? 0.0 : std::numeric_limits<double>::infinity()) : error / std::abs(e));
   }
   return worst;
 }
@@ -204,7 +204,8 @@ TEST(MatrixExponential, OverflowIsRefusedNamingA) {
   EXPECT_NE(message.find("range"), std::string::npos) << message;
   // e^700 ≈ 1.0e304 is still representable.
   const Eigen::Matrix2d near_limit = Eigen::Vector2d(700, -700).asDiagonal();
-  EXPECT_LE(worst_relative_error(matrix_exponential(near_limit), Eigen::Vector2d(std::exp(700.0), std::exp(-700.0)).asDiagonal()),
+  EXPECT_LE(worst_relative_error(matrix_exponential(near_limit),
+                                 Eigen::Vector2d(std::exp(700.0), std::exp(-700.0)).asDiagonal()),
             1e-12);
 }
 
@@ -272,16 +273,16 @@ double printed_tolerance(const Printed& p) {
 
 // A_d and H as printed in §4; A(1,0) = 3.66e-8 included.
 const Printed satellite_a_printed[] = {
-    {0, 0, 1, 1},          {0, 1, 0.1, 1},        {0, 2, 0, 1},     {0, 3, 3.49e-6, 3},
-    {1, 0, 3.66e-8, 3},    {1, 1, 1, 1},          {1, 2, 0, 1},     {1, 3, 6.98e-5, 3},
-    {2, 0, -4.25e-14, 3},  {2, 1, -3.49e-6, 3},   {2, 2, 1, 1},     {2, 3, 0.1, 1},
-    {3, 0, -1.28e-12, 3},  {3, 1, -6.98e-5, 3},   {3, 2, 0, 1},     {3, 3, 1, 1},
+    {0, 0, 1, 1},         {0, 1, 0.1, 1},      {0, 2, 0, 1}, {0, 3, 3.49e-6, 3},
+    {1, 0, 3.66e-8, 3},   {1, 1, 1, 1},        {1, 2, 0, 1}, {1, 3, 6.98e-5, 3},
+    {2, 0, -4.25e-14, 3}, {2, 1, -3.49e-6, 3}, {2, 2, 1, 1}, {2, 3, 0.1, 1},
+    {3, 0, -1.28e-12, 3}, {3, 1, -6.98e-5, 3}, {3, 2, 0, 1}, {3, 3, 1, 1},
 };
 const Printed satellite_h_printed[] = {
-    {0, 0, 0.1, 1},         {0, 1, 0.005, 1},       {0, 2, 0, 1},   {0, 3, 1.16e-7, 3},
-    {1, 0, 1.83e-9, 3},     {1, 1, 0.1, 1},         {1, 2, 0, 1},   {1, 3, 3.49e-6, 3},
-    {2, 0, -1.06e-15, 3},   {2, 1, -1.16e-7, 3},    {2, 2, 0.1, 1}, {2, 3, 0.005, 1},
-    {3, 0, -4.25e-14, 3},   {3, 1, -3.49e-6, 3},    {3, 2, 0, 1},   {3, 3, 0.1, 1},
+    {0, 0, 0.1, 1},       {0, 1, 0.005, 1},    {0, 2, 0, 1},   {0, 3, 1.16e-7, 3},
+    {1, 0, 1.83e-9, 3},   {1, 1, 0.1, 1},      {1, 2, 0, 1},   {1, 3, 3.49e-6, 3},
+    {2, 0, -1.06e-15, 3}, {2, 1, -1.16e-7, 3}, {2, 2, 0.1, 1}, {2, 3, 0.005, 1},
+    {3, 0, -4.25e-14, 3}, {3, 1, -3.49e-6, 3}, {3, 2, 0, 1},   {3, 3, 0.1, 1},
 };
 
 // Printed entries that the discretization with angular velocity w misses.

@@ -22,11 +22,11 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <stdexcept>
-#include <utility>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -73,16 +73,16 @@ TEST(ChiSquareDistribution, LogGammaMatchesTheStandardLibrary) {
 TEST(ChiSquareDistribution, RefusesBadArguments) {
   EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(3, 0.0); }), "p"));
   EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(3, 1.0); }), "p"));
-  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(0, 0.5); }),
-                    "degrees_of_freedom"));
+  EXPECT_TRUE(
+      names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(0, 0.5); }), "degrees_of_freedom"));
   // Beyond 1e7 degrees of freedom the tail loses its accuracy (at 1e12 it read
   // 0.4986 for 0.4999998, at 1e18 ∞, and an iteration count overflowed an int).
-  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_tail(1e12, 1e12); }),
-                    "degrees_of_freedom"));
+  EXPECT_TRUE(
+      names(configuration_error_of([] { (void)adaptobs::chi_square_upper_tail(1e12, 1e12); }), "degrees_of_freedom"));
   // Below 1e-2 degrees of freedom 1 − P cancels (at 1e-300 it read 3.5e-14 for
   // 2.8e-301, at 1e-308 NaN); a quantile below the normal doubles is refused.
-  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_tail(1e-300, 1); }),
-                    "degrees_of_freedom"));
+  EXPECT_TRUE(
+      names(configuration_error_of([] { (void)adaptobs::chi_square_upper_tail(1e-300, 1); }), "degrees_of_freedom"));
   EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::chi_square_upper_quantile(0.02, 1 - 1e-6); }), "p"));
   // At the limit, the median of χ²_ν, ν(1 − 2/(9ν))³ to O(ν^{-1}), has a tail of 1/2.
   const double nu = adaptobs::chi_square_max_degrees_of_freedom;
@@ -118,7 +118,8 @@ TEST(CusumDesign, SiegmundMatchesPublishedRunLengths) {
   }
   // A mean run length beyond the doubles has no threshold: the component count
   // was ignored once the product overflowed.
-  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::cusum_threshold(0.5, 1e308, 4); }), "mean_evaluations"));
+  EXPECT_TRUE(
+      names(configuration_error_of([] { (void)adaptobs::cusum_threshold(0.5, 1e308, 4); }), "mean_evaluations"));
 }
 
 // Mean spacing of the alarms of a CUSUM fed independent N(shift, 1) draws in every component.
@@ -149,7 +150,8 @@ TEST(Detectors, FloatMatchesDouble) {
   // The same draws through float and double detectors: the alarms coincide
   // except where a sum lands within float rounding of the threshold.
   const double h = adaptobs::cusum_threshold(0.5, 100.0, 1);
-  adaptobs::CusumDetector<double, 1> cusum_d(Eigen::Matrix<double, 1, 1>(0.0), Eigen::Matrix<double, 1, 1>(1.0), 0.5, h);
+  adaptobs::CusumDetector<double, 1> cusum_d(Eigen::Matrix<double, 1, 1>(0.0), Eigen::Matrix<double, 1, 1>(1.0), 0.5,
+                                             h);
   adaptobs::CusumDetector<float, 1> cusum_f(Eigen::Matrix<float, 1, 1>(0.0f), Eigen::Matrix<float, 1, 1>(1.0f), 0.5f,
                                             static_cast<float>(h));
   adaptobs::ChiSquareTest<double, 2> chi_d(Eigen::Matrix2d::Identity(), 10, 0.05);
@@ -310,8 +312,8 @@ TEST(CusumDetector, BadConfigurationNamesTheArgument) {
   EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, Eigen::Vector2d(1, 1e-310), 0.5, 3.0); }), "scale"));
   EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, scale, 0.0, 3.0); }), "drift"));
   EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, scale, 0.5, -1.0); }), "threshold"));
-  EXPECT_TRUE(names(configuration_error_of([&] { Detector(nominal, scale, 0.5, 3.0, {.stride = 0}); }),
-                    "options.stride"));
+  EXPECT_TRUE(
+      names(configuration_error_of([&] { Detector(nominal, scale, 0.5, 3.0, {.stride = 0}); }), "options.stride"));
   EXPECT_TRUE(names(configuration_error_of([&] { Detector(Eigen::Vector2d(1, NAN), scale, 0.5, 3.0); }), "nominal"));
   EXPECT_TRUE(names(configuration_error_of([&] {
                       adaptobs::CusumDetector<double>(Eigen::VectorXd::Zero(2), Eigen::VectorXd::Ones(3), 0.5, 3.0);
@@ -383,8 +385,8 @@ TEST(GlrDetector, StatisticIsTheBestWindowAndIsolates) {
                                                        adaptobs::Index{1} << 40, 8.0);
                     }),
                     "window"));
-  EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::glr_threshold(adaptobs::Index{1} << 40, 100.0); }),
-                    "window"));
+  EXPECT_TRUE(
+      names(configuration_error_of([] { (void)adaptobs::glr_threshold(adaptobs::Index{1} << 40, 100.0); }), "window"));
   EXPECT_TRUE(names(configuration_error_of([] { (void)adaptobs::glr_threshold(1000, 1e5); }), "window"));
 }
 
@@ -412,11 +414,12 @@ TEST(CusumCalibration, RefusesCorrelatedValuesNamingTheStride) {
   EXPECT_LE(design.checked_alarms, 100);
   // A nominal value off the runs' mean by a scale is refused, naming it.
   EXPECT_TRUE(names(configuration_error_of([&] {
-                      (void)adaptobs::calibrate_cusum(runs, Eigen::Matrix<double, 1, 1>(design.scale(0)), 0.5, 100.0, 500);
+                      (void)adaptobs::calibrate_cusum(runs, Eigen::Matrix<double, 1, 1>(design.scale(0)), 0.5, 100.0,
+                                                      500);
                     }),
                     "nominal"));
-  EXPECT_TRUE(names(configuration_error_of([&] { (void)adaptobs::calibrate_cusum(runs, nominal, 0.5, 5.0, 100); }),
-                    "stride"));
+  EXPECT_TRUE(
+      names(configuration_error_of([&] { (void)adaptobs::calibrate_cusum(runs, nominal, 0.5, 5.0, 100); }), "stride"));
 }
 
 // Every limit is checked at entry: each is compared with `>`, which a NaN passes,
@@ -437,11 +440,12 @@ TEST(CusumCalibration, BadOptionsAreRefusedByName) {
   // The arguments too, before any work, under calibrate_cusum's own name; an
   // empty nominal once read an empty vector's first entry.
   const auto calibration = [&](const auto& nominal_value, double drift, double mean_evaluations) {
-    return configuration_error_of([&] { (void)adaptobs::calibrate_cusum(runs, nominal_value, drift, mean_evaluations, 1); });
+    return configuration_error_of(
+        [&] { (void)adaptobs::calibrate_cusum(runs, nominal_value, drift, mean_evaluations, 1); });
   };
   const std::vector<std::vector<Eigen::VectorXd>> empty_runs(1, std::vector<Eigen::VectorXd>(600, Eigen::VectorXd()));
-  const std::string empty = configuration_error_of(
-      [&] { (void)adaptobs::calibrate_cusum(empty_runs, Eigen::VectorXd(), 0.5, 100.0, 1); });
+  const std::string empty =
+      configuration_error_of([&] { (void)adaptobs::calibrate_cusum(empty_runs, Eigen::VectorXd(), 0.5, 100.0, 1); });
   EXPECT_TRUE(names(empty, "nominal")) << empty;
   for (const auto& [message, argument] : {std::pair{calibration(nominal, -1.0, 100.0), "drift"},
                                           std::pair{calibration(nominal, 0.5, -5.0), "mean_evaluations"}}) {
@@ -489,9 +493,8 @@ TEST(FaultMonitorDesign, BadArgumentsAreRefusedUnderTheirOwnNames) {
   record.new_run();
   const Eigen::Matrix<double, 1, 1> nominal(0.0);
   const auto design = [&](double drift, Index glr_window) {
-    return configuration_error_of([&] {
-      (void)adaptobs::design_fault_monitor(record, nominal, drift, 4000.0, Index{1}, Index{20}, glr_window);
-    });
+    return configuration_error_of(
+        [&] { (void)adaptobs::design_fault_monitor(record, nominal, drift, 4000.0, Index{1}, Index{20}, glr_window); });
   };
   for (const Index glr_window : {Index{0}, Index{-3}}) EXPECT_TRUE(names(design(1.0, glr_window), "glr_window"));
   EXPECT_TRUE(names(design(-1.0, 10), "drift"));
@@ -511,7 +514,8 @@ TEST(ChiSquareTest, FalseAlarmsAtTheDesignedRateOnCorrelatedChannels) {
   EXPECT_EQ(test.mean_samples_between_false_alarms(), 200.0);
   std::mt19937_64 rng(21);
   std::normal_distribution<double> normal(0, 1);
-  for (int k = 0; k < 200000; ++k) ASSERT_TRUE(adaptobs::accepted(test.update(L * Eigen::Vector2d(normal(rng), normal(rng)))));
+  for (int k = 0; k < 200000; ++k)
+    ASSERT_TRUE(adaptobs::accepted(test.update(L * Eigen::Vector2d(normal(rng), normal(rng)))));
   ASSERT_EQ(test.decisions(), 20000);
   const double rate = static_cast<double>(test.alarm_count()) / 20000.0;  // 1000 expected, σ ≈ 31
   EXPECT_NEAR(rate, 0.05, 0.006);
@@ -623,7 +627,9 @@ struct PeakDetector {
 };
 
 struct NoAlarmCount {  // update and alarm, but no alarm_count: not a detector
-  [[nodiscard]] adaptobs::UpdateStatus update(const Eigen::Matrix<double, 1, 1>&) { return adaptobs::UpdateStatus::accepted; }
+  [[nodiscard]] adaptobs::UpdateStatus update(const Eigen::Matrix<double, 1, 1>&) {
+    return adaptobs::UpdateStatus::accepted;
+  }
   [[nodiscard]] bool alarm() const noexcept { return false; }
 };
 
@@ -715,7 +721,6 @@ TEST(ChiSquareTest, TwoMomentCorrectionRestoresTheRateOnCorrelatedErrors) {
 
 // ---------------------------------------------------------------- satellite, Guyader & Zhang (2003) §4
 
-
 // Alarms per unit time of `run(seed)` (a fault-free run) over seeds 101, 102, ...
 // (the designs use seeds 1 to 20), and their count.
 template <class Run>
@@ -753,8 +758,9 @@ TEST(SatelliteFaultDetection, FalseAlarmRatesMatchDesign) {
 
 // The default fault: the tangential thruster loses 40 % at t = 150 s. Designed
 // mean time between false alarms 10^5 s, 1000 seeds, each beside its fault-free twin.
-adaptobs::DetectionSummary default_fault_summary(const satellite::ThrusterFault& fault, Index seeds,
-                                                 adaptobs::examples::Detector which = adaptobs::examples::Detector::cusum) {
+adaptobs::DetectionSummary default_fault_summary(
+    const satellite::ThrusterFault& fault, Index seeds,
+    adaptobs::examples::Detector which = adaptobs::examples::Detector::cusum) {
   static const satellite::MonitorDesign design = satellite::design_monitor(1e5);
   auto scenario = [&](std::uint64_t seed, bool faulty) {
     return satellite::monitored_run(design, which, fault, seed, faulty, fault.time + fault.ramp + 100);
@@ -874,10 +880,13 @@ std::pair<Index, Index> samples_to_reconverge(bool restart_at_alarm, Index horiz
       }
     }
     if (k >= change) {
-      const bool within = (observer.B_hat() - new_B).cwiseAbs().maxCoeff() <= 0.01 * new_B.cwiseAbs().minCoeff() &&
-                          (observer.a_hat() - siso::a()).cwiseAbs().maxCoeff() <= 0.01 * siso::a().cwiseAbs().minCoeff();
-      if (!within) within_since = -1;
-      else if (within_since < 0) within_since = k;
+      const bool within =
+          (observer.B_hat() - new_B).cwiseAbs().maxCoeff() <= 0.01 * new_B.cwiseAbs().minCoeff() &&
+          (observer.a_hat() - siso::a()).cwiseAbs().maxCoeff() <= 0.01 * siso::a().cwiseAbs().minCoeff();
+      if (!within)
+        within_since = -1;
+      else if (within_since < 0)
+        within_since = k;
     }
   }
   return {within_since < 0 ? -1 : within_since - change, alarm_at};
@@ -922,7 +931,8 @@ TEST(DetectionEvaluation, SameSummaryOnOneAndTwoThreads) {
     const auto f = scenario(s, true);
     bool early = false, found = false;
     for (const auto& a : f.alarms) {
-      if (a.time <= 50) early = true;
+      if (a.time <= 50)
+        early = true;
       else if (!found) {
         found = true;
         ++detected;

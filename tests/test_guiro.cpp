@@ -6,10 +6,10 @@
 
 #include <adaptobs/core/discretization.hpp>
 #include <adaptobs/core/observer.hpp>
-#include <adaptobs/models/regressor_integral.hpp>
 #include <adaptobs/core/sampled_model.hpp>
 #include <adaptobs/design/guiro_convergence.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
+#include <adaptobs/models/regressor_integral.hpp>
 #include <adaptobs/observers/guiro.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 
@@ -121,8 +121,9 @@ TEST(GuiroRegressor, PolynomialFormAgreesWithQuadratureAndZeroOrderHold) {
   const auto zoh = exact.integrate(std::span(p.data(), 1));
   EXPECT_MATRIX_NEAR(zoh.Psi, adaptobs::discretize_zoh(a, p[0], T).Bd, 1e-14, 1e-14);
   EXPECT_MATRIX_NEAR(zoh.H, quadrature.transition().partialPivLu().solve(zoh.Psi), 1e-13, 1e-13);
-  EXPECT_NE(configuration_error_of([&] { (void)exact.integrate(std::vector<Regressor>(4, Regressor::Zero())); })
-                .find("'coefficients'"),
+  EXPECT_NE(configuration_error_of([&] {
+              (void)exact.integrate(std::vector<Regressor>(4, Regressor::Zero()));
+            }).find("'coefficients'"),
             std::string::npos);
 }
 
@@ -432,7 +433,8 @@ TEST(Guiro, PermanentlyMaskedChannelEqualsTheObserverWithoutIt) {
                                  Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval());
   const adaptobs::OutputMask<Dims2> present(true, false);
   for (Index step = 0; step < 40; ++step) {
-    const adaptobs::DiscreteSample<Dims2> s{random.uniform<Eigen::Matrix<double, 1, 1>>(), random.uniform<Eigen::Vector2d>(),
+    const adaptobs::DiscreteSample<Dims2> s{random.uniform<Eigen::Matrix<double, 1, 1>>(),
+                                            random.uniform<Eigen::Vector2d>(),
                                             random.uniform<Eigen::Matrix<double, 3, 2>>()};
     ASSERT_EQ(masked.update(s, present), UpdateStatus::accepted);
     ASSERT_EQ(single.update({s.u, s.y.topRows<1>(), s.Psi}), UpdateStatus::accepted);
@@ -453,8 +455,8 @@ TEST(Guiro, OutputErrorIsTheInnovationOfThePrediction) {
   const auto c = random.uniform<Eigen::Matrix<double, 2, 3>>();
   const Eigen::Matrix<double, 3, 2> k = 0.3 * random.uniform<Eigen::Matrix<double, 3, 2>>();
   const Eigen::Matrix2d gamma = 0.2 * random.uniform<Eigen::Matrix2d>();
-  adaptobs::GuiroObserver observer(adaptobs::DiscreteLtiModel<Dims2>(a, b, c), k, gamma,
-                                   Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval());
+  adaptobs::GuiroObserver observer(adaptobs::DiscreteLtiModel<Dims2>(a, b, c), k, gamma, Eigen::Vector3d::Zero().eval(),
+                                   Eigen::Vector2d::Zero().eval());
   static_assert(adaptobs::DiagnosableObserver<decltype(observer)>);
   static_assert(adaptobs::DiagnosableObserver<PaperObserver<float>>);
   EXPECT_TRUE(observer.output_error() == Eigen::Vector2d::Zero());
@@ -498,9 +500,7 @@ struct GuiroContract {
   // other observers' runs; 3e-4 keeps a margin over that.
   static constexpr double float_tolerance = 3e-4;
   static Observer make() { return make_observer<S>(); }
-  static std::vector<Sample> samples() {
-    return adaptobs::testing::first_samples<Sample>(g::make_plant<S>(), 20);
-  }
+  static std::vector<Sample> samples() { return adaptobs::testing::first_samples<Sample>(g::make_plant<S>(), 20); }
   static auto readings(const auto& o) {
     return std::make_tuple(o.state(), o.corrected_state(), o.parameters(), o.step());
   }
@@ -537,7 +537,6 @@ ADAPTOBS_TWIN_CONTRACT(Guiro, DynamicFollowsFixed, GuiroDynamicContract);
 
 namespace {
 
-
 TEST(Guiro, BadConfigurationNamesTheArgument) {
   const auto model = g::model<double>();
   const Eigen::Vector2d k = g::printed_K();
@@ -553,11 +552,13 @@ TEST(Guiro, BadConfigurationNamesTheArgument) {
   using DynDims = adaptobs::DynamicDimensions<double>;
   const adaptobs::DiscreteLtiModel<DynDims> dynamic_model(model.system().A, MatrixXd::Zero(2, 0), model.system().C, 1);
   EXPECT_NE(configuration_error_of([&] {
-              adaptobs::GuiroObserver o(dynamic_model, MatrixXd(k), MatrixXd::Ones(2, 1), VectorXd(z0), VectorXd::Zero(1));
+              adaptobs::GuiroObserver o(dynamic_model, MatrixXd(k), MatrixXd::Ones(2, 1), VectorXd(z0),
+                                        VectorXd::Zero(1));
             }).find("'Gamma'"),
             std::string::npos);
   EXPECT_NE(configuration_error_of([&] {
-              adaptobs::GuiroObserver o(dynamic_model, MatrixXd(k), MatrixXd::Ones(1, 1), VectorXd::Zero(3), VectorXd::Zero(1));
+              adaptobs::GuiroObserver o(dynamic_model, MatrixXd(k), MatrixXd::Ones(1, 1), VectorXd::Zero(3),
+                                        VectorXd::Zero(1));
             }).find("'z0'"),
             std::string::npos);
   adaptobs::GuiroObserver dynamic(dynamic_model, MatrixXd(k), MatrixXd::Ones(1, 1), VectorXd(z0), VectorXd::Zero(1));

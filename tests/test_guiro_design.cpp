@@ -41,7 +41,8 @@ Eigen::Matrix3d error_matrix(const Eigen::Vector2d& K, double gamma, const Eigen
 
 Eigen::Vector3cd sorted_eigenvalues(const Eigen::Matrix3d& u) {
   Eigen::Vector3cd e = adaptobs::detail::dense_eigenvalues<double>(MatrixXd(u));
-  std::sort(e.data(), e.data() + 3, [](auto a, auto b) { return a.real() != b.real() ? a.real() < b.real() : a.imag() < b.imag(); });
+  std::sort(e.data(), e.data() + 3,
+            [](auto a, auto b) { return a.real() != b.real() ? a.real() < b.real() : a.imag() < b.imag(); });
   return e;
 }
 
@@ -202,7 +203,8 @@ TEST(GuiroDesign, RandomObservableCasesGetTheRequestedSpectrum) {
 
 // The spectrum {1/2, 3/5, λ₃} with aΠλ = bQ(1) needs Γ = ∞ (I − CK singular).
 TEST(GuiroDesign, InfeasibleSpectrumIsReportedNotReturned) {
-  const std::string message = configuration_error_of([] { (void)paper_gains(Eigen::Vector3d(0.5, 0.6, -0.5352816990913765)); });
+  const std::string message =
+      configuration_error_of([] { (void)paper_gains(Eigen::Vector3d(0.5, 0.6, -0.5352816990913765)); });
   EXPECT_NE(message.find("argument 'poles' cannot be assigned"), std::string::npos) << message;
   EXPECT_NE(message.find("singular"), std::string::npos) << message;
   // Near it the gain exists but grows like the inverse distance.
@@ -247,7 +249,8 @@ TEST(GuiroDesign, EachOutputInItsOwnUnits) {
   poles << 0.2, 0.3, 0.4, 0.5;
   const auto reference = adaptobs::design_guiro_gains(e, Eigen::Matrix2d::Identity(), hbar, poles);
   const double small = std::ldexp(1.0, -40);
-  const auto gains = adaptobs::design_guiro_gains(e, Eigen::Matrix2d(Eigen::Vector2d(small, 1).asDiagonal()), hbar, poles);
+  const auto gains =
+      adaptobs::design_guiro_gains(e, Eigen::Matrix2d(Eigen::Vector2d(small, 1).asDiagonal()), hbar, poles);
   const Eigen::Matrix2d back = Eigen::Vector2d(1 / small, 1).asDiagonal();
   EXPECT_TRUE(bitwise_equal(gains.K, Eigen::Matrix2d(reference.K * back)));
   EXPECT_TRUE(bitwise_equal(gains.Gamma, Eigen::Matrix2d(reference.Gamma * back)));
@@ -257,7 +260,8 @@ TEST(GuiroDesign, EachOutputInItsOwnUnits) {
   const Paper paper;
   for (const double tiny : {2e-308, 1e-310})
     EXPECT_CONFIGURATION_ERROR_NAMES(
-        (void)adaptobs::design_guiro_gains(paper.E, Eigen::RowVector2d(tiny, tiny), paper.H0, g::requested_poles()), "C");
+        (void)adaptobs::design_guiro_gains(paper.E, Eigen::RowVector2d(tiny, tiny), paper.H0, g::requested_poles()),
+        "C");
 }
 
 TEST(GuiroDesign, CasesWithoutSolutionAreNamed) {
@@ -290,16 +294,18 @@ TEST(GuiroDesign, CasesWithoutSolutionAreNamed) {
   nan_rank.rank_tolerance = std::numeric_limits<double>::quiet_NaN();
   negative_singularity.singularity_tolerance = -1;
   EXPECT_CONFIGURATION_ERROR_NAMES(
-      adaptobs::design_guiro_gains(paper.E, paper.C, paper.H0, g::requested_poles(), nan_rank), "options.rank_tolerance");
+      adaptobs::design_guiro_gains(paper.E, paper.C, paper.H0, g::requested_poles(), nan_rank),
+      "options.rank_tolerance");
   EXPECT_CONFIGURATION_ERROR_NAMES(
       adaptobs::design_guiro_gains(paper.E, paper.C, paper.H0, g::requested_poles(), negative_singularity),
       "options.singularity_tolerance");
   // A singular E (no sampled e^{AT} is one) was refused as 'I - C K is singular'.
   Eigen::Matrix2d nilpotent;
   nilpotent << 0, 1, 0, 0;
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::design_guiro_gains(nilpotent, Eigen::RowVector2d(1, 0),
-                                                                Eigen::Vector2d(0.1, 0.2), Eigen::Vector3d(0.2, 0.3, 0.4)),
-                                   "E");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::design_guiro_gains(nilpotent, Eigen::RowVector2d(1, 0), Eigen::Vector2d(0.1, 0.2),
+                                   Eigen::Vector3d(0.2, 0.3, 0.4)),
+      "E");
   // A NaN in U was refused as spectral_radius's 'M'.
   EXPECT_CONFIGURATION_ERROR_NAMES(
       adaptobs::best_power_bound(Eigen::Matrix2d(Eigen::Vector2d(0.5, std::nan("")).asDiagonal())), "U");
@@ -318,8 +324,8 @@ std::vector<Eigen::Vector2d> closed_form_sequence(Index count) {
 TEST(GuiroConvergence, PaperSplitAroundH0CertifiesNothing) {
   const Paper paper;
   const auto gains = paper_gains();
-  const auto report = adaptobs::check_guiro_convergence(paper.E, paper.C, gains.K, gains.Gamma, paper.H0,
-                                                        closed_form_sequence(200));
+  const auto report =
+      adaptobs::check_guiro_convergence(paper.E, paper.C, gains.K, gains.Gamma, paper.H0, closed_form_sequence(200));
   const auto& w = report.w_norms;
   EXPECT_NEAR(w[0], 0.0, 1e-15);
   EXPECT_NEAR(w[1], 0.06309072588204587, 1e-12);
@@ -335,8 +341,8 @@ TEST(GuiroConvergence, PaperSplitAroundH0CertifiesNothing) {
   EXPECT_NEAR(w_limit, 0.2251, 5e-5);
   EXPECT_LT(*std::max_element(w.begin(), w.end()), w_limit);
   // The printed entries of W(1).
-  const Eigen::Vector2d w1 = (Eigen::Matrix2d::Identity() - gains.K * paper.C) * paper.E *
-                             (g::closed_form_H<double>(1) - paper.H0);
+  const Eigen::Vector2d w1 =
+      (Eigen::Matrix2d::Identity() - gains.K * paper.C) * paper.E * (g::closed_form_H<double>(1) - paper.H0);
   EXPECT_MATRIX_NEAR(w1, Eigen::Vector2d(0.06238127577460423, 0.009434835719620553), 1e-12, 0);
   EXPECT_NEAR(adaptobs::power_bound_constant(gains.U, 0.8), 4.2369, 1e-4);
   ASSERT_TRUE(report.bound.has_value());
@@ -351,8 +357,8 @@ TEST(GuiroConvergence, PaperSplitAroundH0CertifiesNothing) {
 TEST(GuiroConvergence, SplitAroundTheLimitCertifiesConditionI) {
   const Paper paper;
   const auto gains = paper_gains();
-  const auto report = adaptobs::check_guiro_convergence(paper.E, paper.C, gains.K, gains.Gamma,
-                                                        g::limit_H<double>(), closed_form_sequence(200));
+  const auto report = adaptobs::check_guiro_convergence(paper.E, paper.C, gains.K, gains.Gamma, g::limit_H<double>(),
+                                                        closed_form_sequence(200));
   EXPECT_NEAR(report.spectral_radius, 0.7464796255405619, 1e-10);
   EXPECT_EQ(report.condition_i, ConditionVerdict::holds);
   ASSERT_TRUE(report.k0.has_value());
@@ -381,13 +387,12 @@ TEST(GuiroConvergence, SummableOrVanishingDeviationsCertifyConditionII) {
 
 TEST(GuiroConvergence, UnstableErrorMatrixIsReported) {
   const Paper paper;
-  const auto report = adaptobs::check_guiro_convergence(paper.E, paper.C, g::printed_K(),
-                                                        Eigen::Matrix<double, 1, 1>(g::printed_Gamma), paper.H0,
-                                                        closed_form_sequence(20));
+  const auto report =
+      adaptobs::check_guiro_convergence(paper.E, paper.C, g::printed_K(), Eigen::Matrix<double, 1, 1>(g::printed_Gamma),
+                                        paper.H0, closed_form_sequence(20));
   EXPECT_FALSE(report.bound.has_value());
   EXPECT_FALSE(report.certified());
   EXPECT_NE(report.summary().find("not Schur"), std::string::npos);
 }
-
 
 }  // namespace

@@ -10,9 +10,9 @@
 #include <adaptobs/observers/guyader_zhang.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 
+#include "guyader_zhang_fixtures.hpp"
 #include "models/satellite.hpp"
 #include "support/eigen_testing.hpp"
-#include "guyader_zhang_fixtures.hpp"
 #include "support/ltv_test_system.hpp"
 #include "support/observer_contract.hpp"
 
@@ -20,8 +20,8 @@
 
 #include <cmath>
 #include <limits>
-#include <string>
 #include <optional>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -119,8 +119,8 @@ TEST(GuyaderZhang, Theorem1TimeVaryingSystemWithRiccatiGains) {
   double worst_assumption2 = 0;
   double weakest_excitation = std::numeric_limits<double>::infinity();
   for (Index k = 0; k < 6000; ++k) {
-    combined.push_back(std::hypot((observer.state() - plant.state()).norm(),
-                                  (observer.parameters() - plant.parameters()).norm()));
+    combined.push_back(
+        std::hypot((observer.state() - plant.state()).norm(), (observer.parameters() - plant.parameters()).norm()));
     observer.set_gain(gains.next_gain(model.at(k)));
     ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
     worst_assumption2 = std::max(worst_assumption2, observer.assumption2_norm());
@@ -331,7 +331,6 @@ struct GuyaderZhangDynamicContract : GuyaderZhangContract<double> {
   }
 };
 
-
 }  // namespace
 
 ADAPTOBS_OBSERVER_CONTRACT(GuyaderZhang, GuyaderZhangContract<float>, GuyaderZhangContract<double>);
@@ -361,9 +360,8 @@ TEST(GuyaderZhang, BadConfigurationNamesTheArgument) {
   }
   // A parameter count other than the compile-time one (θ̂ is sized by the type).
   using SatelliteDims = std::remove_cvref_t<decltype(model)>::Dims;
-  EXPECT_CONFIGURATION_ERROR_NAMES((adaptobs::DiscreteLtiModel<SatelliteDims>(model.system().A, model.system().B,
-                                                                              model.system().C, 3)),
-                                   "np");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      (adaptobs::DiscreteLtiModel<SatelliteDims>(model.system().A, model.system().B, model.system().C, 3)), "np");
   auto observer = make_satellite_observer<double>();
   EXPECT_NE(configuration_error_of([&] { observer.set_mu(0.0); }).find("'mu'"), std::string::npos);
   Eigen::Matrix<double, 4, 2> nan_gain = k;

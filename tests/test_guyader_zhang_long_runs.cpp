@@ -29,10 +29,10 @@ TEST(GuyaderZhang, Theorem2BoundedErrorsOverLongRun) {
   noise.state = 1e-4;
   noise.seed = 7;
   auto observer = make_satellite_observer<double>();
-  auto plant = adaptobs::DiscreteLinearPlant(satellite::model<double>(), satellite::initial_state<double>(),
-                                             satellite::true_parameters<double>(),
-                                             [](Index k) { return satellite::PulseThrusts{}.operator()<double>(k); },
-                                             satellite::ThrustRegressor<double>{}, noise, satellite::sampling_period);
+  auto plant = adaptobs::DiscreteLinearPlant(
+      satellite::model<double>(), satellite::initial_state<double>(), satellite::true_parameters<double>(),
+      [](Index k) { return satellite::PulseThrusts{}.operator()<double>(k); }, satellite::ThrustRegressor<double>{},
+      noise, satellite::sampling_period);
   const ErrorHistory h = run(observer, plant, 100000);
   double early = 0, late = 0;
   for (Index k = 10000; k < 50000; ++k) early = std::max(early, h.combined[size_t(k)]);
@@ -63,10 +63,10 @@ TEST(GuyaderZhang, Theorem2ErrorsAreZeroMeanOverSeeds) {
     noise.output = 0.01;
     noise.seed = 1000 + std::uint64_t(s);
     auto observer = make_satellite_observer<double>();
-    auto plant = adaptobs::DiscreteLinearPlant(satellite::model<double>(), satellite::initial_state<double>(),
-                                               satellite::true_parameters<double>(),
-                                               [](Index k) { return satellite::PulseThrusts{}.operator()<double>(k); },
-                                               satellite::ThrustRegressor<double>{}, noise, satellite::sampling_period);
+    auto plant = adaptobs::DiscreteLinearPlant(
+        satellite::model<double>(), satellite::initial_state<double>(), satellite::true_parameters<double>(),
+        [](Index k) { return satellite::PulseThrusts{}.operator()<double>(k); }, satellite::ThrustRegressor<double>{},
+        noise, satellite::sampling_period);
     for (Index k = 0; k < steps; ++k) {
       ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
       plant.advance();
@@ -78,8 +78,8 @@ TEST(GuyaderZhang, Theorem2ErrorsAreZeroMeanOverSeeds) {
       ((finals.colwise() - mean).array().square().rowwise().sum() / (seeds - 1)).sqrt();
   const Eigen::Matrix<double, 6, 1> standard_error = sd / std::sqrt(double(seeds));
   for (int i = 0; i < 6; ++i) {
-    EXPECT_LE(std::abs(mean(i)), 3 * standard_error(i)) << "component " << i << ": mean " << mean(i) << ", SE "
-                                                        << standard_error(i);
+    EXPECT_LE(std::abs(mean(i)), 3 * standard_error(i))
+        << "component " << i << ": mean " << mean(i) << ", SE " << standard_error(i);
     EXPECT_LT(sd(i), 0.1) << "component " << i;
   }
 }

@@ -12,7 +12,6 @@
 #include <adaptobs/observers/guyader_zhang.hpp>
 #include <adaptobs/simulation/discrete_plant.hpp>
 
-
 #include "models/satellite.hpp"
 #include "support/eigen_testing.hpp"
 #include "support/ltv_test_system.hpp"
@@ -119,8 +118,8 @@ TEST(GuyaderZhangMissing, NoChannelIsTheTimeUpdateOfTheErrorAnalysis) {
 TEST(GuyaderZhangMissing, RunTimeSizedMaskOfTheWrongLengthNamesPresent) {
   using Dynamic = adaptobs::DynamicDimensions<double>;
   const auto fixed = satellite::model<double>().system();
-  adaptobs::DiscreteLtiModel<Dynamic> model(Eigen::MatrixXd(fixed.A), Eigen::MatrixXd(fixed.B), Eigen::MatrixXd(fixed.C),
-                                            2);
+  adaptobs::DiscreteLtiModel<Dynamic> model(Eigen::MatrixXd(fixed.A), Eigen::MatrixXd(fixed.B),
+                                            Eigen::MatrixXd(fixed.C), 2);
   adaptobs::GuyaderZhangObserver observer(model, Eigen::MatrixXd(satellite::paper_gain<double>()), satellite::mu,
                                           Eigen::VectorXd::Zero(4), Eigen::VectorXd::Zero(2));
   const adaptobs::DiscreteSample<Dynamic> sample{Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(2),
@@ -172,9 +171,10 @@ TEST(GuyaderZhangMissing, SatelliteWithDroppedSamplesAndAnOutage) {
 
   const auto skipped_drops = run_satellite(random_drops, Gap::skip, normalized);
   const auto skipped_gap = run_satellite(outage, Gap::skip, normalized);
-  std::printf("  mean state error over the last 100 s: complete %.3g, drops %.3g (skipped %.3g), outage %.3g (skipped %.3g)\n",
-              complete.mean_state_error, drops.mean_state_error, skipped_drops.mean_state_error,
-              gap.mean_state_error, skipped_gap.mean_state_error);
+  std::printf(
+      "  mean state error over the last 100 s: complete %.3g, drops %.3g (skipped %.3g), outage %.3g (skipped %.3g)\n",
+      complete.mean_state_error, drops.mean_state_error, skipped_drops.mean_state_error, gap.mean_state_error,
+      skipped_gap.mean_state_error);
   std::printf("  theta over the last 100 s with drops: %.4f %.4f (skipped %.4f %.4f); after the outage: %.4f %.4f\n",
               drops.mean_parameters(0), drops.mean_parameters(1), skipped_drops.mean_parameters(0),
               skipped_drops.mean_parameters(1), gap.mean_parameters(0), gap.mean_parameters(1));
@@ -220,8 +220,8 @@ struct ReferenceStep {
     for (int i = 0; i < 2; ++i)
       if (present(i)) y_bar(i) = sample.y(i);
     const Eigen::Vector2d error = y_bar - c_bar * x;
-    const Eigen::Vector2d theta_next = theta + mu * upsilon.transpose() * c_bar.transpose() * error;  // (2b)
-    const Eigen::Matrix<double, 3, 2> upsilon_next = (s.A - K * c_bar) * upsilon + sample.Psi;      // (2a)
+    const Eigen::Vector2d theta_next = theta + mu * upsilon.transpose() * c_bar.transpose() * error;      // (2b)
+    const Eigen::Matrix<double, 3, 2> upsilon_next = (s.A - K * c_bar) * upsilon + sample.Psi;            // (2a)
     x = s.A * x + s.B * sample.u + sample.Psi * theta + K * error + upsilon_next * (theta_next - theta);  // (2c)
     theta = theta_next;
     upsilon = upsilon_next;
@@ -359,7 +359,8 @@ TEST(AugmentedKalmanMissing, MaskedStepIsTheCorrectionWithThePresentChannelsOnly
     Eigen::VectorXd xi(6);
     xi << filter.state(), filter.parameters();
     if (m > 0) {
-      const Eigen::MatrixXd gain = adaptobs::testing::solve_by_llt(h * p * h.transpose() + r_s, h * p).transpose();  // P symmetric
+      const Eigen::MatrixXd gain =
+          adaptobs::testing::solve_by_llt(h * p * h.transpose() + r_s, h * p).transpose();  // P symmetric
       xi += gain * (y - c * filter.state());
       const Eigen::MatrixXd joseph = Eigen::MatrixXd::Identity(6, 6) - gain * h;
       p = (joseph * p * joseph.transpose() + gain * r_s * gain.transpose()).eval();
@@ -376,13 +377,14 @@ TEST(AugmentedKalmanMissing, MaskedStepIsTheCorrectionWithThePresentChannelsOnly
     ASSERT_EQ(filter.update(with_gaps, present), UpdateStatus::accepted);
     if (k < 100) {
       ASSERT_EQ(plain.update(sample), UpdateStatus::accepted);
-      ASSERT_TRUE(bitwise_equal(filter.covariance(), plain.covariance()) && bitwise_equal(filter.state(), plain.state()))
+      ASSERT_TRUE(bitwise_equal(filter.covariance(), plain.covariance()) &&
+                  bitwise_equal(filter.state(), plain.state()))
           << "all channels present differs from update(sample) at step " << k;
     }
     Eigen::VectorXd estimate(6);
     estimate << filter.state(), filter.parameters();
-    worst = std::max({worst, (estimate - xi_next).norm() / xi_next.norm(),
-                      (filter.covariance() - p_next).norm() / p_next.norm()});
+    worst = std::max(
+        {worst, (estimate - xi_next).norm() / xi_next.norm(), (filter.covariance() - p_next).norm() / p_next.norm()});
     plant.advance();
   }
   EXPECT_LE(worst, 1e-10);
@@ -426,9 +428,9 @@ TEST(FiniteOutputs, GlitchesBecomeMaskedUpdatesForGuyaderZhangAndTheKalmanFilter
   check_finite_outputs([] {
     using Matrix6 = Eigen::Matrix<double, 6, 6>;
     Matrix6 p0 = Matrix6::Identity() * 0.1, q = Matrix6::Identity() * 1e-10;
-    return adaptobs::AugmentedKalmanFilter(satellite::model<double>(), satellite::initial_state_estimate<double>(),
-                                           satellite::initial_parameter_estimate<double>(),
-                                           adaptobs::AugmentedKalmanCovariances<SatelliteDims>{
-                                               p0, q, Eigen::Matrix2d::Identity() * 1e-4});
+    return adaptobs::AugmentedKalmanFilter(
+        satellite::model<double>(), satellite::initial_state_estimate<double>(),
+        satellite::initial_parameter_estimate<double>(),
+        adaptobs::AugmentedKalmanCovariances<SatelliteDims>{p0, q, Eigen::Matrix2d::Identity() * 1e-4});
   });
 }

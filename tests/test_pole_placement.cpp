@@ -70,8 +70,9 @@ TEST(Sylvester, SharedEigenvalueOfAAndMinusBIsRejected) {
   Eigen::Matrix2d a;
   a << 1, 2, 0, 3;
   const Eigen::Matrix2d b = -a.transpose();  // eigenvalues −1, −3: A and −B share both
-  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::solve_sylvester(a, b, Eigen::Matrix2d::Identity()); })
-                .find("'A, B'"),
+  EXPECT_NE(configuration_error_of([&] {
+              (void)adaptobs::solve_sylvester(a, b, Eigen::Matrix2d::Identity());
+            }).find("'A, B'"),
             std::string::npos);
 }
 
@@ -145,9 +146,10 @@ TEST(Observability, BadlyScaledObservablePairsAreObservable) {
   graded << -1, 0, 1, -2;
   for (const double s : {1e-310, 1.5e308})
     EXPECT_EQ(adaptobs::observability(graded, Eigen::RowVector2d(0, s)).observable_dimension, 2) << s;
-  EXPECT_EQ(adaptobs::observability(Eigen::Matrix2d::Zero().eval(), Eigen::Matrix2d(Eigen::Vector2d(1, 1e-310).asDiagonal()))
-                .observable_dimension,
-            2);
+  EXPECT_EQ(
+      adaptobs::observability(Eigen::Matrix2d::Zero().eval(), Eigen::Matrix2d(Eigen::Vector2d(1, 1e-310).asDiagonal()))
+          .observable_dimension,
+      2);
   Eigen::Matrix2f weak;
   weak << -1, 0.05f, 0, -2;
   EXPECT_EQ(adaptobs::observability(weak, Eigen::RowVector2f(1, 0)).observable_dimension, 2);
@@ -221,8 +223,8 @@ TEST(Observability, StaircaseFindsHiddenModesThatEigenvalueTestsMiss) {
 TEST(PolePlacement, CharacteristicPolynomialAndSpreadPoles) {
   const VectorXd q = adaptobs::polynomial_from_roots(Eigen::Vector3d(0.5, 0.6, 0.2));
   EXPECT_MATRIX_NEAR(q, Eigen::Vector4d(1, -1.3, 0.52, -0.06), 1e-15, 0);
-  const ComplexVector pair = (Eigen::Vector2cd() << std::complex<double>(0.5, 0.2), std::complex<double>(0.5, -0.2))
-                                 .finished();
+  const ComplexVector pair =
+      (Eigen::Vector2cd() << std::complex<double>(0.5, 0.2), std::complex<double>(0.5, -0.2)).finished();
   EXPECT_MATRIX_NEAR(adaptobs::polynomial_from_roots(pair), Eigen::Vector3d(1, -1.0, 0.29), 1e-15, 0);
   EXPECT_MATRIX_NEAR(adaptobs::spread_poles<double>(4, 0.8), Eigen::Vector4d(0.8, 0.6, 0.4, 0.2), 1e-15, 0);
 }
@@ -294,7 +296,8 @@ TEST(PolePlacement, PoleOnAnOpenLoopEigenvalue) {
   const Eigen::Vector3d poles(ev(0).real(), 0.1, -0.1);  // the real eigenvalue of A
   ASSERT_NEAR(ev(0).imag(), 0.0, 1e-15);
   const auto placed = adaptobs::place_output_injection(a, c, poles);
-  EXPECT_LE(adaptobs::eigenvalue_mismatch(Eigen::Matrix3d(a - placed.L * c), poles.cast<std::complex<double>>()), 1e-12);
+  EXPECT_LE(adaptobs::eigenvalue_mismatch(Eigen::Matrix3d(a - placed.L * c), poles.cast<std::complex<double>>()),
+            1e-12);
 }
 
 // Ten poles 0.01 apart for a pair with ‖A‖_F ≈ 100 (n = 10, m = 2): the
@@ -317,10 +320,13 @@ TEST(PolePlacement, PolesTooClusteredForThePairAreRefused) {
         const auto placed = adaptobs::place_output_injection(a, c, poles);
         const MatrixXd closed = a - placed.L * c;
         if (discrete)
-          EXPECT_LT(adaptobs::spectral_radius(closed), 1.0) << "draw " << draw << ": every pole is inside the unit circle";
+          EXPECT_LT(adaptobs::spectral_radius(closed), 1.0)
+              << "draw " << draw << ": every pole is inside the unit circle";
         else
-          EXPECT_LT(adaptobs::spectral_abscissa(closed), 0.0) << "draw " << draw << ": every pole is in the left half-plane";
-        EXPECT_LE(placed.eigenvalue_mismatch, tolerance * closed.norm()) << "draw " << draw << (discrete ? " (discrete)" : " (continuous)");
+          EXPECT_LT(adaptobs::spectral_abscissa(closed), 0.0)
+              << "draw " << draw << ": every pole is in the left half-plane";
+        EXPECT_LE(placed.eigenvalue_mismatch, tolerance * closed.norm())
+            << "draw " << draw << (discrete ? " (discrete)" : " (continuous)");
       });
       if (message == "<no exception>") continue;
       EXPECT_NE(message.find("'poles'"), std::string::npos) << message;
@@ -393,7 +399,8 @@ TEST(PolePlacement, OutputInOtherUnitsIsPlaced) {
   const auto reference = adaptobs::place_output_injection(a, c, poles);
   const auto scaled = adaptobs::place_output_injection(a, MatrixXd(1e-12 * c), poles);
   EXPECT_MATRIX_NEAR(MatrixXd(1e-12 * scaled.L), MatrixXd(reference.L), 0, 1e-12);
-  EXPECT_LE(adaptobs::eigenvalue_mismatch(MatrixXd(a - scaled.L * (1e-12 * c)), ComplexVector(poles.cast<std::complex<double>>())),
+  EXPECT_LE(adaptobs::eigenvalue_mismatch(MatrixXd(a - scaled.L * (1e-12 * c)),
+                                          ComplexVector(poles.cast<std::complex<double>>())),
             1e-9);
   EXPECT_LE(scaled.eigenvalue_mismatch, 1e-9);
   const auto feedback = adaptobs::place_state_feedback(a, MatrixXd(1e-12 * c.transpose()), poles);
@@ -434,12 +441,13 @@ TEST(PolePlacement, BadArgumentsAreNamed) {
   const ComplexVector lonely = (Eigen::Vector2cd() << std::complex<double>(0.1, 0.2), 0.3).finished();
   EXPECT_NE(configuration_error_of([&] { (void)adaptobs::place_output_injection(a, c, lonely); }).find("conjugation"),
             std::string::npos);
-  EXPECT_NE(configuration_error_of([&] { (void)adaptobs::place_output_injection(a, c, Eigen::Vector3d(0, 0, 0)); })
-                .find("'poles'"),
+  EXPECT_NE(configuration_error_of([&] {
+              (void)adaptobs::place_output_injection(a, c, Eigen::Vector3d(0, 0, 0));
+            }).find("'poles'"),
             std::string::npos);
-  EXPECT_NE(configuration_error_of(
-                [&] { (void)adaptobs::place_output_injection(a, c, Eigen::Vector2d(0.1, std::nan(""))); })
-                .find("'poles'"),
+  EXPECT_NE(configuration_error_of([&] {
+              (void)adaptobs::place_output_injection(a, c, Eigen::Vector2d(0.1, std::nan("")));
+            }).find("'poles'"),
             std::string::npos);
   for (const double tau : {-1e-3, 1.0, std::nan("")}) {
     const std::string message = configuration_error_of([&] {
@@ -479,8 +487,7 @@ TEST(PowerBound, MatchesBruteForceSupremum) {
   const auto best = adaptobs::best_power_bound(jordan);
   ASSERT_TRUE(best.has_value());
   for (double lambda = 0.601; lambda < 1.0; lambda += 0.001)
-    EXPECT_GE(best->perturbation_margin() * (1 + 1e-6),
-              (1 - lambda) / adaptobs::power_bound_constant(jordan, lambda))
+    EXPECT_GE(best->perturbation_margin() * (1 + 1e-6), (1 - lambda) / adaptobs::power_bound_constant(jordan, lambda))
         << "lambda=" << lambda;
   EXPECT_FALSE(adaptobs::best_power_bound(Eigen::Matrix2d(jordan * 2)).has_value());  // not Schur
 }

@@ -46,9 +46,9 @@ Matrix scalar(double value) { return Matrix::Constant(1, 1, value); }
 struct RiccatiCase {
   std::string name;
   Matrix A, B, Q, R;
-  Matrix exact = {};              ///< empty: the collection gives none
-  double exact_tolerance = 0;     ///< relative Frobenius error allowed against `exact`
-  std::string refusal = {};       ///< non-empty: the refusal must contain this text
+  Matrix exact = {};           ///< empty: the collection gives none
+  double exact_tolerance = 0;  ///< relative Frobenius error allowed against `exact`
+  std::string refusal = {};    ///< non-empty: the refusal must contain this text
 };
 
 // The residuals the solvers report (the DARE's scaled by its computed terms,
@@ -69,7 +69,9 @@ double care_residual(const Matrix& X, const RiccatiCase& c) {
 
 double relative_error(const Matrix& X, const Matrix& exact) { return (X - exact).norm() / exact.norm(); }
 
-void report(const RiccatiCase& c, const std::string& outcome) { std::printf("  %-44s %s\n", c.name.c_str(), outcome.c_str()); }
+void report(const RiccatiCase& c, const std::string& outcome) {
+  std::printf("  %-44s %s\n", c.name.c_str(), outcome.c_str());
+}
 
 // The closed-loop figure of a solution, computed here with eigenvalues.
 double dare_closed_loop_radius(const Matrix& X, const RiccatiCase& c) {
@@ -144,10 +146,21 @@ std::vector<RiccatiCase> darex_collection() {
                    diagonal({0.005, 0.02}), diagonal({1.0 / 3.0, 3})});
   // R = 0 and, in example 4, a cross term S with a singular R: outside the
   // equation the library solves, which needs R positive definite.
-  cases.push_back({"DAREX 3 (R = 0)", rows(2, 2, {2, -1, 1, 0}), rows(2, 1, {1, 0}), diagonal({0, 1}), scalar(0), {}, 0,
+  cases.push_back({"DAREX 3 (R = 0)",
+                   rows(2, 2, {2, -1, 1, 0}),
+                   rows(2, 1, {1, 0}),
+                   diagonal({0, 1}),
+                   scalar(0),
+                   {},
+                   0,
                    "argument 'R' must be positive definite"});
-  cases.push_back({"DAREX 4 (singular R)", rows(2, 2, {0, 1, 0, -1}), rows(2, 2, {1, 0, 2, 1}),
-                   rows(2, 2, {-4.0 / 11, -4.0 / 11, -4.0 / 11, 7.0 / 11}), rows(2, 2, {9, 3, 3, 1}), {}, 0,
+  cases.push_back({"DAREX 4 (singular R)",
+                   rows(2, 2, {0, 1, 0, -1}),
+                   rows(2, 2, {1, 0, 2, 1}),
+                   rows(2, 2, {-4.0 / 11, -4.0 / 11, -4.0 / 11, 7.0 / 11}),
+                   rows(2, 2, {9, 3, 3, 1}),
+                   {},
+                   0,
                    "argument 'Q' must be positive semidefinite"});
   cases.push_back({"DAREX 5", rows(2, 2, {0, 1, 0, 0}), rows(2, 1, {0, 1}), rows(2, 2, {1, 2, 2, 4}), scalar(1),
                    rows(2, 2, {1, 2, 2, 2 + std::sqrt(5.0)}), 1e-14});
@@ -159,8 +172,9 @@ std::vector<RiccatiCase> darex_collection() {
                      Matrix::Identity(2, 2)});
   }
   cases.push_back({"DAREX 7",
-                   rows(4, 4, {0.98475, -0.079903, 0.0009054, -0.0010765, 0.041588, 0.99899, -0.035855, 0.012684,
-                               -0.54662, 0.044916, -0.32991, 0.19318, 2.6624, -0.10045, -0.92455, -0.26325}),
+                   rows(4, 4,
+                        {0.98475, -0.079903, 0.0009054, -0.0010765, 0.041588, 0.99899, -0.035855, 0.012684, -0.54662,
+                         0.044916, -0.32991, 0.19318, 2.6624, -0.10045, -0.92455, -0.26325}),
                    rows(4, 2, {0.0037112, 0.0007361, -0.087051, 9.3411e-6, -1.19844, -4.1378e-4, -3.1927, 9.2535e-4}),
                    0.01 * Matrix::Identity(4, 4), Matrix::Identity(2, 2)});
   {
@@ -173,10 +187,9 @@ std::vector<RiccatiCase> darex_collection() {
     const Matrix l = rows(4, 4, {0.4, 0, 0, 0, 1, 0.6, 0, 0, 0, 1, 0.8, 0, 0, 0, 0, -0.999982});
     cases.push_back({"DAREX 8", b * l * c, b, c.transpose() * q0 * c, Matrix::Identity(4, 4)});
   }
-  cases.push_back({"DAREX 9",
-                   0.01 * rows(5, 5, {95.407, 1.9643, 0.3597, 0.0673, 0.019, 40.849, 41.317, 16.084, 4.4679, 1.1971,
-                                      12.217, 26.326, 36.149, 15.93, 12.383, 4.1118, 12.858, 27.209, 21.442, 40.976,
-                                      0.1305, 0.5808, 1.875, 3.6162, 94.28}),
+  cases.push_back({"DAREX 9", 0.01 * rows(5, 5, {95.407, 1.9643, 0.3597, 0.0673, 0.019, 40.849, 41.317, 16.084, 4.4679,
+                                                 1.1971, 12.217, 26.326, 36.149, 15.93, 12.383, 4.1118, 12.858, 27.209,
+                                                 21.442, 40.976, 0.1305, 0.5808, 1.875, 3.6162, 94.28}),
                    0.01 * rows(5, 2, {0.0434, -0.0122, 2.6606, -1.0453, 3.753, -5.51, 3.6076, -6.6, 0.4617, -0.9148}),
                    Matrix::Identity(5, 5), Matrix::Identity(2, 2)});
   {
@@ -196,18 +209,18 @@ std::vector<RiccatiCase> darex_collection() {
     cases.push_back({"DAREX 10 (cross term removed)", a - b * r_inv_st, b, q, r});
   }
   {
-    Matrix a = 0.001 * rows(9, 9, {870.1, 135.0, 11.59, 0.5014, -37.22, 0.3484, 0.0, 4.242, 7.249,
-                                   76.55, 897.4, 12.72, 0.5504, -40.16, 0.3743, 0.0, 4.53, 7.499,
-                                   -127.2, 357.5, 817.0, 1.455, -102.8, 0.987, 0.0, 11.85, 18.72,
-                                   -363.5, 633.9, 74.91, 796.6, -273.5, 2.653, 0.0, 31.72, 48.82,
-                                   -960.0, 1645.9, -128.9, -5.597, 71.42, 7.108, 0.0, 84.52, 125.9,
-                                   -664.4, 112.96, -88.89, -3.854, 84.47, 13.6, 0.0, 144.3, 101.6,
-                                   -410.2, 693.0, -54.71, -2.371, 66.49, 12.49, 0.1063, 99.97, 69.67,
-                                   -179.9, 301.7, -23.93, -1.035, 60.59, 22.16, 0.0, 213.9, 35.54,
-                                   -345.1, 580.4, -45.96, -1.989, 105.6, 19.86, 0.0, 219.1, 215.2});
-    const Matrix b = 0.0001 * rows(3, 9, {4.76, 0.879, 1.482, 3.892, 10.34, 7.203, 4.454, 1.971, 3.773,
+    Matrix a =
+        0.001 *
+        rows(9, 9, {870.1,  135.0,  11.59,  0.5014, -37.22, 0.3484, 0.0,    4.242,  7.249,  76.55,  897.4,  12.72,
+                    0.5504, -40.16, 0.3743, 0.0,    4.53,   7.499,  -127.2, 357.5,  817.0,  1.455,  -102.8, 0.987,
+                    0.0,    11.85,  18.72,  -363.5, 633.9,  74.91,  796.6,  -273.5, 2.653,  0.0,    31.72,  48.82,
+                    -960.0, 1645.9, -128.9, -5.597, 71.42,  7.108,  0.0,    84.52,  125.9,  -664.4, 112.96, -88.89,
+                    -3.854, 84.47,  13.6,   0.0,    144.3,  101.6,  -410.2, 693.0,  -54.71, -2.371, 66.49,  12.49,
+                    0.1063, 99.97,  69.67,  -179.9, 301.7,  -23.93, -1.035, 60.59,  22.16,  0.0,    213.9,  35.54,
+                    -345.1, 580.4,  -45.96, -1.989, 105.6,  19.86,  0.0,    219.1,  215.2});
+    const Matrix b = 0.0001 * rows(3, 9, {4.76,    0.879,  1.482,  3.892,  10.34,  7.203,  4.454,  1.971,  3.773,
                                           -0.5701, -4.773, -13.12, -35.13, -92.75, -61.59, -36.83, -15.54, -30.28,
-                                          -83.68, -2.73, 8.876, 24.8, 66.8, 38.34, 20.29, 6.937, 14.69})
+                                          -83.68,  -2.73,  8.876,  24.8,   66.8,   38.34,  20.29,  6.937,  14.69})
                                   .transpose();
     Matrix q = Matrix::Zero(9, 9);
     q(0, 0) = q(4, 4) = 50;
@@ -256,42 +269,52 @@ std::vector<RiccatiCase> carex_collection() {
                    (1 + std::sqrt(2.0)) * q2, 1e-13});
   // The Q of example 3 is printed to three digits and has an eigenvalue of
   // -5.1e-4: as given, it is indefinite.
-  cases.push_back({"CAREX 3 (printed Q indefinite)",
-                   rows(4, 4, {0, 1, 0, 0, 0, -1.89, 0.39, -5.53, 0, -0.034, -2.98, 2.43, 0.034, -0.0011, -0.99, -0.21}),
-                   rows(4, 2, {0, 0, 0.36, -1.6, -0.95, -0.032, 0.03, 0}),
-                   rows(4, 4, {2.313, 2.727, 0.688, 0.023, 2.727, 4.271, 1.148, 0.323, 0.688, 1.148, 0.313, 0.102,
-                               0.023, 0.323, 0.102, 0.083}),
-                   Matrix::Identity(2, 2), {}, 0, "argument 'Q' must be positive semidefinite"});
+  cases.push_back(
+      {"CAREX 3 (printed Q indefinite)",
+       rows(4, 4, {0, 1, 0, 0, 0, -1.89, 0.39, -5.53, 0, -0.034, -2.98, 2.43, 0.034, -0.0011, -0.99, -0.21}),
+       rows(4, 2, {0, 0, 0.36, -1.6, -0.95, -0.032, 0.03, 0}),
+       rows(4, 4,
+            {2.313, 2.727, 0.688, 0.023, 2.727, 4.271, 1.148, 0.323, 0.688, 1.148, 0.313, 0.102, 0.023, 0.323, 0.102,
+             0.083}),
+       Matrix::Identity(2, 2),
+       {},
+       0,
+       "argument 'Q' must be positive semidefinite"});
   {
     Matrix a = Matrix::Zero(8, 8);
     a.diagonal() << -0.991, -1.051, -1.118, -1.548, -1.640, -1.721, -1.823, -1.943;
     a.diagonal(1) << 0.529, 0.596, 0.596, 0.718, 0.799, 0.901, 1.021;
     a.diagonal(-1) << 0.522, 0.522, 0.522, 0.922, 0.922, 0.922, 0.922;
-    const Matrix b = 0.001 * rows(2, 8, {3.84, 4.00, 37.60, 3.08, 2.36, 2.88, 3.08, 3.00,
-                                         -2.88, -3.04, -2.80, -2.32, -3.32, -3.82, -4.12, -3.96})
+    const Matrix b = 0.001 * rows(2, 8,
+                                  {3.84, 4.00, 37.60, 3.08, 2.36, 2.88, 3.08, 3.00, -2.88, -3.04, -2.80, -2.32, -3.32,
+                                   -3.82, -4.12, -3.96})
                                  .transpose();
     const Matrix q0 = rows(4, 4, {0.5, 0, 0, 0.1, 0.1, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0, 0});
     Matrix q(8, 8);
     q << Matrix::Identity(4, 4), q0, q0.transpose(), 0.1 * Matrix::Identity(4, 4);
     // As printed, this Q has eigenvalues -0.137 and -0.123.
-    cases.push_back({"CAREX 4 (printed Q indefinite)", a, b, q, Matrix::Identity(2, 2), {}, 0,
+    cases.push_back({"CAREX 4 (printed Q indefinite)",
+                     a,
+                     b,
+                     q,
+                     Matrix::Identity(2, 2),
+                     {},
+                     0,
                      "argument 'Q' must be positive semidefinite"});
   }
-  cases.push_back({"CAREX 5",
-                   rows(9, 9, {-4.019, 5.12, 0, 0, -2.082, 0, 0, 0, 0.87,
-                               -0.346, 0.986, 0, 0, -2.34, 0, 0, 0, 0.97,
-                               -7.909, 15.407, -4.069, 0, -6.45, 0, 0, 0, 2.68,
-                               -21.816, 35.606, -0.339, -3.87, -17.8, 0, 0, 0, 7.39,
-                               -60.196, 98.188, -7.907, 0.34, -53.008, 0, 0, 0, 20.4,
-                               0, 0, 0, 0, 94.0, -147.2, 0, 53.2, 0,
-                               0, 0, 0, 0, 0, 94.0, -147.2, 0, 0,
-                               0, 0, 0, 0, 0, 12.8, 0, -31.6, 0,
-                               0, 0, 0, 0, 12.8, 0, 0, 18.8, -31.6}),
-                   rows(3, 9, {0.010, 0.003, 0.009, 0.024, 0.068, 0, 0, 0, 0,
-                               -0.011, -0.021, -0.059, -0.162, -0.445, 0, 0, 0, 0,
-                               -0.151, 0, 0, 0, 0, 0, 0, 0, 0})
-                       .transpose(),
-                   Matrix::Identity(9, 9), Matrix::Identity(3, 3)});
+  cases.push_back(
+      {"CAREX 5",
+       rows(9, 9, {-4.019,  5.12,   0,      0,       -2.082,  0,      0,      0,      0.87,   -0.346, 0.986, 0,
+                   0,       -2.34,  0,      0,       0,       0.97,   -7.909, 15.407, -4.069, 0,      -6.45, 0,
+                   0,       0,      2.68,   -21.816, 35.606,  -0.339, -3.87,  -17.8,  0,      0,      0,     7.39,
+                   -60.196, 98.188, -7.907, 0.34,    -53.008, 0,      0,      0,      20.4,   0,      0,     0,
+                   0,       94.0,   -147.2, 0,       53.2,    0,      0,      0,      0,      0,      0,     94.0,
+                   -147.2,  0,      0,      0,       0,       0,      0,      0,      12.8,   0,      -31.6, 0,
+                   0,       0,      0,      0,       12.8,    0,      0,      18.8,   -31.6}),
+       rows(3, 9, {0.010, 0.003, 0.009, 0.024, 0.068,  0, 0, 0, 0, -0.011, -0.021, -0.059, -0.162, -0.445,
+                   0,     0,     0,     0,     -0.151, 0, 0, 0, 0, 0,      0,      0,      0})
+           .transpose(),
+       Matrix::Identity(9, 9), Matrix::Identity(3, 3)});
   {
     const double d = 1e-6, dd = d * d, s = std::sqrt(1 + dd), s2 = 2 + s;
     cases.push_back({"CAREX 7, d = 1e-6", diagonal({1, -2}), rows(2, 1, {d, 0}), Matrix::Ones(2, 2), scalar(1),
@@ -315,8 +338,14 @@ std::vector<RiccatiCase> carex_collection() {
   }
   // Example 11 has an indefinite Q, outside the equation solve_care solves
   // (solve_riccati_hamiltonian takes it: see HamiltonianSolverTakesIndefiniteQ).
-  cases.push_back({"CAREX 11 (Q indefinite)", rows(2, 2, {3, 1, 4, 2}), rows(2, 1, {1, 1}),
-                   rows(2, 2, {-11, -5, -5, -2}), scalar(1), {}, 0, "argument 'Q' must be positive semidefinite"});
+  cases.push_back({"CAREX 11 (Q indefinite)",
+                   rows(2, 2, {3, 1, 4, 2}),
+                   rows(2, 1, {1, 1}),
+                   rows(2, 2, {-11, -5, -5, -2}),
+                   scalar(1),
+                   {},
+                   0,
+                   "argument 'Q' must be positive semidefinite"});
   {
     const double d = 1e6, dd = d * d;
     const Matrix c = reflector();
@@ -342,9 +371,21 @@ std::vector<RiccatiCase> carex_collection() {
     // the stabilizing closed loop keeps a pair within 1e-12 of the axis,
     // which the working precision cannot tell from a pair on it.
     auto oscillators = [](double d) { return rows(4, 4, {-d, 1, 0, 0, -1, -d, 0, 0, 0, 0, d, 1, 0, 0, -1, d}); };
-    cases.push_back({"CAREX 14, d = 1e-6", oscillators(1e-6), Matrix::Ones(4, 1), Matrix::Ones(4, 4), scalar(1), {}, 0,
+    cases.push_back({"CAREX 14, d = 1e-6",
+                     oscillators(1e-6),
+                     Matrix::Ones(4, 1),
+                     Matrix::Ones(4, 4),
+                     scalar(1),
+                     {},
+                     0,
                      "too ill-conditioned for this precision"});
-    cases.push_back({"CAREX 14, d = 0", oscillators(0), Matrix::Ones(4, 1), Matrix::Ones(4, 4), scalar(1), {}, 0,
+    cases.push_back({"CAREX 14, d = 0",
+                     oscillators(0),
+                     Matrix::Ones(4, 1),
+                     Matrix::Ones(4, 4),
+                     scalar(1),
+                     {},
+                     0,
                      "argument 'A, B' must be stabilizable"});
   }
   {
@@ -376,8 +417,8 @@ std::vector<RiccatiCase> carex_collection() {
     Matrix x(n, n);
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) x(i, j) = first(std::abs(i - j));
-    cases.push_back({"CAREX 16, n = 64", a, Matrix::Identity(n, n), Matrix::Identity(n, n), Matrix::Identity(n, n), x,
-                     1e-13});
+    cases.push_back(
+        {"CAREX 16, n = 64", a, Matrix::Identity(n, n), Matrix::Identity(n, n), Matrix::Identity(n, n), x, 1e-13});
   }
   {
     const int n = 21;
@@ -428,8 +469,13 @@ TEST(RiccatiHostile, DareWithTinyRMatchesSixtyDigitReferences) {
       {1e-300, 2.6514606739127377712, -0.68810861413030740469, 1.286711922554294752},
   };
   for (const Reference& ref : references) {
-    const RiccatiCase c{"tiny R", diagonal({1.2, 0.5}), rows(2, 1, {1, 1}), Matrix::Identity(2, 2), scalar(ref.r),
-                        rows(2, 2, {ref.x00, ref.x01, ref.x01, ref.x11}), 1e-13};
+    const RiccatiCase c{"tiny R",
+                        diagonal({1.2, 0.5}),
+                        rows(2, 1, {1, 1}),
+                        Matrix::Identity(2, 2),
+                        scalar(ref.r),
+                        rows(2, 2, {ref.x00, ref.x01, ref.x01, ref.x11}),
+                        1e-13};
     expect_dare_outcome(c);
   }
 }
@@ -458,7 +504,11 @@ TEST(RiccatiHostile, DareResidualDoesNotReadLargeWhenHugeTermsCancel) {
   // X's normwise error depends on the rounding of the doubling steps, from 2e-14
   // to 3e-4 as a11 moves by 0.5 ... 4e4 around 1 − 1e6. The normwise bound says
   // only that the answer is the right one; X01 and X11 are checked entry by entry.
-  const RiccatiCase c{"a = 1 - 1e6", diagonal({1 - 1e6, 0.3}), rows(2, 1, {1e-3, 1}), Matrix::Identity(2, 2), scalar(1),
+  const RiccatiCase c{"a = 1 - 1e6",
+                      diagonal({1 - 1e6, 0.3}),
+                      rows(2, 1, {1e-3, 1}),
+                      Matrix::Identity(2, 2),
+                      scalar(1),
                       rows(2, 2, {2.0460072683098997e+18, 313803140.30803836, 313803140.30803836, 1.0941410500370998}),
                       1e-3};
   expect_dare_outcome(c);
@@ -479,7 +529,8 @@ TEST(RiccatiHostile, DareRefusalsNameTheTrueReason) {
                 .find("argument 'A, Q' leave a mode of A on the unit circle unobserved by Q"),
             std::string::npos);
   // The same mode observed but not reached by B.
-  EXPECT_NE(dare_error(diagonal({1, 0.5}), rows(2, 1, {0, 1}), identity, scalar(1)).find("argument 'A, B' must be stabilizable"),
+  EXPECT_NE(dare_error(diagonal({1, 0.5}), rows(2, 1, {0, 1}), identity, scalar(1))
+                .find("argument 'A, B' must be stabilizable"),
             std::string::npos);
   // An unstable mode unobserved by Q is not a reason to refuse: B moves it to
   // its mirror image 1/2 (X00 = 3 solves x = 4x − 4x²/(1 + x)).
@@ -536,26 +587,42 @@ TEST(RiccatiHostile, CareOnBadlyScaledStatesAndUndampedOscillators) {
   // CAREX 1 in the states x = S x̃, S = diag(1, s): X = S⁻ᵀ X₀ S⁻¹ with X₀ = [2 1; 1 2].
   for (double s : {1e3, 1e9, 1e12}) {
     const Matrix scaling = diagonal({1, s}), inverse = diagonal({1, 1 / s});
-    const RiccatiCase c{"CAREX 1 scaled", scaling * rows(2, 2, {0, 1, 0, 0}) * inverse, scaling * rows(2, 1, {0, 1}),
-                        inverse * diagonal({1, 2}) * inverse, scalar(1),
-                        inverse * rows(2, 2, {2, 1, 1, 2}) * inverse, 1e-14};
+    const RiccatiCase c{"CAREX 1 scaled",
+                        scaling * rows(2, 2, {0, 1, 0, 0}) * inverse,
+                        scaling * rows(2, 1, {0, 1}),
+                        inverse * diagonal({1, 2}) * inverse,
+                        scalar(1),
+                        inverse * rows(2, 2, {2, 1, 1, 2}) * inverse,
+                        1e-14};
     expect_care_outcome(c);
   }
   // An undamped oscillator (eigenvalues ±i) driven through its velocity is
   // stabilizable: solved.
-  expect_care_outcome({"undamped oscillator", rows(2, 2, {0, 1, -1, 0}), rows(2, 1, {0, 1}), Matrix::Identity(2, 2),
-                       scalar(1)});
+  expect_care_outcome(
+      {"undamped oscillator", rows(2, 2, {0, 1, -1, 0}), rows(2, 1, {0, 1}), Matrix::Identity(2, 2), scalar(1)});
   // Its mode unobserved by Q: no stabilizing solution, and the reason.
-  expect_care_outcome({"oscillator unobserved by Q", rows(3, 3, {0, 1, 0, -1, 0, 0, 0, 0, -1}), Matrix::Identity(3, 3),
-                       diagonal({0, 0, 1}), Matrix::Identity(3, 3), {}, 0,
+  expect_care_outcome({"oscillator unobserved by Q",
+                       rows(3, 3, {0, 1, 0, -1, 0, 0, 0, 0, -1}),
+                       Matrix::Identity(3, 3),
+                       diagonal({0, 0, 1}),
+                       Matrix::Identity(3, 3),
+                       {},
+                       0,
                        "argument 'A, Q' leave a mode of A on the imaginary axis unobserved by Q"});
   // Not reached by B at all.
-  expect_care_outcome({"oscillator without input", rows(2, 2, {0, 1, -1, 0}), Matrix::Zero(2, 1),
-                       Matrix::Identity(2, 2), scalar(1), {}, 0, "argument 'A, B' must be stabilizable"});
+  expect_care_outcome({"oscillator without input",
+                       rows(2, 2, {0, 1, -1, 0}),
+                       Matrix::Zero(2, 1),
+                       Matrix::Identity(2, 2),
+                       scalar(1),
+                       {},
+                       0,
+                       "argument 'A, B' must be stabilizable"});
   // A stable mode at −1e-9 that B does not reach leaves (A, B) stabilizable:
   // solved, or refused as ill-conditioned, but never as unstabilizable.
-  const std::string slow = configuration_error_of(
-      [&] { (void)adaptobs::solve_care(diagonal({-1e-9, -1}), rows(2, 1, {0, 1}), Matrix::Identity(2, 2), scalar(1)); });
+  const std::string slow = configuration_error_of([&] {
+    (void)adaptobs::solve_care(diagonal({-1e-9, -1}), rows(2, 1, {0, 1}), Matrix::Identity(2, 2), scalar(1));
+  });
   EXPECT_EQ(slow.find("stabilizable"), std::string::npos) << slow;
   // The discrete counterpart: a rotation (eigenvalues on the unit circle) reached by B.
   const double angle = 0.3;

@@ -54,8 +54,8 @@ class SampledIntegration : public ::testing::Test {
     integrator = SampledIntegrator<DecayDims, State>(State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, options, "test");
   }
 
-  SampledIntegrator<DecayDims, State> integrator{State::Zero(), adaptobs::Sizes{1, 1, 1, 1}, SamplingOptions{.substeps = 2},
-                                            "test"};
+  SampledIntegrator<DecayDims, State> integrator{State::Zero(), adaptobs::Sizes{1, 1, 1, 1},
+                                                 SamplingOptions{.substeps = 2}, "test"};
   State x = State::Constant(1.0);
   int evaluations = 0, steps = 0;
   double integrator_time_before = 0;
@@ -92,7 +92,7 @@ TEST_F(SampledIntegration, AnIntervalBeyondTheStepBudgetIsRejectedUntilResynchro
   make({.substeps = 1, .max_substeps = 50});
   ASSERT_EQ(advance_to(0.0), UpdateStatus::accepted);
   ASSERT_EQ(advance_to(0.01), UpdateStatus::accepted);  // learns 0.0125
-  ASSERT_EQ(advance_to(0.6), UpdateStatus::accepted);  // ⌈0.59 / 0.0125⌉ = 48 steps: within budget
+  ASSERT_EQ(advance_to(0.6), UpdateStatus::accepted);   // ⌈0.59 / 0.0125⌉ = 48 steps: within budget
   EXPECT_EQ(steps, 48);
   const State before = x;
   EXPECT_EQ(advance_to(1.3), UpdateStatus::interval_too_long);  // 56 steps
@@ -137,12 +137,10 @@ TEST_F(SampledIntegration, AValidatorCanRejectTheStepAndNothingIsCommitted) {
   ASSERT_EQ(advance_to(0.0), UpdateStatus::accepted);
   const State before = x;
   int evaluations_seen = 0;
-  const UpdateStatus status = integrator.advance(
-      at(0.01), x, Decay{&evaluations_seen}, "test",
-      [](State& candidate) {
-        candidate.setZero();
-        return UpdateStatus::indefinite_covariance;
-      });
+  const UpdateStatus status = integrator.advance(at(0.01), x, Decay{&evaluations_seen}, "test", [](State& candidate) {
+    candidate.setZero();
+    return UpdateStatus::indefinite_covariance;
+  });
   EXPECT_EQ(status, UpdateStatus::indefinite_covariance);
   EXPECT_EQ(evaluations_seen, 8);
   EXPECT_EQ(x, before);

@@ -24,7 +24,10 @@ using adaptobs::testing::configuration_error_of;
 TEST(SeriesTable, WritesHeaderAndNonFiniteValues) {
   adaptobs::SeriesTable table;
   table.begin_row().add("t", 0.0).add("x", Eigen::Vector2d(1.5, -2)).add("v", std::numeric_limits<double>::quiet_NaN());
-  table.begin_row().add("t", 0.1).add("x", Eigen::Vector2d(0.1, 1e-300)).add("v", -std::numeric_limits<double>::infinity());
+  table.begin_row()
+      .add("t", 0.1)
+      .add("x", Eigen::Vector2d(0.1, 1e-300))
+      .add("v", -std::numeric_limits<double>::infinity());
   std::ostringstream os;
   table.write_csv(os);
   EXPECT_EQ(os.str(), "t,x_1,x_2,v\n0,1.5,-2,nan\n0.1,0.1,1e-300,-inf\n");
@@ -109,14 +112,12 @@ TEST(DiscreteLinearPlant, WrongSizesFromItsCallablesAndNonFiniteStartsAreRefused
                                    "regressor(k, u)");
 
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::DiscreteLinearPlant(steady, x0, Eigen::VectorXd::Constant(1, nan), input,
-                                                                 regressor),
-                                   "theta");
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::DiscreteLinearPlant(steady, Eigen::VectorXd::Constant(2, inf), theta, input,
-                                                                 regressor),
-                                   "x0");
   EXPECT_CONFIGURATION_ERROR_NAMES(
-      adaptobs::DiscreteLinearPlant(steady, x0, theta, input, regressor, {.output = inf}), "noise.output");
+      adaptobs::DiscreteLinearPlant(steady, x0, Eigen::VectorXd::Constant(1, nan), input, regressor), "theta");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::DiscreteLinearPlant(steady, Eigen::VectorXd::Constant(2, inf), theta, input, regressor), "x0");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::DiscreteLinearPlant(steady, x0, theta, input, regressor, {.output = inf}),
+                                   "noise.output");
   EXPECT_CONFIGURATION_ERROR_NAMES(
       adaptobs::DiscreteLinearPlant(steady, x0, theta, input, regressor, {.parameter = -1}), "noise.parameter");
 }
@@ -191,10 +192,30 @@ TEST(Simulation, RecordsTruthAndEveryObserverInSchemaOrder) {
   EXPECT_EQ(report.rejected[0], 0);
   EXPECT_EQ(report.rejected[1], 0);
   EXPECT_EQ(extra_calls, 25);
-  const std::vector<std::string> expected = {
-      "t",       "u_1",     "u_2",     "y_1",     "y_2",     "x_1",     "x_2",        "x_3",        "x_4",
-      "xhat_1",  "xhat_2",  "xhat_3",  "xhat_4",  "theta_1", "theta_2", "thetahat_1", "thetahat_2", "xhat_akf_1",
-      "xhat_akf_2", "xhat_akf_3", "xhat_akf_4", "thetahat_akf_1", "thetahat_akf_2", "step"};
+  const std::vector<std::string> expected = {"t",
+                                             "u_1",
+                                             "u_2",
+                                             "y_1",
+                                             "y_2",
+                                             "x_1",
+                                             "x_2",
+                                             "x_3",
+                                             "x_4",
+                                             "xhat_1",
+                                             "xhat_2",
+                                             "xhat_3",
+                                             "xhat_4",
+                                             "theta_1",
+                                             "theta_2",
+                                             "thetahat_1",
+                                             "thetahat_2",
+                                             "xhat_akf_1",
+                                             "xhat_akf_2",
+                                             "xhat_akf_3",
+                                             "xhat_akf_4",
+                                             "thetahat_akf_1",
+                                             "thetahat_akf_2",
+                                             "step"};
   EXPECT_EQ(table.names(), expected);
   // Row k holds the estimates before sample k: row 0 has the initial estimates.
   EXPECT_EQ(table.at(0, "thetahat_1"), 0.5);
@@ -221,8 +242,8 @@ void expect_runner_matches_hand_loop(const adaptobs::OutputLossOptions& options)
   adaptobs::OutputLoss loss(options);
   adaptobs::SeriesTable table;
   auto plant = satellite::make_plant<double>(0.01, 3);
-  const auto report = adaptobs::simulate(plant, 60, table, loss, [](adaptobs::SeriesTable&, const auto&) {},
-                                         adaptobs::track(simulated));
+  const auto report = adaptobs::simulate(
+      plant, 60, table, loss, [](adaptobs::SeriesTable&, const auto&) {}, adaptobs::track(simulated));
   EXPECT_EQ(report.rejected[0], 0);
   EXPECT_EQ(table.names()[5], "y_available");
 

@@ -213,7 +213,8 @@ TEST(Snapshot, ARestoredFaultMonitorContinuesBitForBit) {
   EXPECT_EQ(original.cusum().alarm_count(), restored.cusum().alarm_count());
   // Estimates of the wrong size are refused by name, with the monitor unchanged.
   const auto before = adaptobs::snapshot(restored);
-  EXPECT_THROW((void)restored.observe(Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(2)), adaptobs::ConfigurationError);
+  EXPECT_THROW((void)restored.observe(Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(2)),
+               adaptobs::ConfigurationError);
   EXPECT_EQ(adaptobs::snapshot(restored).integers.back().value, before.integers.back().value);
   // A snapshot from a monitor of another stride is refused.
   auto other_design = design;
@@ -339,8 +340,6 @@ TEST(Snapshot, RestoredContinuousTimeObserversContinueBitForBit) {
 // the leakage K_theta: restored mid-run into an observer of other gains and
 // estimates, it continues bit for bit at every later step, samples with a lost
 // output included; the gains come back as given.
-
-
 
 namespace snapshot_test_takagi_sugeno {
 

@@ -32,8 +32,8 @@ namespace wwtp = adaptobs::examples::wwtp;
 
 template <typename S>
 auto make_wwtp_observer(adaptobs::TakagiSugenoGains<wwtp::Dims<S>> gains = wwtp::paper_gains<S>(),
-                   Eigen::Matrix<S, 2, 1> x0 = wwtp::initial_state_estimate<S>(),
-                   wwtp::Vector1<S> theta0 = wwtp::initial_parameter_estimate<S>()) {
+                        Eigen::Matrix<S, 2, 1> x0 = wwtp::initial_state_estimate<S>(),
+                        wwtp::Vector1<S> theta0 = wwtp::initial_parameter_estimate<S>()) {
   return adaptobs::TakagiSugenoObserver(wwtp::model<S>(), gains, x0, theta0);
 }
 
@@ -219,9 +219,7 @@ TEST(TakagiSugeno, UpdateIsEquation65WithVertexDependentInputMatricesAndSeveralC
     m.B = B0 + z(0) * B1 + theta(0) * B2;
     return m;
   };
-  const auto premises = [](const Eigen::Vector3d&, const Eigen::Vector2d& u, const Vector1&) {
-    return Vector1(u(0));
-  };
+  const auto premises = [](const Eigen::Vector3d&, const Eigen::Vector2d& u, const Vector1&) { return Vector1(u(0)); };
   const Eigen::Matrix<double, 2, 3> C{{1, 0, 0.5}, {0, 1, -0.25}};
   const adaptobs::SectorBounds<double, 1> z_bounds{Vector1(0), Vector1(1)};
   const adaptobs::SectorBounds<double, 1> theta_bounds{Vector1(-1), Vector1(1)};
@@ -297,7 +295,8 @@ Criterion run(Observer& observer, Plant& plant, Index from, Index to, Present pr
   for (Index k = 0; k <= to; ++k) {
     c.plant_in_sector = c.plant_in_sector && wwtp::in_state_sector(plant.state());
     if (k >= from) {
-      c.worst_parameter_error = std::max(c.worst_parameter_error, std::abs(observer.parameters()(0) - plant.parameters()(0)));
+      c.worst_parameter_error =
+          std::max(c.worst_parameter_error, std::abs(observer.parameters()(0) - plant.parameters()(0)));
       c.worst_state_error = std::max(c.worst_state_error, (observer.state() - plant.state()).cwiseAbs().maxCoeff());
     }
     if (k == to) break;
@@ -454,12 +453,14 @@ TEST(TakagiSugeno, LeakageGainAddsMinusKthetaThetaAndZeroLeakageIsEquation65) {
 TEST(TakagiSugeno, RunsInTheSimulationRunnerWithTheNonlinearPlant) {
   auto plant = wwtp::make_plant<double>(0.1);
   auto paper = make_wwtp_observer<double>();
-  auto truth = make_wwtp_observer<double>(wwtp::paper_gains<double>(), wwtp::initial_state<double>(), wwtp::Vector1<double>(0.1));
+  auto truth = make_wwtp_observer<double>(wwtp::paper_gains<double>(), wwtp::initial_state<double>(),
+                                          wwtp::Vector1<double>(0.1));
   adaptobs::SeriesTable table;
   const auto report = adaptobs::simulate(plant, 50, table, adaptobs::track(paper), adaptobs::track(truth, "truth"));
   EXPECT_EQ(report.rejected[0] + report.rejected[1], 0);
-  EXPECT_EQ(table.names(), (std::vector<std::string>{"t", "u_1", "y_1", "x_1", "x_2", "xhat_1", "xhat_2", "theta_1",
-                                                     "thetahat_1", "xhat_truth_1", "xhat_truth_2", "thetahat_truth_1"}));
+  EXPECT_EQ(table.names(),
+            (std::vector<std::string>{"t", "u_1", "y_1", "x_1", "x_2", "xhat_1", "xhat_2", "theta_1", "thetahat_1",
+                                      "xhat_truth_1", "xhat_truth_2", "thetahat_truth_1"}));
   EXPECT_NEAR(table.at(49, "xhat_truth_2"), table.at(49, "x_2"), 1e-12);
   EXPECT_EQ(table.at(10, "y_1"), table.at(10, "x_1"));
 }
@@ -504,7 +505,6 @@ TYPED_TEST(TakagiSugenoTyped, NonFinitePremisesAreRejectedAndChangeNothing) {
   EXPECT_TRUE(adaptobs::testing::same_bits(TakagiSugenoContract<S>::readings(observer), at_reset));
 }
 
-
 TEST(TakagiSugeno, BadConfigurationNamesTheArgument) {
   using D = wwtp::Dims<double>;
   const auto zb = wwtp::premise_bounds<double>();
@@ -522,7 +522,8 @@ TEST(TakagiSugeno, BadConfigurationNamesTheArgument) {
   auto flat = zb;
   flat.upper(1) = flat.lower(1);
   EXPECT_CONFIGURATION_ERROR_NAMES(Model(vertices, C, {}, flat, tb), "premise_bounds");
-  EXPECT_CONFIGURATION_ERROR_NAMES((void)(adaptobs::sector_vertices<D, 2>(wwtp::quasi_lpv<double>, flat, tb)), "premise_bounds");
+  EXPECT_CONFIGURATION_ERROR_NAMES((void)(adaptobs::sector_vertices<D, 2>(wwtp::quasi_lpv<double>, flat, tb)),
+                                   "premise_bounds");
   auto reversed = tb;
   std::swap(reversed.lower, reversed.upper);
   EXPECT_CONFIGURATION_ERROR_NAMES(Model(vertices, C, {}, zb, reversed), "parameter_bounds");
@@ -545,8 +546,8 @@ TEST(TakagiSugeno, BadConfigurationNamesTheArgument) {
   gains = wwtp::paper_gains<double>();
   gains.K_theta = wwtp::Vector1<double>(std::nan(""));
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::TakagiSugenoObserver(model, gains, x0, th0), "gains.K_theta");
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::TakagiSugenoObserver(model, wwtp::paper_gains<double>(), Eigen::Vector2d(std::nan(""), 0), th0),
-               "x0");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::TakagiSugenoObserver(model, wwtp::paper_gains<double>(), Eigen::Vector2d(std::nan(""), 0), th0), "x0");
   auto observer = adaptobs::TakagiSugenoObserver(model, wwtp::paper_gains<double>(), x0, th0);
   EXPECT_CONFIGURATION_ERROR_NAMES(observer.reset(x0, wwtp::Vector1<double>(std::nan(""))), "theta0");
   // Bad gains given later change nothing.
@@ -563,7 +564,8 @@ TEST(TakagiSugeno, BadConfigurationNamesTheArgument) {
 // The two premise variables of the plant; for a negative input, which the plant
 // never sees, it returns three values: a user error the observer must catch.
 struct DynamicPremises {
-  Eigen::VectorXd operator()(const Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& /*theta*/) const {
+  Eigen::VectorXd operator()(const Eigen::VectorXd& x, const Eigen::VectorXd& u,
+                             const Eigen::VectorXd& /*theta*/) const {
     if (u(0) < 0) return Eigen::Vector3d(u(0), 0, 0);
     return Eigen::Vector2d(u(0), x(0) / (x(1) + wwtp::b));
   }
@@ -610,12 +612,13 @@ TEST(TakagiSugeno, DynamicSizesRefuseWrongRunTimeSizes) {
   using DD = adaptobs::DynamicDimensions<double>;
   auto dynamic = TakagiSugenoDynamicContract::make();
   for (const auto& s : TakagiSugenoDynamicContract::samples()) ASSERT_EQ(dynamic.update(s), UpdateStatus::accepted);
-  EXPECT_CONFIGURATION_ERROR_NAMES((void)dynamic.update({Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1)}), "sample.u");
+  EXPECT_CONFIGURATION_ERROR_NAMES((void)dynamic.update({Eigen::VectorXd::Zero(2), Eigen::VectorXd::Zero(1)}),
+                                   "sample.u");
 
   // A premise function returning 3 values for nz = 2 is refused before the weights read them.
   const Eigen::VectorXd x = dynamic.state(), theta = dynamic.parameters(), h = dynamic.weights();
   EXPECT_CONFIGURATION_ERROR_NAMES((void)dynamic.update({Eigen::VectorXd::Constant(1, -0.1), Eigen::VectorXd::Zero(1)}),
-               "premises(x, u, theta)");
+                                   "premises(x, u, theta)");
   EXPECT_TRUE(dynamic.state() == x);
   EXPECT_TRUE(dynamic.parameters() == theta);
   EXPECT_TRUE(dynamic.weights() == h);

@@ -4,10 +4,10 @@
 // observer converges with the designed gains), infeasible instances reported as
 // such without gains, the time-varying variant, and bad options.
 
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/design/lmi/dsdp.hpp>
 #include <adaptobs/design/lmi/lmi_problem.hpp>
 #include <adaptobs/design/lmi/takagi_sugeno_synthesis.hpp>
-#include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/design/stability.hpp>
 #include <adaptobs/design/takagi_sugeno_lmi.hpp>
 #include <adaptobs/observers/takagi_sugeno.hpp>
@@ -262,7 +262,8 @@ using adaptobs::testing::configuration_error_of;
 TEST(TakagiSugenoLmi, BadOptionsNameTheArgument) {
   const auto model = wwtp::model<double>(0.05);
   const auto expect_names = [&](const adaptobs::TakagiSugenoLmiOptions& options, const std::string& argument) {
-    const std::string message = configuration_error_of([&] { (void)adaptobs::synthesize_takagi_sugeno_gains(model, options); });
+    const std::string message =
+        configuration_error_of([&] { (void)adaptobs::synthesize_takagi_sugeno_gains(model, options); });
     EXPECT_NE(message.find("'" + argument + "'"), std::string::npos) << message;
   };
   auto o = remark6_options();

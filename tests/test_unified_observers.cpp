@@ -181,17 +181,17 @@ TEST(UpdateLaw, FlippedSignDivergesForEveryAlgorithm) {
   const Eigen::Matrix2d gamma = Eigen::Matrix2d::Identity();
   {
     const auto good = bastin_gevers_observer<double>();
-    adaptobs::UnifiedAdaptiveObserver flipped(siso::model<double>(), good.algorithm(), SignedGradientLaw{5.0 * gamma, -1.0},
-                                              Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval(),
-                                              {.sampling = quadratic()});
+    adaptobs::UnifiedAdaptiveObserver flipped(siso::model<double>(), good.algorithm(),
+                                              SignedGradientLaw{5.0 * gamma, -1.0}, Eigen::Vector3d::Zero().eval(),
+                                              Eigen::Vector2d::Zero().eval(), {.sampling = quadratic()});
     auto plant = siso::make_plant<double>();
     EXPECT_LT(divergence_time(flipped, plant), 5.0) << "Bastin-Gevers";
   }
   {
     const auto good = marino_tomei_observer<double>();
-    adaptobs::UnifiedAdaptiveObserver flipped(siso::model<double>(), good.algorithm(), SignedGradientLaw{20.0 * gamma, -1.0},
-                                              Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval(),
-                                              {.sampling = quadratic()});
+    adaptobs::UnifiedAdaptiveObserver flipped(siso::model<double>(), good.algorithm(),
+                                              SignedGradientLaw{20.0 * gamma, -1.0}, Eigen::Vector3d::Zero().eval(),
+                                              Eigen::Vector2d::Zero().eval(), {.sampling = quadratic()});
     auto plant = siso::make_plant<double>();
     EXPECT_LT(divergence_time(flipped, plant), 5.0) << "Marino-Tomei";
   }
@@ -240,9 +240,7 @@ struct UnifiedContract {
   using Scalar = typename Observer::Scalar;
   static constexpr const char* name = Design::name;
   static Observer make() { return Design::observer(); }
-  static std::vector<Sample> samples() {
-    return adaptobs::testing::first_samples<Sample>(Design::plant(), 30);
-  }
+  static std::vector<Sample> samples() { return adaptobs::testing::first_samples<Sample>(Design::plant(), 30); }
   static auto readings(const auto& o) {
     return std::make_tuple(o.internal_state(), o.state(), o.parameters(), o.time());
   }
@@ -332,7 +330,6 @@ ADAPTOBS_TWIN_CONTRACT(UnifiedFormulation, DynamicFollowsFixed, ZhangDynamicCont
 
 namespace {
 
-
 // With Eigen::Dynamic sizes, arguments and model callables of the wrong run-time
 // size are refused with the name the caller knows, at any time, and a refused
 // update leaves the observer as it was.
@@ -354,12 +351,12 @@ TEST(ZhangContinuous, WrongRunTimeSizesAreRefusedNamingTheArgumentAndChangeNothi
   };
   const Eigen::MatrixXd K = periodic::zhang_gain<double>(), gamma = 50.0 * Eigen::Matrix2d::Identity();
   const Eigen::VectorXd eta0 = Eigen::VectorXd::Zero(4), theta0 = Eigen::VectorXd::Zero(2);
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_zhang_continuous_observer(model_of(false, false), Eigen::MatrixXd::Ones(4, 4), gamma, eta0,
-                                                        theta0),
-               "K");
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_zhang_continuous_observer(model_of(false, false), K, Eigen::MatrixXd::Identity(1, 1), eta0,
-                                                        theta0),
-               "gamma");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_zhang_continuous_observer(
+                                       model_of(false, false), Eigen::MatrixXd::Ones(4, 4), gamma, eta0, theta0),
+                                   "K");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_zhang_continuous_observer(
+                                       model_of(false, false), K, Eigen::MatrixXd::Identity(1, 1), eta0, theta0),
+                                   "gamma");
 
   for (const auto& [bad_matrices, argument] : {std::pair{true, "matrices_at(t)"}, std::pair{false, "Phi"}}) {
     auto observer =
@@ -388,24 +385,31 @@ TEST(UnifiedFormulation, BadConfigurationNamesTheArgument) {
   const auto st1 = bastin_gevers_transform<double>();
   const Eigen::Matrix2d gamma = Eigen::Matrix2d::Identity();
   // Γ not positive definite, k not SPR, a transform not in form (5), a wrong-size x0.
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_bastin_gevers_observer(model, st1, Eigen::Vector3d(2, 0, 0), Eigen::Matrix2d(-gamma), zero3, zero2),
-               "gamma");
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_bastin_gevers_observer(model, st1, Eigen::Vector3d(-0.5, 0, 0), gamma, zero3, zero2), "k");
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_bastin_gevers_observer(model, adaptobs::StaticTransform<SD>::identity(), Eigen::Vector3d(2, 0, 0),
-                                                     gamma, zero3, zero2),
-               "static_transform");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_bastin_gevers_observer(model, st1, Eigen::Vector3d(2, 0, 0),
+                                                                         Eigen::Matrix2d(-gamma), zero3, zero2),
+                                   "gamma");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::make_bastin_gevers_observer(model, st1, Eigen::Vector3d(-0.5, 0, 0), gamma, zero3, zero2), "k");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::make_bastin_gevers_observer(model, adaptobs::StaticTransform<SD>::identity(), Eigen::Vector3d(2, 0, 0),
+                                            gamma, zero3, zero2),
+      "static_transform");
   const auto st2 = marino_tomei_transform<double>();
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_marino_tomei_observer(model, st2, Eigen::Vector3d(1, -3, 2), Eigen::Vector3d(8, 17, 10), gamma,
-                                                    zero3, zero2),
-               "gamma");
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_marino_tomei_observer(model, st1, Eigen::Vector3d(1, 3, 2), Eigen::Vector3d(8, 17, 10), gamma,
-                                                    zero3, zero2),
-               "static_transform");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::make_marino_tomei_observer(model, st2, Eigen::Vector3d(1, -3, 2), Eigen::Vector3d(8, 17, 10), gamma,
+                                           zero3, zero2),
+      "gamma");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::make_marino_tomei_observer(model, st1, Eigen::Vector3d(1, 3, 2), Eigen::Vector3d(8, 17, 10), gamma,
+                                           zero3, zero2),
+      "static_transform");
   // Algorithm 4: K not stabilizing; Algorithm 3: K1 too small.
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_zhang_continuous_observer(model, Eigen::Vector3d(-10, 0, 0), gamma, zero3, zero2), "K");
-  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::make_besancon_observer(model, besancon_transform<double>(),
-                                                Eigen::Matrix<double, 1, 1>(-1.0), gamma, zero3, zero2),
-               "K1");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::make_zhang_continuous_observer(model, Eigen::Vector3d(-10, 0, 0), gamma, zero3, zero2), "K");
+  EXPECT_CONFIGURATION_ERROR_NAMES(
+      adaptobs::make_besancon_observer(model, besancon_transform<double>(), Eigen::Matrix<double, 1, 1>(-1.0), gamma,
+                                       zero3, zero2),
+      "K1");
   // Options and samples.
   EXPECT_CONFIGURATION_ERROR_NAMES(zhang_observer<double>(50.0, {.sampling = {.substeps = 0}}), "options.substeps");
   {
@@ -425,10 +429,10 @@ TEST(UnifiedFormulation, BadConfigurationNamesTheArgument) {
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::BastinGevers<DD>(empty, Eigen::MatrixXd(0, 1)), "transform");
   EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::MarinoTomei<DD>(empty, Eigen::VectorXd(0), Eigen::MatrixXd(0, 1)),
                                    "transform");
-  EXPECT_CONFIGURATION_ERROR_NAMES(
-      adaptobs::Besancon<DD>(adaptobs::StaticTransform<DD>(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Zero(2, 3)),
-                             Eigen::MatrixXd::Identity(3, 3)),
-      "transform");
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::Besancon<DD>(adaptobs::StaticTransform<DD>(Eigen::MatrixXd::Identity(2, 2),
+                                                                                        Eigen::MatrixXd::Zero(2, 3)),
+                                                          Eigen::MatrixXd::Identity(3, 3)),
+                                   "transform");
 }
 
 TEST(UnifiedFormulation, AnOutputInjectionThatBreaksTheConditionsIsRefusedAndChangesNothing) {

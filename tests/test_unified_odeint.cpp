@@ -8,9 +8,9 @@
 
 #include "unified_fixtures.hpp"
 
+#include <gtest/gtest.h>
 #include <boost/numeric/odeint.hpp>
 #include <boost/numeric/odeint/external/eigen/eigen.hpp>
-#include <gtest/gtest.h>
 
 #include <cmath>
 

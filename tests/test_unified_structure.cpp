@@ -132,8 +132,9 @@ TEST(UnifiedFormulation, Equation4aAndTheObserverEquationsAlongTrajectories) {
   {
     auto observer = zhang_observer<double>(50.0);
     auto plant = periodic::make_plant<double>();
-    check_transformed_equations(observer, plant, 5.0,
-                                [](const auto&, const auto&, const auto&) { return Eigen::Matrix<double, 4, 2>::Zero().eval(); });
+    check_transformed_equations(observer, plant, 5.0, [](const auto&, const auto&, const auto&) {
+      return Eigen::Matrix<double, 4, 2>::Zero().eval();
+    });
   }
 }
 
@@ -222,7 +223,8 @@ TEST(UnifiedFormulation, LyapunovFunctionsDecrease) {
   {
     auto observer = bastin_gevers_observer<double>();
     const auto so = observer.transformed_system(0.0);
-    const auto kyp = spr_report(Eigen::Matrix3d(so.Ao - observer.algorithm().k * so.Co), Eigen::Vector3d(1, 0, 0), so.Co).kyp;
+    const auto kyp =
+        spr_report(Eigen::Matrix3d(so.Ao - observer.algorithm().k * so.Co), Eigen::Vector3d(1, 0, 0), so.Co).kyp;
     ASSERT_TRUE(kyp.has_value());
     auto plant = siso::make_plant<double>();
     EXPECT_LT(largest_relative_increase(observer, plant, kyp->P, 5.0, 60.0), 1e-9);
@@ -284,9 +286,9 @@ TEST(UnifiedFormulation, GuyaderZhangIsTheEulerLimitOfZhang) {
   const Differences d1 = discrete_against_continuous(0.01);
   const Differences d2 = discrete_against_continuous(0.005);
   const Differences d3 = discrete_against_continuous(0.0025);
-  for (const auto& [a, b] : {std::pair{d1.x, d2.x}, std::pair{d2.x, d3.x}, std::pair{d1.theta, d2.theta},
-                             std::pair{d2.theta, d3.theta}, std::pair{d1.upsilon, d2.upsilon},
-                             std::pair{d2.upsilon, d3.upsilon}}) {
+  for (const auto& [a, b] :
+       {std::pair{d1.x, d2.x}, std::pair{d2.x, d3.x}, std::pair{d1.theta, d2.theta}, std::pair{d2.theta, d3.theta},
+        std::pair{d1.upsilon, d2.upsilon}, std::pair{d2.upsilon, d3.upsilon}}) {
     EXPECT_GT(a / b, 1.8) << a << " " << b;
     EXPECT_LT(a / b, 2.2) << a << " " << b;
   }

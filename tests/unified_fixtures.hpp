@@ -20,8 +20,6 @@ namespace periodic = adaptobs::examples::periodic;
 using adaptobs::examples::designs::quadratic;
 
 // The examples' designs, compiled once in the library adaptobs_example_designs.
-using adaptobs::examples::designs::PeriodicModel;
-using adaptobs::examples::designs::SisoModel;
 using adaptobs::examples::designs::bastin_gevers_observer;
 using adaptobs::examples::designs::bastin_gevers_transform;
 using adaptobs::examples::designs::besancon_observer;
@@ -29,8 +27,10 @@ using adaptobs::examples::designs::besancon_transform;
 using adaptobs::examples::designs::kalman_bucy_filter;
 using adaptobs::examples::designs::marino_tomei_observer;
 using adaptobs::examples::designs::marino_tomei_transform;
-using adaptobs::examples::designs::spr_report;
+using adaptobs::examples::designs::PeriodicModel;
 using adaptobs::examples::designs::siso_zhang_observer;
+using adaptobs::examples::designs::SisoModel;
+using adaptobs::examples::designs::spr_report;
 using adaptobs::examples::designs::zhang_observer;
 
 /// Errors at every sample of a run.

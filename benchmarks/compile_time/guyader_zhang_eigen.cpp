@@ -34,8 +34,8 @@ int main() {
 
     const Eigen::Vector2d e = y - C * xhat;
     cu = C * upsilon;
-    const Eigen::Vector2d step = mu * cu.transpose() * e;   // (2b)
-    upsilon = closed_loop * upsilon + psi;                  // (2a)
+    const Eigen::Vector2d step = mu * cu.transpose() * e;       // (2b)
+    upsilon = closed_loop * upsilon + psi;                      // (2a)
     xhat = A * xhat + psi * thetahat + K * e + upsilon * step;  // (2c), B = 0
     thetahat += step;
     window[k % 100] = mu * cu.transpose() * cu;

@@ -43,7 +43,7 @@ int main() {
   Eigen::Vector4d xhat{0.9, 0, 0, 3.14e-4};
   Eigen::Vector2d thetahat{0.5, 0.5};
   Eigen::Matrix<double, 4, 2> upsilon = Eigen::Matrix<double, 4, 2>::Zero();
-  Eigen::Matrix2d cu, window[100];  // C Υ of the last step; μ ΥᵀCᵀCΥ of the last 100 steps
+  Eigen::Matrix2d cu, window[100];                     // C Υ of the last step; μ ΥᵀCᵀCΥ of the last 100 steps
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig;  // closed form for 2 × 2
   double norm2 = 0;
   Eigen::Vector4d x{1, 0, 0, 3.49e-4};
@@ -60,10 +60,10 @@ int main() {
       e(1) = 0;
       cu.row(1).setZero();
     }
-    const Eigen::Vector2d step = mu * cu.transpose() * e;          // (2b)
+    const Eigen::Vector2d step = mu * cu.transpose() * e;  // (2b)
     upsilon = second_present ? Eigen::Matrix<double, 4, 2>(closed_loop * upsilon + Psi)
                              : Eigen::Matrix<double, 4, 2>(A * upsilon - K * cu + Psi);  // (2a)
-    xhat = A * xhat + Psi * thetahat + K * e + upsilon * step;     // (2c)
+    xhat = A * xhat + Psi * thetahat + K * e + upsilon * step;                           // (2c)
     thetahat += step;
     window[k % 100] = mu * cu.transpose() * cu;
     norm2 = std::sqrt(eig.computeDirect(window[k % 100], Eigen::EigenvaluesOnly).eigenvalues()(1));

@@ -28,10 +28,10 @@ int main() {
   const adaptobs::SectorBounds<double, 2> z_bounds{{0, 0.01 / 3.4}, {0.4, 6 / 0.41}};
   const adaptobs::SectorBounds<double, 1> theta_bounds{Vector1(-0.3), Vector1(0.3)};
   const auto model = adaptobs::make_takagi_sugeno_model<Dims, 2>(quasi_lpv, Eigen::RowVector2d(1, 0), premises,
-                                                                  z_bounds, theta_bounds);
+                                                                 z_bounds, theta_bounds);
 
   adaptobs::TakagiSugenoGains<Dims> gains;
-  const double l[8][2] = {{0.23, 0.24}, {0.23, 0.24}, {0.31, 0.21}, {0.61, 0.09},
+  const double l[8][2] = {{0.23, 0.24},  {0.23, 0.24},  {0.31, 0.21},  {0.61, 0.09},
                           {-0.41, 0.30}, {-0.41, 0.30}, {-0.41, 0.30}, {-0.27, 0.24}};
   for (const auto& li : l) {
     gains.L.emplace_back(li[0], li[1]);

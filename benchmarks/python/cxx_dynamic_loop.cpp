@@ -121,7 +121,8 @@ void bastin_gevers(long n) {
                                                                siso::output_matrix<double>(), phi, 2);
   adaptobs::Polynomial<double> zeros(3);
   zeros << 1, 4, 3;
-  const auto transform = adaptobs::bastin_gevers_form<Dims>(siso::dynamics<double>(), siso::output_matrix<double>(), zeros);
+  const auto transform =
+      adaptobs::bastin_gevers_form<Dims>(siso::dynamics<double>(), siso::output_matrix<double>(), zeros);
   const auto so = transform.apply(model.system());
   const Eigen::VectorXd k = adaptobs::spr_injection_gain(so.Ao, so.Co, Eigen::VectorXd(Eigen::Vector3d(1, 0, 0)), 2.0);
   const auto observer = adaptobs::make_bastin_gevers_observer(

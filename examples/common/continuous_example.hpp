@@ -28,8 +28,8 @@ void run_continuous_with(Plant& plant, double seconds, double period, int every,
   const auto feed = [&](auto& tracked) {
     const UpdateStatus status = tracked.observer.update(plant.sample());
     if (status != UpdateStatus::accepted)
-      throw std::runtime_error("observer '" + std::string(tracked.suffix) + "' rejected a sample: " +
-                               std::string(to_string(status)));
+      throw std::runtime_error("observer '" + std::string(tracked.suffix) +
+                               "' rejected a sample: " + std::string(to_string(status)));
   };
   const long steps = std::lround(seconds / period);
   for (long k = 0; k <= steps; ++k) {

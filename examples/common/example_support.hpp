@@ -40,7 +40,8 @@ class Arguments {
       if (key == "--help" || key == "-h") {
         std::cout << "usage: " << program_;
         for (const auto& [k, v] : values_)
-          std::cout << " [--" << k << (switches_.contains(k) ? "" : " " + (v.empty() ? std::string("VALUE") : v)) << "]";
+          std::cout << " [--" << k << (switches_.contains(k) ? "" : " " + (v.empty() ? std::string("VALUE") : v))
+                    << "]";
         std::cout << '\n';
         std::exit(0);
       }

@@ -43,9 +43,11 @@ FaultFreeRecord<double, NY, NP> record_fault_free(const Simulate& simulate, int 
 /// at its first alarm after `fault_time`, all the evaluation scores of it.
 template <int NY, int NP, class Simulate>
 MonitoredRun monitored_run(const Simulate& simulate, const FaultMonitorDesign<double, NY, NP>& design, Detector which,
-                           std::uint64_t seed, bool faulty, Index steps, Index first, double period, double fault_time) {
+                           std::uint64_t seed, bool faulty, Index steps, Index first, double period,
+                           double fault_time) {
   FaultMonitor monitor(design);
-  MonitoredRun run{.start = static_cast<double>(first) * period, .end = static_cast<double>(steps) * period, .alarms = {}};
+  MonitoredRun run{
+      .start = static_cast<double>(first) * period, .end = static_cast<double>(steps) * period, .alarms = {}};
   simulate(seed, faulty, steps, [&](Index k, const auto& observer, const auto&, const auto&) {
     if (k < first || !accepted(monitor.observe(observer))) return true;
     const double t = static_cast<double>(k) * period;
@@ -70,8 +72,8 @@ void print_evaluation(const Run& run, const FaultDescription& fault, Index seeds
                       double designed_false_alarm_rate) {
   double fault_free_time = 0;
   for (const Detector which : {Detector::cusum, Detector::glr, Detector::chi_square}) {
-    const auto summary = evaluate_detection(
-        [&](std::uint64_t seed, bool faulty) { return run(which, seed, faulty); }, fault, 1000, seeds, threads);
+    const auto summary = evaluate_detection([&](std::uint64_t seed, bool faulty) { return run(which, seed, faulty); },
+                                            fault, 1000, seeds, threads);
     const std::string prefix = which == Detector::cusum ? "" : which == Detector::glr ? "glr_" : "chi_square_";
     print_value(prefix + "detection_rate", summary.detection_rate);
     print_value(prefix + "mean_detection_delay", summary.mean_detection_delay);
@@ -131,7 +133,8 @@ void add_monitor_columns(SeriesTable& row, const FaultMonitor<double, NY, NP>& m
       .add("threshold", cusum.threshold())
       .add("alarm", alarm ? 1.0 : 0.0)
       .add("isolated", alarm ? double(cusum.isolated() + 1) : 0.0)
-      .add("statistic_glr", watching ? (monitor.glr().alarm() ? monitor.glr().alarm_statistic() : monitor.glr().statistic()) : 0.0)
+      .add("statistic_glr",
+           watching ? (monitor.glr().alarm() ? monitor.glr().alarm_statistic() : monitor.glr().statistic()) : 0.0)
       .add("threshold_glr", monitor.glr().threshold())
       .add("alarm_glr", watching && monitor.glr().alarm() ? 1.0 : 0.0)
       .add("statistic_chi_square", watching ? chi_square.statistic() : 0.0)

@@ -113,27 +113,42 @@ using State = Eigen::Matrix<S, states, 1>;
 using Input = Eigen::Matrix<double, inputs, 1>;
 
 /// First-column entries of A, read as [0.4, 0.11, 0.3] (printed [4, 0.11, 0.3]).
-template <typename S = double> Coefficients<S> a() { return {S(0.4), S(0.11), S(0.3)}; }
+template <typename S = double>
+Coefficients<S> a() {
+  return {S(0.4), S(0.11), S(0.3)};
+}
 /// The printed first column [4, 0.11, 0.3]: an unstable plant (pole 4.0455).
-template <typename S = double> Coefficients<S> printed_a() { return {S(4), S(0.11), S(0.3)}; }
+template <typename S = double>
+Coefficients<S> printed_a() {
+  return {S(4), S(0.11), S(0.3)};
+}
 /// First-column entries of F.
-template <typename S = double> Coefficients<S> f() { return {S(0.4), S(0.21), S(0.2)}; }
+template <typename S = double>
+Coefficients<S> f() {
+  return {S(0.4), S(0.21), S(0.2)};
+}
 /// First-column entries of Â₀.
-template <typename S = double> Coefficients<S> a_hat0() { return {S(1), S(0.51), S(0.6)}; }
+template <typename S = double>
+Coefficients<S> a_hat0() {
+  return {S(1), S(0.51), S(0.6)};
+}
 
 /// B (6 × 2): the transpose of the printed 2 × 6 array.
 template <typename S = double>
 InputMatrix<S> B() {
   InputMatrix<S> b;
-  b << 1, 2,       //
-      0.2, -5,     //
-      3, 4,        //
-      0.1, 0.9,    //
-      0.3, 0.2,    //
+  b << 1, 2,     //
+      0.2, -5,   //
+      3, 4,      //
+      0.1, 0.9,  //
+      0.3, 0.2,  //
       -1, -1.1;
   return b;
 }
-template <typename S = double> InputMatrix<S> B_hat0() { return InputMatrix<S>::Constant(S(0.5)); }
+template <typename S = double>
+InputMatrix<S> B_hat0() {
+  return InputMatrix<S>::Constant(S(0.5));
+}
 
 template <typename S = double>
 State<S> x0() {
@@ -202,13 +217,31 @@ using InputMatrix = Eigen::Matrix<S, order, 1>;
 template <typename S = double>
 using State = Eigen::Matrix<S, order, 1>;
 
-template <typename S = double> Coefficients<S> a() { return {S(1.52), S(-0.6)}; }
-template <typename S = double> InputMatrix<S> B() { return {S(0.43), S(-0.35)}; }
-template <typename S = double> Coefficients<S> f() { return {S(1.49), S(-0.55)}; }
+template <typename S = double>
+Coefficients<S> a() {
+  return {S(1.52), S(-0.6)};
+}
+template <typename S = double>
+InputMatrix<S> B() {
+  return {S(0.43), S(-0.35)};
+}
+template <typename S = double>
+Coefficients<S> f() {
+  return {S(1.49), S(-0.55)};
+}
 /// Â₀ = [0 1; 0 0]: first column 0; B̂₀ = 0; x₀ = x̂₀ = 0.
-template <typename S = double> Coefficients<S> a_hat0() { return Coefficients<S>::Zero(); }
-template <typename S = double> InputMatrix<S> B_hat0() { return InputMatrix<S>::Zero(); }
-template <typename S = double> State<S> x0() { return State<S>::Zero(); }
+template <typename S = double>
+Coefficients<S> a_hat0() {
+  return Coefficients<S>::Zero();
+}
+template <typename S = double>
+InputMatrix<S> B_hat0() {
+  return InputMatrix<S>::Zero();
+}
+template <typename S = double>
+State<S> x0() {
+  return State<S>::Zero();
+}
 
 template <typename S = double>
 typename Observer<S>::LawOptions law_options(S k0_value = S(k0), S kmin_value = S(kmin)) {
@@ -223,7 +256,8 @@ Observer<S> make_observer(typename Observer<S>::LawOptions options = law_options
 
 template <typename S = double>
 typename Suzuki<S>::LawOptions suzuki_options(S forgetting = S(lambda)) {
-  return {.gamma0 = S(k0) * Eigen::Matrix<S, 4, 4>::Identity(), .R = Eigen::Matrix<S, 1, 1>::Identity(),
+  return {.gamma0 = S(k0) * Eigen::Matrix<S, 4, 4>::Identity(),
+          .R = Eigen::Matrix<S, 1, 1>::Identity(),
           .lambda = forgetting};
 }
 

@@ -115,9 +115,18 @@ inline Eigen::Vector2d printed_K() { return {0.8436769, 0.8563231}; }
 inline constexpr double printed_Gamma = 18.730773;
 inline constexpr double corrected_printed_Gamma = 1.8730773;
 
-template <typename S> Eigen::Matrix<S, 2, 1> initial_state() { return {S(1), S(-1)}; }
-template <typename S> Eigen::Matrix<S, 2, 1> initial_state_estimate() { return {S(0), S(0)}; }
-template <typename S> Eigen::Matrix<S, 1, 1> initial_parameter_estimate() { return Eigen::Matrix<S, 1, 1>(S(0)); }
+template <typename S>
+Eigen::Matrix<S, 2, 1> initial_state() {
+  return {S(1), S(-1)};
+}
+template <typename S>
+Eigen::Matrix<S, 2, 1> initial_state_estimate() {
+  return {S(0), S(0)};
+}
+template <typename S>
+Eigen::Matrix<S, 1, 1> initial_parameter_estimate() {
+  return Eigen::Matrix<S, 1, 1>(S(0));
+}
 
 /// Sampled model \f$(e^{AT}, B_d = 0, C)\f$.
 template <typename S>

@@ -46,7 +46,7 @@ template <typename S>
 Eigen::Matrix<S, 4, 4> form8_dynamics(S t) {
   const S w = S(1) + S(0.5) * std::sin(t);
   Eigen::Matrix<S, 4, 4> a;
-  a << -1, S(0.5) + S(0.5) * std::sin(t), 1, 0,  //
+  a << -1, S(0.5) + S(0.5) * std::sin(t), 1, 0,   //
       S(-0.5), S(-1.5), S(0.5) * std::cos(t), 1,  //
       S(0.3), 0, -2, w,                           //
       0, S(-0.3), -w, -2;
@@ -77,9 +77,9 @@ struct Regressor {
   template <typename S>
   Eigen::Matrix<S, 4, 2> operator()(S t) const {
     Eigen::Matrix<S, 4, 2> phi;
-    phi << std::sin(t), 0,         //
-        0, std::cos(S(0.7) * t),   //
-        1, 0,                      //
+    phi << std::sin(t), 0,        //
+        0, std::cos(S(0.7) * t),  //
+        1, 0,                     //
         0, std::sin(S(1.3) * t);
     return phi;
   }
@@ -87,11 +87,19 @@ struct Regressor {
 
 struct Input {
   template <typename S>
-  Eigen::Matrix<S, 1, 1> operator()(S t) const { return Eigen::Matrix<S, 1, 1>(std::sin(S(0.4) * t)); }
+  Eigen::Matrix<S, 1, 1> operator()(S t) const {
+    return Eigen::Matrix<S, 1, 1>(std::sin(S(0.4) * t));
+  }
 };
 
-template <typename S> Eigen::Matrix<S, 2, 1> true_parameters() { return {S(1), S(-2)}; }
-template <typename S> Eigen::Matrix<S, 4, 1> initial_state() { return {S(1), S(0.5), S(-1), S(0.8)}; }
+template <typename S>
+Eigen::Matrix<S, 2, 1> true_parameters() {
+  return {S(1), S(-2)};
+}
+template <typename S>
+Eigen::Matrix<S, 4, 1> initial_state() {
+  return {S(1), S(0.5), S(-1), S(0.8)};
+}
 
 /// Output injection of Algorithm 4 in the plant's coordinates: \f$K = T^{-1}[3I; 0]\f$.
 template <typename S>
@@ -112,8 +120,8 @@ using Model = decltype(model<S>());
 
 template <typename S>
 auto make_plant(ContinuousPlantOptions<S> options = {}) {
-  return ContinuousLinearPlant(model<S>(), initial_state<S>(), true_parameters<S>(),
-                               [](S t) { return Input{}.operator()<S>(t); }, options);
+  return ContinuousLinearPlant(
+      model<S>(), initial_state<S>(), true_parameters<S>(), [](S t) { return Input{}.operator()<S>(t); }, options);
 }
 
 }  // namespace adaptobs::examples::periodic

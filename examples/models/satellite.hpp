@@ -25,16 +25,16 @@ namespace adaptobs::examples::satellite {
 template <typename S>
 using Dims = Dimensions<S, 4, 2, 2, 2>;
 
-inline constexpr double omega = 3.49e-4;       ///< nominal angular velocity, rad/s
+inline constexpr double omega = 3.49e-4;        ///< nominal angular velocity, rad/s
 inline constexpr double sampling_period = 0.1;  ///< Ts, s
 inline constexpr double mu = 4.0;               ///< step size μ of the paper
 
 template <typename S>
 Eigen::Matrix<S, 4, 4> continuous_dynamics(S w = S(omega)) {
   Eigen::Matrix<S, 4, 4> a;
-  a << 0, 1, 0, 0,                //
-      3 * w * w, 0, 0, 2 * w,     //
-      0, 0, 0, 1,                 //
+  a << 0, 1, 0, 0,             //
+      3 * w * w, 0, 0, 2 * w,  //
+      0, 0, 0, 1,              //
       0, -2 * w, 0, 0;
   return a;
 }
@@ -63,17 +63,29 @@ DiscreteLtiModel<Dims<S>> model() {
 template <typename S>
 Eigen::Matrix<S, 4, 2> paper_gain() {
   Eigen::Matrix<S, 4, 2> k;
-  k << S(0.1412), S(4.93e-6),   //
-      S(0.0932), S(5.26e-5),    //
-      S(-4.93e-6), S(0.1412),   //
+  k << S(0.1412), S(4.93e-6),  //
+      S(0.0932), S(5.26e-5),   //
+      S(-4.93e-6), S(0.1412),  //
       S(-5.26e-5), S(0.0932);
   return k;
 }
 
-template <typename S> Eigen::Matrix<S, 2, 1> true_parameters() { return {S(1), S(1.5)}; }
-template <typename S> Eigen::Matrix<S, 4, 1> initial_state() { return {S(1), S(0), S(0), S(3.49e-4)}; }
-template <typename S> Eigen::Matrix<S, 4, 1> initial_state_estimate() { return {S(0.9), S(0), S(0), S(3.14e-4)}; }
-template <typename S> Eigen::Matrix<S, 2, 1> initial_parameter_estimate() { return {S(0.5), S(0.5)}; }
+template <typename S>
+Eigen::Matrix<S, 2, 1> true_parameters() {
+  return {S(1), S(1.5)};
+}
+template <typename S>
+Eigen::Matrix<S, 4, 1> initial_state() {
+  return {S(1), S(0), S(0), S(3.49e-4)};
+}
+template <typename S>
+Eigen::Matrix<S, 4, 1> initial_state_estimate() {
+  return {S(0.9), S(0), S(0), S(3.14e-4)};
+}
+template <typename S>
+Eigen::Matrix<S, 2, 1> initial_parameter_estimate() {
+  return {S(0.5), S(0.5)};
+}
 
 /// Square thrust pulses: unit amplitude, 1 s long, every 10 s; radial pulses
 /// start at t = 0, 10, 20, ... and tangential ones at t = 5, 15, 25, ...
@@ -84,8 +96,8 @@ template <typename S> Eigen::Matrix<S, 2, 1> initial_parameter_estimate() { retu
 /// and make the observer diverge.
 struct PulseThrusts {
   double amplitude = 1.0;
-  double width = 1.0;   ///< s
-  double period = 10.0; ///< s
+  double width = 1.0;             ///< s
+  double period = 10.0;           ///< s
   double tangential_delay = 5.0;  ///< s
 
   template <typename S = double>

@@ -78,8 +78,8 @@ inline MonitorDesign design_monitor(double mean_time_between_false_alarms, doubl
                                     double seconds = 3100) {
   const auto steps = static_cast<Index>(std::llround(seconds / sampling_period));
   const auto record = record_fault_free<2, 2>(Simulation{}, seeds, steps, monitor_from);
-  return design_fault_monitor(record, true_parameters<double>(), drift, mean_time_between_false_alarms / sampling_period,
-                              cusum_stride, chi_square_window);
+  return design_fault_monitor(record, true_parameters<double>(), drift,
+                              mean_time_between_false_alarms / sampling_period, cusum_stride, chi_square_window);
 }
 
 /// One monitored run of `seconds` (alarms of the test `which`, times in seconds).

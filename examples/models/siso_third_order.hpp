@@ -29,17 +29,29 @@ Eigen::Matrix<S, 3, 3> dynamics() {
       S(0.5), 0, -2;
   return a;
 }
-template <typename S> Eigen::Matrix<S, 3, 1> input_matrix() { return {S(0), S(1), S(0.5)}; }
-template <typename S> Eigen::Matrix<S, 1, 3> output_matrix() { return {S(1), S(0), S(1)}; }
-template <typename S> Eigen::Matrix<S, 2, 1> true_parameters() { return {S(2), S(-1)}; }
-template <typename S> Eigen::Matrix<S, 3, 1> initial_state() { return {S(1), S(-1), S(0.5)}; }
+template <typename S>
+Eigen::Matrix<S, 3, 1> input_matrix() {
+  return {S(0), S(1), S(0.5)};
+}
+template <typename S>
+Eigen::Matrix<S, 1, 3> output_matrix() {
+  return {S(1), S(0), S(1)};
+}
+template <typename S>
+Eigen::Matrix<S, 2, 1> true_parameters() {
+  return {S(2), S(-1)};
+}
+template <typename S>
+Eigen::Matrix<S, 3, 1> initial_state() {
+  return {S(1), S(-1), S(0.5)};
+}
 
 /// \f$\Phi(t)\f$.
 struct Regressor {
   template <typename S>
   Eigen::Matrix<S, 3, 2> operator()(S t) const {
     Eigen::Matrix<S, 3, 2> phi;
-    phi << std::sin(t), S(0),      //
+    phi << std::sin(t), S(0),        //
         std::cos(S(1.7) * t), S(1),  //
         S(0), std::sin(S(0.6) * t);
     return phi;
@@ -49,7 +61,9 @@ struct Regressor {
 /// u(t) = 1 + sin 0.3t.
 struct Input {
   template <typename S>
-  Eigen::Matrix<S, 1, 1> operator()(S t) const { return Eigen::Matrix<S, 1, 1>(S(1) + std::sin(S(0.3) * t)); }
+  Eigen::Matrix<S, 1, 1> operator()(S t) const {
+    return Eigen::Matrix<S, 1, 1>(S(1) + std::sin(S(0.3) * t));
+  }
 };
 
 template <typename S>
@@ -63,8 +77,8 @@ using Model = decltype(model<S>());
 
 template <typename S>
 auto make_plant(ContinuousPlantOptions<S> options = {}) {
-  return ContinuousLinearPlant(model<S>(), initial_state<S>(), true_parameters<S>(),
-                               [](S t) { return Input{}.operator()<S>(t); }, options);
+  return ContinuousLinearPlant(
+      model<S>(), initial_state<S>(), true_parameters<S>(), [](S t) { return Input{}.operator()<S>(t); }, options);
 }
 
 }  // namespace adaptobs::examples::siso

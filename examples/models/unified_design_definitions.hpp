@@ -47,8 +47,9 @@ BastinGeversObserver<SisoModel<S>> bastin_gevers_observer(UnifiedObserverOptions
   const auto transform = bastin_gevers_transform<S>();
   const auto so = transform.apply(siso::model<S>().system());
   const Eigen::Matrix<S, 3, 1> k = spr_injection_gain(so.Ao, so.Co, Eigen::Matrix<S, 3, 1>(1, 0, 0), S(2));
-  return make_bastin_gevers_observer(siso::model<S>(), transform, k, Eigen::Matrix<S, 2, 2>(S(5) * Eigen::Matrix<S, 2, 2>::Identity()),
-                                     Eigen::Matrix<S, 3, 1>::Zero().eval(), Eigen::Matrix<S, 2, 1>::Zero().eval(), options);
+  return make_bastin_gevers_observer(
+      siso::model<S>(), transform, k, Eigen::Matrix<S, 2, 2>(S(5) * Eigen::Matrix<S, 2, 2>::Identity()),
+      Eigen::Matrix<S, 3, 1>::Zero().eval(), Eigen::Matrix<S, 2, 1>::Zero().eval(), options);
 }
 
 template <typename S>
@@ -57,15 +58,16 @@ MarinoTomeiObserver<SisoModel<S>> marino_tomei_observer(UnifiedObserverOptions o
   const auto so = transform.apply(siso::model<S>().system());
   const Eigen::Matrix<S, 3, 1> gamma(1, 3, 2);
   const Eigen::Matrix<S, 3, 1> k = spr_injection_gain(so.Ao, so.Co, gamma, S(5));
-  return make_marino_tomei_observer(siso::model<S>(), transform, gamma, k,
-                                    Eigen::Matrix<S, 2, 2>(S(20) * Eigen::Matrix<S, 2, 2>::Identity()),
-                                    Eigen::Matrix<S, 3, 1>::Zero().eval(), Eigen::Matrix<S, 2, 1>::Zero().eval(), options);
+  return make_marino_tomei_observer(
+      siso::model<S>(), transform, gamma, k, Eigen::Matrix<S, 2, 2>(S(20) * Eigen::Matrix<S, 2, 2>::Identity()),
+      Eigen::Matrix<S, 3, 1>::Zero().eval(), Eigen::Matrix<S, 2, 1>::Zero().eval(), options);
 }
 
 template <typename S>
 BesanconObserver<PeriodicModel<S>> besancon_observer(UnifiedObserverOptions options) {
   const StaticTransform<periodic::Dims<S>> transform(periodic::coordinate_change<S>(), Eigen::Matrix<S, 4, 2>::Zero());
-  return make_besancon_observer(periodic::model<S>(), transform, Eigen::Matrix<S, 2, 2>(S(2) * Eigen::Matrix<S, 2, 2>::Identity()),
+  return make_besancon_observer(periodic::model<S>(), transform,
+                                Eigen::Matrix<S, 2, 2>(S(2) * Eigen::Matrix<S, 2, 2>::Identity()),
                                 Eigen::Matrix<S, 2, 2>(S(10) * Eigen::Matrix<S, 2, 2>::Identity()),
                                 Eigen::Matrix<S, 4, 1>::Zero().eval(), Eigen::Matrix<S, 2, 1>::Zero().eval(), options);
 }
@@ -74,7 +76,8 @@ template <typename S>
 ZhangContinuousObserver<PeriodicModel<S>> zhang_observer(S gamma, UnifiedObserverOptions options) {
   return make_zhang_continuous_observer(periodic::model<S>(), periodic::zhang_gain<S>(),
                                         Eigen::Matrix<S, 2, 2>(gamma * Eigen::Matrix<S, 2, 2>::Identity()),
-                                        Eigen::Matrix<S, 4, 1>::Zero().eval(), Eigen::Matrix<S, 2, 1>::Zero().eval(), options);
+                                        Eigen::Matrix<S, 4, 1>::Zero().eval(), Eigen::Matrix<S, 2, 1>::Zero().eval(),
+                                        options);
 }
 
 template <typename S>
@@ -96,11 +99,12 @@ BesanconObserver<SisoModel<S>> siso_besancon_observer(UnifiedObserverOptions opt
 
 template <typename S>
 ZhangContinuousObserver<SisoModel<S>> siso_zhang_observer(UnifiedObserverOptions options) {
-  const auto kalman = kalman_bucy_gain(siso::dynamics<S>(), siso::output_matrix<S>(), Eigen::Matrix<S, 3, 3>::Identity().eval(),
-                                       Eigen::Matrix<S, 1, 1>(S(0.1)));
+  const auto kalman = kalman_bucy_gain(siso::dynamics<S>(), siso::output_matrix<S>(),
+                                       Eigen::Matrix<S, 3, 3>::Identity().eval(), Eigen::Matrix<S, 1, 1>(S(0.1)));
   return make_zhang_continuous_observer(siso::model<S>(), Eigen::Matrix<S, 3, 1>(kalman.K),
                                         Eigen::Matrix<S, 2, 2>(S(20) * Eigen::Matrix<S, 2, 2>::Identity()),
-                                        Eigen::Matrix<S, 3, 1>::Zero().eval(), Eigen::Matrix<S, 2, 1>::Zero().eval(), options);
+                                        Eigen::Matrix<S, 3, 1>::Zero().eval(), Eigen::Matrix<S, 2, 1>::Zero().eval(),
+                                        options);
 }
 
 }  // namespace adaptobs::examples::designs

@@ -159,17 +159,27 @@ struct DilutionRate {
   double operator()(Index k) const { return mean + amplitude * std::sin(2 * std::numbers::pi * double(k) / period); }
 };
 
-template <typename S> Eigen::Matrix<S, 2, 1> initial_state() { return {S(4), S(0.3)}; }
-template <typename S> Eigen::Matrix<S, 2, 1> initial_state_estimate() { return {S(3), S(0.6)}; }
-template <typename S> Vector1<S> initial_parameter_estimate() { return Vector1<S>(S(0)); }
+template <typename S>
+Eigen::Matrix<S, 2, 1> initial_state() {
+  return {S(4), S(0.3)};
+}
+template <typename S>
+Eigen::Matrix<S, 2, 1> initial_state_estimate() {
+  return {S(3), S(0.6)};
+}
+template <typename S>
+Vector1<S> initial_parameter_estimate() {
+  return Vector1<S>(S(0));
+}
 
 /// The simulated plant (72) with constant θ, from x0, driven by the dilution rate `input(k)`.
 template <typename S = double, class InputFn = DilutionRate>
 auto make_plant(S theta, Eigen::Matrix<S, 2, 1> x0 = initial_state<S>(), InputFn input = {}) {
-  return make_discrete_nonlinear_plant<Dims<S>>(
-      [](const Eigen::Matrix<S, 2, 1>& x, const Vector1<S>& u, const Vector1<S>& th) { return transition<S>(x, u, th); },
-      output_matrix<S>(), x0, [input](Index k) { return Vector1<S>(S(input(k))); },
-      [theta](Index) { return Vector1<S>(theta); }, S(sampling_period));
+  return make_discrete_nonlinear_plant<Dims<S>>([](const Eigen::Matrix<S, 2, 1>& x, const Vector1<S>& u,
+                                                   const Vector1<S>& th) { return transition<S>(x, u, th); },
+                                                output_matrix<S>(), x0,
+                                                [input](Index k) { return Vector1<S>(S(input(k))); },
+                                                [theta](Index) { return Vector1<S>(theta); }, S(sampling_period));
 }
 
 /// True while the plant state is in the box of (76), where the polytopic model is exact.

@@ -26,9 +26,9 @@ namespace adaptobs::examples::wwtp {
 
 /// The injected change of θ.
 struct GrowthFault {
-  Index step = 400;     ///< sample at which the change starts
-  double size = 0.15;   ///< θ after the change (from 0)
-  Index ramp = 0;       ///< samples over which it builds up linearly (0: a step)
+  Index step = 400;    ///< sample at which the change starts
+  double size = 0.15;  ///< θ after the change (from 0)
+  Index ramp = 0;      ///< samples over which it builds up linearly (0: a step)
 
   [[nodiscard]] double theta_at(Index k) const {
     if (ramp > 0) return size * std::clamp(static_cast<double>(k - step) / static_cast<double>(ramp), 0.0, 1.0);
@@ -50,7 +50,9 @@ struct Simulation {
   void operator()(std::uint64_t seed, bool faulty, Index steps, Visit&& visit) const {
     const GrowthFault f = fault;
     auto plant = make_discrete_nonlinear_plant<Dims<double>>(
-        [](const Eigen::Vector2d& x, const Vector1<double>& u, const Vector1<double>& th) { return transition<double>(x, u, th); },
+        [](const Eigen::Vector2d& x, const Vector1<double>& u, const Vector1<double>& th) {
+          return transition<double>(x, u, th);
+        },
         output_matrix<double>(), initial_state<double>(), [](Index k) { return Vector1<double>(DilutionRate{}(k)); },
         [f, faulty](Index k) { return Vector1<double>(faulty ? f.theta_at(k) : 0.0); }, sampling_period);
     TakagiSugenoObserver observer(model<double>(), paper_gains<double>(), initial_state_estimate<double>(),

@@ -20,8 +20,8 @@
 #include <array>
 #include <atomic>
 #include <complex>
-#include <stdexcept>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -203,7 +203,7 @@ struct StatusArray : NewArray<std::int8_t> {
 
 /// A list of runs, each an N_r x n array (row k: the vector at sample k), as vectors.
 inline std::vector<std::vector<Eigen::VectorXd>> vector_runs(nb::handle obj, std::string_view who,
-                                                              std::string_view name) {
+                                                             std::string_view name) {
   if (!nb::isinstance<nb::sequence>(obj) || nb::isinstance<nb::str>(obj))
     fail_type(who, name, obj, "a list of arrays, one per run (N_r x n)");
   std::vector<std::vector<Eigen::VectorXd>> runs;
@@ -224,8 +224,7 @@ inline std::vector<std::vector<Eigen::VectorXd>> vector_runs(nb::handle obj, std
 inline nb::tuple sizes_tuple(const Sizes& s) { return nb::make_tuple(s.nx, s.nu, s.ny, s.np); }
 
 /// The three matrices a Python function of a model returned, as the tuple (A, B, C).
-inline std::array<nb::object, 3> system_tuple(const nb::object& result, std::string_view who,
-                                              std::string_view name) {
+inline std::array<nb::object, 3> system_tuple(const nb::object& result, std::string_view who, std::string_view name) {
   nb::tuple abc;
   if (!nb::try_cast(result, abc, false) || abc.size() != 3) fail_type(who, name, result, "a tuple (A, B, C)");
   return {abc[0], abc[1], abc[2]};

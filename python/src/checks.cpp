@@ -70,13 +70,12 @@ std::vector<Eigen::MatrixXd> regressor_sequence(nb::handle obj, Index n, Index p
     fail_dimensions(who, name, "an N x " + std::to_string(n) + " x " + std::to_string(p) + " array (H_k in row k)",
                     shape_of(a));
   const Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic> stride(static_cast<Index>(a.stride(2)),
-                                                            static_cast<Index>(a.stride(1)));
+                                                             static_cast<Index>(a.stride(1)));
   sequence.reserve(a.shape(0));
   for (std::size_t k = 0; k < a.shape(0); ++k)
     sequence.emplace_back(MatrixView(a.data() + static_cast<Index>(k) * static_cast<Index>(a.stride(0)), n, p, stride));
   return sequence;
 }
-
 
 /// A count argument that the library takes as an int.
 int int_argument(nb::handle obj, std::string_view who, std::string_view name) {
@@ -248,9 +247,9 @@ DetectionSummary evaluate(nb::handle scenario, nb::handle fault_obj, nb::handle 
                       ", got " + std::to_string(twins.size()) + ")");
   const auto recorded = static_cast<Index>(faulty.size());
   const Index seeds = seeds_obj.is_none() ? recorded : integer_argument(seeds_obj, who, "seeds");
-  detail::require(seeds == recorded, who, "seeds",
-                  "must equal the number of recorded runs (" + std::to_string(recorded) + ", got " +
-                      std::to_string(seeds) + ")");
+  detail::require(
+      seeds == recorded, who, "seeds",
+      "must equal the number of recorded runs (" + std::to_string(recorded) + ", got " + std::to_string(seeds) + ")");
   const RecordedScenario replay{&faulty, &twins, first_seed};
   nb::gil_scoped_release release;
   return evaluate_detection(replay, fault, first_seed, seeds, static_cast<unsigned>(threads));
@@ -272,7 +271,8 @@ void bind_checks(nb::module_& m) {
       .value("fails", ConditionVerdict::fails)
       .value("undetermined", ConditionVerdict::undetermined);
 
-  nb::class_<GuiroPowerBound>(m, "PowerBound", "||U^k||_2 <= M lambda^k for every k >= 0 (the smallest M for that lambda).")
+  nb::class_<GuiroPowerBound>(m, "PowerBound",
+                              "||U^k||_2 <= M lambda^k for every k >= 0 (the smallest M for that lambda).")
       .def_ro("lambda_", &GuiroPowerBound::lambda, "the rate lambda in (rho(U), 1)")
       .def_ro("M", &GuiroPowerBound::M)
       .def_prop_ro("perturbation_margin", &GuiroPowerBound::perturbation_margin,
@@ -290,7 +290,8 @@ void bind_checks(nb::module_& m) {
                      "(i) ||W(k)|| < (1 - lambda)/M from k0 on, (ii) sum_k ||W(k)|| finite.")
       .def_ro("spectral_radius", &Report::spectral_radius, "rho(U) at the chosen Hbar")
       .def_ro("bound", &Report::bound, "the PowerBound of U maximizing (1 - lambda)/M; None when U is not Schur")
-      .def_prop_ro("w_norms", [](const Report& r) { return array_of(r.w_norms); }, "||W(k)||_2 for the supplied H_k")
+      .def_prop_ro(
+          "w_norms", [](const Report& r) { return array_of(r.w_norms); }, "||W(k)||_2 for the supplied H_k")
       .def_ro("condition_i", &Report::condition_i, "ConditionVerdict of (i)")
       .def_ro("k0", &Report::k0, "first index from which ||W(k)|| < (1 - lambda)/M on the data; None if none")
       .def_ro("tail_sup", &Report::tail_sup, "sup_{k >= k0} ||W(k)|| on the data")
@@ -310,7 +311,8 @@ void bind_checks(nb::module_& m) {
         constexpr std::string_view who = "check_guiro_convergence";
         const Eigen::MatrixXd e = matrix(E, who, "E"), h = matrix(Hbar, who, "Hbar");
         detail::require_square(e, who, "E");
-        const std::vector<Eigen::MatrixXd> sequence = regressor_sequence(H_sequence, e.rows(), h.cols(), who, "H_sequence");
+        const std::vector<Eigen::MatrixXd> sequence =
+            regressor_sequence(H_sequence, e.rows(), h.cols(), who, "H_sequence");
         return check_guiro_convergence(e, matrix(C, who, "C"), matrix(K, who, "K"), matrix(Gamma, who, "Gamma"), h,
                                        sequence);
       },
@@ -338,16 +340,16 @@ void bind_checks(nb::module_& m) {
               "deg q = n - 1 with a positive leading coefficient: lim w^2 Re G(jw) > 0")
       .def("__bool__", [](const Conditions& c) { return c.strictly_positive_real; });
   nb::class_<Test, Conditions>(m, "SprTest", "The exact SPR test with its polynomial q.")
-      .def_prop_ro("q", [](const Test& t) { return Eigen::VectorXd(t.q); },
-                   "q(w) = Re G(j sqrt w) |D(j sqrt w)|^2, highest power first");
+      .def_prop_ro(
+          "q", [](const Test& t) { return Eigen::VectorXd(t.q); },
+          "q(w) = Re G(j sqrt w) |D(j sqrt w)|^2, highest power first");
   nb::class_<Sweep>(m, "SprSweep", "Frequency-sweep cross-check of strict positive realness, with its margins.")
       .def_ro("strictly_positive_real", &Sweep::strictly_positive_real)
       .def_ro("hurwitz", &Sweep::hurwitz)
       .def_ro("min_weighted_real_part", &Sweep::min_weighted_real_part,
               "min over the grid of (1 + w^2) Re G(jw): the margin at finite frequencies")
       .def_ro("at_frequency", &Sweep::at_frequency, "w of that minimum")
-      .def_ro("high_frequency_limit", &Sweep::high_frequency_limit,
-              "lim w^2 Re G(jw) = -c A b: the margin at infinity")
+      .def_ro("high_frequency_limit", &Sweep::high_frequency_limit, "lim w^2 Re G(jw) = -c A b: the margin at infinity")
       .def("__bool__", [](const Sweep& s) { return s.strictly_positive_real; });
   nb::class_<Kyp>(m, "KypCertificate",
                   "A Kalman-Yakubovich-Popov certificate of c (sI - A)^-1 b being SPR: P = P^T > 0 with\n"
@@ -368,12 +370,14 @@ void bind_checks(nb::module_& m) {
       "Exact SPR test of G = N/D: coefficients highest power first, D monic of degree n, deg N < n.\n"
       "D by Routh-Hurwitz, the real roots of q(w) = Re G(j sqrt w) |D(j sqrt w)|^2 by a Sturm sequence\n"
       "(no root finding). (s + 2)/((s + 1)(s + 3)) is SPR; (s + 3)/((s + 1)(s + 2)) is not: w^2 Re G(jw) -> 0.\n"
-      "Algorithms 1 and 2 of Zhang (2005, sections III-A, III-B) converge when c_o (sI - A_o + k c_o)^-1 gamma is SPR.");
+      "Algorithms 1 and 2 of Zhang (2005, sections III-A, III-B) converge when c_o (sI - A_o + k c_o)^-1 gamma is "
+      "SPR.");
   m.def(
       "strictly_positive_real",
       [](nb::handle A, nb::handle b, nb::handle c) {
         constexpr std::string_view who = "strictly_positive_real";
-        const Eigen::MatrixXd a = matrix(A, who, "A"), bb = column_argument(b, who, "b"), cc = row_argument(c, who, "c");
+        const Eigen::MatrixXd a = matrix(A, who, "A"), bb = column_argument(b, who, "b"),
+                              cc = row_argument(c, who, "c");
         detail::require_siso_triple(a, bb, cc, who);
         return strictly_positive_real(a, bb, cc);
       },
@@ -426,7 +430,8 @@ void bind_checks(nb::module_& m) {
       "kyp_residuals",
       [](nb::handle P, nb::handle A, nb::handle b, nb::handle c) {
         constexpr std::string_view who = "kyp_residuals";
-        const Eigen::MatrixXd a = matrix(A, who, "A"), bb = column_argument(b, who, "b"), cc = row_argument(c, who, "c");
+        const Eigen::MatrixXd a = matrix(A, who, "A"), bb = column_argument(b, who, "b"),
+                              cc = row_argument(c, who, "c");
         const Index n = detail::require_siso_triple(a, bb, cc, who);
         const Eigen::MatrixXd p = matrix(P, who, "P");
         detail::require_finite_shape(p, n, n, who, "P");
@@ -438,8 +443,8 @@ void bind_checks(nb::module_& m) {
       "ackermann_observer_gain",
       [](nb::handle A, nb::handle c, nb::handle p) {
         constexpr std::string_view who = "ackermann_observer_gain";
-        return Eigen::VectorXd(
-            ackermann_observer_gain(matrix(A, who, "A"), row_argument(c, who, "c"), coefficients_argument(p, who, "p")));
+        return Eigen::VectorXd(ackermann_observer_gain(matrix(A, who, "A"), row_argument(c, who, "c"),
+                                                       coefficients_argument(p, who, "p")));
       },
       nb::arg("A"), nb::arg("c"), nb::arg("p"),
       "Output-injection gain k with det(sI - A + k c) = p(s) (p monic of degree n, highest power first):\n"
@@ -593,8 +598,8 @@ void bind_checks(nb::module_& m) {
           "__init__",
           [](MonitoredRun* self, nb::handle start, nb::handle end, nb::handle times, nb::handle isolated) {
             constexpr std::string_view who = "MonitoredRun";
-            MonitoredRun run =
-                alarm_run(real_scalar(start, who, "start"), real_scalar(end, who, "end"), times, isolated, who, "times", "isolated");
+            MonitoredRun run = alarm_run(real_scalar(start, who, "start"), real_scalar(end, who, "end"), times,
+                                         isolated, who, "times", "isolated");
             new (self) MonitoredRun(std::move(run));
           },
           nb::arg("start"), nb::arg("end"), nb::arg("times").none() = nb::none(),
@@ -603,7 +608,8 @@ void bind_checks(nb::module_& m) {
           "all -1).")
       .def_rw("start", &MonitoredRun::start)
       .def_rw("end", &MonitoredRun::end)
-      .def_prop_ro("alarms", [](const MonitoredRun& r) { return r.alarms; }, "a list of the Alarm objects (copies)")
+      .def_prop_ro(
+          "alarms", [](const MonitoredRun& r) { return r.alarms; }, "a list of the Alarm objects (copies)")
       .def_prop_ro("times",
                    [](const MonitoredRun& r) {
                      Eigen::VectorXd t(static_cast<Index>(r.alarms.size()));
@@ -642,8 +648,9 @@ void bind_checks(nb::module_& m) {
       .def_ro("fault_free_time", &DetectionSummary::fault_free_time, "their monitored time, sum of end - start")
       .def_ro("false_alarm_rate", &DetectionSummary::false_alarm_rate,
               "false_alarms / fault_free_time (NaN when no fault-free time was monitored)")
-      .def_prop_ro("delays", [](const DetectionSummary& s) { return array_of(s.delays); },
-                   "the delay of each detected seed, in seed order")
+      .def_prop_ro(
+          "delays", [](const DetectionSummary& s) { return array_of(s.delays); },
+          "the delay of each detected seed, in seed order")
       .def("__repr__", [](const DetectionSummary& s) {
         std::ostringstream os;
         os.precision(6);

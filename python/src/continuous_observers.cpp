@@ -36,9 +36,9 @@ namespace {
 /// Phi(t) or Phi(t, u, y) returning one. The callable runs with the GIL taken
 /// back (once per Runge–Kutta stage); a constant never enters Python.
 struct PythonRegressor {
-  nb::object source;     // what the user gave: the array or the callable (kept for pickling)
+  nb::object source;  // what the user gave: the array or the callable (kept for pickling)
   bool callable = false;
-  bool signals = false;  // Phi(t, u, y) rather than Phi(t)
+  bool signals = false;                           // Phi(t, u, y) rather than Phi(t)
   std::string_view model = "ContinuousLtiModel";  // the class its errors name
   mutable Eigen::MatrixXd value;
 
@@ -79,7 +79,7 @@ using ContinuousModel = ContinuousLtiModel<Dims, PythonRegressor>;
 /// GIL) wherever the integration needs them. Each observer owns its copy, so the
 /// matrices of the last call are cached per observer, and an observer is never
 /// stepped by two threads at once (UseFlag). Its Python class is ContinuousLtvModel.
-class PythonContinuousModel : public SizedBy<Dims> {
+class PythonContinuousModel : public Dims {
  public:
   static constexpr bool time_invariant = false;
 
@@ -89,8 +89,7 @@ class PythonContinuousModel : public SizedBy<Dims> {
   /// Sizes from matrices_at(0); Φ checked at t = 0 as for a constant model.
   PythonContinuousModel(nb::object matrices_at, PythonRegressor phi, Index np, std::string_view who)
       : phi_(std::move(phi)), matrices_at_(std::move(matrices_at)), varying_(true) {
-    if (!PyCallable_Check(matrices_at_.ptr()))
-      fail_type(who, "matrices_at", matrices_at_, "a callable t -> (A, B, C)");
+    if (!PyCallable_Check(matrices_at_.ptr())) fail_type(who, "matrices_at", matrices_at_, "a callable t -> (A, B, C)");
     const auto [A, B, C] = system_tuple(matrices_at_(0.0), who, "matrices_at(0)");
     system_ = {matrix(A, who, "matrices_at(0)[0]"), matrix(B, who, "matrices_at(0)[1]"),
                matrix(C, who, "matrices_at(0)[2]")};
@@ -290,8 +289,9 @@ UpdateStatus continuous_step(ContinuousBound<Observer>& self, double t, nb::hand
     detail::fail_argument(who, u_mid.is_none() ? "u_mid" : "y_mid", "must be given with the other midpoint signal");
   if (u_mid.is_none()) {
     if (self.observer.started() && self.observer.sampling_options().needs_midpoint())
-      detail::fail_argument(who, "u_mid", "must be given, with y_mid: a 'quadratic' reconstruction needs the signals "
-                                          "at the midpoint of every interval");
+      detail::fail_argument(who, "u_mid",
+                            "must be given, with y_mid: a 'quadratic' reconstruction needs the signals "
+                            "at the midpoint of every interval");
     self.sample.midpoint.reset();
   } else {
     if (!self.sample.midpoint) self.sample.midpoint.emplace();
@@ -325,8 +325,9 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
     detail::fail_argument(who, u_mid.is_none() ? "U_mid" : "Y_mid", "must be given with the other midpoint signal");
   const bool midpoints = !u_mid.is_none();
   if (!midpoints && self.observer.sampling_options().needs_midpoint() && (samples > 1 || self.observer.started()))
-    detail::fail_argument(who, "U_mid", "must be given, with Y_mid: a 'quadratic' reconstruction needs the signals at "
-                                        "the midpoint of every interval");
+    detail::fail_argument(who, "U_mid",
+                          "must be given, with Y_mid: a 'quadratic' reconstruction needs the signals at "
+                          "the midpoint of every interval");
   const Rows mid_inputs = midpoints ? rows(u_mid, samples, s.nu, who, "U_mid") : Rows{};
   const Rows mid_outputs = midpoints ? rows(y_mid, samples, s.ny, who, "Y_mid") : Rows{};
 
@@ -394,29 +395,35 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
             const InUse guard(self.in_use.flag, who);
             self.observer.reset(vector(eta0, who, "eta0"), vector(theta0, who, "theta0"));
           },
-          nb::arg("eta0"), nb::arg("theta0"), "Restarts from the initial estimates; the next sample sets the time origin.")
-      .def_prop_ro("state", [](const B& self) { return Eigen::VectorXd(self.observer.state()); },
-                   "State estimate eta_hat in the original coordinates.")
+          nb::arg("eta0"), nb::arg("theta0"),
+          "Restarts from the initial estimates; the next sample sets the time origin.")
+      .def_prop_ro(
+          "state", [](const B& self) { return Eigen::VectorXd(self.observer.state()); },
+          "State estimate eta_hat in the original coordinates.")
       .def_prop_ro("parameters", [](const B& self) { return Eigen::VectorXd(self.observer.parameters()); })
       .def_prop_ro("output_error", [](const B& self) { return Eigen::VectorXd(self.observer.output_error()); })
-      .def_prop_ro("time", [](const B& self) { return self.observer.time(); }, "time of the last accepted sample")
-      .def_prop_ro("internal_state", [](const B& self) { return Eigen::VectorXd(self.observer.internal_state()); },
-                   "(z_hat, vec Xi, theta_hat), what the RK4 steps integrate")
+      .def_prop_ro(
+          "time", [](const B& self) { return self.observer.time(); }, "time of the last accepted sample")
+      .def_prop_ro(
+          "internal_state", [](const B& self) { return Eigen::VectorXd(self.observer.internal_state()); },
+          "(z_hat, vec Xi, theta_hat), what the RK4 steps integrate")
       .def_prop_ro("excitation_level",
                    [](const B& self) {
                      const double level = excitation_of(self.observer);
                      return std::isnan(level) ? std::nullopt : std::optional<double>(level);
                    })
-      .def_prop_ro("sizes", [](const B& self) { return sizes_tuple(self.observer.sizes()); }, "(nx, nu, ny, np).")
+      .def_prop_ro(
+          "sizes", [](const B& self) { return sizes_tuple(self.observer.sizes()); }, "(nx, nu, ny, np).")
       .def(
           "resynchronize",
           [](B& self) {
             const InUse guard(self.in_use.flag, "resynchronize");
             self.observer.resynchronize();
           },
-           "Resumes from the next sample with the estimates kept (after interval_too_long).")
-      .def("snapshot", [](const B& self) { return to_dict(adaptobs::snapshot(self.observer)); },
-           "The whole internal state as a dict of arrays; the regressor Phi is the model's code, not part of it.")
+          "Resumes from the next sample with the estimates kept (after interval_too_long).")
+      .def(
+          "snapshot", [](const B& self) { return to_dict(adaptobs::snapshot(self.observer)); },
+          "The whole internal state as a dict of arrays; the regressor Phi is the model's code, not part of it.")
       .def(
           "restore",
           [](B& self, nb::handle state) {
@@ -425,7 +432,8 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
           },
           nb::arg("state"))
       .def("__copy__", [](const B& self) { return B(self.observer); })
-      .def("__deepcopy__", [](const B& self, nb::handle) { return B(self.observer); }, nb::arg("memo"))
+      .def(
+          "__deepcopy__", [](const B& self, nb::handle) { return B(self.observer); }, nb::arg("memo"))
       .def("__getstate__",
            [](const B& self) {
              const PythonContinuousModel& model = self.observer.model();
@@ -444,12 +452,12 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
 }  // namespace
 
 void bind_continuous_observers(nb::module_& m) {
-  nb::class_<ContinuousModel>(m, "ContinuousLtiModel",
-                              nb::type_slots(CollectedReferences<ContinuousModel, ModelItself>::slots),
-                              "Continuous-time model d eta/dt = A eta + B u + Phi theta, y = C eta (Zhang 2005, eq. (1)).\n"
-                              "Phi is a constant nx x np array, or a callable Phi(t) or Phi(t, u, y) returning one;\n"
-                              "a callable is called from C++ at every Runge-Kutta stage (with the GIL), which costs\n"
-                              "about a microsecond a call. np defaults to the columns of a constant Phi.")
+  nb::class_<ContinuousModel>(
+      m, "ContinuousLtiModel", nb::type_slots(CollectedReferences<ContinuousModel, ModelItself>::slots),
+      "Continuous-time model d eta/dt = A eta + B u + Phi theta, y = C eta (Zhang 2005, eq. (1)).\n"
+      "Phi is a constant nx x np array, or a callable Phi(t) or Phi(t, u, y) returning one;\n"
+      "a callable is called from C++ at every Runge-Kutta stage (with the GIL), which costs\n"
+      "about a microsecond a call. np defaults to the columns of a constant Phi.")
       .def(
           "__init__",
           [](ContinuousModel* self, nb::handle A, nb::handle B, nb::handle C, nb::handle Phi, nb::handle np) {
@@ -464,8 +472,9 @@ void bind_continuous_observers(nb::module_& m) {
       .def_prop_ro("A", [](const ContinuousModel& self) { return Eigen::MatrixXd(self.system().A); })
       .def_prop_ro("B", [](const ContinuousModel& self) { return Eigen::MatrixXd(self.system().B); })
       .def_prop_ro("C", [](const ContinuousModel& self) { return Eigen::MatrixXd(self.system().C); })
-      .def_prop_ro("Phi", [](const ContinuousModel& self) { return self.regressor_function().source; },
-                   "the regressor as given: the array or the callable");
+      .def_prop_ro(
+          "Phi", [](const ContinuousModel& self) { return self.regressor_function().source; },
+          "the regressor as given: the array or the callable");
 
   nb::class_<PythonContinuousModel>(
       m, "ContinuousLtvModel", nb::type_slots(CollectedReferences<PythonContinuousModel, ModelItself>::slots),
@@ -491,10 +500,11 @@ void bind_continuous_observers(nb::module_& m) {
           },
           nb::arg("t"), "(A(t), B(t), C(t)).")
       .def_prop_ro("matrices_at", [](const PythonContinuousModel& self) { return self.matrices_function(); })
-      .def_prop_ro("Phi", [](const PythonContinuousModel& self) { return self.regressor_function().source; },
-                   "the regressor as given: the array or the callable")
-      .def_prop_ro("sizes", [](const PythonContinuousModel& self) { return sizes_tuple(self.sizes()); },
-                   "(nx, nu, ny, np).")
+      .def_prop_ro(
+          "Phi", [](const PythonContinuousModel& self) { return self.regressor_function().source; },
+          "the regressor as given: the array or the callable")
+      .def_prop_ro(
+          "sizes", [](const PythonContinuousModel& self) { return sizes_tuple(self.sizes()); }, "(nx, nu, ny, np).")
       .def("__getstate__",
            [](const PythonContinuousModel& self) {
              return nb::make_tuple(self.matrices_function(), self.regressor_function().source, self.sizes().np);
@@ -562,9 +572,9 @@ void bind_continuous_observers(nb::module_& m) {
       "spr_injection_gain",
       [](nb::handle A, nb::handle c, nb::handle gamma, nb::handle lambda) {
         constexpr std::string_view who = "spr_injection_gain";
-        return Eigen::VectorXd(
-            spr_injection_gain(matrix(A, who, "A"), matrix(c, who, "c"), Eigen::VectorXd(vector(gamma, who, "gamma")),
-                               real_scalar(lambda, who, "lambda_")));
+        return Eigen::VectorXd(spr_injection_gain(matrix(A, who, "A"), matrix(c, who, "c"),
+                                                  Eigen::VectorXd(vector(gamma, who, "gamma")),
+                                                  real_scalar(lambda, who, "lambda_")));
       },
       nb::arg("A"), nb::arg("c"), nb::arg("gamma"), nb::arg("lambda_"),
       "The gain k making c (sI - A + k c)^-1 gamma = c gamma / (s + lambda_), strictly positive real.");
@@ -576,7 +586,8 @@ void bind_continuous_observers(nb::module_& m) {
       "the excitation.";
 
   auto bastin_gevers = nb::class_<ContinuousBound<BastinGeversPy>>(
-      m, "BastinGeversObserver", nb::type_slots(CollectedReferences<ContinuousBound<BastinGeversPy>, ModelOfObserver>::slots),
+      m, "BastinGeversObserver",
+      nb::type_slots(CollectedReferences<ContinuousBound<BastinGeversPy>, ModelOfObserver>::slots),
       (std::string("Bastin-Gevers adaptive observer, continuous time, SISO: Algorithm 1 of the unified\n"
                    "formulation (Zhang 2005, section III-A, eq. (2)-(6)). `transform` gives the form (5)\n"
                    "(bastin_gevers_form), k the output injection (spr_injection_gain with gamma = e1), gamma\n"
@@ -585,13 +596,13 @@ void bind_continuous_observers(nb::module_& m) {
           .c_str());
   bastin_gevers.def(
       "__init__",
-      [](ContinuousBound<BastinGeversPy>* self, nb::handle model, nb::handle transform, nb::handle k,
-         nb::handle gamma, nb::handle eta0, nb::handle theta0, nb::handle substeps, nb::handle max_step,
-         nb::handle max_substeps, nb::handle input, nb::handle output, nb::handle excitation_window) {
+      [](ContinuousBound<BastinGeversPy>* self, nb::handle model, nb::handle transform, nb::handle k, nb::handle gamma,
+         nb::handle eta0, nb::handle theta0, nb::handle substeps, nb::handle max_step, nb::handle max_substeps,
+         nb::handle input, nb::handle output, nb::handle excitation_window) {
         constexpr std::string_view who = "BastinGeversObserver";
         new (self) ContinuousBound<BastinGeversPy>(make_bastin_gevers_observer(
-            continuous_model(model, who), static_transform(transform, who), matrix(k, who, "k"), matrix(gamma, who, "gamma"), vector(eta0, who, "eta0"),
-            vector(theta0, who, "theta0"),
+            continuous_model(model, who), static_transform(transform, who), matrix(k, who, "k"),
+            matrix(gamma, who, "gamma"), vector(eta0, who, "eta0"), vector(theta0, who, "theta0"),
             options_of(substeps, max_step, max_substeps, input, output, excitation_window, who)));
       },
       nb::arg("model"), nb::arg("transform"), nb::arg("k"), nb::arg("gamma"), nb::arg("eta0"), nb::arg("theta0"),
@@ -603,7 +614,8 @@ void bind_continuous_observers(nb::module_& m) {
   });
 
   auto marino_tomei = nb::class_<ContinuousBound<MarinoTomeiPy>>(
-      m, "MarinoTomeiObserver", nb::type_slots(CollectedReferences<ContinuousBound<MarinoTomeiPy>, ModelOfObserver>::slots),
+      m, "MarinoTomeiObserver",
+      nb::type_slots(CollectedReferences<ContinuousBound<MarinoTomeiPy>, ModelOfObserver>::slots),
       (std::string("Marino-Tomei adaptive observer, continuous time, SISO: Algorithm 2 of the unified\n"
                    "formulation (Zhang 2005, section III-B, eq. (2)-(4), (7)). `transform` gives the form (7)\n"
                    "(marino_tomei_form), gamma = (1, gamma_2, ..., gamma_n) a Hurwitz polynomial, k the output\n"
@@ -612,14 +624,14 @@ void bind_continuous_observers(nb::module_& m) {
           .c_str());
   marino_tomei.def(
       "__init__",
-      [](ContinuousBound<MarinoTomeiPy>* self, nb::handle model, nb::handle transform,
-         nb::handle gamma, nb::handle k, nb::handle adaptation_gain, nb::handle eta0, nb::handle theta0, nb::handle substeps,
-         nb::handle max_step, nb::handle max_substeps, nb::handle input, nb::handle output,
-         nb::handle excitation_window) {
+      [](ContinuousBound<MarinoTomeiPy>* self, nb::handle model, nb::handle transform, nb::handle gamma, nb::handle k,
+         nb::handle adaptation_gain, nb::handle eta0, nb::handle theta0, nb::handle substeps, nb::handle max_step,
+         nb::handle max_substeps, nb::handle input, nb::handle output, nb::handle excitation_window) {
         constexpr std::string_view who = "MarinoTomeiObserver";
         new (self) ContinuousBound<MarinoTomeiPy>(make_marino_tomei_observer(
-            continuous_model(model, who), static_transform(transform, who), vector(gamma, who, "gamma"), matrix(k, who, "k"),
-            matrix(adaptation_gain, who, "adaptation_gain"), vector(eta0, who, "eta0"), vector(theta0, who, "theta0"),
+            continuous_model(model, who), static_transform(transform, who), vector(gamma, who, "gamma"),
+            matrix(k, who, "k"), matrix(adaptation_gain, who, "adaptation_gain"), vector(eta0, who, "eta0"),
+            vector(theta0, who, "theta0"),
             options_of(substeps, max_step, max_substeps, input, output, excitation_window, who)));
       },
       nb::arg("model"), nb::arg("transform"), nb::arg("gamma"), nb::arg("k"), nb::arg("adaptation_gain"),
@@ -659,7 +671,8 @@ void bind_continuous_observers(nb::module_& m) {
   });
 
   auto zhang = nb::class_<ContinuousBound<ZhangPy>>(
-      m, "ZhangContinuousObserver", nb::type_slots(CollectedReferences<ContinuousBound<ZhangPy>, ModelOfObserver>::slots),
+      m, "ZhangContinuousObserver",
+      nb::type_slots(CollectedReferences<ContinuousBound<ZhangPy>, ModelOfObserver>::slots),
       (std::string("Zhang's adaptive observer, continuous time, MIMO: Algorithm 4 of the unified formulation\n"
                    "(Zhang 2005, section III-D, eq. (10)-(15)). K makes A - K C stable (kalman_bucy_gain, for\n"
                    "instance), gamma is the adaptation gain; no coordinate change.") +
@@ -685,7 +698,8 @@ void bind_continuous_observers(nb::module_& m) {
   });
 
   auto kalman_bucy = nb::class_<ContinuousBound<KalmanBucyPy>>(
-      m, "AugmentedKalmanBucyFilter", nb::type_slots(CollectedReferences<ContinuousBound<KalmanBucyPy>, ModelOfObserver>::slots),
+      m, "AugmentedKalmanBucyFilter",
+      nb::type_slots(CollectedReferences<ContinuousBound<KalmanBucyPy>, ModelOfObserver>::slots),
       "Baseline: the Kalman-Bucy filter on the augmented state [x; theta] (Zhang 2005, appendix), its\n"
       "Riccati equation integrated with the estimates; a step that would leave P indefinite is rejected\n"
       "(indefinite_covariance). P0 and Q are (nx + np) x (nx + np), R is ny x ny. Sampling options as for\n"
@@ -705,9 +719,9 @@ void bind_continuous_observers(nb::module_& m) {
       nb::arg("model"), nb::arg("eta0"), nb::arg("theta0"), nb::arg("P0"), nb::arg("Q"), nb::arg("R"), nb::kw_only(),
       nb::arg("substeps") = 1, nb::arg("max_step") = 0.0, nb::arg("max_substeps") = 1'000'000,
       nb::arg("input") = "hold", nb::arg("output") = "linear");
-  kalman_bucy.def_prop_ro("covariance",
-                          [](const ContinuousBound<KalmanBucyPy>& b) { return Eigen::MatrixXd(b.observer.covariance()); },
-                          "P of [x_hat; theta_hat]");
+  kalman_bucy.def_prop_ro(
+      "covariance", [](const ContinuousBound<KalmanBucyPy>& b) { return Eigen::MatrixXd(b.observer.covariance()); },
+      "P of [x_hat; theta_hat]");
   bind_continuous_observer(kalman_bucy, [](const Snapshot<double>& s, PythonContinuousModel model) {
     return KalmanBucyPy(std::move(model), field(s, "eta"), field(s, "theta"),
                         {field(s, "P0"), field(s, "Q"), field(s, "R")}, options_of(s).sampling);

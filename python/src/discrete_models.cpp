@@ -54,8 +54,9 @@ SharedDiscreteModel ltv_from_arrays(nb::handle A, nb::handle B, nb::handle C, nb
     steps = p->steps();
   }
   if (steps == 0)
-    detail::fail_argument(who, "A", "(or B or C) must be given per step (steps x rows x cols); a model with the "
-                                    "same matrices at every step is a DiscreteLtiModel");
+    detail::fail_argument(who, "A",
+                          "(or B or C) must be given per step (steps x rows x cols); a model with the "
+                          "same matrices at every step is a DiscreteLtiModel");
   SharedDiscreteModel::Systems systems;
   systems.reserve(static_cast<std::size_t>(steps));
   for (Index k = 0; k < steps; ++k) systems.push_back({a.at(k), b.at(k), c.at(k)});
@@ -106,7 +107,8 @@ void bind_discrete_models(nb::module_& m) {
       .def_prop_ro("A", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().A); })
       .def_prop_ro("B", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().B); })
       .def_prop_ro("C", [](const LtiModel& self) { return Eigen::MatrixXd(self.system().C); })
-      .def_prop_ro("sizes", [](const LtiModel& self) { return sizes_tuple(self.sizes()); }, "(nx, nu, ny, np).")
+      .def_prop_ro(
+          "sizes", [](const LtiModel& self) { return sizes_tuple(self.sizes()); }, "(nx, nu, ny, np).")
       .def("__getstate__", [](const LtiModel& self) { return to_dict(adaptobs::snapshot(self)); })
       .def("__setstate__", [](LtiModel& self, nb::handle state) {
         const Snapshot<double> s = from_dict(state);
@@ -122,11 +124,12 @@ void bind_discrete_models(nb::module_& m) {
       "shared by the observers built on it. An update beyond step N-1 raises ConfigurationError and\n"
       "changes nothing. The step is the observer's count of accepted samples: a sample rejected as\n"
       "not finite does not advance it, so mark a lost output with `present` (a time update), not NaN.")
-      .def("__init__",
-           [](SharedDiscreteModel* self, nb::handle A, nb::handle B, nb::handle C, nb::handle np) {
-             new (self) SharedDiscreteModel(ltv_from_arrays(A, B, C, np));
-           },
-           nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("np"))
+      .def(
+          "__init__",
+          [](SharedDiscreteModel* self, nb::handle A, nb::handle B, nb::handle C, nb::handle np) {
+            new (self) SharedDiscreteModel(ltv_from_arrays(A, B, C, np));
+          },
+          nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("np"))
       .def_static("from_function", &ltv_from_function, nb::arg("matrices_at"), nb::arg("steps"), nb::arg("np"),
                   "The model whose step k has the matrices (A_k, B_k, C_k) = matrices_at(k), for k in\n"
                   "range(steps): one call per step, here, and none while an observer runs.")
@@ -134,23 +137,33 @@ void bind_discrete_models(nb::module_& m) {
           "at",
           [](const SharedDiscreteModel& self, Index k) {
             if (k < 0 || k >= self.steps())
-              detail::fail_argument("DiscreteLtvModel.at", "k", "must lie in [0, " + std::to_string(self.steps()) + ")");
+              detail::fail_argument("DiscreteLtvModel.at", "k",
+                                    "must lie in [0, " + std::to_string(self.steps()) + ")");
             const System& s = self.at(k);
             return nb::make_tuple(Eigen::MatrixXd(s.A), Eigen::MatrixXd(s.B), Eigen::MatrixXd(s.C));
           },
           nb::arg("k"), "(A_k, B_k, C_k).")
-      .def_prop_ro("A", [](const SharedDiscreteModel& self) {
-        return stacked(self, self.sizes().nx, self.sizes().nx, [](const System& s) { return s.A; });
-      }, "A_k of every step, N x nx x nx.")
-      .def_prop_ro("B", [](const SharedDiscreteModel& self) {
-        return stacked(self, self.sizes().nx, self.sizes().nu, [](const System& s) { return s.B; });
-      }, "B_k of every step, N x nx x nu.")
-      .def_prop_ro("C", [](const SharedDiscreteModel& self) {
-        return stacked(self, self.sizes().ny, self.sizes().nx, [](const System& s) { return s.C; });
-      }, "C_k of every step, N x ny x nx.")
+      .def_prop_ro(
+          "A",
+          [](const SharedDiscreteModel& self) {
+            return stacked(self, self.sizes().nx, self.sizes().nx, [](const System& s) { return s.A; });
+          },
+          "A_k of every step, N x nx x nx.")
+      .def_prop_ro(
+          "B",
+          [](const SharedDiscreteModel& self) {
+            return stacked(self, self.sizes().nx, self.sizes().nu, [](const System& s) { return s.B; });
+          },
+          "B_k of every step, N x nx x nu.")
+      .def_prop_ro(
+          "C",
+          [](const SharedDiscreteModel& self) {
+            return stacked(self, self.sizes().ny, self.sizes().nx, [](const System& s) { return s.C; });
+          },
+          "C_k of every step, N x ny x nx.")
       .def_prop_ro("steps", &SharedDiscreteModel::steps, "N, the number of steps the model covers.")
-      .def_prop_ro("sizes", [](const SharedDiscreteModel& self) { return sizes_tuple(self.sizes()); },
-                   "(nx, nu, ny, np).")
+      .def_prop_ro(
+          "sizes", [](const SharedDiscreteModel& self) { return sizes_tuple(self.sizes()); }, "(nx, nu, ny, np).")
       .def("__getstate__", [](const SharedDiscreteModel& self) { return to_dict(adaptobs::snapshot(self)); })
       .def("__setstate__", [](SharedDiscreteModel& self, nb::handle state) {
         const Snapshot<double> s = from_dict(state);

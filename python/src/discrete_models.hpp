@@ -24,7 +24,7 @@ using Dims = DynamicDimensions<double>;
 using LtiModel = DiscreteLtiModel<Dims>;
 using System = DiscreteSystem<Dims>;
 
-class SharedDiscreteModel : public SizedBy<Dims> {
+class SharedDiscreteModel : public Dims {
  public:
   /// Either kind, known at run time (`is_time_invariant`).
   static constexpr bool time_invariant = false;
@@ -82,8 +82,7 @@ class SharedDiscreteModel : public SizedBy<Dims> {
     archive("B", stacked.B);
     archive("C", stacked.C);
     if constexpr (Archive::reading) {
-      detail::require(detail::all_finite(stacked.A) && detail::all_finite(stacked.B) &&
-                          detail::all_finite(stacked.C),
+      detail::require(detail::all_finite(stacked.A) && detail::all_finite(stacked.B) && detail::all_finite(stacked.C),
                       "restore", "snapshot", "holds model matrices that are not finite");
       self.systems_ = std::make_shared<const Systems>(stacked.unstacked(self.sizes()));
     }
@@ -98,8 +97,8 @@ class SharedDiscreteModel : public SizedBy<Dims> {
     const Index nx = stacked.A.rows();
     const Index count = std::max<Index>(steps, 1);
     if (nx == 0 || stacked.A.cols() != count * nx || stacked.B.cols() % count != 0 || stacked.C.cols() != count * nx)
-      detail::fail_argument("restore", "snapshot", "holds model matrices that are not " + std::to_string(count) +
-                                                       " steps of one size");
+      detail::fail_argument("restore", "snapshot",
+                            "holds model matrices that are not " + std::to_string(count) + " steps of one size");
     const Sizes sizes{nx, stacked.B.cols() / count, stacked.C.rows(), np};
     if (steps == 0) return SharedDiscreteModel(LtiModel(stacked.A, stacked.B, stacked.C, np));
     return SharedDiscreteModel(stacked.unstacked(sizes), np, "restore", element_of_arrays);
@@ -129,7 +128,9 @@ class SharedDiscreteModel : public SizedBy<Dims> {
     return out;
   }
 
-  static Sizes sizes_of(const System& system, Index np) { return {system.A.rows(), system.B.cols(), system.C.rows(), np}; }
+  static Sizes sizes_of(const System& system, Index np) {
+    return {system.A.rows(), system.B.cols(), system.C.rows(), np};
+  }
 
   std::shared_ptr<const Systems> systems_;
   Index np_;
@@ -140,9 +141,9 @@ class SharedDiscreteModel : public SizedBy<Dims> {
 /// go beyond the last step of a time-varying model.
 inline void require_steps(const SharedDiscreteModel& model, Index first, Index samples, std::string_view who) {
   if (!model.is_time_invariant() && first + samples > model.steps())
-    detail::fail_argument(who, "Y", "has " + std::to_string(samples) + " samples from step " + std::to_string(first) +
-                                        ", beyond the " + std::to_string(model.steps()) +
-                                        " steps of the DiscreteLtvModel");
+    detail::fail_argument(who, "Y",
+                          "has " + std::to_string(samples) + " samples from step " + std::to_string(first) +
+                              ", beyond the " + std::to_string(model.steps()) + " steps of the DiscreteLtvModel");
 }
 
 /// The model argument of a discrete observer: a DiscreteLtiModel or a DiscreteLtvModel.

@@ -12,8 +12,8 @@
 #include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/status.hpp>
 
-#include <nanobind/nanobind.h>
 #include <nanobind/eigen/dense.h>
+#include <nanobind/nanobind.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 
@@ -69,7 +69,7 @@ struct Rows {
 
   [[nodiscard]] auto row(Index k) const {
     return Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<>>(data + k * row_stride, n,
-                                                                     Eigen::InnerStride<>(col_stride));
+                                                                      Eigen::InnerStride<>(col_stride));
   }
 };
 
@@ -80,8 +80,9 @@ inline Rows rows(const Array& array, Index samples, Index n, std::string_view wh
   const bool one_d = array.ndim() == 1 && n == 1;
   const bool fits = one_d || (array.ndim() == 2 && static_cast<Index>(array.shape(1)) == n);
   if (!fits || static_cast<Index>(array.shape(0)) != samples)
-    fail_dimensions(who, name, std::to_string(samples) + "x" + std::to_string(n) + " (samples x " +
-                    std::to_string(n) + ")", shape_of(array));
+    fail_dimensions(who, name,
+                    std::to_string(samples) + "x" + std::to_string(n) + " (samples x " + std::to_string(n) + ")",
+                    shape_of(array));
   r.data = array.data();
   r.row_stride = static_cast<Index>(array.stride(0));
   r.col_stride = one_d ? 1 : static_cast<Index>(array.stride(1));
@@ -145,9 +146,7 @@ struct Masks {
   BoolArray keep;
   bool given = false;
 
-  [[nodiscard]] bool present(Index k, Index i) const {
-    return keep.data()[k * keep.stride(0) + i * keep.stride(1)];
-  }
+  [[nodiscard]] bool present(Index k, Index i) const { return keep.data()[k * keep.stride(0) + i * keep.stride(1)]; }
 };
 
 inline Masks masks(nb::handle obj, Index samples, Index ny, std::string_view who) {
@@ -204,7 +203,9 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
   else if (!psi.is_none())
     fail_no_regressor(who);
   const Masks mask = masks(present, samples, s.ny, who);
-  if constexpr (requires { { self.observer.model() } -> std::convertible_to<const SharedDiscreteModel&>; })
+  if constexpr (requires {
+                  { self.observer.model() } -> std::convertible_to<const SharedDiscreteModel&>;
+                })
     require_steps(self.observer.model(), self.observer.step(), samples, who);
 
   using D = Diagnostics<Observer>;
@@ -314,15 +315,19 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
           },
           nb::arg("x0"), nb::arg("theta0"), nb::arg("start_step") = 0,
           "Restarts from the initial estimates at step `start_step`, clearing the filters.")
-      .def_prop_ro("state", [](const B& self) { return Eigen::VectorXd(self.observer.state()); },
-                   "State estimate x_hat_k.")
-      .def_prop_ro("parameters", [](const B& self) { return Eigen::VectorXd(self.observer.parameters()); },
-                   "Parameter estimate theta_hat_k.")
-      .def_prop_ro("output_error", [](const B& self) { return Eigen::VectorXd(self.observer.output_error()); },
-                   "Output error of the last accepted update (absent channels zero).")
-      .def_prop_ro("step", [](const B& self) { return self.observer.step(); },
-                   "Number of accepted samples since construction or the last reset.")
-      .def_prop_ro("sizes", [](const B& self) { return sizes_tuple(self.observer.sizes()); }, "(nx, nu, ny, np).")
+      .def_prop_ro(
+          "state", [](const B& self) { return Eigen::VectorXd(self.observer.state()); }, "State estimate x_hat_k.")
+      .def_prop_ro(
+          "parameters", [](const B& self) { return Eigen::VectorXd(self.observer.parameters()); },
+          "Parameter estimate theta_hat_k.")
+      .def_prop_ro(
+          "output_error", [](const B& self) { return Eigen::VectorXd(self.observer.output_error()); },
+          "Output error of the last accepted update (absent channels zero).")
+      .def_prop_ro(
+          "step", [](const B& self) { return self.observer.step(); },
+          "Number of accepted samples since construction or the last reset.")
+      .def_prop_ro(
+          "sizes", [](const B& self) { return sizes_tuple(self.observer.sizes()); }, "(nx, nu, ny, np).")
       .def(
           "snapshot", [](const B& self) { return to_dict(adaptobs::snapshot(self.observer)); },
           "The whole internal state as a dict of arrays (type, version, matrices, integers).")
@@ -336,7 +341,8 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
           "Continues exactly as the observer `state` was taken from; a snapshot of another class, version\n"
           "or configuration raises ConfigurationError and changes nothing.")
       .def("__copy__", [](const B& self) { return B(self.observer); })
-      .def("__deepcopy__", [](const B& self, nb::handle) { return B(self.observer); }, nb::arg("memo"))
+      .def(
+          "__deepcopy__", [](const B& self, nb::handle) { return B(self.observer); }, nb::arg("memo"))
       .def("__getstate__",
            [python_part](const B& self) {
              return nb::make_tuple(to_dict(adaptobs::snapshot(self.observer)), python_part(self.observer));

@@ -57,19 +57,20 @@ void bind_discrete_observers(nb::module_& m) {
       "step (turn it on whenever outputs can be lost).");
   gz.def(
         "__init__",
-        [](Bound<GuyaderZhang>* self, nb::handle model, nb::handle K, nb::handle mu, nb::handle x0,
-           nb::handle theta0, nb::handle excitation_window, nb::handle normalized_step) {
+        [](Bound<GuyaderZhang>* self, nb::handle model, nb::handle K, nb::handle mu, nb::handle x0, nb::handle theta0,
+           nb::handle excitation_window, nb::handle normalized_step) {
           constexpr std::string_view who = "GuyaderZhangObserver";
-          new (self) Bound<GuyaderZhang>(GuyaderZhang(
-              discrete_model(model, who), matrix(K, who, "K"), real_scalar(mu, who, "mu"), vector(x0, who, "x0"),
-              vector(theta0, who, "theta0"),
-              {.excitation_window = integer_argument(excitation_window, who, "excitation_window"),
-               .normalized_step = flag_argument(normalized_step, who, "normalized_step")}));
+          new (self) Bound<GuyaderZhang>(
+              GuyaderZhang(discrete_model(model, who), matrix(K, who, "K"), real_scalar(mu, who, "mu"),
+                           vector(x0, who, "x0"), vector(theta0, who, "theta0"),
+                           {.excitation_window = integer_argument(excitation_window, who, "excitation_window"),
+                            .normalized_step = flag_argument(normalized_step, who, "normalized_step")}));
         },
         nb::arg("model"), nb::arg("K"), nb::arg("mu"), nb::arg("x0"), nb::arg("theta0"), nb::kw_only(),
         nb::arg("excitation_window") = 0, nb::arg("normalized_step") = false)
-      .def_prop_ro("upsilon", [](const Bound<GuyaderZhang>& b) { return Eigen::MatrixXd(b.observer.upsilon()); },
-                   "Filtered regressor Upsilon_k (eq. (2a)).")
+      .def_prop_ro(
+          "upsilon", [](const Bound<GuyaderZhang>& b) { return Eigen::MatrixXd(b.observer.upsilon()); },
+          "Filtered regressor Upsilon_k (eq. (2a)).")
       .def_prop_ro("K", [](const Bound<GuyaderZhang>& b) { return Eigen::MatrixXd(b.observer.gain()); })
       .def_prop_ro("mu", [](const Bound<GuyaderZhang>& b) { return b.observer.mu(); })
       .def(
@@ -86,19 +87,19 @@ void bind_discrete_observers(nb::module_& m) {
             const InUse guard(b.in_use.flag, who);
             b.observer.set_mu(real_scalar(mu, who, "mu"));
           },
-          nb::arg("mu"),
-          "Step size mu_k > 0 used from the next update on.")
-      .def_prop_ro("assumption2_norm", [](const Bound<GuyaderZhang>& b) { return b.observer.assumption2_norm(); },
-                   "||sqrt(mu_k) C Upsilon_k||_2 of the last accepted step (eq. (3)).")
+          nb::arg("mu"), "Step size mu_k > 0 used from the next update on.")
+      .def_prop_ro(
+          "assumption2_norm", [](const Bound<GuyaderZhang>& b) { return b.observer.assumption2_norm(); },
+          "||sqrt(mu_k) C Upsilon_k||_2 of the last accepted step (eq. (3)).")
       .def_prop_ro("assumption2_holds", [](const Bound<GuyaderZhang>& b) { return b.observer.assumption2_holds(); })
       .def_prop_ro(
           "excitation_level", [](const Bound<GuyaderZhang>& b) { return b.observer.excitation_level(); },
           "Excitation level alpha of assumption 3 (eq. (4)) over the last L steps; None while the monitor\n"
           "is off or its window has not filled.");
   bind_discrete_observer(gz, [](const Snapshot<double>& s) {
-    return GuyaderZhang(model_of(s), field(s, "K"), scalar(s, "mu"), field(s, "x"), field(s, "theta"),
-                        {.excitation_window = integer(s, "excitation_window"),
-                         .normalized_step = integer(s, "normalized_step") != 0});
+    return GuyaderZhang(
+        model_of(s), field(s, "K"), scalar(s, "mu"), field(s, "x"), field(s, "theta"),
+        {.excitation_window = integer(s, "excitation_window"), .normalized_step = integer(s, "normalized_step") != 0});
   });
 
   auto guiro = nb::class_<Bound<Guiro>>(
@@ -109,19 +110,21 @@ void bind_discrete_observers(nb::module_& m) {
       "  z-_{k+1} = E z_k + H_k theta_k + B u_k.\n"
       "`state` is the prediction z-_k, `corrected_state` the paper's z_{k-1}; design K and Gamma with\n"
       "design_guiro_gains. correct_initial_estimate=False leaves the first prediction uncorrected.");
-  guiro.def(
-           "__init__",
-           [](Bound<Guiro>* self, nb::handle model, nb::handle K, nb::handle Gamma, nb::handle z0,
-              nb::handle theta0, nb::handle correct_initial_estimate) {
-             constexpr std::string_view who = "GuiroObserver";
-             new (self) Bound<Guiro>(Guiro(discrete_model(model, who), matrix(K, who, "K"), matrix(Gamma, who, "Gamma"),
-                                           vector(z0, who, "z0"), vector(theta0, who, "theta0"),
-                                           {.correct_initial_estimate = flag_argument(
-                                                correct_initial_estimate, who, "correct_initial_estimate")}));
-           },
-           nb::arg("model"), nb::arg("K"), nb::arg("Gamma"), nb::arg("z0"), nb::arg("theta0"), nb::kw_only(),
-           nb::arg("correct_initial_estimate") = true)
-      .def_prop_ro("corrected_state", [](const Bound<Guiro>& b) { return Eigen::VectorXd(b.observer.corrected_state()); })
+  guiro
+      .def(
+          "__init__",
+          [](Bound<Guiro>* self, nb::handle model, nb::handle K, nb::handle Gamma, nb::handle z0, nb::handle theta0,
+             nb::handle correct_initial_estimate) {
+            constexpr std::string_view who = "GuiroObserver";
+            new (self) Bound<Guiro>(Guiro(discrete_model(model, who), matrix(K, who, "K"), matrix(Gamma, who, "Gamma"),
+                                          vector(z0, who, "z0"), vector(theta0, who, "theta0"),
+                                          {.correct_initial_estimate = flag_argument(correct_initial_estimate, who,
+                                                                                     "correct_initial_estimate")}));
+          },
+          nb::arg("model"), nb::arg("K"), nb::arg("Gamma"), nb::arg("z0"), nb::arg("theta0"), nb::kw_only(),
+          nb::arg("correct_initial_estimate") = true)
+      .def_prop_ro("corrected_state",
+                   [](const Bound<Guiro>& b) { return Eigen::VectorXd(b.observer.corrected_state()); })
       .def_prop_ro("K", [](const Bound<Guiro>& b) { return Eigen::MatrixXd(b.observer.gain()); })
       .def_prop_ro("Gamma", [](const Bound<Guiro>& b) { return Eigen::MatrixXd(b.observer.parameter_gain()); })
       .def(
@@ -172,10 +175,12 @@ void bind_discrete_observers(nb::module_& m) {
                                {matrix(P0, who, "P0"), matrix(Q, who, "Q"), matrix(R, who, "R")}));
          },
          nb::arg("model"), nb::arg("x0"), nb::arg("theta0"), nb::arg("P0"), nb::arg("Q"), nb::arg("R"))
-      .def_prop_ro("covariance", [](const Bound<AugmentedKalman>& b) { return Eigen::MatrixXd(b.observer.covariance()); },
-                   "Covariance of the augmented estimate [x_hat; theta_hat].");
+      .def_prop_ro(
+          "covariance", [](const Bound<AugmentedKalman>& b) { return Eigen::MatrixXd(b.observer.covariance()); },
+          "Covariance of the augmented estimate [x_hat; theta_hat].");
   bind_discrete_observer(akf, [](const Snapshot<double>& s) {
-    return AugmentedKalman(model_of(s), field(s, "x"), field(s, "theta"), {field(s, "P0"), field(s, "Q"), field(s, "R")});
+    return AugmentedKalman(model_of(s), field(s, "x"), field(s, "theta"),
+                           {field(s, "P0"), field(s, "Q"), field(s, "R")});
   });
 }
 

@@ -163,8 +163,8 @@ nb::dict simulate_continuous(MakePlant make_plant, Index steps, double period, d
 }
 
 nb::dict simulate_siso(Index steps, double period, double noise, std::uint64_t seed) {
-  return simulate_continuous([](auto options) { return siso::make_plant<double>(options); }, steps, period, noise,
-                             seed, "examples.simulate_siso");
+  return simulate_continuous([](auto options) { return siso::make_plant<double>(options); }, steps, period, noise, seed,
+                             "examples.simulate_siso");
 }
 
 namespace periodic = adaptobs::examples::periodic;

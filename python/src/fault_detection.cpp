@@ -33,7 +33,6 @@ using Monitor = FaultMonitor<double, X, X>;
 using MonitorDesign = FaultMonitorDesign<double, X, X>;
 using Calibration = CusumCalibration<double, X>;
 
-
 // The options of a sequential test from its keywords, named as Python spells them.
 SequentialTestOptions sequential_options(nb::handle stride, nb::handle hold_off, nb::handle reanchor,
                                          std::string_view who) {
@@ -75,8 +74,9 @@ void bind_state(nb::class_<T>& cls, Construct construct) {
       return self;
   };
   using Object = std::remove_reference_t<decltype(object(std::declval<T&>()))>;
-  cls.def("snapshot", [object](const T& self) { return to_dict(adaptobs::snapshot(object(self))); },
-          "The whole internal state as a dict of arrays.")
+  cls.def(
+         "snapshot", [object](const T& self) { return to_dict(adaptobs::snapshot(object(self))); },
+         "The whole internal state as a dict of arrays.")
       .def(
           "restore",
           [object](T& self, nb::handle state) {
@@ -91,7 +91,8 @@ void bind_state(nb::class_<T>& cls, Construct construct) {
           "Continues exactly as the object `state` was taken from; a snapshot of another class or version,\n"
           "or of other sizes or options, raises ConfigurationError and changes nothing.")
       .def("__copy__", [](const T& self) { return T(self); })
-      .def("__deepcopy__", [](const T& self, nb::handle) { return T(self); }, nb::arg("memo"))
+      .def(
+          "__deepcopy__", [](const T& self, nb::handle) { return T(self); }, nb::arg("memo"))
       .def("__getstate__", [object](const T& self) { return to_dict(adaptobs::snapshot(object(self))); })
       .def("__setstate__", [construct](T& self, nb::handle state) {
         const Snapshot<double> s = from_dict(state);
@@ -141,8 +142,8 @@ void bind_sequential(nb::class_<T>& cls) {
 
 // The per-sample figures of FaultMonitor.run.
 struct MonitorColumns {
-  static constexpr std::array<const char*, 6> statistics{"cusum_statistic", "glr_statistic", "chi_square_statistic",
-                                                        "cusum_isolated", "cusum_direction", "glr_isolated"};
+  static constexpr std::array<const char*, 6> statistics{"cusum_statistic", "glr_statistic",   "chi_square_statistic",
+                                                         "cusum_isolated",  "cusum_direction", "glr_isolated"};
 };
 
 nb::dict run_monitor(MonitorBound& self, nb::handle parameters, nb::handle output_errors, nb::handle status) {
@@ -283,8 +284,8 @@ void bind_fault_detection(nb::module_& m) {
                           "1985 approximation, calibrate_cusum).");
   cusum.def(
       "__init__",
-      [](Cusum* self, nb::handle nominal, nb::handle scale, nb::handle drift, nb::handle threshold,
-         nb::handle stride, nb::handle hold_off, nb::handle reanchor) {
+      [](Cusum* self, nb::handle nominal, nb::handle scale, nb::handle drift, nb::handle threshold, nb::handle stride,
+         nb::handle hold_off, nb::handle reanchor) {
         constexpr std::string_view who = "CusumDetector";
         new (self) Cusum(vector(nominal, who, "nominal"), vector(scale, who, "scale"), real_scalar(drift, who, "drift"),
                          real_scalar(threshold, who, "threshold"), sequential_options(stride, hold_off, reanchor, who));
@@ -307,12 +308,12 @@ void bind_fault_detection(nb::module_& m) {
                       "(Basseville & Nikiforov 1993, ch. 2; Lai 1995).");
   glr.def(
       "__init__",
-      [](Glr* self, nb::handle nominal, nb::handle scale, nb::handle window, nb::handle threshold,
-         nb::handle stride, nb::handle hold_off, nb::handle reanchor) {
+      [](Glr* self, nb::handle nominal, nb::handle scale, nb::handle window, nb::handle threshold, nb::handle stride,
+         nb::handle hold_off, nb::handle reanchor) {
         constexpr std::string_view who = "GlrDetector";
-        new (self) Glr(vector(nominal, who, "nominal"), vector(scale, who, "scale"),
-                       integer_argument(window, who, "window"), real_scalar(threshold, who, "threshold"),
-                       sequential_options(stride, hold_off, reanchor, who));
+        new (self)
+            Glr(vector(nominal, who, "nominal"), vector(scale, who, "scale"), integer_argument(window, who, "window"),
+                real_scalar(threshold, who, "threshold"), sequential_options(stride, hold_off, reanchor, who));
       },
       nb::arg("nominal"), nb::arg("scale"), nb::arg("window"), nb::arg("threshold"), nb::kw_only(),
       nb::arg("stride") = 1, nb::arg("hold_off") = 0, nb::arg("reanchor") = false);
@@ -379,7 +380,8 @@ void bind_fault_detection(nb::module_& m) {
       .def_ro("checked_alarms", &Calibration::checked_alarms)
       .def_ro("alarms", &Calibration::alarms);
 
-  nb::class_<MonitorDesign>(m, "FaultMonitorDesign", "The three tests of a FaultMonitor, designed from fault-free runs.")
+  nb::class_<MonitorDesign>(m, "FaultMonitorDesign",
+                            "The three tests of a FaultMonitor, designed from fault-free runs.")
       .def_ro("nominal", &MonitorDesign::nominal)
       .def_ro("cusum", &MonitorDesign::cusum)
       .def_prop_ro("stride", [](const MonitorDesign& d) { return d.cusum_options.stride; })
@@ -394,7 +396,8 @@ void bind_fault_detection(nb::module_& m) {
                    [](const MonitorDesign& d) { return d.chi_square_options.degrees_of_freedom; })
       .def_ro("chi_square_windows", &MonitorDesign::chi_square_windows)
       .def("__getstate__", &design_state)
-      .def("__setstate__", [](MonitorDesign& self, const nb::dict& state) { new (&self) MonitorDesign(design_of(state)); });
+      .def("__setstate__",
+           [](MonitorDesign& self, const nb::dict& state) { new (&self) MonitorDesign(design_of(state)); });
 
   m.def(
       "calibrate_cusum",
@@ -433,15 +436,15 @@ void bind_fault_detection(nb::module_& m) {
       "every `window` samples.");
 
   nb::class_<MonitorBound> monitor(m, "FaultMonitor",
-                              "A CUSUM and a GLR on the parameter estimates and a chi-square test on the output\n"
-                              "errors, from one FaultMonitorDesign.");
+                                   "A CUSUM and a GLR on the parameter estimates and a chi-square test on the output\n"
+                                   "errors, from one FaultMonitorDesign.");
   monitor
       .def(
           "__init__",
           [](MonitorBound* self, nb::handle design) {
-            new (self) MonitorBound{
-                Monitor(object_argument<MonitorDesign>(design, "FaultMonitor", "design", "an adaptobs.FaultMonitorDesign")),
-                {}};
+            new (self) MonitorBound{Monitor(object_argument<MonitorDesign>(design, "FaultMonitor", "design",
+                                                                           "an adaptobs.FaultMonitorDesign")),
+                                    {}};
           },
           nb::arg("design"))
       .def(
@@ -461,10 +464,13 @@ void bind_fault_detection(nb::module_& m) {
            "with the GIL released; samples whose `status` is not accepted are passed over. Returns a dict of\n"
            "per-sample arrays: cusum_alarm, glr_alarm, chi_square_alarm, their statistics, the CUSUM's and\n"
            "GLR's isolated component and the CUSUM's direction, and the status of each sample.")
-      .def_prop_ro("cusum", [](const MonitorBound& self) { return self.monitor.cusum(); }, "a copy of the CUSUM")
-      .def_prop_ro("glr", [](const MonitorBound& self) { return self.monitor.glr(); }, "a copy of the GLR")
-      .def_prop_ro("chi_square", [](const MonitorBound& self) { return self.monitor.chi_square(); },
-                   "a copy of the chi-square test");
+      .def_prop_ro(
+          "cusum", [](const MonitorBound& self) { return self.monitor.cusum(); }, "a copy of the CUSUM")
+      .def_prop_ro(
+          "glr", [](const MonitorBound& self) { return self.monitor.glr(); }, "a copy of the GLR")
+      .def_prop_ro(
+          "chi_square", [](const MonitorBound& self) { return self.monitor.chi_square(); },
+          "a copy of the chi-square test");
   bind_state(monitor, [make_cusum, make_glr, make_chi](const Snapshot<double>& s, const std::string&) {
     MonitorDesign design;
     const Cusum c = make_cusum(s, "cusum.");

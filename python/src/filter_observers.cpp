@@ -29,17 +29,22 @@ namespace {
 template <class Observer>
 void bind_canonical_form_properties(nb::class_<Bound<Observer>>& cls) {
   using B = Bound<Observer>;
-  cls.def_prop_ro("current_state", [](const B& b) { return Eigen::VectorXd(b.observer.current_state()); },
-                  "x_hat_t of (13); `state` is the prediction x_hat_{t+1|t}.")
-      .def_prop_ro("a_hat", [](const B& b) { return Eigen::VectorXd(b.observer.a_hat()); },
-                   "estimate of the first-column coefficients a of A")
+  cls.def_prop_ro(
+         "current_state", [](const B& b) { return Eigen::VectorXd(b.observer.current_state()); },
+         "x_hat_t of (13); `state` is the prediction x_hat_{t+1|t}.")
+      .def_prop_ro(
+          "a_hat", [](const B& b) { return Eigen::VectorXd(b.observer.a_hat()); },
+          "estimate of the first-column coefficients a of A")
       .def_prop_ro("A_hat", [](const B& b) { return Eigen::MatrixXd(b.observer.A_hat()); })
       .def_prop_ro("B_hat", [](const B& b) { return Eigen::MatrixXd(b.observer.B_hat()); })
-      .def_prop_ro("regressor", [](const B& b) { return Eigen::MatrixXd(b.observer.regressor()); },
-                   "phi_t of the regression z_t = phi_t^T p (16)")
-      .def_prop_ro("measurement", [](const B& b) { return Eigen::VectorXd(b.observer.measurement()); }, "z_t of (16)")
-      .def_prop_ro("covariance", [](const B& b) { return Eigen::MatrixXd(b.observer.law().covariance()); },
-                   "the RLS gain Gamma_t");
+      .def_prop_ro(
+          "regressor", [](const B& b) { return Eigen::MatrixXd(b.observer.regressor()); },
+          "phi_t of the regression z_t = phi_t^T p (16)")
+      .def_prop_ro(
+          "measurement", [](const B& b) { return Eigen::VectorXd(b.observer.measurement()); }, "z_t of (16)")
+      .def_prop_ro(
+          "covariance", [](const B& b) { return Eigen::MatrixXd(b.observer.law().covariance()); },
+          "the RLS gain Gamma_t");
 }
 
 constexpr std::string_view canonical_form_doc =
@@ -63,24 +68,26 @@ void bind_filter_observers(nb::module_& m) {
       [](Bound<DeyBhasin>* self, nb::handle f, nb::handle x0, nb::handle a0, nb::handle B0, nb::handle k0,
          nb::handle kmin, nb::handle R, nb::handle screen_reset_test) {
         constexpr std::string_view who = "DeyBhasinObserver";
-        new (self) Bound<DeyBhasin>(DeyBhasin(vector(f, who, "f"), vector(x0, who, "x0"), vector(a0, who, "a0"),
-                                              matrix(B0, who, "B0"),
-                                              {.k0 = real_scalar(k0, who, "k0"),
-                                               .kmin = real_scalar(kmin, who, "kmin"),
-                                               .R = matrix(R, who, "R"),
-                                               .screen_reset_test = flag_argument(screen_reset_test, who,
-                                                                                  "screen_reset_test")}));
+        new (self) Bound<DeyBhasin>(
+            DeyBhasin(vector(f, who, "f"), vector(x0, who, "x0"), vector(a0, who, "a0"), matrix(B0, who, "B0"),
+                      {.k0 = real_scalar(k0, who, "k0"),
+                       .kmin = real_scalar(kmin, who, "kmin"),
+                       .R = matrix(R, who, "R"),
+                       .screen_reset_test = flag_argument(screen_reset_test, who, "screen_reset_test")}));
       },
       nb::arg("f"), nb::arg("x0"), nb::arg("a0"), nb::arg("B0"), nb::kw_only(), nb::arg("k0"), nb::arg("kmin"),
       nb::arg("R"), nb::arg("screen_reset_test") = true);
   bind_canonical_form_properties(dey_bhasin);
   dey_bhasin.def_prop_ro("reset_count", [](const Bound<DeyBhasin>& b) { return b.observer.law().reset_count(); })
-      .def_prop_ro("reset_at_last_step", [](const Bound<DeyBhasin>& b) { return b.observer.law().reset_at_last_step(); });
+      .def_prop_ro("reset_at_last_step",
+                   [](const Bound<DeyBhasin>& b) { return b.observer.law().reset_at_last_step(); });
   bind_discrete_observer(dey_bhasin, [](const Snapshot<double>& s) {
     const Eigen::VectorXd f = field(s, "filters.f");
     const Eigen::VectorXd x0 = field(s, "x0");
     return DeyBhasin(f, x0, f, Eigen::MatrixXd::Zero(x0.size(), integer(s, "filters.m")),
-                     {.k0 = scalar(s, "law.k0"), .kmin = scalar(s, "law.kmin"), .R = field(s, "law.R"),
+                     {.k0 = scalar(s, "law.k0"),
+                      .kmin = scalar(s, "law.kmin"),
+                      .R = field(s, "law.R"),
                       .screen_reset_test = integer(s, "law.screen_reset_test") != 0});
   });
 
@@ -97,7 +104,8 @@ void bind_filter_observers(nb::module_& m) {
         constexpr std::string_view who = "SuzukiObserver";
         new (self) Bound<Suzuki>(Suzuki(vector(f, who, "f"), vector(x0, who, "x0"), vector(a0, who, "a0"),
                                         matrix(B0, who, "B0"),
-                                        {.gamma0 = matrix(gamma0, who, "gamma0"), .R = matrix(R, who, "R"),
+                                        {.gamma0 = matrix(gamma0, who, "gamma0"),
+                                         .R = matrix(R, who, "R"),
                                          .lambda = real_scalar(lambda, who, "lambda_")}));
       },
       nb::arg("f"), nb::arg("x0"), nb::arg("a0"), nb::arg("B0"), nb::kw_only(), nb::arg("gamma0"), nb::arg("R"),

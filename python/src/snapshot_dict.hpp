@@ -22,8 +22,7 @@ inline nb::dict to_dict(const Snapshot<double>& s) {
     OutputArray out({static_cast<std::size_t>(m.rows), static_cast<std::size_t>(m.cols)});
     // The snapshot is column-major, the array C order.
     for (Index i = 0; i < m.rows; ++i)
-      for (Index j = 0; j < m.cols; ++j)
-        out.data[i * m.cols + j] = m.values[static_cast<std::size_t>(j * m.rows + i)];
+      for (Index j = 0; j < m.cols; ++j) out.data[i * m.cols + j] = m.values[static_cast<std::size_t>(j * m.rows + i)];
     matrices[m.name.c_str()] = out.array;
   }
   nb::dict integers;

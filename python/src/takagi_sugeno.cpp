@@ -75,8 +75,8 @@ struct PythonPremises {
                                     const Eigen::VectorXd& theta) const {
     if (nz == 0 || !source.is_valid() || source.is_none()) return value;
     nb::gil_scoped_acquire gil;
-    const nb::object z = source(fresh_array(x, x_pattern), fresh_array(u, u_pattern),
-                                fresh_array(theta, theta_pattern));
+    const nb::object z =
+        source(fresh_array(x, x_pattern), fresh_array(u, u_pattern), fresh_array(theta, theta_pattern));
     // The shape is checked before anything is copied; a wrong one is an error
     // naming the callable, and the observer's update, which calls it first, changes nothing.
     read_vector(z, nz, "TakagiSugenoModel", "premises(x, u, theta)", value);
@@ -90,12 +90,13 @@ PythonPremises premises_of(nb::handle premises, Index nz, std::string_view who) 
   p.value.setZero(nz);
   if (premises.is_none()) {
     if (nz != 0)
-      detail::fail_argument(who, "premises", "is required: premise_bounds gives " + std::to_string(nz) +
-                                                 " premise variables");
+      detail::fail_argument(who, "premises",
+                            "is required: premise_bounds gives " + std::to_string(nz) + " premise variables");
     p.source = nb::none();
     return p;
   }
-  if (!PyCallable_Check(premises.ptr())) fail_type(who, "premises", premises, "a callable premises(x, u, theta) or None");
+  if (!PyCallable_Check(premises.ptr()))
+    fail_type(who, "premises", premises, "a callable premises(x, u, theta) or None");
   p.source = nb::borrow(premises);
   return p;
 }
@@ -150,9 +151,7 @@ Sectors sectors(nb::handle obj, std::string_view who, std::string_view name) {
   return s;
 }
 
-nb::tuple sector_tuple(const Sectors& s) {
-  return nb::make_tuple(Eigen::VectorXd(s.lower), Eigen::VectorXd(s.upper));
-}
+nb::tuple sector_tuple(const Sectors& s) { return nb::make_tuple(Eigen::VectorXd(s.lower), Eigen::VectorXd(s.upper)); }
 
 std::optional<Eigen::MatrixXd> optional_matrix(nb::handle obj, std::string_view who, std::string_view name) {
   if (obj.is_none()) return std::nullopt;
@@ -245,9 +244,12 @@ void bind_model(nb::module_& m) {
             new (self) TsGains(gains_of(L, K, K_theta, "TakagiSugenoGains"));
           },
           nb::arg("L"), nb::arg("K"), nb::arg("K_theta").none() = nb::none())
-      .def_prop_ro("L", [](const TsGains& g) { return list_of(g.L); }, "L_i per vertex (a list of arrays)")
-      .def_prop_ro("K", [](const TsGains& g) { return list_of(g.K); }, "K_{y,i} per vertex (a list of arrays)")
-      .def_prop_ro("K_theta", [](const TsGains& g) { return g.K_theta; }, "K_theta of eq. (21), or None")
+      .def_prop_ro(
+          "L", [](const TsGains& g) { return list_of(g.L); }, "L_i per vertex (a list of arrays)")
+      .def_prop_ro(
+          "K", [](const TsGains& g) { return list_of(g.K); }, "K_{y,i} per vertex (a list of arrays)")
+      .def_prop_ro(
+          "K_theta", [](const TsGains& g) { return g.K_theta; }, "K_theta of eq. (21), or None")
       .def("__getstate__", [](const TsGains& g) { return nb::make_tuple(list_of(g.L), list_of(g.K), g.K_theta); })
       .def("__setstate__", [](TsGains& self, const std::tuple<nb::object, nb::object, nb::object>& state) {
         new (&self) TsGains(gains_of(std::get<0>(state), std::get<1>(state), std::get<2>(state), "restore"));
@@ -293,7 +295,8 @@ void bind_model(nb::module_& m) {
           },
           nb::arg("vertices"), nb::arg("C"), nb::arg("premises").none(), nb::arg("premise_bounds").none(),
           nb::arg("parameter_bounds").none())
-      .def_prop_ro("sizes", [](const TsModel& self) { return sizes_tuple(self.sizes()); }, "(nx, nu, ny, np).")
+      .def_prop_ro(
+          "sizes", [](const TsModel& self) { return sizes_tuple(self.sizes()); }, "(nx, nu, ny, np).")
       .def_prop_ro("premise_count", &TsModel::premise_count, "nz")
       .def_prop_ro("vertex_count", &TsModel::vertex_count, "r = 2^(nz + np)")
       .def(
@@ -313,16 +316,21 @@ void bind_model(nb::module_& m) {
           },
           nb::arg("i"), "Vertex matrix B_i (0-based).")
       .def_prop_ro("C", [](const TsModel& self) { return Eigen::MatrixXd(self.C()); })
-      .def_prop_ro("vertex_state_matrices", [](const TsModel& self) { return side_by_side(self, &TsModel::A); },
-                   "[A_1 ... A_r] (eq. (24)).")
-      .def_prop_ro("vertex_input_matrices", [](const TsModel& self) { return side_by_side(self, &TsModel::B); },
-                   "[B_1 ... B_r] (eq. (25)).")
-      .def_prop_ro("premise_bounds", [](const TsModel& self) { return sector_tuple(self.premise_bounds()); },
-                   "(lower, upper) of the premise variables.")
-      .def_prop_ro("parameter_bounds", [](const TsModel& self) { return sector_tuple(self.parameter_bounds()); },
-                   "(lower, upper) of the parameters.")
-      .def_prop_ro("premise_function", [](const TsModel& self) { return self.premise_function().source; },
-                   "The premise callable as given (None without premise variables).")
+      .def_prop_ro(
+          "vertex_state_matrices", [](const TsModel& self) { return side_by_side(self, &TsModel::A); },
+          "[A_1 ... A_r] (eq. (24)).")
+      .def_prop_ro(
+          "vertex_input_matrices", [](const TsModel& self) { return side_by_side(self, &TsModel::B); },
+          "[B_1 ... B_r] (eq. (25)).")
+      .def_prop_ro(
+          "premise_bounds", [](const TsModel& self) { return sector_tuple(self.premise_bounds()); },
+          "(lower, upper) of the premise variables.")
+      .def_prop_ro(
+          "parameter_bounds", [](const TsModel& self) { return sector_tuple(self.parameter_bounds()); },
+          "(lower, upper) of the parameters.")
+      .def_prop_ro(
+          "premise_function", [](const TsModel& self) { return self.premise_function().source; },
+          "The premise callable as given (None without premise variables).")
       .def(
           "premises",
           [](const TsModel& self, nb::handle x, nb::handle u, nb::handle theta) {
@@ -373,7 +381,8 @@ void bind_model(nb::module_& m) {
       "sector_vertices",
       [](nb::handle matrices_at, nb::handle premise_bounds, nb::handle parameter_bounds) {
         constexpr std::string_view who = "sector_vertices";
-        if (!PyCallable_Check(matrices_at.ptr())) fail_type(who, "matrices_at", matrices_at, "a callable (z, theta) -> (A, B)");
+        if (!PyCallable_Check(matrices_at.ptr()))
+          fail_type(who, "matrices_at", matrices_at, "a callable (z, theta) -> (A, B)");
         const Sectors z = sectors(premise_bounds, who, "premise_bounds");
         const Sectors theta = sectors(parameter_bounds, who, "parameter_bounds");
         const auto at = [&](const Eigen::VectorXd& zv, const Eigen::VectorXd& tv) {
@@ -440,16 +449,22 @@ void bind_observer(nb::module_& m) {
                                    vector(theta0, who, "theta0")));
          },
          nb::arg("model"), nb::arg("gains"), nb::arg("x0"), nb::arg("theta0"))
-      .def_prop_ro("weights", [](const B& b) { return Eigen::VectorXd(b.observer.weights()); },
-                   "Weights h_i of the last accepted update (zero before the first).")
-      .def_prop_ro("premises", [](const B& b) { return Eigen::VectorXd(b.observer.premises()); },
-                   "Premise variables z_k of the last accepted update, before clipping.")
-      .def_prop_ro("premises_in_sectors", [](const B& b) { return b.observer.premises_in_sectors(); },
-                   "False when the last accepted update had to clip z_k or theta_k to its sector (Remark 8).")
-      .def_prop_ro("gains", [](const B& b) { return b.observer.gains(); }, "The gains in use (a TakagiSugenoGains).")
-      .def_prop_ro("has_leakage", [](const B& b) { return b.observer.has_leakage(); },
-                   "True for the time-varying-parameter observer (eq. (21), K_theta set).")
-      .def_prop_ro("model", [](const B& b) { return TsModel(b.observer.model()); }, "A copy of the model.")
+      .def_prop_ro(
+          "weights", [](const B& b) { return Eigen::VectorXd(b.observer.weights()); },
+          "Weights h_i of the last accepted update (zero before the first).")
+      .def_prop_ro(
+          "premises", [](const B& b) { return Eigen::VectorXd(b.observer.premises()); },
+          "Premise variables z_k of the last accepted update, before clipping.")
+      .def_prop_ro(
+          "premises_in_sectors", [](const B& b) { return b.observer.premises_in_sectors(); },
+          "False when the last accepted update had to clip z_k or theta_k to its sector (Remark 8).")
+      .def_prop_ro(
+          "gains", [](const B& b) { return b.observer.gains(); }, "The gains in use (a TakagiSugenoGains).")
+      .def_prop_ro(
+          "has_leakage", [](const B& b) { return b.observer.has_leakage(); },
+          "True for the time-varying-parameter observer (eq. (21), K_theta set).")
+      .def_prop_ro(
+          "model", [](const B& b) { return TsModel(b.observer.model()); }, "A copy of the model.")
       .def(
           "set_gains",
           [](B& b, nb::handle gains) {
@@ -571,9 +586,12 @@ void bind_lmi(nb::module_& m) {
       .def_ro("P1", &TakagiSugenoCertificate::P1)
       .def_prop_ro("R", [](const TakagiSugenoCertificate& c) { return list_of(c.R); })
       .def_prop_ro("F", [](const TakagiSugenoCertificate& c) { return list_of(c.F); })
-      .def_prop_ro("lambda_", [](const TakagiSugenoCertificate& c) {
-        return nb::make_tuple(c.lambda[0], c.lambda[1], c.lambda[2], c.lambda[3]);
-      }, "(lambda_1, ..., lambda_4)")
+      .def_prop_ro(
+          "lambda_",
+          [](const TakagiSugenoCertificate& c) {
+            return nb::make_tuple(c.lambda[0], c.lambda[1], c.lambda[2], c.lambda[3]);
+          },
+          "(lambda_1, ..., lambda_4)")
       .def_ro("Gamma_x", &TakagiSugenoCertificate::Gamma_x)
       .def_ro("Gamma_u", &TakagiSugenoCertificate::Gamma_u)
       .def_prop_ro("Gamma_theta", [](const TakagiSugenoCertificate& c) { return matrix_or_none(c.Gamma_theta); })
@@ -621,7 +639,8 @@ void bind_synthesis(nb::module_& m) {
       .value("feasibility", TakagiSugenoObjective::feasibility, "M_i <= -margin I, minimising tr P0");
   nb::enum_<SynthesisStatus>(m, "SynthesisStatus", "Outcome of a synthesis.")
       .value("feasible", SynthesisStatus::feasible, "the returned point was verified")
-      .value("infeasible", SynthesisStatus::infeasible, "DSDP reports the LMIs infeasible, or the largest margin is <= 0")
+      .value("infeasible", SynthesisStatus::infeasible,
+             "DSDP reports the LMIs infeasible, or the largest margin is <= 0")
       .value("not_verified", SynthesisStatus::not_verified, "DSDP's point fails the independent check")
       .value("solver_failed", SynthesisStatus::solver_failed, "a DSDP call failed");
   nb::enum_<lmi::SdpStatus>(m, "SdpStatus", "DSDP's classification of the problem it solved.")
@@ -667,7 +686,8 @@ void bind_synthesis(nb::module_& m) {
         o.Q_theta = matrix_or_empty(Q_theta, who, "Q_theta");
         o.K_theta = matrix_or_empty(K_theta, who, "K_theta");
         o.parameter_gain = matrix_or_empty(parameter_gain, who, "parameter_gain");
-        if (!min_parameter_gain.is_none()) o.min_parameter_gain = real_scalar(min_parameter_gain, who, "min_parameter_gain");
+        if (!min_parameter_gain.is_none())
+          o.min_parameter_gain = real_scalar(min_parameter_gain, who, "min_parameter_gain");
         if (!fixed_lambda.is_none()) o.fixed_lambda = four_numbers(fixed_lambda, who, "fixed_lambda");
         if (!fixed_gamma.is_none()) o.fixed_gamma = real_scalar(fixed_gamma, who, "fixed_gamma");
         o.objective = objective;
@@ -689,8 +709,9 @@ void bind_synthesis(nb::module_& m) {
         // no answer at the stated margin: refused with the library's message. An
         // infeasibility DSDP proved is an answer, returned with its status.
         if (result.status == SynthesisStatus::not_verified || result.status == SynthesisStatus::solver_failed)
-          detail::fail_argument(who, "model", std::string("gives no verified solution (") +
-                                                  std::string(to_string(result.status)) + "): " + result.message);
+          detail::fail_argument(who, "model",
+                                std::string("gives no verified solution (") + std::string(to_string(result.status)) +
+                                    "): " + result.message);
         return result;
       },
       nb::arg("model"), nb::kw_only(), nb::arg("theorem") = TakagiSugenoTheorem::constant_parameters,
@@ -805,18 +826,19 @@ nb::dict simulate_wwtp(Index steps, double theta, double drop, nb::handle outage
 }
 
 void bind_wwtp(nb::module_& examples) {
-  examples.def("wwtp", &wwtp_system,
-               "The simplified waste water treatment plant of Srinivasarengan et al. (2018), section 6: plant (72)\n"
-               "with a = a0 + theta, premise variables (75) z1 = u, z2 = x1 / (x2 + b) (uses the unmeasured x2),\n"
-               "the eight vertices (A_i, B_i) of (77) on the sectors (74), (76) (`vertices`, `premise_bounds`,\n"
-               "`parameter_bounds`, C), the printed gains L_i and K_i = 0.03 (`L`, `K`), Ts, the constants a0, b, c, d,\n"
-               "theta = 0.1 of the C++ example, the initial state and estimates, the dilution rate\n"
-               "u_k = mean + amplitude sin(2 pi k / period), and the C++ example's LMI design: the input sector\n"
-               "[0.05, 0.4] (`lmi_vertices`, `lmi_premise_bounds`), Q_x, Q_theta and the imposed K (Remark 6).\n"
-               "Give a TakagiSugenoModel the premise function yourself, e.g.\n"
-               "  def premises(x, u, theta): return np.array([u[0], x[0] / (x[1] + 0.4)])");
-  examples.def("simulate_wwtp", &simulate_wwtp, nb::arg("steps") = 500, nb::arg("theta") = 0.1,
-               nb::arg("drop") = 0.0, nb::arg("outage").none() = nb::none(), nb::arg("seed") = 1,
+  examples.def(
+      "wwtp", &wwtp_system,
+      "The simplified waste water treatment plant of Srinivasarengan et al. (2018), section 6: plant (72)\n"
+      "with a = a0 + theta, premise variables (75) z1 = u, z2 = x1 / (x2 + b) (uses the unmeasured x2),\n"
+      "the eight vertices (A_i, B_i) of (77) on the sectors (74), (76) (`vertices`, `premise_bounds`,\n"
+      "`parameter_bounds`, C), the printed gains L_i and K_i = 0.03 (`L`, `K`), Ts, the constants a0, b, c, d,\n"
+      "theta = 0.1 of the C++ example, the initial state and estimates, the dilution rate\n"
+      "u_k = mean + amplitude sin(2 pi k / period), and the C++ example's LMI design: the input sector\n"
+      "[0.05, 0.4] (`lmi_vertices`, `lmi_premise_bounds`), Q_x, Q_theta and the imposed K (Remark 6).\n"
+      "Give a TakagiSugenoModel the premise function yourself, e.g.\n"
+      "  def premises(x, u, theta): return np.array([u[0], x[0] / (x[1] + 0.4)])");
+  examples.def("simulate_wwtp", &simulate_wwtp, nb::arg("steps") = 500, nb::arg("theta") = 0.1, nb::arg("drop") = 0.0,
+               nb::arg("outage").none() = nb::none(), nb::arg("seed") = 1,
                "`steps` samples of plant (72) with constant theta from x0 = (4, 0.3) under the dilution rate (the C++\n"
                "example's plant), and which outputs arrive: each sample lost with probability `drop` (drawn from\n"
                "`seed`) or inside `outage` = (t0, t1), as the example's --drop, --outage and --seed. A dict of t, U,\n"

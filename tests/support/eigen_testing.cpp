@@ -28,16 +28,23 @@ namespace adaptobs::testing {
       const double err = std::abs(a(i, j) - b(i, j));
       if (!(err <= allowed)) {
         ok = false;
-        if (!(err <= worst)) { worst = err; wi = i; wj = j; }
+        if (!(err <= worst)) {
+          worst = err;
+          wi = i;
+          wj = j;
+        }
       }
     }
   }
   if (ok) return ::testing::AssertionSuccess();
   std::ostringstream os;
   os.precision(17);
-  os << a_expr << " and " << b_expr << " differ (abs tol " << abs_tol << ", rel tol " << rel_tol
-     << "); worst at (" << wi << "," << wj << "): " << a(wi, wj) << " vs " << b(wi, wj) << "\n"
-     << a_expr << " =\n" << a << "\n" << b_expr << " =\n" << b;
+  os << a_expr << " and " << b_expr << " differ (abs tol " << abs_tol << ", rel tol " << rel_tol << "); worst at ("
+     << wi << "," << wj << "): " << a(wi, wj) << " vs " << b(wi, wj) << "\n"
+     << a_expr << " =\n"
+     << a << "\n"
+     << b_expr << " =\n"
+     << b;
   return ::testing::AssertionFailure() << os.str();
 }
 

@@ -4,8 +4,8 @@
 
 #include <adaptobs/core/validation.hpp>
 
-#include <Eigen/Core>
 #include <gtest/gtest.h>
+#include <Eigen/Core>
 
 #include <cmath>
 #include <cstdint>
@@ -72,7 +72,9 @@ class RandomMatrices {
     return m;
   }
   template <class M>
-  M uniform() { return uniform<M>(M::RowsAtCompileTime, M::ColsAtCompileTime); }
+  M uniform() {
+    return uniform<M>(M::RowsAtCompileTime, M::ColsAtCompileTime);
+  }
   double scalar(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng_); }
   std::mt19937_64& engine() { return rng_; }
 
@@ -100,7 +102,11 @@ inline double fit_geometric_rate(const std::vector<double>& errors) {
   double n = 0, sk = 0, sl = 0, skk = 0, skl = 0;
   for (std::size_t k = 0; k < errors.size(); ++k) {
     const double l = std::log(errors[k]);
-    n += 1; sk += double(k); sl += l; skk += double(k) * double(k); skl += double(k) * l;
+    n += 1;
+    sk += double(k);
+    sl += l;
+    skk += double(k) * double(k);
+    skl += double(k) * l;
   }
   const double slope = (n * skl - sk * sl) / (n * skk - sk * sk);
   return std::exp(slope);
@@ -127,13 +133,13 @@ std::string configuration_error_of(F&& f) {
 /// Expects `expression` to throw a `ConfigurationError` whose message names
 /// `argument` as the library quotes it: EXPECT_CONFIGURATION_ERROR_NAMES(f(0), "mu")
 /// looks for 'mu'.
-#define EXPECT_CONFIGURATION_ERROR_NAMES(expression, argument)                                            \
-  EXPECT_TRUE(::adaptobs::testing::quotes_argument(                                                       \
+#define EXPECT_CONFIGURATION_ERROR_NAMES(expression, argument) \
+  EXPECT_TRUE(::adaptobs::testing::quotes_argument(            \
       ::adaptobs::testing::configuration_error_of([&] { (void)(expression); }), argument))
 
 /// A typed test suite `Suite` run in both precisions: `TYPED_TEST(Suite, Name)`
 /// then sees the scalar as `TypeParam`.
-#define ADAPTOBS_TYPED_SUITE_IN_BOTH_PRECISIONS(Suite)  \
-  template <typename S>                                  \
-  class Suite : public ::testing::Test {};               \
+#define ADAPTOBS_TYPED_SUITE_IN_BOTH_PRECISIONS(Suite) \
+  template <typename S>                                \
+  class Suite : public ::testing::Test {};             \
   TYPED_TEST_SUITE(Suite, ::adaptobs::testing::BothPrecisions)

@@ -10,8 +10,8 @@
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/status.hpp>
 
-#include <Eigen/Core>
 #include <gtest/gtest.h>
+#include <Eigen/Core>
 
 #include <cmath>
 #include <string>
@@ -45,7 +45,7 @@ inline DiscreteSystem<DynamicDimensions<double>> resizing_system(Index k, char w
 
 /// A time-varying model of the user's that serves `resizing_system` without
 /// checking it (`DiscreteLtvModel` would refuse the wrong size itself).
-struct UncheckedResizingModel : SizedBy<DynamicDimensions<double>> {
+struct UncheckedResizingModel : DynamicDimensions<double> {
   static constexpr bool time_invariant = false;
   char wrong;
   [[nodiscard]] DiscreteSystem<DynamicDimensions<double>> at(Index k) const { return resizing_system(k, wrong); }

@@ -466,24 +466,24 @@ struct ContractName {
 
 REGISTER_TYPED_TEST_SUITE_P(ObserverContract, SatisfiesTheObserverConcept, NonFiniteSamplesAreRejectedAndChangeNothing,
                             AnOverflowingStepIsRejectedAndChangesNothing, ResetEqualsAFreshConstruction,
-                            ResetRefusesBadArgumentsAndChangesNothing,
-                            OutputErrorIsTheErrorOfTheLastAcceptedUpdate, FixedSizeUpdatesAndReadingsDoNotAllocate);
+                            ResetRefusesBadArgumentsAndChangesNothing, OutputErrorIsTheErrorOfTheLastAcceptedUpdate,
+                            FixedSizeUpdatesAndReadingsDoNotAllocate);
 
 }  // namespace adaptobs::testing
 
 /// Runs the contract on the factories given, one family: at global scope.
-#define ADAPTOBS_OBSERVER_CONTRACT(Family, ...)                                                  \
-  namespace adaptobs::testing {                                                                  \
-  using Family##ContractFactories = ::testing::Types<__VA_ARGS__>;                               \
+#define ADAPTOBS_OBSERVER_CONTRACT(Family, ...)                                                      \
+  namespace adaptobs::testing {                                                                      \
+  using Family##ContractFactories = ::testing::Types<__VA_ARGS__>;                                   \
   INSTANTIATE_TYPED_TEST_SUITE_P(Family, ObserverContract, Family##ContractFactories, ContractName); \
-  }                                                                                              \
+  }                                                                                                  \
   static_assert(true, "")
 
 /// Runs a twin suite, `FloatFollowsDouble` or `DynamicFollowsFixed`, on the
 /// factories given (each naming its twin): at global scope.
-#define ADAPTOBS_TWIN_CONTRACT(Family, Suite, ...)                                                \
-  namespace adaptobs::testing {                                                                  \
-  using Family##Suite##Factories = ::testing::Types<__VA_ARGS__>;                                \
-  INSTANTIATE_TYPED_TEST_SUITE_P(Family, Suite, Family##Suite##Factories, ContractName);         \
-  }                                                                                              \
+#define ADAPTOBS_TWIN_CONTRACT(Family, Suite, ...)                                       \
+  namespace adaptobs::testing {                                                          \
+  using Family##Suite##Factories = ::testing::Types<__VA_ARGS__>;                        \
+  INSTANTIATE_TYPED_TEST_SUITE_P(Family, Suite, Family##Suite##Factories, ContractName); \
+  }                                                                                      \
   static_assert(true, "")

@@ -88,15 +88,16 @@ auto besancon() {
       },
       [](double t) { return typename D::RegressorMatrix(periodic::Regressor{}.operator()<double>(t)); },
       adaptobs::Sizes{4, 1, 2, 2});
-  return adaptobs::make_besancon_observer(model, transform, typename D::OutputMatrixSquare(2 * Eigen::Matrix2d::Identity()),
-                                          typename D::ParameterMatrix(10 * Eigen::Matrix2d::Identity()),
-                                          typename D::State(Eigen::Vector4d::Zero()),
-                                          typename D::Parameters(Eigen::Vector2d::Zero()));
+  return adaptobs::make_besancon_observer(
+      model, transform, typename D::OutputMatrixSquare(2 * Eigen::Matrix2d::Identity()),
+      typename D::ParameterMatrix(10 * Eigen::Matrix2d::Identity()), typename D::State(Eigen::Vector4d::Zero()),
+      typename D::Parameters(Eigen::Vector2d::Zero()));
 }
 
 auto kalman_bucy() {
   using Cov = adaptobs::AugmentedKalmanCovariances<periodic::Dims<double>>;
-  const Cov covariances{Cov::AugmentedMatrix::Identity(), Cov::AugmentedMatrix::Identity(), Eigen::Matrix2d::Identity()};
+  const Cov covariances{Cov::AugmentedMatrix::Identity(), Cov::AugmentedMatrix::Identity(),
+                        Eigen::Matrix2d::Identity()};
   return adaptobs::AugmentedKalmanBucyFilter(periodic::model<double>(), Eigen::Vector4d::Zero().eval(),
                                              Eigen::Vector2d::Zero().eval(), covariances);
 }

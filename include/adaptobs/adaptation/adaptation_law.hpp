@@ -9,7 +9,7 @@
 ///
 /// An observer whose output error is linear in its unknown parameters forms
 /// \f$(\varphi_t, z_t)\f$ from its filters and hands them to any law modelling
-/// `AdaptationLaw`; the observer never needs to know how the gain is built.
+/// `DiscreteAdaptationLaw`; the observer never needs to know how the gain is built.
 /// The laws of this folder are
 ///
 /// | law | update | header |
@@ -79,7 +79,7 @@ void require_presence_size(const typename Types::Presence& present, Index nz, st
 }
 
 /// The regression of the measured entries only, kept at full size (see
-/// `AdaptationLaw`, "Partial measurements"): the columns of φ and the entries of z
+/// `DiscreteAdaptationLaw`, "Partial measurements"): the columns of φ and the entries of z
 /// of absent measurements are zero, and the weight is
 /// \f$\bar R = DRD + (I - D)\f$, \f$D = \mathrm{diag}(\text{present})\f$ — R on the measured
 /// block, the identity on the absent one.
@@ -135,8 +135,10 @@ struct MaskedRegression {
   }
 };
 
+}  // namespace detail
+
 /// The estimate \f$(\hat p, \Gamma)\f$ of a least-squares law, current and proposed,
-/// with the accessors `AdaptationLaw` asks for: a step writes the proposal,
+/// with the accessors `DiscreteAdaptationLaw` asks for: a step writes the proposal,
 /// `commit` makes it current by flipping an index (no copy), so a rejected
 /// proposal costs nothing to discard.
 template <class Parameters, class Covariance>
@@ -176,7 +178,8 @@ class LeastSquaresEstimate {
     archive("gamma[1]", self.gamma_[1]);
     archive("current", self.current_);
     if constexpr (Archive::reading)
-      require(self.current_ == 0 || self.current_ == 1, "restore", "snapshot", "holds a current slot other than 0 or 1");
+      detail::require(self.current_ == 0 || self.current_ == 1, "restore", "snapshot",
+                      "holds a current slot other than 0 or 1");
   }
 
  private:
@@ -184,8 +187,6 @@ class LeastSquaresEstimate {
   std::array<Covariance, 2> gamma_;
   int current_ = 0;
 };
-
-}  // namespace detail
 
 /// Base of the adaptation laws of this folder (CRTP), not used on its own: what
 /// they share, written once — the regression types, the size-checked
@@ -211,14 +212,14 @@ class RegressionLaw {
 
   [[nodiscard]] Index measurement_count() const noexcept { return nz_; }
 
-  /// One step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`.
+  /// One step with \f$(\varphi_t, z_t)\f$; see `DiscreteAdaptationLaw`.
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z) {
     detail::require_regression_sizes<T>(phi, z, law().parameter_count(), nz_, Law::name_propose);
     const MeasurementWeight* weight = law().weight();
     return law().step(phi, z, weight ? *weight : masked_.weight);
   }
 
-  /// One step with the present entries of \f$z_t\f$ only; see `AdaptationLaw`, "Partial measurements".
+  /// One step with the present entries of \f$z_t\f$ only; see `DiscreteAdaptationLaw`, "Partial measurements".
   [[nodiscard]] bool propose(const Regressor& phi, const Measurement& z, const Presence& present) {
     return masked_.propose(phi, z, present, law().weight(), law().parameter_count(), Law::name_propose,
                            [this](const auto& f, const auto& y, const auto& r) { return law().step(f, y, r); });
@@ -247,13 +248,12 @@ class RegressionLaw {
 /// estimate \f$(\hat p, \Gamma)\f$ with its proposal slot, and the `RegressionLaw`
 /// interface, whose types it exports.
 template <class L, typename S, int NP, int NZ>
-class LeastSquaresLaw
-    : public detail::LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
-                                          typename RegressionTypes<S, NP, NZ>::Covariance>,
-      public RegressionLaw<L, RegressionTypes<S, NP, NZ>> {
+class LeastSquaresLaw : public LeastSquaresEstimate<typename RegressionTypes<S, NP, NZ>::Parameters,
+                                                    typename RegressionTypes<S, NP, NZ>::Covariance>,
+                        public RegressionLaw<L, RegressionTypes<S, NP, NZ>> {
  public:
   using Interface = RegressionLaw<L, RegressionTypes<S, NP, NZ>>;
-  using Estimate = detail::LeastSquaresEstimate<typename Interface::Parameters, typename Interface::Covariance>;
+  using Estimate = LeastSquaresEstimate<typename Interface::Parameters, typename Interface::Covariance>;
   using Estimate::parameter_count;
 
  protected:
@@ -290,23 +290,23 @@ class LeastSquaresLaw
 /// bit; none present is the recursion without data (p unchanged; Γ unchanged,
 /// or divided by λ under forgetting).
 template <class L>
-concept AdaptationLaw = requires(L& law, const L& const_law, const typename L::Regressor& phi,
-                                 const typename L::Measurement& z, const typename L::Presence& present,
-                                 const typename L::Parameters& p0) {
-  typename L::Scalar;
-  typename L::Parameters;
-  typename L::Regressor;
-  typename L::Measurement;
-  typename L::Presence;
-  typename L::Options;
-  { const_law.parameters() } -> std::convertible_to<const typename L::Parameters&>;
-  { law.propose(phi, z) } -> std::same_as<bool>;
-  { law.propose(phi, z, present) } -> std::same_as<bool>;
-  { const_law.proposal() } -> std::convertible_to<const typename L::Parameters&>;
-  law.commit();
-  law.restart(p0);
-  { const_law.parameter_count() } -> std::convertible_to<Index>;
-  { const_law.measurement_count() } -> std::convertible_to<Index>;
-};
+concept DiscreteAdaptationLaw =
+    requires(L& law, const L& const_law, const typename L::Regressor& phi, const typename L::Measurement& z,
+             const typename L::Presence& present, const typename L::Parameters& p0) {
+      typename L::Scalar;
+      typename L::Parameters;
+      typename L::Regressor;
+      typename L::Measurement;
+      typename L::Presence;
+      typename L::Options;
+      { const_law.parameters() } -> std::convertible_to<const typename L::Parameters&>;
+      { law.propose(phi, z) } -> std::same_as<bool>;
+      { law.propose(phi, z, present) } -> std::same_as<bool>;
+      { const_law.proposal() } -> std::convertible_to<const typename L::Parameters&>;
+      law.commit();
+      law.restart(p0);
+      { const_law.parameter_count() } -> std::convertible_to<Index>;
+      { const_law.measurement_count() } -> std::convertible_to<Index>;
+    };
 
 }  // namespace adaptobs

@@ -148,7 +148,7 @@ class CovarianceResettingRls : public LeastSquaresLaw<CovarianceResettingRls<S, 
  private:
   const MeasurementWeight* weight() const noexcept { return &options_.R; }
 
-  /// (22), then (23), with \f$(\varphi_t, z_t)\f$ and weight R; see `AdaptationLaw`.
+  /// (22), then (23), with \f$(\varphi_t, z_t)\f$ and weight R; see `DiscreteAdaptationLaw`.
   /// Under partial measurements the reset screen stays valid: with the absent
   /// columns of φ zeroed, \f$\varphi\bar R^{-1}\varphi^T\f$ involves only \f$R_{PP}^{-1}\f$, whose
   /// largest eigenvalue is at most \f$1/\lambda_{\min}(R)\f$ (interlacing).

@@ -80,8 +80,7 @@ class ExponentialForgettingRls : public LeastSquaresLaw<ExponentialForgettingRls
     constexpr std::string_view who = "ExponentialForgettingRls";
     nz = this->measurement_count();  // the resolved size
     detail::validate_least_squares(p0, options_.gamma0, options_.R, nz, who);
-    detail::require(options_.lambda > Scalar(0) && options_.lambda <= Scalar(1), who, "lambda",
-                    "must lie in (0, 1]");
+    detail::require(options_.lambda > Scalar(0) && options_.lambda <= Scalar(1), who, "lambda", "must lie in (0, 1]");
     weight_ = options_.lambda * options_.R;
     gamma_phi_.setZero(p0.rows(), nz);
     gain_transposed_.setZero(nz, p0.rows());
@@ -106,7 +105,7 @@ class ExponentialForgettingRls : public LeastSquaresLaw<ExponentialForgettingRls
   const MeasurementWeight* weight() const noexcept { return &weight_; }
 
   /// One weighted step with \f$(\varphi_t, z_t)\f$ and weight λR (or its masked form);
-  /// see `AdaptationLaw`. Forgetting is per call, measured or not: with no entry
+  /// see `DiscreteAdaptationLaw`. Forgetting is per call, measured or not: with no entry
   /// present, Γ is divided by λ. (An observer may skip the call on a sample without
   /// data; Dey–Bhasin and Suzuki do, so Γ does not grow over a gap.)
   bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
@@ -143,11 +142,11 @@ class ExponentialForgettingRls : public LeastSquaresLaw<ExponentialForgettingRls
   }
 
   Options options_;
-  MeasurementWeight weight_;  // λR
-  typename Base::Types::Gain gamma_phi_;             // Γφ
-  Eigen::Matrix<S, NZ, NP> gain_transposed_;        // Kᵀ
-  MeasurementWeight innovation_weight_;             // M = λR + φᵀΓφ
-  Eigen::LDLT<MeasurementWeight> factorization_;    // of M, which need not be positive definite
+  MeasurementWeight weight_;                      // λR
+  typename Base::Types::Gain gamma_phi_;          // Γφ
+  Eigen::Matrix<S, NZ, NP> gain_transposed_;      // Kᵀ
+  MeasurementWeight innovation_weight_;           // M = λR + φᵀΓφ
+  Eigen::LDLT<MeasurementWeight> factorization_;  // of M, which need not be positive definite
   Measurement innovation_;
 };
 

@@ -22,11 +22,9 @@ namespace adaptobs {
 
 /// A parameter update law: `law.derivative(R, epsilon, theta, dtheta)` writes \f$\dot{\hat\theta}\f$.
 template <class L, class D>
-concept ParameterUpdateLaw = requires(const L& law, const typename D::OutputRegressor& R,
-                                      const typename D::Output& epsilon, const typename D::Parameters& theta,
-                                      typename D::Parameters& dtheta) {
-  law.derivative(R, epsilon, theta, dtheta);
-};
+concept ContinuousAdaptationLaw = requires(
+    const L& law, const typename D::OutputRegressor& R, const typename D::Output& epsilon,
+    const typename D::Parameters& theta, typename D::Parameters& dtheta) { law.derivative(R, epsilon, theta, dtheta); };
 
 /// \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$.
 template <StateSpace D>

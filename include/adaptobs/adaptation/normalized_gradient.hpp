@@ -67,7 +67,7 @@ class NormalizedGradient : public RegressionLaw<NormalizedGradient<S, NP, NZ>, R
  private:
   static const MeasurementWeight* weight() noexcept { return nullptr; }
 
-  /// One gradient step with \f$(\varphi_t, z_t)\f$; see `AdaptationLaw`. Under partial
+  /// One gradient step with \f$(\varphi_t, z_t)\f$; see `DiscreteAdaptationLaw`. Under partial
   /// measurements the absent columns of φ and entries of z are zeroed, so they add
   /// neither to the step nor to \f$\|\varphi_t\|_F^2\f$.
   bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& /*unweighted*/) {

@@ -81,7 +81,7 @@ class RecursiveLeastSquares : public LeastSquaresLaw<RecursiveLeastSquares<S, NP
  private:
   const MeasurementWeight* weight() const noexcept { return &options_.R; }
 
-  /// (22) and (21) with \f$(\varphi_t, z_t)\f$ and weight R; see `AdaptationLaw`.
+  /// (22) and (21) with \f$(\varphi_t, z_t)\f$ and weight R; see `DiscreteAdaptationLaw`.
   bool step(const Regressor& phi, const Measurement& z, const MeasurementWeight& weight) {
     if (!correction_.apply(this->covariance(), weight, phi, z, this->parameters(), S(1), this->next_parameters(),
                            this->next_covariance()))

@@ -44,9 +44,9 @@ template <StateSpace D>
 struct AugmentedKalmanCovariances {
   static constexpr int na = sum_of_sizes(D::nx, D::np);
   using AugmentedMatrix = Eigen::Matrix<typename D::Scalar, na, na>;
-  AugmentedMatrix P0;                 ///< initial covariance of [x; θ] (positive definite)
-  AugmentedMatrix Q;                  ///< process noise of [x; θ] (positive semidefinite)
-  typename D::OutputMatrixSquare R;   ///< output noise (positive definite)
+  AugmentedMatrix P0;                ///< initial covariance of [x; θ] (positive definite)
+  AugmentedMatrix Q;                 ///< process noise of [x; θ] (positive semidefinite)
+  typename D::OutputMatrixSquare R;  ///< output noise (positive definite)
 
   /// The checks both augmented filters make of their covariances, each named
   /// `covariances.<member>` in the error.

@@ -21,13 +21,13 @@
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/continuous_update.hpp>
-#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/detail/segments.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
+#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -44,8 +44,8 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
 
  public:
   using Dims = typename Model::Dims;
-  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
-      typename SizedBy<Dims>::Input, typename SizedBy<Dims>::Output;
+  using typename Dims::Scalar, typename Dims::State, typename Dims::Parameters, typename Dims::Input,
+      typename Dims::Output;
   using Sample = ContinuousSample<Dims>;
   /// P0, Q (spectral density of the noise on [x; θ]) and R (on y).
   using Covariances = AugmentedKalmanCovariances<Dims>;
@@ -160,7 +160,6 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     detail::add_product(dP, P, w.ae.transpose());
     detail::subtract_product(dP, w.gain, w.pct.transpose());
   }
-
 
   // P of an integrated step made exactly symmetric, then tested by a Cholesky
   // factorization: RK4 on the Riccati equation keeps P neither symmetric nor,

@@ -70,7 +70,11 @@ template <StateSpace D, class F>
     else
       return phi(t);
   }();
-  if constexpr (requires { value.rows(); value.cols(); }) require_shape(value, s.nx, s.np, who, "Phi");
+  if constexpr (requires {
+                  value.rows();
+                  value.cols();
+                })
+    require_shape(value, s.nx, s.np, who, "Phi");
   return value;
 }
 
@@ -98,13 +102,13 @@ concept ContinuousModel =
 
 /// Constant \f$(A, B, C)\f$ and a regressor callable \f$\Phi\f$.
 template <StateSpace D, RegressorFunction<D> RegressorFn>
-class ContinuousLtiModel : public SizedBy<D> {
+class ContinuousLtiModel : public D {
  public:
   static constexpr bool time_invariant = true;
 
   /// \param np number of unknown parameters (`D::np` itself when that is fixed).
-  ContinuousLtiModel(typename D::StateMatrix A, typename D::InputMatrix B, typename D::OutputMatrix C,
-                     RegressorFn Phi, Index np = D::np)
+  ContinuousLtiModel(typename D::StateMatrix A, typename D::InputMatrix B, typename D::OutputMatrix C, RegressorFn Phi,
+                     Index np = D::np)
       : system_{std::move(A), std::move(B), std::move(C)}, phi_(std::move(Phi)) {
     constexpr std::string_view who = "ContinuousLtiModel";
     detail::validate_state_space(system_, who);
@@ -144,7 +148,7 @@ class ContinuousLtiModel : public SizedBy<D> {
 /// Time-varying model: a callable `t -> ContinuousSystem<D>` and a regressor callable.
 template <StateSpace D, class MatricesFn, RegressorFunction<D> RegressorFn>
   requires std::convertible_to<std::invoke_result_t<const MatricesFn&, typename D::Scalar>, ContinuousSystem<D>>
-class ContinuousLtvModel : public SizedBy<D> {
+class ContinuousLtvModel : public D {
  public:
   static constexpr bool time_invariant = false;
 

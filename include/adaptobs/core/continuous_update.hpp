@@ -35,7 +35,7 @@ namespace adaptobs {
 /// - `check_step(candidate)`, which may adjust an integrated state and returns
 ///   `accepted` or the reason to reject it.
 template <class Observer, StateSpace Dims>
-class ContinuousUpdate : public SizedBy<Dims> {
+class ContinuousUpdate : public Dims {
   using Scalar = typename Dims::Scalar;
 
  public:
@@ -115,8 +115,7 @@ class ContinuousUpdate : public SizedBy<Dims> {
   /// sample sets the time origin.
   void reset(const typename Dims::State& eta0, const typename Dims::Parameters& theta0) {
     Observer& o = self();
-    detail::require_initial_estimates(eta0, o.sizes_.nx, theta0, o.sizes_.np, Observer::name_reset, "eta0",
-                                      "theta0");
+    detail::require_initial_estimates(eta0, o.sizes_.nx, theta0, o.sizes_.np, Observer::name_reset, "eta0", "theta0");
     o.set_initial(eta0, theta0);
     o.output_error_.setZero();
     o.integrator_.restart();

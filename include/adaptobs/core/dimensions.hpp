@@ -41,10 +41,16 @@ namespace detail {
 template <typename S, int NX, int NU, int NY, int NP>
 struct Dimensions {
   static_assert(std::is_floating_point_v<S>, "adaptobs: the scalar must be a floating-point type");
-  static_assert(detail::valid_size(NX) && detail::valid_size(NU) && detail::valid_size(NY) &&
-                    detail::valid_size(NP),
+  static_assert(detail::valid_size(NX) && detail::valid_size(NU) && detail::valid_size(NY) && detail::valid_size(NP),
                 "adaptobs: sizes must be non-negative or Eigen::Dynamic");
 
+  /// The type itself: a model, observer or plant derives from its `Dimensions`,
+  /// so that every such type `T` answers `T::Dims`, `T::nx`, `T::State`,
+  /// `T::GainMatrix` and the rest alike. Inside a class template these are
+  /// members of a dependent base, which unqualified names do not find: a class
+  /// brings the ones its body uses into scope with one declaration,
+  /// `using typename Dims::State, ...;`.
+  using Dims = Dimensions;
   using Scalar = S;
   static constexpr int nx = NX;
   static constexpr int nu = NU;
@@ -59,18 +65,18 @@ struct Dimensions {
   template <int Rows>
   using Vector = Eigen::Matrix<S, Rows, 1>;
 
-  using State = Vector<NX>;                  ///< x
-  using Input = Vector<NU>;                  ///< u
-  using Output = Vector<NY>;                 ///< y
-  using Parameters = Vector<NP>;             ///< θ
-  using StateMatrix = Matrix<NX, NX>;        ///< A
-  using InputMatrix = Matrix<NX, NU>;        ///< B
-  using OutputMatrix = Matrix<NY, NX>;       ///< C
-  using RegressorMatrix = Matrix<NX, NP>;    ///< Ψ, and its filtered versions (Υ, Ω)
-  using GainMatrix = Matrix<NX, NY>;         ///< output-injection gain K
-  using OutputMatrixSquare = Matrix<NY, NY>; ///< output covariances, innovation weights
-  using OutputRegressor = Matrix<NY, NP>;    ///< C Υ
-  using ParameterMatrix = Matrix<NP, NP>;    ///< parameter gains, excitation Gramians
+  using State = Vector<NX>;                   ///< x
+  using Input = Vector<NU>;                   ///< u
+  using Output = Vector<NY>;                  ///< y
+  using Parameters = Vector<NP>;              ///< θ
+  using StateMatrix = Matrix<NX, NX>;         ///< A
+  using InputMatrix = Matrix<NX, NU>;         ///< B
+  using OutputMatrix = Matrix<NY, NX>;        ///< C
+  using RegressorMatrix = Matrix<NX, NP>;     ///< Ψ, and its filtered versions (Υ, Ω)
+  using GainMatrix = Matrix<NX, NY>;          ///< output-injection gain K
+  using OutputMatrixSquare = Matrix<NY, NY>;  ///< output covariances, innovation weights
+  using OutputRegressor = Matrix<NY, NP>;     ///< C Υ
+  using ParameterMatrix = Matrix<NP, NP>;     ///< parameter gains, excitation Gramians
 };
 
 /// Sizes known only at run time (all of them `Eigen::Dynamic` at compile time).
@@ -105,34 +111,5 @@ concept StateSpace = requires {
 /// time-varying models and gain schedules stay in phase.
 template <StateSpace D>
 using OutputMask = Eigen::Array<bool, D::ny, 1>;
-
-/// Base of model, observer and plant types: re-exports the sizes and the
-/// vector and matrix types of its `Dimensions`, so that every such type `T`
-/// answers `T::nx`, `T::State`, `T::GainMatrix` and the rest alike.
-///
-/// Inside a class template these are members of a dependent base, which
-/// unqualified names do not find: a class brings the ones its body uses into
-/// scope with one declaration, `using typename SizedBy<Dims>::State, ...;`.
-template <StateSpace D>
-struct SizedBy {
-  using Dims = D;
-  using Scalar = typename D::Scalar;
-  static constexpr int nx = D::nx;
-  static constexpr int nu = D::nu;
-  static constexpr int ny = D::ny;
-  static constexpr int np = D::np;
-  using State = typename D::State;
-  using Input = typename D::Input;
-  using Output = typename D::Output;
-  using Parameters = typename D::Parameters;
-  using StateMatrix = typename D::StateMatrix;
-  using InputMatrix = typename D::InputMatrix;
-  using OutputMatrix = typename D::OutputMatrix;
-  using RegressorMatrix = typename D::RegressorMatrix;
-  using GainMatrix = typename D::GainMatrix;
-  using OutputMatrixSquare = typename D::OutputMatrixSquare;
-  using OutputRegressor = typename D::OutputRegressor;
-  using ParameterMatrix = typename D::ParameterMatrix;
-};
 
 }  // namespace adaptobs

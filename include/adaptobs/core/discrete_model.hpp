@@ -104,22 +104,19 @@ void validate_system(const DiscreteSystem<D>& s, Index np, std::string_view who,
 
 /// Time-invariant discrete model: the same \f$(A, B, C)\f$ at every step.
 template <StateSpace D>
-class DiscreteLtiModel : public SizedBy<D> {
+class DiscreteLtiModel : public D {
  public:
   static constexpr bool time_invariant = true;
 
   /// \param np number of unknown parameters (`D::np` itself when that is fixed).
-  DiscreteLtiModel(typename D::StateMatrix A, typename D::InputMatrix B, typename D::OutputMatrix C,
-                   Index np = D::np)
+  DiscreteLtiModel(typename D::StateMatrix A, typename D::InputMatrix B, typename D::OutputMatrix C, Index np = D::np)
       : system_{std::move(A), std::move(B), std::move(C)}, np_(np) {
     detail::validate_system(system_, np_, "DiscreteLtiModel", "np");
   }
 
   [[nodiscard]] const DiscreteSystem<D>& at(Index /*k*/) const noexcept { return system_; }
   [[nodiscard]] const DiscreteSystem<D>& system() const noexcept { return system_; }
-  [[nodiscard]] Sizes sizes() const noexcept {
-    return {system_.A.rows(), system_.B.cols(), system_.C.rows(), np_};
-  }
+  [[nodiscard]] Sizes sizes() const noexcept { return {system_.A.rows(), system_.B.cols(), system_.C.rows(), np_}; }
 
   /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): A, B, C; np a setting.
   static constexpr std::string_view snapshot_type = "DiscreteLtiModel";
@@ -141,7 +138,7 @@ class DiscreteLtiModel : public SizedBy<D> {
 /// matrices of each step. Sizes are stated once at construction.
 template <StateSpace D, std::invocable<Index> F>
   requires std::convertible_to<std::invoke_result_t<const F&, Index>, DiscreteSystem<D>>
-class DiscreteLtvModel : public SizedBy<D> {
+class DiscreteLtvModel : public D {
  public:
   static constexpr bool time_invariant = false;
 

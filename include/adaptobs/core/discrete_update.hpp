@@ -36,15 +36,13 @@ constexpr std::string_view initial_state_name(std::string_view paper_letter) { r
 /// or, naming the initial state as the paper does,
 /// `ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuiroObserver, DiscreteSample, "z0");`
 /// (outside namespace adaptobs, qualify the sample: `adaptobs::DiscreteSample`).
-#define ADAPTOBS_DISCRETE_UPDATE_INTERFACE(Observer, SampleOf, ...)                               \
-  friend ::adaptobs::DiscreteUpdate<Observer, typename Model::Dims, SampleOf>;                    \
-  static constexpr std::string_view name_update = #Observer "::update";                           \
-  static constexpr std::string_view name_reset = #Observer "::reset";                             \
-  static constexpr std::string_view name_initial_state =                                          \
-      ::adaptobs::detail::initial_state_name(__VA_ARGS__);                                        \
-  using Dims = typename Model::Dims;                                                              \
-  using typename ::adaptobs::SizedBy<Dims>::Scalar, typename ::adaptobs::SizedBy<Dims>::State,    \
-      typename ::adaptobs::SizedBy<Dims>::Parameters, typename ::adaptobs::SizedBy<Dims>::Output; \
+#define ADAPTOBS_DISCRETE_UPDATE_INTERFACE(Observer, SampleOf, ...)                                           \
+  friend ::adaptobs::DiscreteUpdate<Observer, typename Model::Dims, SampleOf>;                                \
+  static constexpr std::string_view name_update = #Observer "::update";                                       \
+  static constexpr std::string_view name_reset = #Observer "::reset";                                         \
+  static constexpr std::string_view name_initial_state = ::adaptobs::detail::initial_state_name(__VA_ARGS__); \
+  using Dims = typename Model::Dims;                                                                          \
+  using typename Dims::Scalar, typename Dims::State, typename Dims::Parameters, typename Dims::Output;        \
   using Sample = SampleOf<Dims>
 
 /// Base of a discrete-time observer with a model (CRTP), not used on its own:
@@ -69,7 +67,7 @@ constexpr std::string_view initial_state_name(std::string_view paper_letter) { r
 ///   observer's constructor); a rejected step changes nothing. The base counts
 ///   the accepted steps.
 template <class Observer, StateSpace Dims, template <StateSpace> class SampleOf>
-class DiscreteUpdate : public SizedBy<Dims> {
+class DiscreteUpdate : public Dims {
  public:
   using Sample = SampleOf<Dims>;
 

@@ -14,8 +14,8 @@
 /// Alg. 2 with G = [−g I], H = [0; I] (F = A22 − g a12, with A_o the shift),
 /// Alg. 4 with G = H = I (F = A_o). A constant F may be given instead.
 
-#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -31,9 +31,9 @@ template <typename S, int N, int R>
 class DynamicTransform {
  public:
   using Scalar = S;
-  using FilterMatrix = Eigen::Matrix<S, R, R>;   ///< F
-  using InjectionMatrix = Eigen::Matrix<S, R, N>; ///< G
-  using OutputMatrix = Eigen::Matrix<S, N, R>;    ///< H
+  using FilterMatrix = Eigen::Matrix<S, R, R>;     ///< F
+  using InjectionMatrix = Eigen::Matrix<S, R, N>;  ///< G
+  using OutputMatrix = Eigen::Matrix<S, N, R>;     ///< H
   using StateMatrix = Eigen::Matrix<S, N, N>;
   static constexpr int filter_rows = R;
   /// G = H = I is possible only when Ξ has as many rows as the state.

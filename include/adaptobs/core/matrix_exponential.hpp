@@ -59,16 +59,14 @@ struct PadeBounds;
 template <>
 struct PadeBounds<float> {
   static constexpr std::array<int, 3> degrees{3, 5, 7};
-  static constexpr std::array<double, 3> theta{4.258730016922831e-1, 1.880152677804762e0,
-                                               3.925724783138660e0};
+  static constexpr std::array<double, 3> theta{4.258730016922831e-1, 1.880152677804762e0, 3.925724783138660e0};
 };
 
 template <>
 struct PadeBounds<double> {
   static constexpr std::array<int, 5> degrees{3, 5, 7, 9, 13};
-  static constexpr std::array<double, 5> theta{1.495585217958292e-2, 2.539398330063230e-1,
-                                               9.504178996162932e-1, 2.097847961257068e0,
-                                               5.371920351148152e0};
+  static constexpr std::array<double, 5> theta{1.495585217958292e-2, 2.539398330063230e-1, 9.504178996162932e-1,
+                                               2.097847961257068e0, 5.371920351148152e0};
 };
 
 template <>
@@ -88,11 +86,20 @@ constexpr auto pade_coefficients() {
                                   2162160.,     110880.,     3960.,       90.,        1.};
   } else {
     static_assert(M == 13);
-    return std::array<double, 14>{64764752532480000., 32382376266240000., 7771770303897600.,
-                                  1187353796428800.,  129060195264000.,   10559470521600.,
-                                  670442572800.,      33522128640.,       1323241920.,
-                                  40840800.,          960960.,            16380.,
-                                  182.,               1.};
+    return std::array<double, 14>{64764752532480000.,
+                                  32382376266240000.,
+                                  7771770303897600.,
+                                  1187353796428800.,
+                                  129060195264000.,
+                                  10559470521600.,
+                                  670442572800.,
+                                  33522128640.,
+                                  1323241920.,
+                                  40840800.,
+                                  960960.,
+                                  16380.,
+                                  182.,
+                                  1.};
   }
 }
 
@@ -139,11 +146,16 @@ template <int M, typename Scalar>
 template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> pade_approximant(int degree, const DynamicMatrix<Scalar>& a) {
   switch (degree) {
-    case 3: return pade_approximant<3>(a);
-    case 5: return pade_approximant<5>(a);
-    case 7: return pade_approximant<7>(a);
-    case 9: return pade_approximant<9>(a);
-    default: return pade_approximant<13>(a);
+    case 3:
+      return pade_approximant<3>(a);
+    case 5:
+      return pade_approximant<5>(a);
+    case 7:
+      return pade_approximant<7>(a);
+    case 9:
+      return pade_approximant<9>(a);
+    default:
+      return pade_approximant<13>(a);
   }
 }
 
@@ -347,8 +359,7 @@ template <typename Scalar>
   const double log2_u = std::log2(double(std::numeric_limits<Scalar>::epsilon()) / 2);
   const double log2_norm = std::log2(double(norm));
   const auto extra_squarings = [&](int m, int s) {
-    const double log2_alpha =
-        log2_pade_error_constant(m) + log2_abs_power_norm(a, 2 * m + 1) - log2_norm - 2.0 * m * s;
+    const double log2_alpha = log2_pade_error_constant(m) + log2_abs_power_norm(a, 2 * m + 1) - log2_norm - 2.0 * m * s;
     return std::max(0, static_cast<int>(std::ceil((log2_alpha - log2_u) / (2 * m))));
   };
 

@@ -41,8 +41,8 @@
 /// later interval too long until `resynchronize()`. Where the first interval
 /// cannot be trusted, give `max_step`.
 
-#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
+#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/status.hpp>
@@ -64,13 +64,13 @@ enum class SignalReconstruction {
 
 /// Stepping options shared by every continuous-time observer.
 struct SamplingOptions {
-  int substeps = 1;                                               ///< RK4 steps per sampling interval (≥ 1)
+  int substeps = 1;  ///< RK4 steps per sampling interval (≥ 1)
   /// Longest RK4 step, in the time unit of the samples; 0 learns it from the
   /// first interval (1.25 × its step; see the file comment).
   double max_step = 0;
   int max_substeps = 1'000'000;  ///< most RK4 steps in one interval; a longer interval is rejected
-  SignalReconstruction input = SignalReconstruction::hold;        ///< reconstruction of u
-  SignalReconstruction output = SignalReconstruction::linear;     ///< reconstruction of y
+  SignalReconstruction input = SignalReconstruction::hold;     ///< reconstruction of u
+  SignalReconstruction output = SignalReconstruction::linear;  ///< reconstruction of y
 
   /// Whether a sample that ends an interval must carry its midpoint signals.
   [[nodiscard]] bool needs_midpoint() const noexcept {

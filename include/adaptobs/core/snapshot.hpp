@@ -193,8 +193,7 @@ class SnapshotReader : public SnapshotArchiveBase {
     const std::string full = full_name(name);
     if constexpr (SnapshotEigen<T>) {
       const SnapshotMatrix<Scalar>& m = matrix(full);
-      if (m.rows != field.rows() || m.cols != field.cols() ||
-          static_cast<Index>(m.values.size()) != m.rows * m.cols)
+      if (m.rows != field.rows() || m.cols != field.cols() || static_cast<Index>(m.values.size()) != m.rows * m.cols)
         fail_field_shape(full, m.rows, m.cols, field.rows(), field.cols());
       field = Eigen::Map<const T>(m.values.data(), m.rows, m.cols);
     } else if constexpr (std::floating_point<T>) {
@@ -216,9 +215,7 @@ class SnapshotReader : public SnapshotArchiveBase {
 
   void setting(std::string_view name, std::int64_t value) { check_setting(full_name(name), value); }
 
-  [[nodiscard]] SnapshotReader nested(std::string_view name) const {
-    return SnapshotReader(in_, nested_prefix(name));
-  }
+  [[nodiscard]] SnapshotReader nested(std::string_view name) const { return SnapshotReader(in_, nested_prefix(name)); }
 
   template <class T>
   void object(std::string_view name, T& member) {
@@ -242,8 +239,8 @@ class SnapshotReader : public SnapshotArchiveBase {
   [[noreturn]] void fail_field_shape(const std::string& full, Index rows, Index cols, Index own_rows,
                                      Index own_cols) const {
     Message os;
-    os << "holds field '" << full << "' of " << rows << "x" << cols << " where this " << in_.type << " has "
-       << own_rows << "x" << own_cols;
+    os << "holds field '" << full << "' of " << rows << "x" << cols << " where this " << in_.type << " has " << own_rows
+       << "x" << own_cols;
     fail_argument("restore", "snapshot", os.str());
   }
   void check_setting(const std::string& full, std::int64_t value) const {

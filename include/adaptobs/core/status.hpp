@@ -11,12 +11,12 @@ namespace adaptobs {
 /// Anything but `accepted` means the observer is bit-for-bit as it was before
 /// the call: no estimate, filter or counter moved.
 enum class UpdateStatus {
-  accepted,          ///< the sample was used and the estimates advanced
-  nonfinite_input,   ///< a NaN or Inf in the sample (u, y, a regressor or premise variable)
-  nonfinite_result,  ///< the step would have produced NaN or Inf (overflow, NaN system matrix)
-  nonincreasing_time,  ///< a continuous-time sample whose time is not after the previous sample's
+  accepted,               ///< the sample was used and the estimates advanced
+  nonfinite_input,        ///< a NaN or Inf in the sample (u, y, a regressor or premise variable)
+  nonfinite_result,       ///< the step would have produced NaN or Inf (overflow, NaN system matrix)
+  nonincreasing_time,     ///< a continuous-time sample whose time is not after the previous sample's
   indefinite_covariance,  ///< the step would leave a covariance that is not positive definite
-  interval_too_long,  ///< a continuous-time interval that needs more than `SamplingOptions::max_substeps` steps
+  interval_too_long,      ///< a continuous-time interval that needs more than `SamplingOptions::max_substeps` steps
 };
 
 [[nodiscard]] constexpr bool accepted(UpdateStatus s) noexcept { return s == UpdateStatus::accepted; }

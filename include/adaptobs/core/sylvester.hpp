@@ -59,9 +59,9 @@ class SylvesterSolver {
     // of ten keeps its separation. stableNorm: the plain norm sums squares,
     // which overflow beyond about 10^154 and underflow below 10^-154.
     const Scalar scale = std::max(A.stableNorm(), B.stableNorm());
-    separation_ = n_ == 0 || m_ == 0 ? std::numeric_limits<Scalar>::infinity()
-                  : scale > Scalar(0)  ? gap / scale
-                                       : Scalar(0);
+    separation_ = n_ == 0 || m_ == 0  ? std::numeric_limits<Scalar>::infinity()
+                  : scale > Scalar(0) ? gap / scale
+                                      : Scalar(0);
   }
 
   /// \f$\min_{i,j}|\lambda_i(A) + \mu_j(B)| / \max(\|A\|_F, \|B\|_F)\f$ (∞ when A

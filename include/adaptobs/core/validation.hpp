@@ -33,8 +33,7 @@ class ConfigurationError : public std::invalid_argument {
 
 namespace detail {
 
-[[noreturn]] inline void fail_argument(std::string_view who, std::string_view argument,
-                                       std::string_view problem) {
+[[noreturn]] inline void fail_argument(std::string_view who, std::string_view argument, std::string_view problem) {
   std::string message;
   message.reserve(who.size() + argument.size() + problem.size() + 16);
   message.append(who).append(": argument '").append(argument).append("' ").append(problem);
@@ -72,8 +71,7 @@ namespace detail {
   return name.str();
 }
 
-inline void require(bool condition, std::string_view who, std::string_view argument,
-                    std::string_view problem) {
+inline void require(bool condition, std::string_view who, std::string_view argument, std::string_view problem) {
   if (!condition) fail_argument(who, argument, problem);
 }
 
@@ -241,8 +239,7 @@ template <class Derived>
 
 /// Symmetric positive definite (a Cholesky factorization exists).
 template <class Derived>
-void require_positive_definite(const Eigen::MatrixBase<Derived>& m, std::string_view who,
-                               std::string_view argument) {
+void require_positive_definite(const Eigen::MatrixBase<Derived>& m, std::string_view who, std::string_view argument) {
   require_finite(m, who, argument);
   require_symmetric(m, who, argument);
   if (!cholesky_succeeds(m)) fail_argument(who, argument, "must be positive definite");
@@ -270,7 +267,6 @@ template <StateSpace D>
 void require_mask_size(const OutputMask<D>& present, Index ny, std::string_view who) {
   require(present.size() == ny, who, "present", "must have one entry per output channel");
 }
-
 
 }  // namespace detail
 }  // namespace adaptobs

@@ -94,7 +94,7 @@ DynamicMatrix<Scalar> kernel_basis(const DynamicMatrix<Scalar>& c, std::string_v
 
 template <typename Scalar>
 CanonicalTransformation<Scalar> transform_with_injection_of_first_columns(const DynamicMatrix<Scalar>& t,
-                                                                       const DynamicMatrix<Scalar>& a, Index m) {
+                                                                          const DynamicMatrix<Scalar>& a, Index m) {
   const Eigen::FullPivLU<DynamicMatrix<Scalar>> lu(t);
   const DynamicMatrix<Scalar> tat = t * a * lu.inverse();
   return {t, tat.leftCols(m)};
@@ -153,7 +153,7 @@ template <typename Scalar>
   detail::require_shape(w, n, n - 1, who, "kernel");
   // Relative to the sizes of c and W: c in other units has the same kernel.
   detail::require((cc * w).cwiseAbs().maxCoeff() <= Scalar(1e-10) * cc.cwiseAbs().sum() * w.cwiseAbs().maxCoeff(), who,
-          "kernel", "must span the kernel of c");
+                  "kernel", "must span the kernel of c");
   detail::require(w.fullPivLu().rank() == n - 1, who, "kernel", "must have independent columns");
   Matrix t_inv(n, n);
   t_inv << v, w;
@@ -175,7 +175,7 @@ template <typename Scalar>
 /// polynomial or observability matrices leave the floating-point range.
 template <typename Scalar>
 [[nodiscard]] CanonicalTransformation<Scalar> marino_tomei_form_dynamic(const Eigen::MatrixX<Scalar>& A,
-                                                                       const Eigen::MatrixX<Scalar>& c) {
+                                                                        const Eigen::MatrixX<Scalar>& c) {
   using Matrix = Eigen::MatrixX<Scalar>;
   constexpr std::string_view who = "marino_tomei_form";
   const Index n = detail::require_single_output_pair(A, c, who);
@@ -209,8 +209,8 @@ template <typename Scalar>
 /// decay drives beyond 1/(n ε).
 template <typename Scalar>
 [[nodiscard]] CanonicalTransformation<Scalar> besancon_form_dynamic(const Eigen::MatrixX<Scalar>& a,
-                                                                   const Eigen::MatrixX<Scalar>& cc,
-                                                                   Scalar decay = 1) {
+                                                                    const Eigen::MatrixX<Scalar>& cc,
+                                                                    Scalar decay = 1) {
   using Matrix = Eigen::MatrixX<Scalar>;
   constexpr std::string_view who = "besancon_form";
   const Index n = detail::require_output_pair(a, cc, who), m = cc.rows();
@@ -228,14 +228,16 @@ template <typename Scalar>
     // (A22 + decay I, A12) is observable with (A22, A12); the staircase judges the
     // unshifted pair, whose scale does not grow with `decay`.
     detail::require(observability(Matrix(at.bottomRightCorner(r, r)), a12).observable(), who, "A, C",
-            "must be an observable pair");
+                    "must be an observable pair");
     const Matrix a22 = at.bottomRightCorner(r, r) + decay * Matrix::Identity(r, r);
     // The unshifted pair is observable, and a shift keeps it so: a refusal of
     // the Riccati solver is numerical. It comes from the decay asked for when
     // the unshifted equation can be solved (the gain X, and with it
     // cond(T) ~ ||X||^2, grows with the decay), from the scale of A otherwise.
     const auto refuse_decay = [&](std::string_view reason) {
-      detail::fail_argument(who, "decay", std::string("is too large for the scale of A: ").append(reason).append("; ask for a smaller decay"));
+      detail::fail_argument(
+          who, "decay",
+          std::string("is too large for the scale of A: ").append(reason).append("; ask for a smaller decay"));
     };
     const auto gain = [&](const Matrix& shifted) {
       return kalman_bucy_gain(shifted, a12, Matrix::Identity(r, r), Matrix::Identity(m, m)).K;
@@ -253,18 +255,21 @@ template <typename Scalar>
       x = gain(a22);
     } catch (const ConfigurationError&) {
       if (decay > Scalar(0) && solvable(Matrix(at.bottomRightCorner(r, r))))
-        refuse_decay("the Riccati equation of the shifted pair (A22 + decay I, A12), whose gain moves the eigenvalues "
-                     "of A22 left of -decay, cannot be solved to working accuracy");
-      detail::fail_argument(who, "A",
-                    "is beyond the range of the canonical form: the Riccati equation of the observable pair (A22, A12) "
-                    "cannot be solved to working accuracy at its scale; rescale the states or the time unit");
+        refuse_decay(
+            "the Riccati equation of the shifted pair (A22 + decay I, A12), whose gain moves the eigenvalues "
+            "of A22 left of -decay, cannot be solved to working accuracy");
+      detail::fail_argument(
+          who, "A",
+          "is beyond the range of the canonical form: the Riccati equation of the observable pair (A22, A12) "
+          "cannot be solved to working accuracy at its scale; rescale the states or the time unit");
     }
     Matrix left = Matrix::Identity(n, n);
     left.bottomLeftCorner(r, m) = -x;
     t = left * t0;
     if (decay > Scalar(0) && !detail::well_conditioned_inverse(t) && detail::well_conditioned_inverse(t0))
-      refuse_decay("the transformation T = [I 0; -X I] T0 that moves the eigenvalues of A22 left of -decay has a "
-                   "condition number beyond 1/(n eps)");
+      refuse_decay(
+          "the transformation T = [I 0; -X I] T0 that moves the eigenvalues of A22 left of -decay has a "
+          "condition number beyond 1/(n eps)");
   }
   return detail::transform_with_injection_of_first_columns<Scalar>(t, a, m);
 }
@@ -273,9 +278,9 @@ template <typename Scalar>
 ADAPTOBS_INSTANTIATE CanonicalTransformation<double> bastin_gevers_form_dynamic<double>(
     const Eigen::MatrixXd&, const Eigen::MatrixXd&, const Polynomial<double>&, const std::optional<Eigen::MatrixXd>&);
 ADAPTOBS_INSTANTIATE CanonicalTransformation<double> marino_tomei_form_dynamic<double>(const Eigen::MatrixXd&,
-                                                                                      const Eigen::MatrixXd&);
+                                                                                       const Eigen::MatrixXd&);
 ADAPTOBS_INSTANTIATE CanonicalTransformation<double> besancon_form_dynamic<double>(const Eigen::MatrixXd&,
-                                                                                  const Eigen::MatrixXd&, double);
+                                                                                   const Eigen::MatrixXd&, double);
 #endif
 
 /// Transform to the form (5) of Algorithm 1 with \f$\det(sI - A_{22}) = \nu(s)\f$

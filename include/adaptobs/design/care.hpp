@@ -196,8 +196,7 @@ std::optional<DynamicMatrix<Scalar>> continuous_stabilizing_gain(const DynamicMa
   // Back to the caller's states, K = BᵀX / ‖B‖² with X = D⁻¹X̃D⁻¹; an A − BK
   // Hurwitz beyond rounding proves stabilizability.
   const Matrix k = B.transpose() * unbalance(*x, d) / b2;
-  if (!k.allFinite() || !is_hurwitz_with_margin(Matrix(A - B * k), stabilizability_margin<Scalar>))
-    return std::nullopt;
+  if (!k.allFinite() || !is_hurwitz_with_margin(Matrix(A - B * k), stabilizability_margin<Scalar>)) return std::nullopt;
   return k;
 }
 
@@ -214,11 +213,10 @@ std::optional<DynamicMatrix<Scalar>> continuous_stabilizing_gain(const DynamicMa
 /// `roles` gives the names a refusal uses (the Kalman–Bucy gain, which solves the
 /// dual equation, passes its own). Throws as the fixed-size `solve_care` below.
 template <typename Scalar>
-[[nodiscard]] CareSolution<Scalar, Eigen::Dynamic> solve_care(const detail::DynamicMatrix<Scalar>& A,
-                                                              const detail::DynamicMatrix<Scalar>& B,
-                                                              const detail::DynamicMatrix<Scalar>& Q,
-                                                              const detail::DynamicMatrix<Scalar>& R,
-                                                              const detail::RiccatiRoles& roles = detail::control_care_roles) {
+[[nodiscard]] CareSolution<Scalar, Eigen::Dynamic> solve_care(
+    const detail::DynamicMatrix<Scalar>& A, const detail::DynamicMatrix<Scalar>& B,
+    const detail::DynamicMatrix<Scalar>& Q, const detail::DynamicMatrix<Scalar>& R,
+    const detail::RiccatiRoles& roles = detail::control_care_roles) {
   using Matrix = detail::DynamicMatrix<Scalar>;
   using namespace detail;
   validate_riccati_data(A, B, Q, R, roles);
@@ -236,8 +234,8 @@ template <typename Scalar>
   auto start = care_sign_function_start<Scalar>(a, g, q, 100, result.iterations);
   bool stabilizable = false;  // proven by a gain that makes A − BK Hurwitz
   if (start) {
-    stabilizable = is_hurwitz_with_margin(evaluate_care<Scalar>(*start, a, g, q).closed_loop,
-                                          stabilizability_margin<Scalar>);
+    stabilizable =
+        is_hurwitz_with_margin(evaluate_care<Scalar>(*start, a, g, q).closed_loop, stabilizability_margin<Scalar>);
     if (!stabilizable) start.reset();
   }
   if (!start) {
@@ -340,9 +338,11 @@ template <typename Scalar>
 }
 
 #ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE CareSolution<double, Eigen::Dynamic> solve_care<double>(
-    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
-    const detail::DynamicMatrix<double>&, const detail::RiccatiRoles&);
+ADAPTOBS_INSTANTIATE CareSolution<double, Eigen::Dynamic> solve_care<double>(const detail::DynamicMatrix<double>&,
+                                                                             const detail::DynamicMatrix<double>&,
+                                                                             const detail::DynamicMatrix<double>&,
+                                                                             const detail::DynamicMatrix<double>&,
+                                                                             const detail::RiccatiRoles&);
 ADAPTOBS_INSTANTIATE std::optional<CareSolution<double, Eigen::Dynamic>> solve_riccati_hamiltonian<double>(
     const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
     int);
@@ -387,7 +387,7 @@ template <class DA, class DC, class DQ, class DR>
   using detail::dynamic_copy;
   const auto dynamic = kalman_bucy_gain(dynamic_copy(A), dynamic_copy(C), dynamic_copy(Q), dynamic_copy(R));
   return KalmanBucyGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime>{dynamic.K, dynamic.P,
-                                                                               dynamic.relative_residual};
+                                                                              dynamic.relative_residual};
 }
 
 }  // namespace adaptobs

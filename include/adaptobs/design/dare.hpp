@@ -40,8 +40,8 @@
 /// on the unit circle unobserved by Q, or an equation too ill-conditioned for
 /// the working precision (with the residual reached).
 
-#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/riccati_support.hpp>
@@ -87,7 +87,8 @@ namespace detail {
 
 inline constexpr RiccatiRoles control_dare_roles{
     "solve_dare", "B",
-    "must be stabilizable: a mode of A on or outside the unit circle is not reached by B, so no gain makes A - BK Schur",
+    "must be stabilizable: a mode of A on or outside the unit circle is not reached by B, so no gain makes A - BK "
+    "Schur",
     "leave a mode of A on the unit circle unobserved by Q: the DARE has no stabilizing solution"};
 
 /// The DARE residual at X and the quantities Newton's method reuses.
@@ -176,8 +177,10 @@ std::optional<DynamicMatrix<Scalar>> stabilizing_gain(const DynamicMatrix<Scalar
 /// (\|X\|_F + \|A^TXA\|_F + \|A^TXBK\|_F + \|Q\|_F)\f$ (see file comment); infinite when
 /// \f$R + B^TXB\f$ is not positive definite (Cholesky, `Eigen::LLT`).
 template <typename Scalar>
-[[nodiscard]] Scalar dare_relative_residual(const detail::DynamicMatrix<Scalar>& X, const detail::DynamicMatrix<Scalar>& A,
-                                            const detail::DynamicMatrix<Scalar>& B, const detail::DynamicMatrix<Scalar>& Q,
+[[nodiscard]] Scalar dare_relative_residual(const detail::DynamicMatrix<Scalar>& X,
+                                            const detail::DynamicMatrix<Scalar>& A,
+                                            const detail::DynamicMatrix<Scalar>& B,
+                                            const detail::DynamicMatrix<Scalar>& Q,
                                             const detail::DynamicMatrix<Scalar>& R) {
   const auto e = detail::evaluate_dare<Scalar>(X, A, B, Q, R);
   return e.valid ? e.relative : std::numeric_limits<Scalar>::infinity();
@@ -194,12 +197,10 @@ template <typename Scalar>
 /// names a refusal uses (the Kalman gain, which solves the dual equation, passes its own).
 /// Throws `ConfigurationError` as the fixed-size `solve_dare` below.
 template <typename Scalar>
-[[nodiscard]] DareSolution<Scalar, Eigen::Dynamic> solve_dare(const detail::DynamicMatrix<Scalar>& A,
-                                                              const detail::DynamicMatrix<Scalar>& B,
-                                                              const detail::DynamicMatrix<Scalar>& Q,
-                                                              const detail::DynamicMatrix<Scalar>& R,
-                                                              DareOptions options = {},
-                                                              const detail::RiccatiRoles& roles = detail::control_dare_roles) {
+[[nodiscard]] DareSolution<Scalar, Eigen::Dynamic> solve_dare(
+    const detail::DynamicMatrix<Scalar>& A, const detail::DynamicMatrix<Scalar>& B,
+    const detail::DynamicMatrix<Scalar>& Q, const detail::DynamicMatrix<Scalar>& R, DareOptions options = {},
+    const detail::RiccatiRoles& roles = detail::control_dare_roles) {
   using Square = detail::DynamicMatrix<Scalar>;
   using namespace detail;
   validate_riccati_data(A, B, Q, R, roles);
@@ -216,8 +217,8 @@ template <typename Scalar>
 
   constexpr Scalar eps = std::numeric_limits<Scalar>::epsilon();
   const Scalar sda_tolerance = options.tolerance > 0 ? Scalar(options.tolerance) : Scalar(100) * eps;
-  const Scalar residual_tolerance = options.residual_tolerance > 0 ? Scalar(options.residual_tolerance)
-                                                                   : std::max(Scalar(1e-10), Scalar(1000) * eps);
+  const Scalar residual_tolerance =
+      options.residual_tolerance > 0 ? Scalar(options.residual_tolerance) : std::max(Scalar(1e-10), Scalar(1000) * eps);
   const Scalar margin = options.stability_margin > 0 ? Scalar(options.stability_margin) : std::sqrt(eps);
 
   // Stage 1: X = σ X̃ with σ a power of two (design/riccati_support.hpp).
@@ -251,7 +252,8 @@ template <typename Scalar>
     }
     stabilizable = true;
     const Square closed = A - B.lazyProduct(*k0);
-    start = solve_stein_doubling<Scalar>(closed, symmetric_part<Scalar>(q + k0->transpose().lazyProduct(r).lazyProduct(*k0)));
+    start = solve_stein_doubling<Scalar>(closed,
+                                         symmetric_part<Scalar>(q + k0->transpose().lazyProduct(r).lazyProduct(*k0)));
   }
 
   // Stage 3: Newton steps while the residual decreases. No stop at a small
@@ -288,9 +290,10 @@ template <typename Scalar>
   // modes inside and leaves those further out where they were.
   const Square at = A.transpose();
   if (!stabilizable_pair(at, q) && stabilizable_pair(Square(at / Scalar(1 + 1e-6)), q)) fail_unreached_mode(roles);
-  fail_ill_conditioned(roles, e.relative, residual_tolerance, "spectral radius",
-                       e.valid ? spectral_radius_bound(Square(A - B.lazyProduct(e.gain))) : std::numeric_limits<Scalar>::infinity(),
-                       Scalar(1) - margin);
+  fail_ill_conditioned(
+      roles, e.relative, residual_tolerance, "spectral radius",
+      e.valid ? spectral_radius_bound(Square(A - B.lazyProduct(e.gain))) : std::numeric_limits<Scalar>::infinity(),
+      Scalar(1) - margin);
 }
 
 /// Per-term relative residual of X in the DARE (A, B, Q, R) (see file comment
@@ -380,12 +383,16 @@ template <typename Scalar>
 }
 
 #ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE DareSolution<double, Eigen::Dynamic> solve_dare<double>(
-    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
-    const detail::DynamicMatrix<double>&, DareOptions, const detail::RiccatiRoles&);
-ADAPTOBS_INSTANTIATE double dare_relative_residual<double>(
-    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
-    const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&);
+ADAPTOBS_INSTANTIATE DareSolution<double, Eigen::Dynamic> solve_dare<double>(const detail::DynamicMatrix<double>&,
+                                                                             const detail::DynamicMatrix<double>&,
+                                                                             const detail::DynamicMatrix<double>&,
+                                                                             const detail::DynamicMatrix<double>&,
+                                                                             DareOptions, const detail::RiccatiRoles&);
+ADAPTOBS_INSTANTIATE double dare_relative_residual<double>(const detail::DynamicMatrix<double>&,
+                                                           const detail::DynamicMatrix<double>&,
+                                                           const detail::DynamicMatrix<double>&,
+                                                           const detail::DynamicMatrix<double>&,
+                                                           const detail::DynamicMatrix<double>&);
 ADAPTOBS_INSTANTIATE KalmanGain<double, Eigen::Dynamic, Eigen::Dynamic> steady_state_kalman_gain<double>(
     const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&, const detail::DynamicMatrix<double>&,
     const detail::DynamicMatrix<double>&, DareOptions);
@@ -400,9 +407,10 @@ template <class DA, class DC, class DQ, class DR>
                                             DareOptions options = {}) {
   using Scalar = typename DA::Scalar;
   using detail::dynamic_copy;
-  const auto dynamic = steady_state_kalman_gain(dynamic_copy(A), dynamic_copy(C), dynamic_copy(Q), dynamic_copy(R), options);
+  const auto dynamic =
+      steady_state_kalman_gain(dynamic_copy(A), dynamic_copy(C), dynamic_copy(Q), dynamic_copy(R), options);
   return KalmanGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime>{dynamic.K, dynamic.P,
-                                                                           dynamic.relative_residual};
+                                                                          dynamic.relative_residual};
 }
 
 }  // namespace adaptobs

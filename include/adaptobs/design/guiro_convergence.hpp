@@ -31,8 +31,8 @@
 /// Around the limit \f$\bar H = H_\infty\f$ of a settling regressor, \f$W(k) \to 0\f$
 /// and (i) holds from some \f$k_0\f$. A failed check is not a proof of divergence.
 
-#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
@@ -56,9 +56,12 @@ enum class ConditionVerdict { holds, fails, undetermined };
 
 [[nodiscard]] constexpr std::string_view to_string(ConditionVerdict v) noexcept {
   switch (v) {
-    case ConditionVerdict::holds: return "holds";
-    case ConditionVerdict::fails: return "fails";
-    case ConditionVerdict::undetermined: return "undetermined";
+    case ConditionVerdict::holds:
+      return "holds";
+    case ConditionVerdict::fails:
+      return "fails";
+    case ConditionVerdict::undetermined:
+      return "undetermined";
   }
   return "unknown";
 }
@@ -66,9 +69,9 @@ enum class ConditionVerdict { holds, fails, undetermined };
 /// Outcome of `check_guiro_convergence`.
 template <typename Scalar>
 struct GuiroConvergenceReport {
-  Scalar spectral_radius = 0;              ///< \f$\rho(U)\f$ at the chosen \f$\bar H\f$
-  std::optional<PowerBound<Scalar>> bound; ///< \f$\|U^k\|_2 \le M\lambda^k\f$; empty when U is not Schur
-  std::vector<Scalar> w_norms;             ///< \f$\|W(k)\|_2\f$ for the supplied \f$H_k\f$
+  Scalar spectral_radius = 0;               ///< \f$\rho(U)\f$ at the chosen \f$\bar H\f$
+  std::optional<PowerBound<Scalar>> bound;  ///< \f$\|U^k\|_2 \le M\lambda^k\f$; empty when U is not Schur
+  std::vector<Scalar> w_norms;              ///< \f$\|W(k)\|_2\f$ for the supplied \f$H_k\f$
 
   ConditionVerdict condition_i = ConditionVerdict::fails;
   std::optional<Index> k0;  ///< first index from which \f$\|W(k)\| < (1-\lambda)/M\f$ on the data

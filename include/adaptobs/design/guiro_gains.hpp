@@ -39,8 +39,8 @@
 /// Every returned design is verified: Cayley–Hamilton residual of U against
 /// the requested spectrum, and \f$\rho(U) < 1\f$.
 
-#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/observability.hpp>
@@ -90,10 +90,10 @@ struct GuiroGains {
 /// not fit E (n × n), C (m × n), \f$\bar H\f$ (n × p), K (n × m), Γ (p × m).
 template <typename Scalar>
 [[nodiscard]] Eigen::MatrixX<Scalar> guiro_error_matrix_dynamic(const Eigen::MatrixX<Scalar>& E,
-                                                               const Eigen::MatrixX<Scalar>& C,
-                                                               const Eigen::MatrixX<Scalar>& Hbar,
-                                                               const Eigen::MatrixX<Scalar>& K,
-                                                               const Eigen::MatrixX<Scalar>& Gamma) {
+                                                                const Eigen::MatrixX<Scalar>& C,
+                                                                const Eigen::MatrixX<Scalar>& Hbar,
+                                                                const Eigen::MatrixX<Scalar>& K,
+                                                                const Eigen::MatrixX<Scalar>& Gamma) {
   using Matrix = Eigen::MatrixX<Scalar>;
   constexpr std::string_view who = "guiro_error_matrix";
   detail::require_square(E, who, "E");
@@ -115,7 +115,6 @@ ADAPTOBS_INSTANTIATE Eigen::MatrixXd guiro_error_matrix_dynamic<double>(const Ei
                                                                         const Eigen::MatrixXd&, const Eigen::MatrixXd&,
                                                                         const Eigen::MatrixXd&);
 #endif
-
 
 /// K and Γ such that U (at \f$\bar H\f$) has the spectrum `target` (n + p
 /// values inside the unit circle, closed under conjugation), on run-time sizes:
@@ -166,15 +165,15 @@ template <typename Scalar>
   }
   for (Index i = 0; i < na; ++i)
     detail::require(std::abs(target(i)) < Scalar(1), who, "poles",
-            "must lie inside the unit circle (the error dynamics must be Schur stable)");
+                    "must lie inside the unit circle (the error dynamics must be Schur stable)");
 
   // θ identifiable through the eigenvalue 1 of Ā: (E, C) observable, p ≤ rank C,
   // then the exact rank test at 1.
   const auto state_report = observability(E, C, Scalar(options.placement.observability_tolerance));
   if (!state_report.observable()) {
     detail::fail_argument(who, "E, C",
-                  "is not observable: its mode(s) " + detail::format_complex_list(state_report.unobservable_modes) +
-                      " cannot be moved");
+                          "is not observable: its mode(s) " +
+                              detail::format_complex_list(state_report.unobservable_modes) + " cannot be moved");
   }
   const Scalar c_scale = C.norm();
   const auto c_sigma = Eigen::JacobiSVD<Matrix>(C).singularValues();
@@ -194,8 +193,8 @@ template <typename Scalar>
   c_bar.leftCols(n) = C;
   if (p > 0 && !(pbh_margin(a_bar, c_bar, Scalar(1)) > Scalar(options.rank_tolerance))) {
     detail::fail_argument(who, "Hbar",
-                  "leaves theta unidentifiable: rank [E - I, E Hbar; C, 0] < n + p, so an eigenvalue 1 of U "
-                  "cannot be moved by any K and Gamma");
+                          "leaves theta unidentifiable: rank [E - I, E Hbar; C, 0] < n + p, so an eigenvalue 1 of U "
+                          "cannot be moved by any K and Gamma");
   }
 
   // K = E⁻¹L: an E singular to working accuracy would show only later, as an
@@ -232,12 +231,13 @@ template <typename Scalar>
   }
   if (!best) {
     if (!any_candidate)
-      detail::fail_argument(who, "poles", "could not be placed: the Sylvester transformation was singular in every draw");
+      detail::fail_argument(who, "poles",
+                            "could not be placed: the Sylvester transformation was singular in every draw");
     detail::fail_argument(who, "poles",
-                  m == 1 ? "cannot be assigned: I - C K is singular for the only gain that places them "
-                           "(Gamma would be infinite)"
-                         : "cannot be assigned: I - C K is singular for every placing gain tried "
-                           "(Gamma would be infinite)");
+                          m == 1 ? "cannot be assigned: I - C K is singular for the only gain that places them "
+                                   "(Gamma would be infinite)"
+                                 : "cannot be assigned: I - C K is singular for every placing gain tried "
+                                   "(Gamma would be infinite)");
   }
 
   GuiroGains<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic> gains;
@@ -278,9 +278,9 @@ template <class DE, class DC, class DH, class DK, class DG>
                                       const Eigen::MatrixBase<DG>& Gamma) {
   using Scalar = typename DE::Scalar;
   constexpr int na = sum_of_sizes(DE::RowsAtCompileTime, DH::ColsAtCompileTime);
-  return Eigen::Matrix<Scalar, na, na>(guiro_error_matrix_dynamic<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C),
-                                                                          detail::dynamic_copy(Hbar), detail::dynamic_copy(K),
-                                                                          detail::dynamic_copy(Gamma)));
+  return Eigen::Matrix<Scalar, na, na>(
+      guiro_error_matrix_dynamic<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C), detail::dynamic_copy(Hbar),
+                                         detail::dynamic_copy(K), detail::dynamic_copy(Gamma)));
 }
 
 /// K and Γ such that U (at \f$\bar H\f$) has the spectrum `poles` (n + p values
@@ -296,10 +296,9 @@ template <class DE, class DC, class DH, class DP>
                                       GuiroDesignOptions options = {}) {
   using Scalar = typename DE::Scalar;
   constexpr int NX = DE::RowsAtCompileTime, NY = DC::RowsAtCompileTime, NP = DH::ColsAtCompileTime;
-  const auto d = design_guiro_gains_dynamic<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C),
-                                                    detail::dynamic_copy(Hbar),
-                                                    detail::complex_poles<Scalar>(poles, "design_guiro_gains"),
-                                                    options);
+  const auto d =
+      design_guiro_gains_dynamic<Scalar>(detail::dynamic_copy(E), detail::dynamic_copy(C), detail::dynamic_copy(Hbar),
+                                         detail::complex_poles<Scalar>(poles, "design_guiro_gains"), options);
   GuiroGains<Scalar, NX, NY, NP> gains;
   gains.K = d.K;
   gains.Gamma = d.Gamma;

@@ -16,7 +16,7 @@ namespace adaptobs {
 /// its own: P (from P0, positive definite), Q (positive semidefinite, P's size)
 /// and R (positive definite), with the accessor of P.
 template <StateSpace D>
-class KalmanCovariances : public SizedBy<D> {
+class KalmanCovariances : public D {
  public:
   using OutputCovariance = typename D::OutputMatrixSquare;
 

@@ -62,15 +62,15 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> checked_dynamics(const AFn
 /// `steps` RK4 steps, each evaluation of A(t) (the first at t0) checked by
 /// `checked_dynamics`.
 template <class AFn, typename Scalar>
-Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> checked_transition(const AFn& A, Scalar t0, Scalar t1,
-                                                                         int steps, Index n, std::string_view who,
+Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> checked_transition(const AFn& A, Scalar t0, Scalar t1, int steps,
+                                                                         Index n, std::string_view who,
                                                                          Scalar& norm_seen) {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   Matrix phi = Matrix::Identity(n, n);
   RungeKutta4<Matrix> rk4(phi);
   rk4.integrate(
-      [&](const Matrix& x, Matrix& dx, Scalar t) { dx.noalias() = checked_dynamics(A, t, n, who, norm_seen) * x; },
-      phi, t0, t1, steps);
+      [&](const Matrix& x, Matrix& dx, Scalar t) { dx.noalias() = checked_dynamics(A, t, n, who, norm_seen) * x; }, phi,
+      t0, t1, steps);
   return phi;
 }
 
@@ -152,7 +152,8 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn&
     // (the true exponent lies at or below it).
     const Scalar bound = fine(0) + std::log(Scalar(n) * std::numeric_limits<Scalar>::epsilon()) / period;
     for (Index i = 1; i < fine.size(); ++i) {
-      const bool agreed = std::isfinite(fine(i)) && std::isfinite(coarse(i)) && std::abs(fine(i) - coarse(i)) <= tolerance;
+      const bool agreed =
+          std::isfinite(fine(i)) && std::isfinite(coarse(i)) && std::abs(fine(i) - coarse(i)) <= tolerance;
       if (!(fine(i) >= bound) && !agreed) fine(i) = coarse(i) = bound;
     }
     std::sort(fine.begin(), fine.end(), [](Scalar a, Scalar b) { return a > b; });
@@ -193,7 +194,7 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn&
 /// `ConfigurationError` naming 'A' and the time.
 template <class AFn, typename Scalar = double>
 [[nodiscard]] Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> transition_matrix(const AFn& A, Scalar t0,
-                                                                                       Scalar t1, int steps = 2000) {
+                                                                                      Scalar t1, int steps = 2000) {
   detail::require(std::isfinite(t0) && std::isfinite(t1), "transition_matrix", "t0, t1", "must be finite");
   detail::require(steps >= 1, "transition_matrix", "steps", "must be at least 1");
   const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a0 = A(t0);  // its order; RK4 checks every value
@@ -257,8 +258,7 @@ template <class AFn, typename Scalar = double>
 /// exponent: a largest multiplier that underflows (every mode contracting
 /// beyond the floating-point range over one period) is refused, not guessed.
 template <class AFn, typename Scalar = double>
-[[nodiscard]] bool is_exponentially_stable_periodic(const AFn& A, Scalar period, Scalar margin = 0,
-                                                    int steps = 2000) {
+[[nodiscard]] bool is_exponentially_stable_periodic(const AFn& A, Scalar period, Scalar margin = 0, int steps = 2000) {
   const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a0 = A(Scalar(0));
   detail::require_square(a0, "is_exponentially_stable_periodic", "A");
   detail::require(std::isfinite(margin), "is_exponentially_stable_periodic", "margin", "must be finite");

@@ -35,8 +35,8 @@
 /// are in wildly different units (a coupling below the rank tolerance times \f$\|A\|_F\f$
 /// that matters) should be brought to comparable units first.
 
-#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/dense_eigenvalues.hpp>
@@ -55,7 +55,7 @@ namespace adaptobs {
 /// Outcome of the observability staircase.
 template <typename Scalar>
 struct ObservabilityReport {
-  Index observable_dimension = 0;  ///< dimension of the observable subspace
+  Index observable_dimension = 0;                                             ///< dimension of the observable subspace
   Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1> unobservable_modes;  ///< empty when observable
   [[nodiscard]] bool observable() const noexcept { return unobservable_modes.size() == 0; }
 };
@@ -81,7 +81,7 @@ template <typename Scalar>
 /// the normal numbers (the factor itself never overflows).
 template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> scaled_by_powers_of_two(DynamicMatrix<Scalar> m,
-                                                          const Eigen::Matrix<int, Eigen::Dynamic, 1>& e, bool rows) {
+                                                            const Eigen::Matrix<int, Eigen::Dynamic, 1>& e, bool rows) {
   for (Index j = 0; j < m.cols(); ++j)
     for (Index i = 0; i < m.rows(); ++i) m(i, j) = std::ldexp(m(i, j), -e(rows ? i : j));
   return m;
@@ -96,7 +96,6 @@ template <typename Scalar>
   const Scalar eps = std::numeric_limits<Scalar>::epsilon();
   return std::min(Scalar(1e6) * eps, std::sqrt(eps));
 }
-
 
 }  // namespace detail
 
@@ -150,8 +149,8 @@ template <typename Scalar>
   return report;
 }
 #ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE ObservabilityReport<double> observability_staircase<double>(const Eigen::MatrixXd&, const Eigen::MatrixXd&,
-                                                                                double);
+ADAPTOBS_INSTANTIATE ObservabilityReport<double> observability_staircase<double>(const Eigen::MatrixXd&,
+                                                                                 const Eigen::MatrixXd&, double);
 #endif
 
 /// Staircase observability analysis of (A, C) (see file comment). A singular

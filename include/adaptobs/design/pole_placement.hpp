@@ -67,8 +67,8 @@
 /// that the requested poles are too clustered for the conditioning of the pair.
 /// No gain is ever returned that does not do its job.
 
-#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/sylvester.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -189,7 +189,7 @@ ComplexVector<Scalar> complex_poles(const Eigen::MatrixBase<DP>& poles, std::str
 /// Refuses, naming `who` and `poles`, a list not closed under conjugation.
 template <typename Scalar>
 [[nodiscard]] Eigen::MatrixX<Scalar> real_matrix_with_spectrum(const ComplexVector<Scalar>& poles,
-                                                              std::string_view who = "real_matrix_with_spectrum") {
+                                                               std::string_view who = "real_matrix_with_spectrum") {
   using std::abs;
   const Scalar pair_tol = std::sqrt(std::numeric_limits<Scalar>::epsilon());
   struct Block {
@@ -209,7 +209,8 @@ template <typename Scalar>
     Index partner = -1;
     for (Index j = i + 1; j < poles.size() && partner < 0; ++j)
       if (!used[std::size_t(j)] && abs(poles(j) - std::conj(p)) <= pair_tol * scale) partner = j;
-    if (partner < 0) detail::fail_argument(who, "poles", "must be closed under complex conjugation (a real gain is sought)");
+    if (partner < 0)
+      detail::fail_argument(who, "poles", "must be closed under complex conjugation (a real gain is sought)");
     used[std::size_t(partner)] = true;
     blocks.push_back({p.real(), abs(p.imag())});
   }
@@ -430,10 +431,10 @@ class PolePlacer {
 /// Output-injection gain L with the certificate of its placement.
 template <typename Scalar, int N, int M>
 struct OutputInjectionGain {
-  Eigen::Matrix<Scalar, N, M> L;       ///< \f$A - LC\f$ has the requested spectrum (file comment: tests 1–3)
-  Scalar cayley_hamilton_residual = 0; ///< verified below `verification_tolerance`
-  Scalar transformation_condition = 0; ///< cond₂(X): sensitivity of the placed eigenvalues
-  Scalar eigenvalue_mismatch = 0;      ///< largest |computed − requested| eigenvalue (greedy matching; tests 2–3)
+  Eigen::Matrix<Scalar, N, M> L;        ///< \f$A - LC\f$ has the requested spectrum (file comment: tests 1–3)
+  Scalar cayley_hamilton_residual = 0;  ///< verified below `verification_tolerance`
+  Scalar transformation_condition = 0;  ///< cond₂(X): sensitivity of the placed eigenvalues
+  Scalar eigenvalue_mismatch = 0;       ///< largest |computed − requested| eigenvalue (greedy matching; tests 2–3)
 };
 
 /// The names the refusals of `place_output_injection_dynamic` use:
@@ -468,8 +469,7 @@ template <typename Scalar>
     const PolePlacementOptions& options = {}, const PlacementNames& names = {}) {
   using Matrix = Eigen::MatrixX<Scalar>;
   using detail::fail_argument;
-  const std::string_view who = names.who, pair = names.pair, property = names.property,
-                         closed_loop = names.closed_loop;
+  const std::string_view who = names.who, pair = names.pair, property = names.property, closed_loop = names.closed_loop;
   const Scalar eig_tol = detail::default_eigenvalue_tolerance<Scalar>(options.eigenvalue_tolerance);
   if (!(options.eigenvalue_tolerance >= 0 && eig_tol < Scalar(1)))
     fail_argument(who, "options.eigenvalue_tolerance", "must be in [0, 1) (0 selects the default)");
@@ -479,7 +479,8 @@ template <typename Scalar>
     auto c = placer.candidate(placer.draw_parameter());
     if (c && (!best || c->x_condition < best->x_condition)) best = std::move(c);
   }
-  if (!best) fail_argument(who, "poles", "could not be placed: the Sylvester transformation was singular in every draw");
+  if (!best)
+    fail_argument(who, "poles", "could not be placed: the Sylvester transformation was singular in every draw");
   const Matrix closed = A - best->L * C;
   OutputInjectionGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> result;
   result.L = best->L;
@@ -488,8 +489,8 @@ template <typename Scalar>
   const Scalar tol = detail::default_verification_tolerance<Scalar>(options.verification_tolerance);
   if (!(result.cayley_hamilton_residual <= tol)) {
     std::ostringstream os;
-    os << "could not be placed to the required accuracy (Cayley-Hamilton residual "
-       << result.cayley_hamilton_residual << " > " << tol << "): the pair is nearly not " << property;
+    os << "could not be placed to the required accuracy (Cayley-Hamilton residual " << result.cayley_hamilton_residual
+       << " > " << tol << "): the pair is nearly not " << property;
     fail_argument(who, "poles", os.str());
   }
   const Index n = A.rows();
@@ -535,8 +536,9 @@ template <typename Scalar>
     const Index k = multiplicity[std::size_t(i)];
     std::ostringstream os;
     os << "could not be placed to the required accuracy: the eigenvalue of " << closed_loop
-       << " matched to the requested pole " << detail::format_complex_list<Scalar>(ComplexVector<Scalar>::Constant(1, poles(i)))
-       << " (multiplicity " << k << ") is " << distance[std::size_t(i)] << " away, beyond the tolerance "
+       << " matched to the requested pole "
+       << detail::format_complex_list<Scalar>(ComplexVector<Scalar>::Constant(1, poles(i))) << " (multiplicity " << k
+       << ") is " << distance[std::size_t(i)] << " away, beyond the tolerance "
        << std::pow(eig_tol, Scalar(1) / Scalar(k)) * scale << " (eigenvalue tolerance " << eig_tol << " to the power 1/"
        << k << ", times ||" << closed_loop << "||_F)";
     too_clustered(os);
@@ -559,9 +561,9 @@ template <class DA, class DC, class DP>
 [[nodiscard]] auto place_output_injection(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C,
                                           const Eigen::MatrixBase<DP>& poles, PolePlacementOptions options = {}) {
   using Scalar = typename DA::Scalar;
-  const auto d = place_output_injection_dynamic<Scalar>(
-      detail::dynamic_copy(A), detail::dynamic_copy(C), detail::complex_poles<Scalar>(poles, "place_output_injection"),
-      options);
+  const auto d =
+      place_output_injection_dynamic<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C),
+                                             detail::complex_poles<Scalar>(poles, "place_output_injection"), options);
   OutputInjectionGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime> result;
   result.L = d.L;
   result.cayley_hamilton_residual = d.cayley_hamilton_residual;
@@ -573,7 +575,7 @@ template <class DA, class DC, class DP>
 /// State-feedback gain K (m × N) with the certificate of its placement.
 template <typename Scalar, int N, int M>
 struct StateFeedbackGain {
-  Eigen::Matrix<Scalar, M, N> K;       ///< \f$A - BK\f$ has the requested spectrum
+  Eigen::Matrix<Scalar, M, N> K;  ///< \f$A - BK\f$ has the requested spectrum
   Scalar cayley_hamilton_residual = 0;
   Scalar transformation_condition = 0;
   Scalar eigenvalue_mismatch = 0;

@@ -60,8 +60,8 @@ template <typename Scalar>
   Index last = p.size() - 1;
   while (last > 0 && p(last) == Scalar(0)) --last;
   if (last == 0) return 0;
-  return static_cast<int>(std::lround(static_cast<double>(std::ilogb(p(last)) - std::ilogb(p(0))) /
-                                      static_cast<double>(last)));
+  return static_cast<int>(
+      std::lround(static_cast<double>(std::ilogb(p(last)) - std::ilogb(p(0))) / static_cast<double>(last)));
 }
 
 /// \f$q(z) = p(2^e z)\f$ divided by a power of two that brings its largest
@@ -74,7 +74,8 @@ template <typename Scalar>
   for (Index i = 0; i <= d; ++i)
     if (p(i) != Scalar(0)) top = std::max(top, std::ilogb(p(i)) + static_cast<int>(d - i) * e);
   Polynomial<Scalar> q(p.size());
-  for (Index i = 0; i <= d; ++i) q(i) = p(i) == Scalar(0) ? Scalar(0) : std::ldexp(p(i), static_cast<int>(d - i) * e - top);
+  for (Index i = 0; i <= d; ++i)
+    q(i) = p(i) == Scalar(0) ? Scalar(0) : std::ldexp(p(i), static_cast<int>(d - i) * e - top);
   return q;
 }
 
@@ -290,10 +291,11 @@ template <class DA, class DB, class DC>
 ADAPTOBS_INSTANTIATE Polynomial<double> characteristic_polynomial<double>(const detail::DynamicMatrix<double>&);
 ADAPTOBS_INSTANTIATE bool is_hurwitz_polynomial<double>(const Polynomial<double>&);
 ADAPTOBS_INSTANTIATE Index count_real_roots_above<double>(const Polynomial<double>&, double, double);
-ADAPTOBS_INSTANTIATE Polynomial<double> multiply_polynomials<double>(const Polynomial<double>&, const Polynomial<double>&);
-ADAPTOBS_INSTANTIATE SisoTransferFunction<double> transfer_function<double>(const detail::DynamicMatrix<double>&,
-                                                                            const Eigen::Matrix<double, Eigen::Dynamic, 1>&,
-                                                                            const Eigen::Matrix<double, 1, Eigen::Dynamic>&);
+ADAPTOBS_INSTANTIATE Polynomial<double> multiply_polynomials<double>(const Polynomial<double>&,
+                                                                     const Polynomial<double>&);
+ADAPTOBS_INSTANTIATE SisoTransferFunction<double> transfer_function<double>(
+    const detail::DynamicMatrix<double>&, const Eigen::Matrix<double, Eigen::Dynamic, 1>&,
+    const Eigen::Matrix<double, 1, Eigen::Dynamic>&);
 #endif
 
 }  // namespace adaptobs

@@ -57,8 +57,8 @@ struct SprSweep {
 template <typename Scalar, int N>
 struct KypCertificate {
   Eigen::Matrix<Scalar, N, N> P;
-  Scalar equality_residual = 0;  ///< \f$\|Pb - c^T\|_\infty\f$
-  Scalar min_eigenvalue_P = 0;   ///< \f$\lambda_{\min}(P)\f$ (> 0)
+  Scalar equality_residual = 0;        ///< \f$\|Pb - c^T\|_\infty\f$
+  Scalar min_eigenvalue_P = 0;         ///< \f$\lambda_{\min}(P)\f$ (> 0)
   Scalar max_eigenvalue_lyapunov = 0;  ///< \f$\lambda_{\max}(A^TP + PA)\f$ (< 0)
 };
 
@@ -81,7 +81,7 @@ template <typename Scalar>
   constexpr std::string_view who = "spr_frequency_sweep";
   const Index n = detail::require_siso_triple(A, b, c, who);
   detail::require(omega_min > 0 && omega_max > omega_min && std::isfinite(omega_max) && points >= 2, who,
-          "omega_min, omega_max, points", "must satisfy 0 < omega_min < omega_max < ∞ and points ≥ 2");
+                  "omega_min, omega_max, points", "must satisfy 0 < omega_min < omega_max < ∞ and points ≥ 2");
   SprSweep<Scalar> r;
   if (n == 0) {  // G = 0: not strictly positive real; an empty A has no unstable mode
     r.hurwitz = true;
@@ -94,8 +94,7 @@ template <typename Scalar>
   const ComplexMatrix cc = c.template cast<Complex>();
   r.min_weighted_real_part = std::numeric_limits<Scalar>::infinity();
   for (int i = -1; i < points; ++i) {
-    const Scalar w = i < 0 ? Scalar(0)
-                           : omega_min * std::pow(omega_max / omega_min, Scalar(i) / Scalar(points - 1));
+    const Scalar w = i < 0 ? Scalar(0) : omega_min * std::pow(omega_max / omega_min, Scalar(i) / Scalar(points - 1));
     const ComplexMatrix m = Complex(0, w) * ComplexMatrix::Identity(n, n) - a;
     const Complex g = (cc * m.partialPivLu().solve(bb))(0, 0);
     const Scalar weighted = (Scalar(1) + w * w) * g.real();
@@ -179,8 +178,8 @@ template <typename Scalar>
     const Matrix p = Scalar(0.5) * (p_dynamic + p_dynamic.transpose());
     auto k = kyp_residuals_dynamic<Scalar>(p, A, b, c);
     const Scalar margin = p_norm_tol * p.norm() * std::max(Scalar(1), A.norm());
-    if (k.equality_residual <= Scalar(1e-10) * std::max(Scalar(1), c.cwiseAbs().maxCoeff()) &&
-        k.min_eigenvalue_P > 0 && k.max_eigenvalue_lyapunov < -margin)
+    if (k.equality_residual <= Scalar(1e-10) * std::max(Scalar(1), c.cwiseAbs().maxCoeff()) && k.min_eigenvalue_P > 0 &&
+        k.max_eigenvalue_lyapunov < -margin)
       return k;
     return std::nullopt;
   };
@@ -209,8 +208,10 @@ template <typename Scalar>
 ADAPTOBS_INSTANTIATE SprSweep<double> spr_frequency_sweep_dynamic<double>(const Eigen::MatrixXd&,
                                                                           const Eigen::MatrixXd&,
                                                                           const Eigen::MatrixXd&, double, double, int);
-ADAPTOBS_INSTANTIATE KypCertificate<double, Eigen::Dynamic> kyp_residuals_dynamic<double>(
-    const Eigen::MatrixXd&, const Eigen::MatrixXd&, const Eigen::MatrixXd&, const Eigen::MatrixXd&);
+ADAPTOBS_INSTANTIATE KypCertificate<double, Eigen::Dynamic> kyp_residuals_dynamic<double>(const Eigen::MatrixXd&,
+                                                                                          const Eigen::MatrixXd&,
+                                                                                          const Eigen::MatrixXd&,
+                                                                                          const Eigen::MatrixXd&);
 ADAPTOBS_INSTANTIATE std::optional<KypCertificate<double, Eigen::Dynamic>> kyp_certificate_dynamic<double>(
     const Eigen::MatrixXd&, const Eigen::MatrixXd&, const Eigen::MatrixXd&);
 #endif
@@ -229,20 +230,19 @@ template <int N, typename Scalar>
 /// and \f$-cAb > 0\f$. (Weighting by \f$1 + \omega^2\f$ keeps the test from
 /// reading round-off as a sign where \f$\mathrm{Re}\,G\f$ decays like \f$\omega^{-2}\f$.)
 template <class DA, class DB, class DC>
-[[nodiscard]] SprSweep<typename DA::Scalar> spr_frequency_sweep(const Eigen::MatrixBase<DA>& A,
-                                                                const Eigen::MatrixBase<DB>& b,
-                                                                const Eigen::MatrixBase<DC>& c,
-                                                                typename DA::Scalar omega_min = 1e-4,
-                                                                typename DA::Scalar omega_max = 1e4, int points = 2001) {
+[[nodiscard]] SprSweep<typename DA::Scalar> spr_frequency_sweep(
+    const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b, const Eigen::MatrixBase<DC>& c,
+    typename DA::Scalar omega_min = 1e-4, typename DA::Scalar omega_max = 1e4, int points = 2001) {
   return spr_frequency_sweep_dynamic<typename DA::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(b),
-                                                                detail::dynamic_copy(c), omega_min, omega_max, points);
+                                                          detail::dynamic_copy(c), omega_min, omega_max, points);
 }
 
 /// Residuals of a candidate certificate P.
 template <class DP, class DA, class DB, class DC>
-[[nodiscard]] KypCertificate<typename DP::Scalar, DP::RowsAtCompileTime> kyp_residuals(
-    const Eigen::MatrixBase<DP>& P, const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b,
-    const Eigen::MatrixBase<DC>& c) {
+[[nodiscard]] KypCertificate<typename DP::Scalar, DP::RowsAtCompileTime> kyp_residuals(const Eigen::MatrixBase<DP>& P,
+                                                                                       const Eigen::MatrixBase<DA>& A,
+                                                                                       const Eigen::MatrixBase<DB>& b,
+                                                                                       const Eigen::MatrixBase<DC>& c) {
   return detail::sized_certificate<DP::RowsAtCompileTime>(kyp_residuals_dynamic<typename DP::Scalar>(
       detail::dynamic_copy(P), detail::dynamic_copy(A), detail::dynamic_copy(b), detail::dynamic_copy(c)));
 }
@@ -264,7 +264,7 @@ template <class DA, class DB, class DC>
 [[nodiscard]] std::optional<KypCertificate<typename DA::Scalar, DA::RowsAtCompileTime>> kyp_certificate(
     const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& b, const Eigen::MatrixBase<DC>& c) {
   const auto k = kyp_certificate_dynamic<typename DA::Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(b),
-                                                                    detail::dynamic_copy(c));
+                                                              detail::dynamic_copy(c));
   if (!k) return std::nullopt;
   return detail::sized_certificate<DA::RowsAtCompileTime>(*k);
 }

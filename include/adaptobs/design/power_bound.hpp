@@ -15,8 +15,8 @@
 /// Guiro et al. (2008) tolerate \f$\|W(k)\| < (1-\lambda)/M\f$;
 /// `best_power_bound` picks the λ that maximizes that margin.
 
-#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/precompiled.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/stability.hpp>
@@ -57,8 +57,7 @@ struct PowerBound {
 /// not fallen to 1 by `max_power`.
 template <class Derived>
 [[nodiscard]] typename Derived::Scalar power_bound_constant(const Eigen::MatrixBase<Derived>& U,
-                                                            typename Derived::Scalar lambda,
-                                                            Index max_power = 100000) {
+                                                            typename Derived::Scalar lambda, Index max_power = 100000) {
   using Scalar = typename Derived::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   detail::require_square(U, "power_bound_constant", "U");
@@ -86,7 +85,7 @@ template <class Derived>
 /// points refined by golden-section search); empty when U is not Schur stable.
 template <class Derived>
 [[nodiscard]] std::optional<PowerBound<typename Derived::Scalar>> best_power_bound(const Eigen::MatrixBase<Derived>& U,
-                                                                                  Index grid = 64) {
+                                                                                   Index grid = 64) {
   using Scalar = typename Derived::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   detail::require(grid >= 2, "best_power_bound", "grid", "must be at least 2");

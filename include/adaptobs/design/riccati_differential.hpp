@@ -85,11 +85,13 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
       // the sum of the steps accumulates joins it instead of making a step of its own.
       const Scalar slack = std::max(Scalar(1e-6), Scalar(1000) * std::numeric_limits<Scalar>::epsilon()) * h;
       const Scalar next = t1 - t <= h + slack ? t1 : t + h;
-      if (!(next > t)) detail::fail_argument(who, "model", "gives a Riccati equation too stiff for a step to advance t");
+      if (!(next > t))
+        detail::fail_argument(who, "model", "gives a Riccati equation too stiff for a step to advance t");
       rk4_.integrate(field, trial_, t, next, 1);
       trial_ = Scalar(0.5) * (trial_ + trial_.transpose()).eval();
       if (!trial_.allFinite()) {
-        detail::fail_argument(who, "model", "gives a non-finite A or C within the step, or P leaves the floating-point range");
+        detail::fail_argument(who, "model",
+                              "gives a non-finite A or C within the step, or P leaves the floating-point range");
       }
       t = next;
     }
@@ -116,8 +118,8 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
  private:
   // The right-hand side with the caller's scratch for CP and R⁻¹CP.
   template <class DA, class DC>
-  void derivative(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C, const StateMatrix& p,
-                  StateMatrix& dp, typename D::OutputMatrix& cp, typename D::OutputMatrix& r_inv_cp) const {
+  void derivative(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DC>& C, const StateMatrix& p, StateMatrix& dp,
+                  typename D::OutputMatrix& cp, typename D::OutputMatrix& r_inv_cp) const {
     cp.noalias() = C * p;
     r_inv_cp = cp;
     r_factor_.solve_in_place(r_inv_cp);

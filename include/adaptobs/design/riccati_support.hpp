@@ -42,7 +42,8 @@ template <typename Scalar>
   constexpr int highest = std::numeric_limits<Scalar>::max_exponent - 2;
   int exponent = lowest - 1;  // "none yet"
   if (q > Scalar(0) && std::isfinite(q)) exponent = std::ilogb(q);
-  if (b2 > Scalar(0) && std::isfinite(b2) && r > Scalar(0)) exponent = std::max(exponent, std::ilogb(r) - std::ilogb(b2));
+  if (b2 > Scalar(0) && std::isfinite(b2) && r > Scalar(0))
+    exponent = std::max(exponent, std::ilogb(r) - std::ilogb(b2));
   return exponent < lowest ? Scalar(1) : std::ldexp(Scalar(1), std::min(exponent, highest));
 }
 

@@ -106,7 +106,8 @@ template <typename Scalar>
 }
 
 #ifdef ADAPTOBS_PRECOMPILED
-ADAPTOBS_INSTANTIATE SprTest<double> strictly_positive_real<double>(const Polynomial<double>&, const Polynomial<double>&);
+ADAPTOBS_INSTANTIATE SprTest<double> strictly_positive_real<double>(const Polynomial<double>&,
+                                                                    const Polynomial<double>&);
 #endif
 
 /// Exact SPR test of \f$c(sI - A)^{-1}b\f$.

@@ -19,7 +19,7 @@ namespace detail {
 /// The eigenvalues of a square finite M, refused otherwise under the caller's name `who`.
 template <class Derived>
 [[nodiscard]] ComplexVector<typename Derived::Scalar> checked_eigenvalues(const Eigen::MatrixBase<Derived>& m,
-                                                                         std::string_view who) {
+                                                                          std::string_view who) {
   require_square(m, who, "M");
   require_finite(m, who, "M");
   if (m.size() == 0) return {};
@@ -28,7 +28,7 @@ template <class Derived>
 
 template <class Derived>
 [[nodiscard]] typename Derived::Scalar checked_spectral_abscissa(const Eigen::MatrixBase<Derived>& m,
-                                                                std::string_view who) {
+                                                                 std::string_view who) {
   const auto lambda = checked_eigenvalues(m, who);
   if (lambda.size() == 0) return -std::numeric_limits<typename Derived::Scalar>::infinity();
   return lambda.real().maxCoeff();

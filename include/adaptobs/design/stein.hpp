@@ -57,7 +57,7 @@ template <typename Scalar>
 
 #ifdef ADAPTOBS_PRECOMPILED
 ADAPTOBS_INSTANTIATE detail::DynamicMatrix<double> solve_stein_doubling<double>(const detail::DynamicMatrix<double>&,
-                                                                               const detail::DynamicMatrix<double>&);
+                                                                                const detail::DynamicMatrix<double>&);
 #endif
 
 }  // namespace adaptobs

@@ -85,7 +85,7 @@ enum class TakagiSugenoTheorem {
 /// Which recursion of the parameter error \f$e_\Theta\f$ the LMIs are written for (see the file comment).
 enum class ParameterErrorModel {
   as_printed,  ///< eq. (66) / (32)–(33): \f$\Phi_{22} = 0\f$ / \f$-K_\theta\f$, \f$G_\theta = I + K_\theta\f$
-  exact,       ///< the recursion of observer (65) / (21): \f$\Phi_{22} = I\f$ / \f$I - K_\theta\f$, \f$G_\theta = K_\theta\f$
+  exact,  ///< the recursion of observer (65) / (21): \f$\Phi_{22} = I\f$ / \f$I - K_\theta\f$, \f$G_\theta = K_\theta\f$
 };
 
 /// Problem data of the LMIs (double precision, sizes at run time).
@@ -214,9 +214,16 @@ inline void validate_certificate(const TakagiSugenoLmiData& data, const TakagiSu
   }
 }
 
-/// \f$M_i\f$ of valid data and candidate (`takagi_sugeno_vertex_lmi` without the checks).
-[[nodiscard]] inline Eigen::MatrixXd vertex_lmi(const TakagiSugenoLmiData& data, const TakagiSugenoCertificate& s,
-                                                Index i) {
+}  // namespace detail
+
+/// \f$M_i\f$ of (29) / (71) at a candidate solution, vertex i (0-based), assembled block by block.
+[[nodiscard]] inline Eigen::MatrixXd takagi_sugeno_vertex_lmi(const TakagiSugenoLmiData& data,
+                                                              const TakagiSugenoCertificate& s, Index i) {
+  constexpr std::string_view who = "takagi_sugeno_vertex_lmi";
+  detail::validate_lmi_data(data, who);
+  detail::validate_certificate(data, s, who);
+  detail::require(i >= 0 && i < data.vertex_count(), who, "i", "must be a vertex index in [0, data.A.size())");
+
   const Index r = data.vertex_count(), nx = data.nx(), nu = data.nu(), np = data.np();
   const Index n1 = nx + np, nut = data.perturbation_size(), n5 = 2 * r * (nx + nu);
   const bool theorem1 = data.theorem == TakagiSugenoTheorem::time_varying_parameters;
@@ -279,25 +286,17 @@ inline void validate_certificate(const TakagiSugenoLmiData& data, const TakagiSu
   M.triangularView<Eigen::StrictlyLower>() = M.transpose().eval();
   return M;
 }
-}  // namespace detail
-
-/// \f$M_i\f$ of (29) / (71) at a candidate solution, vertex i (0-based), assembled block by block.
-[[nodiscard]] inline Eigen::MatrixXd takagi_sugeno_vertex_lmi(const TakagiSugenoLmiData& data,
-                                                              const TakagiSugenoCertificate& s, Index i) {
-  constexpr std::string_view who = "takagi_sugeno_vertex_lmi";
-  detail::validate_lmi_data(data, who);
-  detail::validate_certificate(data, s, who);
-  detail::require(i >= 0 && i < data.vertex_count(), who, "i", "must be a vertex index in [0, data.A.size())");
-  return detail::vertex_lmi(data, s, i);
-}
 
 /// Outcome of checking a candidate solution against theorem 1 or 2.
 struct TakagiSugenoCertificateCheck {
   double max_vertex_eigenvalue = std::numeric_limits<double>::infinity();  ///< \f$\max_i\lambda_{\max}(M_i)\f$
-  double min_eigenvalue_P0 = -std::numeric_limits<double>::infinity();  ///< \f$\lambda_{\min}(P_0)\f$; −∞ unless symmetric
-  double min_eigenvalue_P1 = -std::numeric_limits<double>::infinity();  ///< \f$\lambda_{\min}(P_1)\f$; −∞ unless symmetric
+  double min_eigenvalue_P0 =
+      -std::numeric_limits<double>::infinity();  ///< \f$\lambda_{\min}(P_0)\f$; −∞ unless symmetric
+  double min_eigenvalue_P1 =
+      -std::numeric_limits<double>::infinity();  ///< \f$\lambda_{\min}(P_1)\f$; −∞ unless symmetric
   double min_lambda = -std::numeric_limits<double>::infinity();
-  double min_eigenvalue_Gamma = -std::numeric_limits<double>::infinity();  ///< smallest over the \f$\Gamma^j\f$; −∞ unless each is symmetric
+  double min_eigenvalue_Gamma =
+      -std::numeric_limits<double>::infinity();  ///< smallest over the \f$\Gamma^j\f$; −∞ unless each is symmetric
   /// Every \f$M_i \prec 0\f$ and \f$P_0, P_1, \lambda_m, \Gamma^j \succ 0\f$ (strictly).
   [[nodiscard]] bool holds() const noexcept {
     return max_vertex_eigenvalue < 0 && min_eigenvalue_P0 > 0 && min_eigenvalue_P1 > 0 && min_lambda > 0 &&
@@ -307,8 +306,8 @@ struct TakagiSugenoCertificateCheck {
 
 /// Rebuilds every \f$M_i\f$ from the candidate and returns its largest eigenvalue, with the
 /// smallest eigenvalues of \f$P_0, P_1, \Gamma^j\f$ and the smallest \f$\lambda_m\f$ (28), (69)–(71).
-[[nodiscard]] inline TakagiSugenoCertificateCheck check_takagi_sugeno_certificate(
-    const TakagiSugenoLmiData& data, const TakagiSugenoCertificate& s) {
+[[nodiscard]] inline TakagiSugenoCertificateCheck check_takagi_sugeno_certificate(const TakagiSugenoLmiData& data,
+                                                                                  const TakagiSugenoCertificate& s) {
   constexpr std::string_view who = "check_takagi_sugeno_certificate";
   detail::validate_lmi_data(data, who);
   detail::validate_certificate(data, s, who);
@@ -318,17 +317,19 @@ struct TakagiSugenoCertificateCheck {
   TakagiSugenoCertificateCheck check;
   check.max_vertex_eigenvalue = -std::numeric_limits<double>::infinity();
   for (Index i = 0; i < r; ++i)
-    check.max_vertex_eigenvalue =
-        std::max(check.max_vertex_eigenvalue, detail::largest_symmetric_eigenvalue(detail::vertex_lmi(data, s, i)));
+    check.max_vertex_eigenvalue = std::max(check.max_vertex_eigenvalue,
+                                           detail::largest_symmetric_eigenvalue(takagi_sugeno_vertex_lmi(data, s, i)));
   check.min_eigenvalue_P0 = detail::smallest_eigenvalue_if_symmetric(s.P0);
   check.min_eigenvalue_P1 = detail::smallest_eigenvalue_if_symmetric(s.P1);
   check.min_lambda = std::numeric_limits<double>::infinity();
-  for (const double l : s.lambda) check.min_lambda = std::isfinite(l) ? std::min(check.min_lambda, l) : -std::numeric_limits<double>::infinity();
+  for (const double l : s.lambda)
+    check.min_lambda = std::isfinite(l) ? std::min(check.min_lambda, l) : -std::numeric_limits<double>::infinity();
   check.min_eigenvalue_Gamma = std::min(detail::smallest_eigenvalue_if_symmetric(s.Gamma_x),
                                         detail::smallest_eigenvalue_if_symmetric(s.Gamma_u));
   if (theorem1) {
-    check.min_eigenvalue_Gamma = std::min({check.min_eigenvalue_Gamma, detail::smallest_eigenvalue_if_symmetric(s.Gamma_theta),
-                                           detail::smallest_eigenvalue_if_symmetric(s.Gamma_dtheta)});
+    check.min_eigenvalue_Gamma =
+        std::min({check.min_eigenvalue_Gamma, detail::smallest_eigenvalue_if_symmetric(s.Gamma_theta),
+                  detail::smallest_eigenvalue_if_symmetric(s.Gamma_dtheta)});
   }
   return check;
 }

@@ -33,7 +33,8 @@ namespace adaptobs {
 /// with entries beyond 1e150 are summed scaled by a power of two (exactly), so
 /// that only a covariance itself beyond the doubles is refused.
 template <typename Scalar, int N>
-[[nodiscard]] Eigen::Matrix<Scalar, N, N> sample_covariance(const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs) {
+[[nodiscard]] Eigen::Matrix<Scalar, N, N> sample_covariance(
+    const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs) {
   constexpr std::string_view who = "sample_covariance";
   Index n = -1, count = 0;
   Scalar largest = 0;
@@ -68,20 +69,20 @@ struct CusumCalibration {
   /// Largest departure from 1 of a component's long-run variance ratio
   /// \f$1 + 2\sum_{l=1}^{5}\rho_l\f$ (its autocorrelations over five strides).
   Scalar long_run_excess = 0;
-  Scalar bias = 0;                    ///< largest |mean − nominal| of a component, in scales
-  Index evaluations = 0;              ///< values the sums see over all runs
+  Scalar bias = 0;        ///< largest |mean − nominal| of a component, in scales
+  Index evaluations = 0;  ///< values the sums see over all runs
   /// The check on the runs: a design for false alarms every `evaluations / 50`
   /// evaluations (so that about 50 are expected), and the alarms it raised.
   Scalar checked_mean_evaluations = 0;
   Index checked_alarms = 0;
-  Index alarms = 0;                   ///< alarms of the design itself on the runs
+  Index alarms = 0;  ///< alarms of the design itself on the runs
 };
 
 /// Settings of `calibrate_cusum`.
 struct CusumCalibrationOptions {
-  double max_lag_correlation = 0.1;  ///< refuse above this (file comment of diagnostics/cusum.hpp)
+  double max_lag_correlation = 0.1;   ///< refuse above this (file comment of diagnostics/cusum.hpp)
   double max_long_run_excess = 0.25;  ///< refuse when |1 + 2Σρ_l − 1| exceeds this
-  double max_bias = 0.25;            ///< refuse when a component's mean is this many scales off nominal
+  double max_bias = 0.25;             ///< refuse when a component's mean is this many scales off nominal
   /// Refuse when the rate measured in the check is off its design by more than this factor.
   double rate_tolerance = 2;
 };
@@ -109,10 +110,9 @@ struct CusumCalibrationOptions {
 /// bias, 'stride' for correlated evaluations, 'runs' for fewer than 500
 /// evaluations or a failed rate check.
 template <typename Scalar, int N>
-[[nodiscard]] CusumCalibration<Scalar, N> calibrate_cusum(const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs,
-                                                          const Eigen::Matrix<Scalar, N, 1>& nominal, Scalar drift,
-                                                          Scalar mean_evaluations, Index stride,
-                                                          CusumCalibrationOptions options = {}) {
+[[nodiscard]] CusumCalibration<Scalar, N> calibrate_cusum(
+    const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs, const Eigen::Matrix<Scalar, N, 1>& nominal,
+    Scalar drift, Scalar mean_evaluations, Index stride, CusumCalibrationOptions options = {}) {
   constexpr std::string_view who = "calibrate_cusum";
   using Vector = Eigen::Matrix<Scalar, N, 1>;
   constexpr int max_lag = 5;
@@ -168,8 +168,7 @@ template <typename Scalar, int N>
     for (std::size_t k = 0; k < run.size(); k += step)
       for (int l = 1; l <= max_lag && k >= static_cast<std::size_t>(l) * step; ++l) {
         const std::size_t j = k - static_cast<std::size_t>(l) * step;
-        products[static_cast<std::size_t>(l - 1)] +=
-            (run[k] - nominal - mean).cwiseProduct(run[j] - nominal - mean);
+        products[static_cast<std::size_t>(l - 1)] += (run[k] - nominal - mean).cwiseProduct(run[j] - nominal - mean);
         ++pairs[static_cast<std::size_t>(l - 1)];
       }
   detail::require(pairs[max_lag - 1] >= 100, who, "runs",
@@ -219,8 +218,8 @@ template <typename Scalar, int N>
     detail::fail_argument(who, "runs", os.str());
   }
 
-  result.threshold = static_cast<Scalar>(
-      cusum_threshold(static_cast<double>(drift), static_cast<double>(mean_evaluations), n));
+  result.threshold =
+      static_cast<Scalar>(cusum_threshold(static_cast<double>(drift), static_cast<double>(mean_evaluations), n));
   result.alarms = alarms_of(result.threshold);
   return result;
 }

@@ -88,9 +88,10 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
     // In floating point: window × outputs may not fit an Index.
     const double dof = options.degrees_of_freedom > 0 ? options.degrees_of_freedom
                                                       : static_cast<double>(window) * static_cast<double>(ny);
-    detail::require_chi_square_degrees_of_freedom(dof, who,
-                                                  options.degrees_of_freedom > 0 ? "options.degrees_of_freedom" : "window");
-    this->threshold_ = static_cast<Scalar>(options.scale * chi_square_upper_quantile(dof, static_cast<double>(false_alarm_probability)));
+    detail::require_chi_square_degrees_of_freedom(
+        dof, who, options.degrees_of_freedom > 0 ? "options.degrees_of_freedom" : "window");
+    this->threshold_ = static_cast<Scalar>(
+        options.scale * chi_square_upper_quantile(dof, static_cast<double>(false_alarm_probability)));
   }
 
   /// Takes the output error of one sample. Returns `nonfinite_input`, with the

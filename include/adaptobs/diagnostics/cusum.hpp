@@ -33,9 +33,9 @@
 ///
 /// Fixed sizes allocate nothing; every method is real-time safe.
 
+#include <adaptobs/core/detail/bisection.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/status.hpp>
-#include <adaptobs/core/detail/bisection.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/diagnostics/sequential_test.hpp>
 

@@ -71,9 +71,7 @@ class ExcitationMonitor {
   [[nodiscard]] bool full() const noexcept { return count_ == window_; }
 
   /// \f$\frac1L\sum\Phi_i^T\Phi_i\f$ over the last L samples (fewer before the window fills).
-  [[nodiscard]] Gramian average() const {
-    return count_ == 0 ? Gramian(sum_) : Gramian(sum_ / Scalar(count_));
-  }
+  [[nodiscard]] Gramian average() const { return count_ == 0 ? Gramian(sum_) : Gramian(sum_ / Scalar(count_)); }
 
   /// False while a contribution in the window, or their sum, exceeded the floating-point range.
   [[nodiscard]] bool available() const { return adds_since_overflow_ >= window_ && detail::all_finite(sum_); }
@@ -128,7 +126,8 @@ class ExcitationMonitor {
     removed_trace_ += slot.trace();
     const Scalar remaining = sum_.trace();
     const bool cancelled = removed_trace_ > Scalar(4) * remaining || !std::isfinite(remaining);
-    detail::set_product(slot, (weight * phi.derived()).transpose(), phi);  // (wΦ)ᵀΦ: w first, so that a tiny w keeps a huge Φ from overflowing
+    detail::set_product(slot, (weight * phi.derived()).transpose(),
+                        phi);  // (wΦ)ᵀΦ: w first, so that a tiny w keeps a huge Φ from overflowing
     if (detail::all_finite(slot)) {
       if (adds_since_overflow_ < window_) ++adds_since_overflow_;
     } else {

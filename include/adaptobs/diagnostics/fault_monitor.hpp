@@ -56,17 +56,17 @@ struct FaultFreeRecord {
 /// The design of a `FaultMonitor`.
 template <typename Scalar, int NY, int NP>
 struct FaultMonitorDesign {
-  Eigen::Matrix<Scalar, NP, 1> nominal;     ///< healthy parameters the CUSUM measures deviations from
-  CusumCalibration<Scalar, NP> cusum;       ///< scales and threshold, with what the runs showed
-  CusumOptions cusum_options;               ///< its stride (the GLR's too)
-  Index glr_window = 10;                    ///< evaluations the GLR searches for the change's start
-  Scalar glr_threshold = 0;                 ///< by `glr_threshold`, on the CUSUM's scales
-  Index glr_checked_alarms = 0;             ///< alarms on the record of a GLR designed for about 50 there
+  Eigen::Matrix<Scalar, NP, 1> nominal;                   ///< healthy parameters the CUSUM measures deviations from
+  CusumCalibration<Scalar, NP> cusum;                     ///< scales and threshold, with what the runs showed
+  CusumOptions cusum_options;                             ///< its stride (the GLR's too)
+  Index glr_window = 10;                                  ///< evaluations the GLR searches for the change's start
+  Scalar glr_threshold = 0;                               ///< by `glr_threshold`, on the CUSUM's scales
+  Index glr_checked_alarms = 0;                           ///< alarms on the record of a GLR designed for about 50 there
   Eigen::Matrix<Scalar, NY, NY> output_error_covariance;  ///< S of the χ² test
-  Index window = 1;                         ///< samples per χ² decision
-  Scalar false_alarm_probability = 0;       ///< per χ² window
-  ChiSquareOptions chi_square_options;      ///< its two-moment correction
-  Index chi_square_windows = 0;             ///< fault-free windows the correction was measured on
+  Index window = 1;                                       ///< samples per χ² decision
+  Scalar false_alarm_probability = 0;                     ///< per χ² window
+  ChiSquareOptions chi_square_options;                    ///< its two-moment correction
+  Index chi_square_windows = 0;                           ///< fault-free windows the correction was measured on
 };
 
 /// Designs the three tests from fault-free runs for false alarms every
@@ -87,11 +87,9 @@ struct FaultMonitorDesign {
 /// Each test is designed for the rate asked for: a caller that acts on any of
 /// the three alarms gets up to three times as many.
 template <typename Scalar, int NY, int NP>
-[[nodiscard]] FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor(const FaultFreeRecord<Scalar, NY, NP>& record,
-                                                                      const Eigen::Matrix<Scalar, NP, 1>& nominal,
-                                                                      Scalar drift, Scalar mean_samples_between_false_alarms,
-                                                                      Index stride, Index window,
-                                                                      Index glr_window = 10) {
+[[nodiscard]] FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor(
+    const FaultFreeRecord<Scalar, NY, NP>& record, const Eigen::Matrix<Scalar, NP, 1>& nominal, Scalar drift,
+    Scalar mean_samples_between_false_alarms, Index stride, Index window, Index glr_window = 10) {
   constexpr std::string_view who = "design_fault_monitor";
   detail::require_positive(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms");
   detail::require(window >= 1 && Scalar(window) < mean_samples_between_false_alarms, who, "window",
@@ -99,7 +97,8 @@ template <typename Scalar, int NY, int NP>
   detail::require(stride >= 1, who, "stride", "must be at least 1");
   detail::require_positive(drift, who, "drift");
   detail::require(glr_window >= 1, who, "glr_window", "must be at least 1");
-  const double evaluations_between = static_cast<double>(mean_samples_between_false_alarms) / static_cast<double>(stride);
+  const double evaluations_between =
+      static_cast<double>(mean_samples_between_false_alarms) / static_cast<double>(stride);
   detail::require(evaluations_between >= 2 && evaluations_between <= glr_max_mean_evaluations, who,
                   "mean_samples_between_false_alarms",
                   "must lie between 2 and 1e5 strides (the GLR's threshold is simulated over 50 times as many)");
@@ -117,11 +116,13 @@ template <typename Scalar, int NY, int NP>
   {
     const double checked = static_cast<double>(design.cusum.evaluations) / 50;
     // The check simulates its own threshold, within glr_threshold's range.
-    detail::require(detail::glr_simulation_affordable(glr_window, nominal.size(), checked), who, "record",
-                    "is too long for the GLR's check, whose threshold is simulated for its estimates at the stride / 50 "
-                    "(at most 1e5, and 1e7 / (glr_window x parameters)): give fewer runs");
+    detail::require(
+        detail::glr_simulation_affordable(glr_window, nominal.size(), checked), who, "record",
+        "is too long for the GLR's check, whose threshold is simulated for its estimates at the stride / 50 "
+        "(at most 1e5, and 1e7 / (glr_window x parameters)): give fewer runs");
     GlrDetector<Scalar, NP> glr(nominal, design.cusum.scale, glr_window,
-                                static_cast<Scalar>(glr_threshold(glr_window, checked, nominal.size())), {.stride = stride});
+                                static_cast<Scalar>(glr_threshold(glr_window, checked, nominal.size())),
+                                {.stride = stride});
     for (const auto& run : record.parameters) {
       glr.rearm(nominal);
       for (const auto& v : run) (void)glr.update(v);
@@ -253,7 +254,7 @@ class FaultMonitor {
     if (!detail::all_finite(parameters, output_error)) return UpdateStatus::nonfinite_input;
     const UpdateStatus chi = chi_square_.update(output_error);
     if (!accepted(chi)) return chi;  // an overflowing weighted error: the others have not moved either
-    (void)glr_.update(parameters);  // finite, hence accepted, as by the CUSUM
+    (void)glr_.update(parameters);   // finite, hence accepted, as by the CUSUM
     return cusum_.update(parameters);
   }
 

@@ -101,9 +101,9 @@ class GlrDetector : public SequentialTest<GlrDetector<Scalar, N>, Scalar, N> {
     archive("newest", self.newest_);
     archive("filled", self.filled_);
     if constexpr (Archive::reading)
-      detail::require(self.newest_ >= 0 && self.newest_ < self.window_ && self.filled_ >= 0 &&
-                          self.filled_ <= self.window_,
-                      "restore", "snapshot", "holds a GLR window position outside the window");
+      detail::require(
+          self.newest_ >= 0 && self.newest_ < self.window_ && self.filled_ >= 0 && self.filled_ <= self.window_,
+          "restore", "snapshot", "holds a GLR window position outside the window");
   }
 
  private:
@@ -234,7 +234,8 @@ namespace detail {
   detail::require(components >= 1, who, "components", "must be at least 1");
   detail::require(mean_evaluations >= 2 && mean_evaluations <= glr_max_mean_evaluations, who, "mean_evaluations",
                   "must lie in [2, 1e5] evaluations");
-  detail::require(detail::glr_simulation_affordable(window, components, mean_evaluations), who, "window", "times components times mean_evaluations must be at most 1e7 (glr_max_simulation_work)");
+  detail::require(detail::glr_simulation_affordable(window, components, mean_evaluations), who, "window",
+                  "times components times mean_evaluations must be at most 1e7 (glr_max_simulation_work)");
   return detail::glr_threshold_search(window, mean_evaluations, components, Index{1} << 22);
 }
 

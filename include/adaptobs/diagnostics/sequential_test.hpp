@@ -52,7 +52,8 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   /// for a NaN or Inf in it; a value of the wrong size is a `ConfigurationError`.
   [[nodiscard]] UpdateStatus update(const Vector& value) {
     if constexpr (N == Eigen::Dynamic)
-      if (value.size() != nominal_.size()) detail::require_shape(value, nominal_.size(), 1, std::string(name_) + "::update", "value");
+      if (value.size() != nominal_.size())
+        detail::require_shape(value, nominal_.size(), 1, std::string(name_) + "::update", "value");
     if (!detail::all_finite(value)) return UpdateStatus::nonfinite_input;
     this->clear_alarm();
     // Every stride-th value is evaluated: a countdown, not a division per value.
@@ -117,14 +118,17 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   /// \param who the class's name, a string literal (kept for later messages).
   SequentialTest(std::string_view who, Vector nominal, const Vector& scale, Scalar threshold,
                  SequentialTestOptions options)
-      : ThresholdAlarm<Scalar>(threshold), name_(who), nominal_(std::move(nominal)), initial_nominal_(nominal_),
+      : ThresholdAlarm<Scalar>(threshold),
+        name_(who),
+        nominal_(std::move(nominal)),
+        initial_nominal_(nominal_),
         options_(options) {
     const Index n = nominal_.size();
     detail::require(n >= 1, who, "nominal", "must have at least one component");
     detail::require_finite(nominal_, who, "nominal");
     detail::require_shape(scale, n, 1, who, "scale");
     detail::require(((scale.array() > Scalar(0)) && scale.array().isFinite()).all(), who, "scale",
-            "must be positive and finite");
+                    "must be positive and finite");
     inverse_scale_ = scale.cwiseInverse();
     // A subnormal scale has no finite reciprocal: every deviation would read ∞.
     detail::require(inverse_scale_.allFinite(), who, "scale", "must have finite reciprocals (no subnormal entries)");
@@ -156,8 +160,8 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
     archive("reanchor_pending", self.reanchor_pending_);
     if constexpr (Archive::reading)
       detail::require(self.skip_ >= 0 && self.skip_ < self.options_.stride && self.holding_ >= 0 &&
-                  self.holding_ <= self.options_.hold_off,
-              "restore", "snapshot", "holds a stride or hold-off position outside its option");
+                          self.holding_ <= self.options_.hold_off,
+                      "restore", "snapshot", "holds a stride or hold-off position outside its option");
     ThresholdAlarm<Scalar>::visit_alarm_state(self, archive);
   }
 

@@ -81,19 +81,15 @@ struct GaussKronrod15 {
       0.864864423359769072789712788640926,  0.949107912342758524526189684047851,
       0.991455371120812639206854697526329};
   static constexpr std::array<double, 15> kronrod_weights{
-      0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
-      0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
-      0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
-      0.204432940075298892414161999234649, 0.209482141084727828012999174891714,
-      0.204432940075298892414161999234649, 0.190350578064785409913256402421014,
-      0.169004726639267902826583426598550, 0.140653259715525918745189590510238,
-      0.104790010322250183839876322541518, 0.063092092629978553290700663189204,
-      0.022935322010529224963732008058970};
+      0.022935322010529224963732008058970, 0.063092092629978553290700663189204, 0.104790010322250183839876322541518,
+      0.140653259715525918745189590510238, 0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
+      0.204432940075298892414161999234649, 0.209482141084727828012999174891714, 0.204432940075298892414161999234649,
+      0.190350578064785409913256402421014, 0.169004726639267902826583426598550, 0.140653259715525918745189590510238,
+      0.104790010322250183839876322541518, 0.063092092629978553290700663189204, 0.022935322010529224963732008058970};
   /// Weights of the 7 Gauss nodes, at indices 1, 3, ..., 13.
   static constexpr std::array<double, 7> gauss_weights{
-      0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
-      0.381830050505118944950369775488975, 0.417959183673469387755102040816327,
-      0.381830050505118944950369775488975, 0.279705391489276667901467771423780,
+      0.129484966168869693270611432679082, 0.279705391489276667901467771423780, 0.381830050505118944950369775488975,
+      0.417959183673469387755102040816327, 0.381830050505118944950369775488975, 0.279705391489276667901467771423780,
       0.129484966168869693270611432679082};
 };
 
@@ -157,8 +153,7 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
   RegressorIntegral(const StateMatrix& A, Scalar period, RegressorIntegralOptions options = {})
       : Base(A, period, "RegressorIntegral"), options_(options) {
     constexpr std::string_view who = "RegressorIntegral";
-    detail::require(options.max_depth >= 0 && options.max_depth <= 40, who, "options.max_depth",
-                    "must be in [0, 40]");
+    detail::require(options.max_depth >= 0 && options.max_depth <= 40, who, "options.max_depth", "must be in [0, 40]");
     detail::require(options.max_panels >= 1, who, "options.max_panels", "must be at least 1");
     detail::require(options.relative_tolerance >= 0 && options.absolute_tolerance >= 0, who, "options",
                     "tolerances must be non-negative");
@@ -244,14 +239,14 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
     StateMatrix half;                    // e^{-(h/2) A}: from a panel's start to its midpoint
   };
   struct Panel {
-    StateMatrix shift;        // e^{-(a − t₀)A}: carries the panel's integral to t₀
-    Regressor integral;       // ∫₀^h e^{-σA} φ(a + σ) dσ, 15-point Kronrod
-    Scalar start = 0;         // a
-    Scalar shift_norm = 1;    // ‖shift‖∞
-    Scalar error = 0;         // ‖shift‖∞ · max|K₁₅ − G₇|
-    Scalar magnitude = 0;     // ‖shift‖∞ · Σ wᵢ max|termᵢ| · h/2: the round-off scale
-    int depth = 0;            // the panel is T / 2^depth wide
-    bool frozen = false;      // at the round-off level or at the deepest level
+    StateMatrix shift;      // e^{-(a − t₀)A}: carries the panel's integral to t₀
+    Regressor integral;     // ∫₀^h e^{-σA} φ(a + σ) dσ, 15-point Kronrod
+    Scalar start = 0;       // a
+    Scalar shift_norm = 1;  // ‖shift‖∞
+    Scalar error = 0;       // ‖shift‖∞ · max|K₁₅ − G₇|
+    Scalar magnitude = 0;   // ‖shift‖∞ · Σ wᵢ max|termᵢ| · h/2: the round-off scale
+    int depth = 0;          // the panel is T / 2^depth wide
+    bool frozen = false;    // at the round-off level or at the deepest level
   };
 
   // Round-off floor of the sum of `count` panels.

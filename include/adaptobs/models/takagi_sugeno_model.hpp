@@ -26,8 +26,8 @@
 /// every finite input (11), also outside the sectors, where the blend is the
 /// model at the nearest point of the box.
 
-#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
@@ -89,8 +89,8 @@ namespace detail {
 [[noreturn]] inline void fail_sector(Index entry, double lower, double upper, std::string_view who,
                                      std::string_view argument) {
   Message os;
-  os << "must have lower < upper, with upper - lower finite, in every entry (entry " << entry << ": [" << lower
-     << ", " << upper << "])";
+  os << "must have lower < upper, with upper - lower finite, in every entry (entry " << entry << ": [" << lower << ", "
+     << upper << "])";
   fail_argument(who, argument, os.str());
 }
 
@@ -212,11 +212,10 @@ template <StateSpace D, int NZ, class F>
 /// \f$(\hat x, u, \hat\theta)\f$. It is called as `premises(x, u, theta)` and returns the
 /// \f$n_z\f$ premise variables.
 template <StateSpace D, int NZ, class PremiseFn>
-class TakagiSugenoModel : public SizedBy<D> {
+class TakagiSugenoModel : public D {
  public:
-  using typename SizedBy<D>::Scalar, typename SizedBy<D>::State, typename SizedBy<D>::Input,
-      typename SizedBy<D>::Parameters, typename SizedBy<D>::StateMatrix, typename SizedBy<D>::InputMatrix,
-      typename SizedBy<D>::OutputMatrix;
+  using typename D::Scalar, typename D::State, typename D::Input, typename D::Parameters, typename D::StateMatrix,
+      typename D::InputMatrix, typename D::OutputMatrix;
   static constexpr int nz = NZ;
   static constexpr int vertices_at_compile_time = takagi_sugeno_vertex_count(NZ, D::np);
   using PremiseVector = Eigen::Matrix<Scalar, NZ, 1>;
@@ -277,7 +276,10 @@ class TakagiSugenoModel : public SizedBy<D> {
   /// else would stop the weights from reading past its end.
   [[nodiscard]] PremiseVector premises(const State& x, const Input& u, const Parameters& theta) const {
     decltype(auto) z = premises_(x, u, theta);
-    if constexpr (requires { z.rows(); z.cols(); })
+    if constexpr (requires {
+                    z.rows();
+                    z.cols();
+                  })
       detail::require_shape(z, premise_count(), 1, "TakagiSugenoModel", "premises(x, u, theta)");
     return PremiseVector(z);
   }
@@ -339,7 +341,8 @@ class TakagiSugenoModel : public SizedBy<D> {
       detail::require_finite(A, who, "snapshot field 'A'");
       detail::require_finite(B, who, "snapshot field 'B'");
       detail::require_finite(self.C_, who, "snapshot field 'C'");
-      detail::validate_sectors(self.premise_bounds_, self.premise_bounds_.size(), who, "snapshot field 'premise_bounds'");
+      detail::validate_sectors(self.premise_bounds_, self.premise_bounds_.size(), who,
+                               "snapshot field 'premise_bounds'");
       detail::validate_sectors(self.parameter_bounds_, self.parameter_bounds_.size(), who,
                                "snapshot field 'parameter_bounds'");
       for (Index i = 0; i < r; ++i) {
@@ -375,8 +378,7 @@ template <class M>
 concept TakagiSugenoSystem =
     StateSpace<typename M::Dims> &&
     requires(const M& m, Index i, const typename M::Dims::State& x, const typename M::Dims::Input& u,
-             const typename M::Dims::Parameters& theta, const typename M::PremiseVector& z,
-             typename M::Weights& h) {
+             const typename M::Dims::Parameters& theta, const typename M::PremiseVector& z, typename M::Weights& h) {
       { M::vertices_at_compile_time } -> std::convertible_to<int>;
       { m.sizes() } -> std::same_as<Sizes>;
       { m.vertex_count() } -> std::convertible_to<Index>;

@@ -25,9 +25,9 @@
 /// absorbs it in k.
 
 #include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/detail/segments.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
-#include <adaptobs/core/detail/segments.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/polynomial.hpp>
@@ -83,8 +83,8 @@ struct BastinGevers {
   void check(const TransformedSystem<D>& so, const Sizes& sizes, bool time_invariant) const {
     detail::require_single_output_spr_form(so, sizes, time_invariant, name);
     const Index n = sizes.nx;
-    detail::require(n == 1 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(n - 1, n - 1)), name, "static_transform",
-                    "must give a Hurwitz A22 (form (5))");
+    detail::require(n == 1 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(n - 1, n - 1)), name,
+                    "static_transform", "must give a Hurwitz A22 (form (5))");
     Eigen::Matrix<Scalar, D::nx, 1> gamma = Eigen::Matrix<Scalar, D::nx, 1>::Zero(n);
     gamma(0) = Scalar(1);
     detail::require_spr_error_system(so, k, gamma, "e1", name);
@@ -94,7 +94,8 @@ struct BastinGevers {
   // G = [0 I], H = [0; I] around the n − 1 unmeasured states of form (5).
   static DynamicTransform<Scalar, D::nx, filter_rows> make_dynamic_transform(const StaticTransform<D>& transform) {
     const Index r = detail::unmeasured_states(transform.T().rows(), 1, name, "transform");
-    return detail::block_transform<Scalar, D::nx, filter_rows>(r + 1, r, Eigen::Matrix<Scalar, filter_rows, 1>::Zero(r));
+    return detail::block_transform<Scalar, D::nx, filter_rows>(r + 1, r,
+                                                               Eigen::Matrix<Scalar, filter_rows, 1>::Zero(r));
   }
 };
 

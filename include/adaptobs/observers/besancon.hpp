@@ -89,12 +89,11 @@ struct Besancon {
     if (!time_invariant) return;
     const Index m = sizes.ny, r = sizes.nx - sizes.ny;
     using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  // one instantiation per scalar
-    detail::require(r == 0 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(r, r)), name, "static_transform",
-                    "must give a Hurwitz A22 (form (8))");
+    detail::require(r == 0 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(r, r)), name,
+                    "static_transform", "must give a Hurwitz A22 (form (8))");
     const Dense a11 = so.Ao.topLeftCorner(m, m) - K1;
     const Dense sym = Scalar(0.5) * (a11 + a11.transpose());
-    detail::require(symmetric_eigenvalues(sym)(m - 1) < 0,
-                    name, "K1",
+    detail::require(symmetric_eigenvalues(sym)(m - 1) < 0, name, "K1",
                     "must make A11 - K1 + (A11 - K1)^T negative definite (the library's sufficient condition "
                     "for the Lyapunov function above, not a condition of the paper)");
   }

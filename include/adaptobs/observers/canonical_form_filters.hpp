@@ -31,8 +31,8 @@
 /// \f$S_t\hat p\f$ — against \f$n^2(r + mn)\f$ for the literal (8)–(11) and
 /// r(q + m) numbers of memory instead of n(r + mn). Tests compare both.
 
-#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/design/companion_matrix.hpp>
 #include <adaptobs/design/schur_stability.hpp>
@@ -60,12 +60,12 @@ class CanonicalFormFilters {
   using Parameters = typename Dims::Parameters;
   using StateMatrix = typename Dims::StateMatrix;
   using InputMatrix = typename Dims::InputMatrix;
-  using Coefficients = Eigen::Matrix<S, R, 1>;         ///< first-column entries a, f
-  using Bank = Eigen::Matrix<S, channels, R>;          ///< \f$\Sigma^T\f$: row c is the state of filter c
-  using Channels = Eigen::Matrix<S, channels, 1>;      ///< \f$[y^T\ u^T]^T\f$, what drives the bank
-  using Blocks = Eigen::Matrix<S, Q, R>;               ///< an n-vector in block layout
-  using Regressor = Eigen::Matrix<S, np, Q>;           ///< φ
-  using FirstRows = Eigen::Matrix<S, R, R>;            ///< row j: \f$e_1^T\bar F^{r-1-j}\f$ (0-based)
+  using Coefficients = Eigen::Matrix<S, R, 1>;     ///< first-column entries a, f
+  using Bank = Eigen::Matrix<S, channels, R>;      ///< \f$\Sigma^T\f$: row c is the state of filter c
+  using Channels = Eigen::Matrix<S, channels, 1>;  ///< \f$[y^T\ u^T]^T\f$, what drives the bank
+  using Blocks = Eigen::Matrix<S, Q, R>;           ///< an n-vector in block layout
+  using Regressor = Eigen::Matrix<S, np, Q>;       ///< φ
+  using FirstRows = Eigen::Matrix<S, R, R>;        ///< row j: \f$e_1^T\bar F^{r-1-j}\f$ (0-based)
 
   /// \param f first-column entries of F (the paper's vector f); \f$\bar F\f$ must be Schur stable.
   /// \param q, m output and input counts (read when `Q`, `M` are dynamic).
@@ -76,8 +76,9 @@ class CanonicalFormFilters {
     detail::require_finite(f_, who, "f");
     detail::require(q_ >= 1, who, "q", "must be at least 1");
     detail::require(m_ >= 0, who, "m", "must be non-negative");
-    detail::require(is_schur_stable(companion_matrix(f_)), who, "f",
-                    "must make F Schur stable (eq. (6)): the roots of z^r - f_1 z^(r-1) - ... - f_r must lie in |z| < 1");
+    detail::require(
+        is_schur_stable(companion_matrix(f_)), who, "f",
+        "must make F Schur stable (eq. (6)): the roots of z^r - f_1 z^(r-1) - ... - f_r must lie in |z| < 1");
     const Index r = order();
     first_rows_.setZero(r, r);
     first_rows_(r - 1, 0) = Scalar(1);
@@ -126,7 +127,8 @@ class CanonicalFormFilters {
   /// row of \f$\hat B_{(k-1)q+l,\,i}\f$ holds \f$e_1^T\bar F^{r-k}\sigma_{u_i}\f$ in column l.
   void regressor(const Bank& bank, Regressor& phi) const {
     const Index r = order(), q = q_, n = states();
-    detail::set_product(phi.template block<R, Q>(0, 0, r, q), first_rows_, bank.template block<Q, R>(0, 0, q, r).transpose());
+    detail::set_product(phi.template block<R, Q>(0, 0, r, q), first_rows_,
+                        bank.template block<Q, R>(0, 0, q, r).transpose());
     phi.bottomRows(m_ * n).setZero();
     for (Index i = 0; i < m_; ++i)
       for (Index j = 0; j < r; ++j) {

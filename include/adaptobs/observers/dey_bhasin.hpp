@@ -40,9 +40,9 @@
 #include <adaptobs/adaptation/covariance_resetting.hpp>
 #include <adaptobs/adaptation/exponential_forgetting.hpp>
 #include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/status.hpp>
-#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/observers/canonical_form_filters.hpp>
 
@@ -58,19 +58,20 @@ namespace adaptobs {
 /// (`Eigen::Dynamic` allowed), adapting with `Law` (default: covariance
 /// resetting, eq. (23)).
 template <typename S, int R, int Q, int M, template <typename, int, int> class Law = CovarianceResettingRls>
-class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, M>::Dims> {
+class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
  public:
   using Filters = CanonicalFormFilters<S, R, Q, M>;
   using Dims = typename Filters::Dims;
   using Scalar = S;
-  using typename SizedBy<Dims>::State, typename SizedBy<Dims>::Input, typename SizedBy<Dims>::Output,
-      typename SizedBy<Dims>::Parameters, typename SizedBy<Dims>::StateMatrix, typename SizedBy<Dims>::InputMatrix;
+  using typename Dims::State, typename Dims::Input, typename Dims::Output, typename Dims::Parameters,
+      typename Dims::StateMatrix, typename Dims::InputMatrix;
   using Coefficients = typename Filters::Coefficients;
   using Regressor = typename Filters::Regressor;
   using Bank = typename Filters::Bank;
   using AdaptationLawType = Law<S, Dims::np, Dims::ny>;
   using LawOptions = typename AdaptationLawType::Options;
-  static_assert(AdaptationLaw<AdaptationLawType>, "DeyBhasinObserver: Law must model adaptobs::AdaptationLaw");
+  static_assert(DiscreteAdaptationLaw<AdaptationLawType>,
+                "DeyBhasinObserver: Law must model adaptobs::DiscreteAdaptationLaw");
 
   /// One measured sample: input \f$u_t\f$ and output \f$y_t\f$.
   struct Sample {
@@ -124,7 +125,8 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
       s.y;
     }
   [[nodiscard]] UpdateStatus update(const AnySample& sample, const OutputMask<Dims>& present) {
-    return step_with(sample.u, sample.y, detail::partial_mask<Dims>(present, filters_.outputs(), "DeyBhasinObserver::update"));
+    return step_with(sample.u, sample.y,
+                     detail::partial_mask<Dims>(present, filters_.outputs(), "DeyBhasinObserver::update"));
   }
 
   /// \f$\hat x_{t+1|t} = S_{t+1}\hat p_t + F^{t+1}\hat x_0\f$: the estimate of the next state
@@ -205,7 +207,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   /// Dey–Bhasin one's.
   static constexpr std::string_view snapshot_type =
       std::is_same_v<AdaptationLawType, ExponentialForgettingRls<S, Dims::np, Dims::ny>> ? "SuzukiObserver"
-                                                                                          : "DeyBhasinObserver";
+                                                                                         : "DeyBhasinObserver";
   static constexpr int snapshot_version = 1;
   template <class Self, class Archive>
   static void visit_state(Self& self, Archive& archive) {
@@ -230,7 +232,7 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
     Regressor phi;
     Output z;
     Output error;  // z_t − φ_tᵀ p̂_{t−1}
-    Output y;  // ȳ_t: y_t with its absent entries predicted
+    Output y;      // ȳ_t: y_t with its absent entries predicted
     State x;
     State next;
     void resize(const Filters& filters) {
@@ -347,14 +349,14 @@ class DeyBhasinObserver : public SizedBy<typename CanonicalFormFilters<S, R, Q, 
   Filters filters_;
   AdaptationLawType law_;
   State x0_;
-  Bank bank_;                                // Σ_tᵀ
-  typename Filters::Channels last_;          // [y_t; u_t], fed to the bank at the next sample
-  State current_free_;                       // F^t x̂_0
-  Regressor phi_;                            // φ_t
-  Output z_;                                 // z_t
-  Output prediction_error_;                  // z_t − φ_tᵀ p̂_{t−1}
-  State state_;                              // x̂_t (13)
-  State next_state_;                         // x̂_{t+1|t}
+  Bank bank_;                        // Σ_tᵀ
+  typename Filters::Channels last_;  // [y_t; u_t], fed to the bank at the next sample
+  State current_free_;               // F^t x̂_0
+  Regressor phi_;                    // φ_t
+  Output z_;                         // z_t
+  Output prediction_error_;          // z_t − φ_tᵀ p̂_{t−1}
+  State state_;                      // x̂_t (13)
+  State next_state_;                 // x̂_{t+1|t}
   Index step_ = 0;
   // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
   detail::UpdateWorkspace<Workspace, Dims::is_fixed> work_;

@@ -40,12 +40,12 @@
 /// proposition 2.1 no longer covers: docs/readings/guiro.md.
 
 #include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/discrete_update.hpp>
-#include <adaptobs/core/status.hpp>
-#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/snapshot.hpp>
+#include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <utility>
@@ -67,11 +67,10 @@ struct GuiroOptions {
 /// \f$z_0\f$ skips that correction), not the a-posteriori error \f$Cz_k - y_k\f$ of
 /// the θ̂ update.
 template <DiscreteModel Model>
-class GuiroObserver
-    : public DiscreteUpdate<GuiroObserver<Model>, typename Model::Dims, DiscreteSample> {
+class GuiroObserver : public DiscreteUpdate<GuiroObserver<Model>, typename Model::Dims, DiscreteSample> {
  public:
   ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuiroObserver, DiscreteSample, "z0");
-  using typename SizedBy<Dims>::GainMatrix;
+  using typename Dims::GainMatrix;
   using ParameterGain = typename Dims::template Matrix<Dims::np, Dims::ny>;  ///< Γ, p × m
 
   /// \param model sampled model \f$(e^{AT}, B_d, C)\f$, e.g. from `sampled_lti_model`;
@@ -145,11 +144,11 @@ class GuiroObserver
   }
 
   struct Workspace {
-    Output innovation;               // y_k − C z^-_k
-    Output residual;                 // C z_k − y_k
-    State corrected;                 // z_k
-    State predicted;                 // z^-_{k+1}
-    Parameters theta;                // θ̂_{k+1}
+    Output innovation;  // y_k − C z^-_k
+    Output residual;    // C z_k − y_k
+    State corrected;    // z_k
+    State predicted;    // z^-_{k+1}
+    Parameters theta;   // θ̂_{k+1}
     void resize(const Sizes& s) {
       innovation.setZero(s.ny);
       residual.setZero(s.ny);

@@ -33,14 +33,14 @@
 /// monitor accumulates.
 
 #include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/discrete_update.hpp>
-#include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/status.hpp>
-#include <adaptobs/core/detail/update_workspace.hpp>
-#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/diagnostics/excitation_monitor.hpp>
 
@@ -73,11 +73,10 @@ struct GuyaderZhangOptions {
 /// `output_error()` is \f$\varepsilon_k = y_k - C_k\hat x_k\f$, the innovation of
 /// eq. (2b)–(2c).
 template <DiscreteModel Model>
-class GuyaderZhangObserver
-    : public DiscreteUpdate<GuyaderZhangObserver<Model>, typename Model::Dims, DiscreteSample> {
+class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, typename Model::Dims, DiscreteSample> {
  public:
   ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuyaderZhangObserver, DiscreteSample);
-  using typename SizedBy<Dims>::GainMatrix, typename SizedBy<Dims>::RegressorMatrix;
+  using typename Dims::GainMatrix, typename Dims::RegressorMatrix;
 
   /// \param K output-injection gain making \f$A_k - KC_k\f$ exponentially stable (assumption 1);
   /// \param mu step size \f$\mu > 0\f$ small enough for assumption 2.

@@ -47,10 +47,10 @@ struct MarinoTomei {
   static constexpr std::string_view name = "MarinoTomeiObserver";
   static constexpr int filter_rows = difference_of_sizes(D::nx, 1);
 
-  StaticTransform<D> static_transform;  ///< (T, K) giving the form (7)
+  StaticTransform<D> static_transform;                             ///< (T, K) giving the form (7)
   DynamicTransform<Scalar, D::nx, filter_rows> dynamic_transform;  ///< F, G, H as printed in §III-B
-  Vector gamma;              ///< \f$(1, \gamma_2, \dots, \gamma_n)\f$
-  typename D::GainMatrix k;  ///< observer gain k (n × 1)
+  Vector gamma;                                                    ///< \f$(1, \gamma_2, \dots, \gamma_n)\f$
+  typename D::GainMatrix k;                                        ///< observer gain k (n × 1)
 
   MarinoTomei(StaticTransform<D> transform, Vector gamma_vector, typename D::GainMatrix gain)
       : static_transform(std::move(transform)),
@@ -88,7 +88,8 @@ struct MarinoTomei {
     const Index n = sizes.nx;
     typename D::StateMatrix shift = D::StateMatrix::Zero(n, n);
     shift.diagonal(1).setOnes();
-    const Scalar tol = Scalar(1e3) * std::numeric_limits<Scalar>::epsilon() * std::max(Scalar(1), so.Ao.cwiseAbs().maxCoeff());
+    const Scalar tol =
+        Scalar(1e3) * std::numeric_limits<Scalar>::epsilon() * std::max(Scalar(1), so.Ao.cwiseAbs().maxCoeff());
     detail::require(n == 1 || (so.Ao.rightCols(n - 1) - shift.rightCols(n - 1)).cwiseAbs().maxCoeff() <= tol, name,
                     "static_transform", "must give the shift matrix A_o of form (7) (columns 2..n)");
     detail::require_spr_error_system(so, k, gamma, "gamma", name);

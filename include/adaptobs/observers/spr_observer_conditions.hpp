@@ -37,8 +37,9 @@ void require_spr_error_system(const TransformedSystem<D>& so, const typename D::
   // The transform and the gains are validated, so the triple's shapes hold; a closed
   // loop that overflows is refused by the test, naming its numerator.
   if (!strictly_positive_real(closed, gamma, so.Co))
-    fail_argument(name, "k",
-                  std::string("must make c_o (sI - A_o + k c_o)^-1 ").append(gamma_name).append(" strictly positive real"));
+    fail_argument(
+        name, "k",
+        std::string("must make c_o (sI - A_o + k c_o)^-1 ").append(gamma_name).append(" strictly positive real"));
 }
 
 }  // namespace adaptobs::detail

@@ -32,14 +32,14 @@
 
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/detail/dynamic_copy.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/discrete_update.hpp>
 #include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/status.hpp>
-#include <adaptobs/models/takagi_sugeno_model.hpp>
-#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/models/takagi_sugeno_model.hpp>
 
 #include <Eigen/Core>
 
@@ -206,7 +206,7 @@ class TakagiSugenoObserver
       const auto& L = gains_.L[static_cast<std::size_t>(i)];
       const auto& K = gains_.K[static_cast<std::size_t>(i)];
       w.x += w.h(i) * (A.lazyProduct(x_) + B.lazyProduct(sample.u) + L.lazyProduct(w.e));  // (65)
-      w.theta += w.h(i) * K.lazyProduct(w.e);                                                // (65)
+      w.theta += w.h(i) * K.lazyProduct(w.e);                                              // (65)
     }
 
     if (!detail::all_finite(w.x, w.theta)) return UpdateStatus::nonfinite_result;

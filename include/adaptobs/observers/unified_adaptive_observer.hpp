@@ -36,14 +36,14 @@
 /// the sample's time with RK4 (`core/sampled_integration.hpp`).
 
 #include <adaptobs/adaptation/gradient_law.hpp>
-#include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/continuous_update.hpp>
+#include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/detail/segments.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
-#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
-#include <adaptobs/core/detail/segments.hpp>
 #include <adaptobs/core/static_transform.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -66,12 +66,15 @@ template <class A, class D>
 concept UnifiedAlgorithm =
     StateSpace<D> &&
     requires(const A& a, const TransformedSystem<D>& so, typename D::Scalar t, typename D::GainMatrix& L,
-             const Eigen::Matrix<typename D::Scalar, A::filter_rows, D::np>& Xi, const typename D::RegressorMatrix& Omega,
-             const typename D::RegressorMatrix& Psi, typename D::OutputRegressor& R, const Sizes& sizes) {
+             const Eigen::Matrix<typename D::Scalar, A::filter_rows, D::np>& Xi,
+             const typename D::RegressorMatrix& Omega, const typename D::RegressorMatrix& Psi,
+             typename D::OutputRegressor& R, const Sizes& sizes) {
       { A::filter_rows } -> std::convertible_to<int>;
       { A::name } -> std::convertible_to<std::string_view>;
       { a.static_transform } -> std::convertible_to<const StaticTransform<D>&>;
-      { a.dynamic_transform } -> std::convertible_to<const DynamicTransform<typename D::Scalar, D::nx, A::filter_rows>&>;
+      {
+        a.dynamic_transform
+      } -> std::convertible_to<const DynamicTransform<typename D::Scalar, D::nx, A::filter_rows>&>;
       a.injection_gain(so, t, L);
       a.regressor(so, Xi, Omega, Psi, R);
       a.check(so, sizes, true);
@@ -89,22 +92,20 @@ struct UnifiedObserverOptions {
 /// `Algorithm` (Bastin–Gevers, Marino–Tomei, Besançon, Zhang, or a new variant)
 /// and any parameter update law (`GradientLaw` by default).
 template <ContinuousModel Model, UnifiedAlgorithm<typename Model::Dims> Algorithm,
-          ParameterUpdateLaw<typename Model::Dims> Law = GradientLaw<typename Model::Dims>>
+          ContinuousAdaptationLaw<typename Model::Dims> Law = GradientLaw<typename Model::Dims>>
 class UnifiedAdaptiveObserver
     : public ContinuousUpdate<UnifiedAdaptiveObserver<Model, Algorithm, Law>, typename Model::Dims> {
   friend ContinuousUpdate<UnifiedAdaptiveObserver, typename Model::Dims>;
 
  public:
   using Dims = typename Model::Dims;
-  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
-      typename SizedBy<Dims>::Input, typename SizedBy<Dims>::Output, typename SizedBy<Dims>::RegressorMatrix,
-      typename SizedBy<Dims>::GainMatrix;
+  using typename Dims::Scalar, typename Dims::State, typename Dims::Parameters, typename Dims::Input,
+      typename Dims::Output, typename Dims::RegressorMatrix, typename Dims::GainMatrix;
   using Sample = ContinuousSample<Dims>;
   static constexpr int nr = Algorithm::filter_rows;
   using FilterState = Eigen::Matrix<Scalar, nr, Dims::np>;  ///< Ξ
   using FilterMatrix = Eigen::Matrix<Scalar, nr, nr>;       ///< F
-  static constexpr int internal_size =
-      sum_of_sizes(sum_of_sizes(Dims::nx, product_of_sizes(nr, Dims::np)), Dims::np);
+  static constexpr int internal_size = sum_of_sizes(sum_of_sizes(Dims::nx, product_of_sizes(nr, Dims::np)), Dims::np);
   /// \f$(\hat x, \mathrm{vec}\,\Xi, \hat\theta)\f$ stacked.
   using InternalState = Eigen::Matrix<Scalar, internal_size, 1>;
   static constexpr std::string_view name = Algorithm::name;
@@ -167,9 +168,7 @@ class UnifiedAdaptiveObserver
     return omega;
   }
   /// \f$\hat z = \hat x - \Omega\hat\theta\f$ (the paper's observer state).
-  [[nodiscard]] State transformed_estimate_z() const {
-    return State(transformed_state() - omega() * theta_);
-  }
+  [[nodiscard]] State transformed_estimate_z() const { return State(transformed_state() - omega() * theta_); }
   /// Matrices of (2) at time t.
   [[nodiscard]] TransformedSystem<Dims> transformed_system(Scalar t) const {
     Workspace w;
@@ -255,9 +254,7 @@ class UnifiedAdaptiveObserver
     }
   };
 
-  static InternalState make_internal(const Sizes& s, Index r) {
-    return InternalState::Zero(s.nx + r * s.np + s.np);
-  }
+  static InternalState make_internal(const Sizes& s, Index r) { return InternalState::Zero(s.nx + r * s.np + s.np); }
 
   // The matrices of (2) at t: the cached ones of a time-invariant model, else
   // computed into `w` (and F(t) with them).
@@ -304,7 +301,6 @@ class UnifiedAdaptiveObserver
     detail::add_product(dx, w.Omega, dtheta);
   }
 
-
   // No check of its own: every finite integrated state is accepted.
   UpdateStatus check_step(InternalState&) const noexcept { return UpdateStatus::accepted; }
 
@@ -349,7 +345,7 @@ class UnifiedAdaptiveObserver
   SampledIntegrator<Dims, InternalState> integrator_;
   State eta_;
   Parameters theta_;
-  Output output_error_;  // ε(t_k) of the last accepted sample
+  Output output_error_;         // ε(t_k) of the last accepted sample
   TransformedSystem<Dims> so_;  // cached for a time-invariant model
   FilterMatrix f_;
   std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;
@@ -367,8 +363,8 @@ template <ContinuousModel Model, class Algorithm>
   const Index np = model.sizes().np;
   require_shape(gamma, np, np, Algorithm::name, argument);
   return UnifiedAdaptiveObserver<Model, Algorithm>(std::move(model), std::move(algorithm),
-                                                   GradientLaw<typename Model::Dims>(std::move(gamma)),
-                                                   std::move(eta0), std::move(theta0), options);
+                                                   GradientLaw<typename Model::Dims>(std::move(gamma)), std::move(eta0),
+                                                   std::move(theta0), options);
 }
 }  // namespace detail
 

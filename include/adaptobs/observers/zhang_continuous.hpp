@@ -75,8 +75,7 @@ struct ZhangContinuous {
 
   void check(const TransformedSystem<D>& so, const Sizes& /*sizes*/, bool time_invariant) const {
     if (time_invariant)
-      detail::require(has_hurwitz_characteristic_polynomial(so.Ao), name, "K",
-                      "must make A - K C Hurwitz (eq. (13))");
+      detail::require(has_hurwitz_characteristic_polynomial(so.Ao), name, "K", "must make A - K C Hurwitz (eq. (13))");
   }
 };
 

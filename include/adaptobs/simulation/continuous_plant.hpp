@@ -10,8 +10,8 @@
 /// integration (`joint_integration.hpp`).
 
 #include <adaptobs/core/continuous_model.hpp>
-#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/simulation/plant_state.hpp>
@@ -34,11 +34,11 @@ struct ContinuousPlantOptions {
 };
 
 template <ContinuousModel Model, class InputFn>
-class ContinuousLinearPlant : public SizedBy<typename Model::Dims> {
+class ContinuousLinearPlant : public Model::Dims {
  public:
   using Dims = typename Model::Dims;
-  using typename SizedBy<Dims>::Scalar, typename SizedBy<Dims>::State, typename SizedBy<Dims>::Parameters,
-      typename SizedBy<Dims>::Input, typename SizedBy<Dims>::Output;
+  using typename Dims::Scalar, typename Dims::State, typename Dims::Parameters, typename Dims::Input,
+      typename Dims::Output;
   using Sample = ContinuousSample<Dims>;
 
   ContinuousLinearPlant(Model model, State eta0, Parameters theta, InputFn input,

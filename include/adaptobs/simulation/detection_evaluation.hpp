@@ -55,17 +55,19 @@ struct FaultDescription {
 /// Outcome over all seeds.
 struct DetectionSummary {
   Index seeds = 0;
-  double detection_rate = 0;         ///< faulty runs with an alarm after the fault
-  double mean_detection_delay = std::numeric_limits<double>::quiet_NaN(); ///< from the fault to the first alarm after it
-  double p95_detection_delay = std::numeric_limits<double>::quiet_NaN(); ///< nearest-rank 95th percentile of the delays
+  double detection_rate = 0;  ///< faulty runs with an alarm after the fault
+  double mean_detection_delay =
+      std::numeric_limits<double>::quiet_NaN();  ///< from the fault to the first alarm after it
+  double p95_detection_delay =
+      std::numeric_limits<double>::quiet_NaN();  ///< nearest-rank 95th percentile of the delays
   /// Detections whose first alarm names the faulty parameter (NaN when not scored).
   double isolation_rate = std::numeric_limits<double>::quiet_NaN();
   double quiet_before_fault_rate = 0;  ///< faulty runs without an alarm up to the fault's time
-  Index false_alarms = 0;            ///< alarms of the fault-free twins
-  double fault_free_time = 0;        ///< their monitored time
+  Index false_alarms = 0;              ///< alarms of the fault-free twins
+  double fault_free_time = 0;          ///< their monitored time
   /// false_alarms / fault_free_time; NaN when no fault-free time was monitored
   double false_alarm_rate = 0;
-  std::vector<double> delays;        ///< per detected seed, in seed order
+  std::vector<double> delays;  ///< per detected seed, in seed order
 };
 
 /// Runs `scenario(seed, true)` and `scenario(seed, false)` for `seeds` seeds
@@ -115,16 +117,19 @@ template <class Scenario>
     for (const MonitoredRun& run : *runs) {
       bool valid = std::isfinite(run.end - run.start) && run.start <= run.end;
       for (const Alarm& alarm : run.alarms) valid = valid && alarm.time >= run.start && alarm.time <= run.end;
-      detail::require(valid, who, "scenario",
-                      "must return runs with finite start <= end, a finite span, and every alarm time within [start, end]");
+      detail::require(
+          valid, who, "scenario",
+          "must return runs with finite start <= end, a finite span, and every alarm time within [start, end]");
     }
 
   DetectionSummary summary;
   summary.seeds = seeds;
   Index detected = 0, isolated = 0, quiet = 0;
   for (MonitoredRun& run : faulty) {
-    std::stable_sort(run.alarms.begin(), run.alarms.end(), [](const Alarm& a, const Alarm& b) { return a.time < b.time; });
-    const auto after = std::find_if(run.alarms.begin(), run.alarms.end(), [&](const Alarm& a) { return a.time > fault.time; });
+    std::stable_sort(run.alarms.begin(), run.alarms.end(),
+                     [](const Alarm& a, const Alarm& b) { return a.time < b.time; });
+    const auto after =
+        std::find_if(run.alarms.begin(), run.alarms.end(), [&](const Alarm& a) { return a.time > fault.time; });
     if (after == run.alarms.begin()) ++quiet;
     if (after == run.alarms.end()) continue;
     ++detected;

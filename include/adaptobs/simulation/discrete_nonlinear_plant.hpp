@@ -68,7 +68,6 @@ class DiscreteNonlinearPlant : public DiscretePlantState<D, InputOutputSample<D>
   }
 
  private:
-
   TransitionFn transition_;
   typename D::OutputMatrix C_;
   InputFn input_;
@@ -80,9 +79,8 @@ template <StateSpace D, class TransitionFn, class InputFn, class ParameterFn>
 [[nodiscard]] auto make_discrete_nonlinear_plant(TransitionFn transition, typename D::OutputMatrix C,
                                                  typename D::State x0, InputFn input, ParameterFn parameters_at,
                                                  typename D::Scalar sampling_period = typename D::Scalar(1)) {
-  return DiscreteNonlinearPlant<D, TransitionFn, InputFn, ParameterFn>(std::move(transition), std::move(C),
-                                                                       std::move(x0), std::move(input),
-                                                                       std::move(parameters_at), sampling_period);
+  return DiscreteNonlinearPlant<D, TransitionFn, InputFn, ParameterFn>(
+      std::move(transition), std::move(C), std::move(x0), std::move(input), std::move(parameters_at), sampling_period);
 }
 
 }  // namespace adaptobs

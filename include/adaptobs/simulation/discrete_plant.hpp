@@ -6,9 +6,9 @@
 ///     y_k = C_kx_k + v_k. \f]
 /// Inputs and regressors are user callables `input(k)` and `regressor(k, u_k)`.
 
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
-#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/simulation/plant_state.hpp>
 
@@ -24,9 +24,9 @@ template <typename Scalar>
 struct PlantNoise {
   enum class Distribution { gaussian, uniform };
   Distribution distribution = Distribution::gaussian;  ///< uniform noise is bounded, as theorem 2 assumes
-  Scalar output = 0;     ///< std of each entry of v_k
-  Scalar state = 0;      ///< std of each entry of w_k
-  Scalar parameter = 0;  ///< std of each entry of e_k
+  Scalar output = 0;                                   ///< std of each entry of v_k
+  Scalar state = 0;                                    ///< std of each entry of w_k
+  Scalar parameter = 0;                                ///< std of each entry of e_k
   std::uint64_t seed = 1;
 };
 
@@ -98,8 +98,8 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
     constexpr std::string_view who = "DiscreteLinearPlant";
     const Sizes s = model_.sizes();
     sample.u = detail::require_returned_shape(input_(k), s.nu, 1, who, "input(k)");
-    sample.Psi = detail::require_returned_shape(regressor_(k, std::as_const(sample.u)), s.nx, s.np, who,
-                                                "regressor(k, u)");
+    sample.Psi =
+        detail::require_returned_shape(regressor_(k, std::as_const(sample.u)), s.nx, s.np, who, "regressor(k, u)");
   }
 
   template <class System>

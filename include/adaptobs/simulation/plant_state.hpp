@@ -28,8 +28,7 @@ void require_plant_start(const Eigen::DenseBase<X>& x0, const Eigen::DenseBase<T
 /// with `Eigen::Dynamic` sizes nothing else would stop a wrong size from
 /// writing past the plant's vectors. The error names the callable.
 template <class Value>
-Value&& require_returned_shape(Value&& value, Index rows, Index cols, std::string_view who,
-                               std::string_view callable) {
+Value&& require_returned_shape(Value&& value, Index rows, Index cols, std::string_view who, std::string_view callable) {
   require_shape(value, rows, cols, who, callable);
   return std::forward<Value>(value);
 }
@@ -40,7 +39,7 @@ Value&& require_returned_shape(Value&& value, Index rows, Index cols, std::strin
 /// \f$x_k\f$, parameters \f$\theta_k\f$, step k, sampling period and the sample
 /// it measures at step k. The plant moves them on and fills the sample.
 template <StateSpace D, class SampleType>
-class DiscretePlantState : public SizedBy<D> {
+class DiscretePlantState : public D {
  public:
   using Sample = SampleType;
 

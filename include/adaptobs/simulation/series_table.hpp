@@ -13,8 +13,8 @@
 #include <charconv>
 #include <cstddef>
 #include <fstream>
-#include <ostream>
 #include <limits>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <string_view>

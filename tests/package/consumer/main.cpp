@@ -12,7 +12,8 @@ int main() {
   const adaptobs::DiscreteLtiModel<Dims> model(a, Eigen::Vector2d(0, 0.1), Eigen::RowVector2d(1, 0));
   const auto kalman = adaptobs::steady_state_kalman_gain(a, Eigen::RowVector2d(1, 0), Eigen::Matrix2d::Identity(),
                                                          Eigen::Matrix<double, 1, 1>::Identity());
-  adaptobs::GuyaderZhangObserver observer(model, kalman.K, 1.0, Eigen::Vector2d::Zero(), Eigen::Matrix<double, 1, 1>::Zero());
+  adaptobs::GuyaderZhangObserver observer(model, kalman.K, 1.0, Eigen::Vector2d::Zero(),
+                                          Eigen::Matrix<double, 1, 1>::Zero());
   static_assert(adaptobs::Observer<decltype(observer)>);
   const adaptobs::DiscreteSample<Dims> sample{Eigen::Matrix<double, 1, 1>::Ones(), Eigen::Matrix<double, 1, 1>::Ones(),
                                               Eigen::Vector2d(0, 0.1)};

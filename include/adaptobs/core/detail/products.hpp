@@ -36,8 +36,8 @@ enum class Combine { assign, add, subtract };
 template <class Lhs, class Rhs, int limit>
 inline constexpr bool fixed_product_within =
     Lhs::RowsAtCompileTime != Eigen::Dynamic && Lhs::ColsAtCompileTime != Eigen::Dynamic &&
-    Rhs::ColsAtCompileTime != Eigen::Dynamic && Lhs::RowsAtCompileTime <= limit &&
-    Lhs::ColsAtCompileTime <= limit && Rhs::ColsAtCompileTime <= limit;
+    Rhs::ColsAtCompileTime != Eigen::Dynamic && Lhs::RowsAtCompileTime <= limit && Lhs::ColsAtCompileTime <= limit &&
+    Rhs::ColsAtCompileTime <= limit;
 
 /// `dst (=, +=, −=) lhs·rhs`. An empty inner dimension (a model without inputs
 /// or without parameters) gives the zero product without forming it: Eigen's
@@ -95,8 +95,7 @@ void add_product(Dst&& dst, const Eigen::MatrixBase<Lhs>& lhs, const Eigen::Matr
 
 /// `dst −= lhs·rhs`.
 template <class Dst, class Lhs, class Rhs>
-void subtract_product(Dst&& dst, const Eigen::MatrixBase<Lhs>& lhs,
-                      const Eigen::MatrixBase<Rhs>& rhs) {
+void subtract_product(Dst&& dst, const Eigen::MatrixBase<Lhs>& lhs, const Eigen::MatrixBase<Rhs>& rhs) {
   accumulate_product<Combine::subtract>(dst, lhs, rhs);
 }
 

@@ -37,9 +37,9 @@ namespace adaptobs::lmi {
 
 /// Settings of the DSDP solver.
 struct DsdpOptions {
-  double variable_bound = 1e12;   ///< \f$|y_k| \le\f$ bound (DSDP's own default, 1e7, is too tight for LMIs)
-  double penalty = 1e10;          ///< penalty on the infeasibility variable r (DSDP default 1e8)
-  double gap_tolerance = 1e-7;    ///< relative duality gap at which DSDP stops
+  double variable_bound = 1e12;  ///< \f$|y_k| \le\f$ bound (DSDP's own default, 1e7, is too tight for LMIs)
+  double penalty = 1e10;         ///< penalty on the infeasibility variable r (DSDP default 1e8)
+  double gap_tolerance = 1e-7;   ///< relative duality gap at which DSDP stops
   int max_iterations = 500;
   bool print_iterations = false;  ///< DSDP's own progress monitor on stdout
 };
@@ -55,11 +55,16 @@ enum class SdpStatus {
 
 [[nodiscard]] constexpr std::string_view to_string(SdpStatus s) noexcept {
   switch (s) {
-    case SdpStatus::feasible: return "feasible";
-    case SdpStatus::infeasible: return "infeasible";
-    case SdpStatus::unbounded: return "unbounded";
-    case SdpStatus::unknown: return "unknown";
-    case SdpStatus::error: return "error";
+    case SdpStatus::feasible:
+      return "feasible";
+    case SdpStatus::infeasible:
+      return "infeasible";
+    case SdpStatus::unbounded:
+      return "unbounded";
+    case SdpStatus::unknown:
+      return "unknown";
+    case SdpStatus::error:
+      return "error";
   }
   return "unknown";
 }
@@ -67,28 +72,37 @@ enum class SdpStatus {
 /// What DSDP returned.
 struct SdpSolution {
   SdpStatus status = SdpStatus::error;
-  Eigen::VectorXd y;           ///< the point (decision variables)
-  double infeasibility = 0;    ///< DSDP's r ≥ 0: r > 0 at the end means the LMIs were not met
-  double objective = 0;        ///< \f$c^Ty\f$ at y
+  Eigen::VectorXd y;         ///< the point (decision variables)
+  double infeasibility = 0;  ///< DSDP's r ≥ 0: r > 0 at the end means the LMIs were not met
+  double objective = 0;      ///< \f$c^Ty\f$ at y
   int iterations = 0;
-  double seconds = 0;          ///< wall time of setup + solve
-  std::string stop_reason;     ///< DSDP's termination reason
-  std::string message;         ///< the failing call when status is `error`
+  double seconds = 0;       ///< wall time of setup + solve
+  std::string stop_reason;  ///< DSDP's termination reason
+  std::string message;      ///< the failing call when status is `error`
 };
 
 namespace detail {
 
 [[nodiscard]] inline std::string_view dsdp_stop_reason(DSDPTerminationReason r) noexcept {
   switch (r) {
-    case DSDP_CONVERGED: return "converged";
-    case DSDP_INFEASIBLE_START: return "infeasible start";
-    case DSDP_SMALL_STEPS: return "small steps";
-    case DSDP_INDEFINITE_SCHUR_MATRIX: return "indefinite Schur matrix";
-    case DSDP_MAX_IT: return "maximum iterations";
-    case DSDP_NUMERICAL_ERROR: return "numerical error";
-    case DSDP_UPPERBOUND: return "objective upper bound";
-    case DSDP_USER_TERMINATION: return "user termination";
-    case CONTINUE_ITERATING: return "not stopped";
+    case DSDP_CONVERGED:
+      return "converged";
+    case DSDP_INFEASIBLE_START:
+      return "infeasible start";
+    case DSDP_SMALL_STEPS:
+      return "small steps";
+    case DSDP_INDEFINITE_SCHUR_MATRIX:
+      return "indefinite Schur matrix";
+    case DSDP_MAX_IT:
+      return "maximum iterations";
+    case DSDP_NUMERICAL_ERROR:
+      return "numerical error";
+    case DSDP_UPPERBOUND:
+      return "objective upper bound";
+    case DSDP_USER_TERMINATION:
+      return "user termination";
+    case CONTINUE_ITERATING:
+      return "not stopped";
   }
   return "unknown";
 }
@@ -178,7 +192,8 @@ class DsdpSession {
     ADAPTOBS_DSDP_CALL(SDPConeSetBlockSize(cone, j, static_cast<int>(n)));
     ADAPTOBS_DSDP_CALL(SDPConeSetSparsity(cone, j, static_cast<int>(con.G.terms().size())));
     ADAPTOBS_DSDP_CALL(set_matrix(j, 0, -con.G.constant() - con.margin * Eigen::MatrixXd::Identity(n, n)));
-    for (const auto& t : con.G.terms()) ADAPTOBS_DSDP_CALL(set_matrix(j, static_cast<int>(t.variable) + 1, t.coefficient));
+    for (const auto& t : con.G.terms())
+      ADAPTOBS_DSDP_CALL(set_matrix(j, static_cast<int>(t.variable) + 1, t.coefficient));
   }
   ADAPTOBS_DSDP_CALL(DSDPSetYBounds(dsdp, -options.variable_bound, options.variable_bound));
   ADAPTOBS_DSDP_CALL(DSDPSetPenaltyParameter(dsdp, options.penalty));
@@ -201,10 +216,14 @@ class DsdpSession {
   ADAPTOBS_DSDP_CALL(DSDPGetSolutionType(dsdp, &type));
 #undef ADAPTOBS_DSDP_CALL
   switch (type) {
-    case DSDP_PDFEASIBLE: return finish(SdpStatus::feasible);
-    case DSDP_INFEASIBLE: return finish(SdpStatus::infeasible);
-    case DSDP_UNBOUNDED: return finish(SdpStatus::unbounded);
-    case DSDP_PDUNKNOWN: break;
+    case DSDP_PDFEASIBLE:
+      return finish(SdpStatus::feasible);
+    case DSDP_INFEASIBLE:
+      return finish(SdpStatus::infeasible);
+    case DSDP_UNBOUNDED:
+      return finish(SdpStatus::unbounded);
+    case DSDP_PDUNKNOWN:
+      break;
   }
   return finish(SdpStatus::unknown);
 }

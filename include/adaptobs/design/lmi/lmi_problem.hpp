@@ -38,7 +38,9 @@ class AffineMatrix {
 
   AffineMatrix() = default;
   explicit AffineMatrix(Eigen::MatrixXd constant) : constant_(std::move(constant)) {}
-  [[nodiscard]] static AffineMatrix zero(Index rows, Index cols) { return AffineMatrix(Eigen::MatrixXd::Zero(rows, cols)); }
+  [[nodiscard]] static AffineMatrix zero(Index rows, Index cols) {
+    return AffineMatrix(Eigen::MatrixXd::Zero(rows, cols));
+  }
   [[nodiscard]] static AffineMatrix identity(Index n) { return AffineMatrix(Eigen::MatrixXd::Identity(n, n)); }
   /// The single decision variable k as a 1 × 1 expression, or with coefficient matrix E.
   [[nodiscard]] static AffineMatrix variable(Index k, Eigen::MatrixXd coefficient = Eigen::MatrixXd::Ones(1, 1)) {
@@ -160,7 +162,8 @@ class AffineMatrix {
 /// \f$\mathrm{tr}\,G(y)\f$ as a 1 × 1 expression.
 [[nodiscard]] inline AffineMatrix trace(const AffineMatrix& g) {
   AffineMatrix out(Eigen::MatrixXd::Constant(1, 1, g.constant().trace()));
-  for (const auto& t : g.terms()) out += AffineMatrix::variable(t.variable, Eigen::MatrixXd::Constant(1, 1, t.coefficient.trace()));
+  for (const auto& t : g.terms())
+    out += AffineMatrix::variable(t.variable, Eigen::MatrixXd::Constant(1, 1, t.coefficient.trace()));
   return out;
 }
 

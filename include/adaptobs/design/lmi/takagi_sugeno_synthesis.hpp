@@ -50,9 +50,9 @@ namespace adaptobs {
 
 /// What the SDP optimises over the LMIs.
 enum class TakagiSugenoObjective {
-  minimize_beta,    ///< corollary 1 (56)–(57): \f$\min\beta\f$, \f$\beta I \succeq \Gamma^j\f$, \f$M_i \preceq -\varepsilon I\f$
+  minimize_beta,  ///< corollary 1 (56)–(57): \f$\min\beta\f$, \f$\beta I \succeq \Gamma^j\f$, \f$M_i \preceq -\varepsilon I\f$
   maximize_margin,  ///< \f$\max t \le 1\f$ with \f$M_i \preceq -tI\f$ and \f$P_0, P_1, \lambda_m \succeq tI\f$ (needs fixed Γ)
-  feasibility,      ///< \f$M_i \preceq -\varepsilon I\f$, minimising \f$\mathrm{tr}\,P_0\f$ only to keep the point bounded
+  feasibility,  ///< \f$M_i \preceq -\varepsilon I\f$, minimising \f$\mathrm{tr}\,P_0\f$ only to keep the point bounded
 };
 
 struct TakagiSugenoLmiOptions {
@@ -86,8 +86,8 @@ struct TakagiSugenoLmiProblem {
   lmi::AffineMatrix P0, P1, Gamma_x, Gamma_u, Gamma_theta, Gamma_dtheta;
   std::vector<lmi::AffineMatrix> R, F;
   std::array<lmi::AffineMatrix, 4> lambda;
-  std::optional<lmi::AffineMatrix> beta;  ///< corollary 1
-  std::optional<lmi::AffineMatrix> t;     ///< margin variable
+  std::optional<lmi::AffineMatrix> beta;       ///< corollary 1
+  std::optional<lmi::AffineMatrix> t;          ///< margin variable
   std::vector<lmi::AffineMatrix> vertex_lmis;  ///< \f$M_i\f$, i = 0..r−1, as in (29) / (71)
 
   /// The decision variables at a point y.
@@ -107,7 +107,8 @@ struct TakagiSugenoLmiProblem {
 };
 
 namespace detail {
-inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSugenoLmiOptions& o, std::string_view who) {
+inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSugenoLmiOptions& o,
+                                 std::string_view who) {
   const Index nx = data.nx(), ny = data.ny(), np = data.np();
   require(std::isfinite(o.margin) && o.margin >= 0, who, "options.margin", "must be finite and non-negative");
   if (o.parameter_gain.size() > 0) {
@@ -132,8 +133,8 @@ inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSu
 /// Builds the LMIs of theorem 1 / 2 for `data` (vertices, C, \f$Q_e\f$, reading) and `options`.
 [[nodiscard]] inline TakagiSugenoLmiProblem build_takagi_sugeno_lmis(TakagiSugenoLmiData data,
                                                                      const TakagiSugenoLmiOptions& options) {
-  using lmi::AffineMatrix;
   using Eigen::MatrixXd;
+  using lmi::AffineMatrix;
   constexpr std::string_view who = "build_takagi_sugeno_lmis";
   detail::validate_lmi_data(data, who);
   detail::validate_lmi_options(data, options, who);
@@ -235,8 +236,9 @@ inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSu
                                            {{}, {}, -l2.times_identity(nx * r), {}},
                                            {{}, {}, {}, -l4.times_identity(nu * r)}});
   // T4 = [[0, 0, P0𝒜, P0ℬ], [0, 0, 0, 0]] (rows: e_x, e_Θ).
-  const AffineMatrix T4 = lmi::blocks({{AffineMatrix::zero(nx, nx * r), AffineMatrix::zero(nx, nu * r), out.P0 * calA, out.P0 * calB},
-                                       {AffineMatrix::zero(np, nx * r), {}, {}, AffineMatrix::zero(np, nu * r)}});
+  const AffineMatrix T4 =
+      lmi::blocks({{AffineMatrix::zero(nx, nx * r), AffineMatrix::zero(nx, nu * r), out.P0 * calA, out.P0 * calB},
+                   {AffineMatrix::zero(np, nx * r), {}, {}, AffineMatrix::zero(np, nu * r)}});
   // Q_B = [[0, 0], [0, 0], [0, G_θᵀP1], [0, P1]] (theorem 1).
   AffineMatrix QB;
   if (theorem1) {
@@ -249,13 +251,15 @@ inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSu
 
   for (Index i = 0; i < r; ++i) {
     const auto& Ai = data.A[static_cast<std::size_t>(i)];
-    const AffineMatrix P0i = MatrixXd(Ai.transpose()) * out.P0 - Ct * out.R[static_cast<std::size_t>(i)].transpose();  // (41)
+    const AffineMatrix P0i =
+        MatrixXd(Ai.transpose()) * out.P0 - Ct * out.R[static_cast<std::size_t>(i)].transpose();  // (41)
     const AffineMatrix CtFt = Ct * out.F[static_cast<std::size_t>(i)].transpose();
     // Φ_iᵀP = [[P_{0,i}, −CᵀF_iᵀ], [0, Φ22ᵀP1]].
     const AffineMatrix PhiTP = lmi::blocks({{P0i, -CtFt}, {AffineMatrix::zero(np, nx), Phi22tP1}});
     // T_{1,i} = [[P_{0,i}𝒜, P_{0,i}ℬ, 0, 0], [0, 0, 0, 0]].
-    const AffineMatrix T1 = lmi::blocks({{P0i * calA, P0i * calB, AffineMatrix::zero(nx, nx * r), AffineMatrix::zero(nx, nu * r)},
-                                         {AffineMatrix::zero(np, nx * r), {}, {}, {}}});
+    const AffineMatrix T1 =
+        lmi::blocks({{P0i * calA, P0i * calB, AffineMatrix::zero(nx, nx * r), AffineMatrix::zero(nx, nu * r)},
+                     {AffineMatrix::zero(np, nx * r), {}, {}, {}}});
     // Q_{A,i} = [[0, 0, −CᵀF_iᵀG_θ, −CᵀF_iᵀ], [0, 0, Φ22ᵀP1G_θ, Φ22ᵀP1]] (theorem 1), 0 (theorem 2).
     AffineMatrix QA;
     if (theorem1) {
@@ -275,9 +279,15 @@ inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSu
   }
 
   switch (options.objective) {
-    case TakagiSugenoObjective::minimize_beta: pb.minimize(*out.beta); break;
-    case TakagiSugenoObjective::maximize_margin: pb.minimize(-*out.t); break;
-    case TakagiSugenoObjective::feasibility: pb.minimize(lmi::trace(out.P0)); break;
+    case TakagiSugenoObjective::minimize_beta:
+      pb.minimize(*out.beta);
+      break;
+    case TakagiSugenoObjective::maximize_margin:
+      pb.minimize(-*out.t);
+      break;
+    case TakagiSugenoObjective::feasibility:
+      pb.minimize(lmi::trace(out.P0));
+      break;
   }
   out.data = std::move(data);
   return out;
@@ -292,7 +302,8 @@ inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSu
 /// The problem data of a polytopic model for the LMIs: its vertices and C in double
 /// precision, \f$Q_e\f$ and the theorem's choices from `options`.
 template <TakagiSugenoSystem Model>
-[[nodiscard]] TakagiSugenoLmiData takagi_sugeno_lmi_data(const Model& model, const TakagiSugenoLmiOptions& options = {}) {
+[[nodiscard]] TakagiSugenoLmiData takagi_sugeno_lmi_data(const Model& model,
+                                                         const TakagiSugenoLmiOptions& options = {}) {
   constexpr std::string_view who = "takagi_sugeno_lmi_data";
   TakagiSugenoLmiData data;
   const Sizes s = model.sizes();
@@ -322,22 +333,26 @@ template <TakagiSugenoSystem Model>
 
 /// Outcome of a synthesis.
 enum class SynthesisStatus {
-  feasible,      ///< the returned point was verified: every \f$M_i \prec 0\f$, \f$P_0, P_1, \lambda, \Gamma \succ 0\f$
+  feasible,  ///< the returned point was verified: every \f$M_i \prec 0\f$, \f$P_0, P_1, \lambda, \Gamma \succ 0\f$
   /// DSDP reports the LMIs infeasible (DSDP_INFEASIBLE, r > 0), or the largest margin is ≤ 0.
   /// This is DSDP's claim, not re-checked: on badly conditioned problems it can be
   /// wrong (corollary 1 on the §6 plant's own sectors, β* ≈ 4.6e7, is reported
   /// infeasible; the `maximize_margin` objective solves that problem).
   infeasible,
-  not_verified,  ///< DSDP did not prove infeasibility, but its point fails the independent check
-  solver_failed, ///< a DSDP call failed
+  not_verified,   ///< DSDP did not prove infeasibility, but its point fails the independent check
+  solver_failed,  ///< a DSDP call failed
 };
 
 [[nodiscard]] constexpr std::string_view to_string(SynthesisStatus s) noexcept {
   switch (s) {
-    case SynthesisStatus::feasible: return "feasible";
-    case SynthesisStatus::infeasible: return "infeasible";
-    case SynthesisStatus::not_verified: return "not verified";
-    case SynthesisStatus::solver_failed: return "solver failed";
+    case SynthesisStatus::feasible:
+      return "feasible";
+    case SynthesisStatus::infeasible:
+      return "infeasible";
+    case SynthesisStatus::not_verified:
+      return "not verified";
+    case SynthesisStatus::solver_failed:
+      return "solver failed";
   }
   return "unknown";
 }
@@ -346,9 +361,10 @@ enum class SynthesisStatus {
 template <StateSpace D>
 struct TakagiSugenoSynthesis {
   SynthesisStatus status = SynthesisStatus::solver_failed;
-  std::optional<TakagiSugenoGains<D>> gains;  ///< \f$L_i = P_0^{-1}R_i\f$, \f$K_{y,i} = P_1^{-1}F_i\f$ (31), and \f$K_\theta\f$
-  TakagiSugenoCertificate certificate;        ///< the point DSDP returned (for diagnosis, also when not verified)
-  TakagiSugenoCertificateCheck check;         ///< the independent eigenvalue check of that point
+  std::optional<TakagiSugenoGains<D>>
+      gains;  ///< \f$L_i = P_0^{-1}R_i\f$, \f$K_{y,i} = P_1^{-1}F_i\f$ (31), and \f$K_\theta\f$
+  TakagiSugenoCertificate certificate;  ///< the point DSDP returned (for diagnosis, also when not verified)
+  TakagiSugenoCertificateCheck check;   ///< the independent eigenvalue check of that point
   double beta = std::numeric_limits<double>::quiet_NaN();    ///< corollary 1: the minimised β
   double margin = std::numeric_limits<double>::quiet_NaN();  ///< the margin t of `maximize_margin`
   lmi::SdpSolution solver;                                   ///< what DSDP said (status, r, iterations, time)
@@ -386,9 +402,8 @@ template <TakagiSugenoSystem Model>
   message << "; largest eigenvalue of the vertex LMIs " << result.check.max_vertex_eigenvalue;
 
   if (!result.check.holds()) {
-    const bool proved_infeasible =
-        result.solver.status == lmi::SdpStatus::infeasible ||
-        (lmis.t && result.solver.status == lmi::SdpStatus::feasible && !(result.margin > 0));
+    const bool proved_infeasible = result.solver.status == lmi::SdpStatus::infeasible ||
+                                   (lmis.t && result.solver.status == lmi::SdpStatus::feasible && !(result.margin > 0));
     result.status = proved_infeasible ? SynthesisStatus::infeasible : SynthesisStatus::not_verified;
     result.message = message.str();
     return result;
