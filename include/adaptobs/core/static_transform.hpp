@@ -65,26 +65,6 @@ ADAPTOBS_INSTANTIATE std::optional<DynamicMatrix<double>> well_conditioned_inver
     const DynamicMatrix<double>&);
 #endif
 
-/// The same for a fixed size of at most 4: Eigen's closed-form inverse, refused
-/// when \f$1/\kappa_1(T) = 1/(\|T\|_1\|T^{-1}\|_1)\f$ (exact here) is at most nε.
-/// It spares a program on such sizes the dynamic LU, whose kernels cost several
-/// seconds of compilation in every translation unit that builds a transform.
-template <class Matrix>
-  requires(Matrix::RowsAtCompileTime != Eigen::Dynamic && Matrix::RowsAtCompileTime <= 4)
-[[nodiscard]] std::optional<Matrix> well_conditioned_inverse(const Matrix& t) {
-  using Scalar = typename Matrix::Scalar;
-  if constexpr (Matrix::RowsAtCompileTime == 0) {
-    return t;
-  } else {
-    const Matrix inverse = t.inverse();
-    if (!inverse.allFinite()) return std::nullopt;
-    const auto norm_1 = [](const Matrix& m) { return m.cwiseAbs().colwise().sum().maxCoeff(); };
-    const Scalar rcond = Scalar(1) / (norm_1(t) * norm_1(inverse));
-    if (!(Scalar(t.rows()) * std::numeric_limits<Scalar>::epsilon() < rcond)) return std::nullopt;
-    return inverse;
-  }
-}
-
 /// c_o = e1ᵀ (or C_o = [I 0]) to a relative tolerance: the output matrix the
 /// forms of Algorithms 1–3 ask of the static transform.
 template <class DC>
@@ -113,12 +93,7 @@ class StaticTransform : public D {
     detail::require_square(t_, who, "T");
     detail::require_finite(t_, who, "T");
     detail::require_finite_shape(k_, t_.rows(), k_.cols(), who, "K");
-    const auto inverse = [&] {
-      if constexpr (StateMatrix::RowsAtCompileTime != Eigen::Dynamic && StateMatrix::RowsAtCompileTime <= 4)
-        return detail::well_conditioned_inverse(t_);
-      else
-        return detail::well_conditioned_inverse(detail::dynamic_copy(t_));
-    }();
+    const auto inverse = detail::well_conditioned_inverse(detail::dynamic_copy(t_));
     detail::require(inverse.has_value(), who, "T", "must be invertible (condition number below 1/(n eps))");
     t_inverse_ = *inverse;
     identity_ = (t_.array() == StateMatrix::Identity(t_.rows(), t_.cols()).array()).all();

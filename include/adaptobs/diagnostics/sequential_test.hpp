@@ -98,7 +98,7 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   /// last alarm named are kept.
   void rearm(const Vector& nominal) {
     const std::string who = std::string(name_) + "::rearm";
-    require_finite_shape(nominal, nominal_.size(), 1, who, "nominal");
+    detail::require_finite_shape(nominal, nominal_.size(), 1, who, "nominal");
     nominal_ = nominal;
     restart();
   }
