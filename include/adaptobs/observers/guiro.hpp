@@ -185,7 +185,9 @@ class GuiroObserver : public DiscreteUpdate<GuiroObserver<Model>, typename Model
     /// \f$z^-_{k+1} = Ez_k + \Psi_k\hat\theta_k + B_du_k\f$, \f$\Psi_k = EH_k\f$.
     w.predicted.noalias() = system.A * w.corrected;
     w.predicted.noalias() += sample.Psi * theta_;
-    w.predicted.noalias() += system.B * sample.u;
+    // Without an input (B is n × 0) there is no term: Eigen's coefficient product
+    // would offset the empty B's null data pointer.
+    if (sample.u.size() > 0) w.predicted.noalias() += system.B * sample.u;
 
     if (!detail::all_finite(w.predicted, w.corrected, w.theta)) return UpdateStatus::nonfinite_result;
     detail::commit(z_, w.predicted);
