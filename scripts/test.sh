@@ -32,7 +32,7 @@
 # the g++ phase, while all the suite asks of them is a smoke run that proves
 # each one still compiles and executes. They are never instrumented (see
 # benchmarks/CMakeLists.txt). Timing runs use an optimized build of their own
-# (README, "Benchmarks").
+# (docs/benchmarks.md).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 source "$root/scripts/lib/dependencies.sh"
