@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <string>
@@ -414,28 +415,39 @@ TEST(Guiro, MissingOutputsPropagateOpenLoopAndConverge) {
   EXPECT_LT((observer.state() - plant.state()).norm(), 1e-6);
 }
 
-// A channel masked at every sample gives the observer built without it: the
-// two-output MIMO system of the test above with only y₁, K and Γ restricted to
-// its column.
-TEST(Guiro, PermanentlyMaskedChannelEqualsTheObserverWithoutIt) {
-  using Dims2 = adaptobs::Dimensions<double, 3, 1, 2, 2>;
-  using Dims1 = adaptobs::Dimensions<double, 3, 1, 1, 2>;
-  RandomMatrices random(11);
+// A random two-output system of three states and two parameters, with gains K
+// and Γ small enough to keep the observer bounded over a few tens of random
+// samples, and those samples: the data of the two tests below.
+struct RandomTwoOutputSystem {
+  using Dims = adaptobs::Dimensions<double, 3, 1, 2, 2>;
+  explicit RandomTwoOutputSystem(std::uint64_t seed) : random(seed) {}
+  adaptobs::DiscreteSample<Dims> sample() {
+    return {random.uniform<Eigen::Matrix<double, 1, 1>>(), random.uniform<Eigen::Vector2d>(),
+            random.uniform<Eigen::Matrix<double, 3, 2>>()};
+  }
+  RandomMatrices random;
   const Eigen::Matrix3d a = 0.3 * random.uniform<Eigen::Matrix3d>();
   const Eigen::Vector3d b = random.uniform<Eigen::Vector3d>();
-  const auto c = random.uniform<Eigen::Matrix<double, 2, 3>>();
+  const Eigen::Matrix<double, 2, 3> c = random.uniform<Eigen::Matrix<double, 2, 3>>();
   const Eigen::Matrix<double, 3, 2> k = 0.3 * random.uniform<Eigen::Matrix<double, 3, 2>>();
   const Eigen::Matrix2d gamma = 0.2 * random.uniform<Eigen::Matrix2d>();
-  const adaptobs::DiscreteLtiModel<Dims2> both(a, b, c);
-  const adaptobs::DiscreteLtiModel<Dims1> first(a, b, c.topRows<1>());
-  adaptobs::GuiroObserver masked(both, k, gamma, Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval());
-  adaptobs::GuiroObserver single(first, k.leftCols<1>().eval(), gamma.leftCols<1>().eval(),
+};
+
+// A channel masked at every sample gives the observer built without it: the
+// two-output system with only y₁, K and Γ restricted to its column.
+TEST(Guiro, PermanentlyMaskedChannelEqualsTheObserverWithoutIt) {
+  using Dims2 = RandomTwoOutputSystem::Dims;
+  using Dims1 = adaptobs::Dimensions<double, 3, 1, 1, 2>;
+  RandomTwoOutputSystem mimo(11);
+  const adaptobs::DiscreteLtiModel<Dims2> both(mimo.a, mimo.b, mimo.c);
+  const adaptobs::DiscreteLtiModel<Dims1> first(mimo.a, mimo.b, mimo.c.topRows<1>());
+  adaptobs::GuiroObserver masked(both, mimo.k, mimo.gamma, Eigen::Vector3d::Zero().eval(),
+                                 Eigen::Vector2d::Zero().eval());
+  adaptobs::GuiroObserver single(first, mimo.k.leftCols<1>().eval(), mimo.gamma.leftCols<1>().eval(),
                                  Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval());
   const adaptobs::OutputMask<Dims2> present(true, false);
   for (Index step = 0; step < 40; ++step) {
-    const adaptobs::DiscreteSample<Dims2> s{random.uniform<Eigen::Matrix<double, 1, 1>>(),
-                                            random.uniform<Eigen::Vector2d>(),
-                                            random.uniform<Eigen::Matrix<double, 3, 2>>()};
+    const adaptobs::DiscreteSample<Dims2> s = mimo.sample();
     ASSERT_EQ(masked.update(s, present), UpdateStatus::accepted);
     ASSERT_EQ(single.update({s.u, s.y.topRows<1>(), s.Psi}), UpdateStatus::accepted);
   }
@@ -448,23 +460,18 @@ TEST(Guiro, PermanentlyMaskedChannelEqualsTheObserverWithoutIt) {
 // workspace after it), zero in an absent channel (the rest of its contract:
 // GuiroContract below).
 TEST(Guiro, OutputErrorIsTheInnovationOfThePrediction) {
-  using Dims2 = adaptobs::Dimensions<double, 3, 1, 2, 2>;
-  RandomMatrices random(12);
-  const Eigen::Matrix3d a = 0.3 * random.uniform<Eigen::Matrix3d>();
-  const Eigen::Vector3d b = random.uniform<Eigen::Vector3d>();
-  const auto c = random.uniform<Eigen::Matrix<double, 2, 3>>();
-  const Eigen::Matrix<double, 3, 2> k = 0.3 * random.uniform<Eigen::Matrix<double, 3, 2>>();
-  const Eigen::Matrix2d gamma = 0.2 * random.uniform<Eigen::Matrix2d>();
-  adaptobs::GuiroObserver observer(adaptobs::DiscreteLtiModel<Dims2>(a, b, c), k, gamma, Eigen::Vector3d::Zero().eval(),
-                                   Eigen::Vector2d::Zero().eval());
+  using Dims2 = RandomTwoOutputSystem::Dims;
+  RandomTwoOutputSystem mimo(12);
+  const Eigen::Matrix<double, 2, 3>& c = mimo.c;
+  adaptobs::GuiroObserver observer(adaptobs::DiscreteLtiModel<Dims2>(mimo.a, mimo.b, c), mimo.k, mimo.gamma,
+                                   Eigen::Vector3d::Zero().eval(), Eigen::Vector2d::Zero().eval());
   static_assert(adaptobs::DiagnosableObserver<decltype(observer)>);
   static_assert(adaptobs::DiagnosableObserver<PaperObserver<float>>);
   EXPECT_TRUE(observer.output_error() == Eigen::Vector2d::Zero());
   double largest_posterior_gap = 0;
   for (Index step = 0; step < 30; ++step) {
     const adaptobs::OutputMask<Dims2> present(true, step % 4 != 1);
-    adaptobs::DiscreteSample<Dims2> s{random.uniform<Eigen::Matrix<double, 1, 1>>(), random.uniform<Eigen::Vector2d>(),
-                                      random.uniform<Eigen::Matrix<double, 3, 2>>()};
+    adaptobs::DiscreteSample<Dims2> s = mimo.sample();
     if (!present(1)) s.y(1) = std::numeric_limits<double>::quiet_NaN();
     const Eigen::Vector3d predicted = observer.state();
     ASSERT_EQ(observer.update(s, present), UpdateStatus::accepted);

@@ -40,33 +40,32 @@ using namespace adaptobs::testing::unified;
 // ---------------------------------------------------------------------------
 // Convergence on the examples' plants, through update() with midpoint samples.
 
+// Over `duration` seconds on `plant`: θ̂ within 1e-6 (relative) at the end, the
+// state over the last tenth, and θ̂'s error decaying at least at `rate` over the
+// `window` seconds from `from` (Trace::theta_decay_rate).
+template <class Observer, class Plant>
+void expect_convergence(Observer& observer, Plant plant, double duration, double from, double window, double rate) {
+  const Trace trace = run(observer, plant, duration);
+  EXPECT_LT(trace.theta_rel.back(), 1e-6);
+  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
+  EXPECT_GT(trace.theta_decay_rate(from, window), rate);
+}
+
 TEST(BastinGevers, ConvergesOnTheThirdOrderPlant) {
   auto observer = bastin_gevers_observer<double>();
   EXPECT_MATRIX_NEAR(observer.algorithm().k, Eigen::Vector3d(2, 0, 0), 1e-12, 0);
-  auto plant = siso::make_plant<double>();
-  const Trace trace = run(observer, plant, 100.0);
-  EXPECT_LT(trace.theta_rel.back(), 1e-6);
-  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
-  EXPECT_GT(trace.theta_decay_rate(10.0, 10.0), 0.09);
+  expect_convergence(observer, siso::make_plant<double>(), 100.0, 10.0, 10.0, 0.09);
 }
 
 TEST(MarinoTomei, ConvergesOnTheThirdOrderPlant) {
   auto observer = marino_tomei_observer<double>();
   EXPECT_MATRIX_NEAR(observer.algorithm().k, Eigen::Vector3d(8, 17, 10), 1e-12, 0);
-  auto plant = siso::make_plant<double>();
-  const Trace trace = run(observer, plant, 100.0);
-  EXPECT_LT(trace.theta_rel.back(), 1e-6);
-  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
-  EXPECT_GT(trace.theta_decay_rate(10.0, 10.0), 0.087);
+  expect_convergence(observer, siso::make_plant<double>(), 100.0, 10.0, 10.0, 0.087);
 }
 
 TEST(Besancon, ConvergesOnThePeriodicMimoPlant) {
   auto observer = besancon_observer<double>({.sampling = quadratic(), .excitation_window = 629});
-  auto plant = periodic::make_plant<double>();
-  const Trace trace = run(observer, plant, 40.0);
-  EXPECT_LT(trace.theta_rel.back(), 1e-6);
-  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
-  EXPECT_GT(trace.theta_decay_rate(4.0, 2.0), 0.6);
+  expect_convergence(observer, periodic::make_plant<double>(), 40.0, 4.0, 2.0, 0.6);
   EXPECT_GT(observer.excitation_level().value(), 0.1);  // Λ is persistently exciting (≈ 1.96 / 2π)
 }
 
@@ -96,11 +95,7 @@ TEST(Besancon, InjectionGainCancelsTheLowerLeftBlockOfTheErrorDynamics) {
 
 TEST(ZhangContinuous, ConvergesOnThePeriodicMimoPlant) {
   auto observer = zhang_observer<double>(50.0, {.sampling = quadratic(), .excitation_window = 629});
-  auto plant = periodic::make_plant<double>();
-  const Trace trace = run(observer, plant, 40.0);
-  EXPECT_LT(trace.theta_rel.back(), 1e-6);
-  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
-  EXPECT_GT(trace.theta_decay_rate(4.0, 2.0), 0.84);
+  expect_convergence(observer, periodic::make_plant<double>(), 40.0, 4.0, 2.0, 0.84);
   // Gramian (15) over one period: λmin ≈ 0.090, i.e. an average level ≈ 0.0143.
   EXPECT_GT(observer.excitation_level().value(), 0.005);
 }
@@ -124,11 +119,7 @@ TEST(ZhangContinuous, RiccatiGainAlongTheTrajectory) {
 
 TEST(KalmanBucy, ConvergesExponentiallyWithParameterNoise) {
   auto filter = kalman_bucy_filter<double>(1.0);
-  auto plant = siso::make_plant<double>();
-  const Trace trace = run(filter, plant, 60.0);
-  EXPECT_LT(trace.theta_rel.back(), 1e-6);
-  EXPECT_LT(trace.state_rel_last_tenth(), 1e-6);
-  EXPECT_GT(trace.theta_decay_rate(6.0, 10.0), 0.24);
+  expect_convergence(filter, siso::make_plant<double>(), 60.0, 6.0, 10.0, 0.24);
 }
 
 TEST(KalmanBucy, SetInternalStateRefusesWhatAnUpdateWouldAndChangesNothing) {
@@ -177,40 +168,27 @@ double divergence_time(Observer& observer, Plant& plant) {
   return std::numeric_limits<double>::infinity();
 }
 
+// `good` with its update law replaced by the gradient of step `step` and the
+// wrong sign diverges within 5 s from zero estimates on `plant`.
+template <class Observer, class Model, class Plant>
+void expect_divergence_with_the_sign_flipped(const Observer& good, const Model& model, Plant plant, double step,
+                                             const char* name) {
+  using Dims = typename Model::Dims;
+  adaptobs::UnifiedAdaptiveObserver flipped(
+      model, good.algorithm(), SignedGradientLaw{step * Eigen::Matrix2d::Identity(), -1.0}, Dims::State::Zero().eval(),
+      Dims::Parameters::Zero().eval(), {.sampling = quadratic()});
+  EXPECT_LT(divergence_time(flipped, plant), 5.0) << name;
+}
+
 TEST(UpdateLaw, FlippedSignDivergesForEveryAlgorithm) {
-  const Eigen::Matrix2d gamma = Eigen::Matrix2d::Identity();
-  {
-    const auto good = bastin_gevers_observer<double>();
-    adaptobs::UnifiedAdaptiveObserver flipped(siso::model<double>(), good.algorithm(),
-                                              SignedGradientLaw{5.0 * gamma, -1.0}, Eigen::Vector3d::Zero().eval(),
-                                              Eigen::Vector2d::Zero().eval(), {.sampling = quadratic()});
-    auto plant = siso::make_plant<double>();
-    EXPECT_LT(divergence_time(flipped, plant), 5.0) << "Bastin-Gevers";
-  }
-  {
-    const auto good = marino_tomei_observer<double>();
-    adaptobs::UnifiedAdaptiveObserver flipped(siso::model<double>(), good.algorithm(),
-                                              SignedGradientLaw{20.0 * gamma, -1.0}, Eigen::Vector3d::Zero().eval(),
-                                              Eigen::Vector2d::Zero().eval(), {.sampling = quadratic()});
-    auto plant = siso::make_plant<double>();
-    EXPECT_LT(divergence_time(flipped, plant), 5.0) << "Marino-Tomei";
-  }
-  {
-    const auto good = besancon_observer<double>();
-    adaptobs::UnifiedAdaptiveObserver flipped(periodic::model<double>(), good.algorithm(),
-                                              SignedGradientLaw{10.0 * gamma, -1.0}, Eigen::Vector4d::Zero().eval(),
-                                              Eigen::Vector2d::Zero().eval(), {.sampling = quadratic()});
-    auto plant = periodic::make_plant<double>();
-    EXPECT_LT(divergence_time(flipped, plant), 5.0) << "Besancon";
-  }
-  {
-    const auto good = zhang_observer<double>(50.0);
-    adaptobs::UnifiedAdaptiveObserver flipped(periodic::model<double>(), good.algorithm(),
-                                              SignedGradientLaw{50.0 * gamma, -1.0}, Eigen::Vector4d::Zero().eval(),
-                                              Eigen::Vector2d::Zero().eval(), {.sampling = quadratic()});
-    auto plant = periodic::make_plant<double>();
-    EXPECT_LT(divergence_time(flipped, plant), 5.0) << "Zhang";
-  }
+  expect_divergence_with_the_sign_flipped(bastin_gevers_observer<double>(), siso::model<double>(),
+                                          siso::make_plant<double>(), 5.0, "Bastin-Gevers");
+  expect_divergence_with_the_sign_flipped(marino_tomei_observer<double>(), siso::model<double>(),
+                                          siso::make_plant<double>(), 20.0, "Marino-Tomei");
+  expect_divergence_with_the_sign_flipped(besancon_observer<double>(), periodic::model<double>(),
+                                          periodic::make_plant<double>(), 10.0, "Besancon");
+  expect_divergence_with_the_sign_flipped(zhang_observer<double>(50.0), periodic::model<double>(),
+                                          periodic::make_plant<double>(), 50.0, "Zhang");
 }
 
 // ---------------------------------------------------------------------------

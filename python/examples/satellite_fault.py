@@ -33,6 +33,20 @@ def faulty_outputs(s, data, fault_at, size, seed):
     return Y
 
 
+def fault_free_design(s):
+    """A FaultMonitor designed from 20 fault-free runs of 3100 s (false alarms once an hour per test), and
+    the parameter estimates of those runs from MONITOR_FROM on."""
+    parameters, errors = [], []
+    for seed in range(1, 21):
+        data = adaptobs.examples.simulate_satellite(31000, seed=seed)
+        result = observer(s).run(data["U"], data["Y"], data["Psi"])
+        parameters.append(result.parameters[MONITOR_FROM:])
+        errors.append(result.output_error[MONITOR_FROM:])
+    design = adaptobs.design_fault_monitor(parameters, errors, s["theta"], drift=1.0,
+                                           mean_samples_between_false_alarms=36000.0, stride=100, window=100)
+    return design, parameters
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default="satellite_fault_python.png")
@@ -43,14 +57,7 @@ def main():
         parser.error("--fault-size must lie in (-1, 10): theta_2 stays positive")
 
     s = adaptobs.examples.satellite()
-    parameters, errors = [], []
-    for seed in range(1, 21):
-        data = adaptobs.examples.simulate_satellite(31000, seed=seed)
-        result = observer(s).run(data["U"], data["Y"], data["Psi"])
-        parameters.append(result.parameters[MONITOR_FROM:])
-        errors.append(result.output_error[MONITOR_FROM:])
-    design = adaptobs.design_fault_monitor(parameters, errors, s["theta"], drift=1.0,
-                                           mean_samples_between_false_alarms=36000.0, stride=100, window=100)
+    design, _ = fault_free_design(s)
     print(f"CUSUM threshold {design.cusum.threshold:.3f}, GLR threshold {design.glr_threshold:.3f}")
 
     data = adaptobs.examples.simulate_satellite(3000, noise=0.0)

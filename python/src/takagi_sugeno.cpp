@@ -233,6 +233,21 @@ void clear_python(const TsModel& model) {
 
 // --- The model ------------------------------------------------------------------
 
+/// The x, u and theta of a call to the model's own functions, read to its sizes.
+struct StateInputParameters {
+  Eigen::VectorXd x, u, theta;
+};
+
+StateInputParameters state_input_parameters(const TsModel& model, nb::handle x, nb::handle u, nb::handle theta,
+                                            std::string_view who) {
+  const Sizes s = model.sizes();
+  StateInputParameters v;
+  read_vector(x, s.nx, who, "x", v.x);
+  read_vector(u, s.nu, who, "u", v.u);
+  read_vector(theta, s.np, who, "theta", v.theta);
+  return v;
+}
+
 void bind_model(nb::module_& m) {
   nb::class_<TsGains>(m, "TakagiSugenoGains",
                       "Gains of a TakagiSugenoObserver (Srinivasarengan et al. 2018): one L_i (nx x ny) and one\n"
@@ -334,13 +349,8 @@ void bind_model(nb::module_& m) {
       .def(
           "premises",
           [](const TsModel& self, nb::handle x, nb::handle u, nb::handle theta) {
-            constexpr std::string_view who = "TakagiSugenoModel.premises";
-            const Sizes s = self.sizes();
-            Eigen::VectorXd xv, uv, tv;
-            read_vector(x, s.nx, who, "x", xv);
-            read_vector(u, s.nu, who, "u", uv);
-            read_vector(theta, s.np, who, "theta", tv);
-            return Eigen::VectorXd(self.premises(xv, uv, tv));
+            const auto v = state_input_parameters(self, x, u, theta, "TakagiSugenoModel.premises");
+            return Eigen::VectorXd(self.premises(v.x, v.u, v.theta));
           },
           nb::arg("x"), nb::arg("u"), nb::arg("theta"), "Premise variables z(x, u, theta), unclipped.")
       .def(
@@ -357,13 +367,8 @@ void bind_model(nb::module_& m) {
       .def(
           "step",
           [](const TsModel& self, nb::handle x, nb::handle u, nb::handle theta) {
-            constexpr std::string_view who = "TakagiSugenoModel.step";
-            const Sizes s = self.sizes();
-            Eigen::VectorXd xv, uv, tv;
-            read_vector(x, s.nx, who, "x", xv);
-            read_vector(u, s.nu, who, "u", uv);
-            read_vector(theta, s.np, who, "theta", tv);
-            return Eigen::VectorXd(self.step(xv, uv, tv));
+            const auto v = state_input_parameters(self, x, u, theta, "TakagiSugenoModel.step");
+            return Eigen::VectorXd(self.step(v.x, v.u, v.theta));
           },
           nb::arg("x"), nb::arg("u"), nb::arg("theta"),
           "One step of eq. (64): sum_i h_i(z(x, u, theta), theta) (A_i x + B_i u).")

@@ -5,9 +5,7 @@ transition matrices against closed forms, the detectors' distributions and
 thresholds against their formulas, and the Monte-Carlo evaluator on the
 satellite's thruster fault against a plain loop over the same seeds."""
 
-import importlib.util
 import math
-import pathlib
 import threading
 
 import numpy as np
@@ -15,7 +13,7 @@ import pytest
 
 import adaptobs
 from adaptobs import ConditionVerdict, ConfigurationError, UpdateStatus
-from conftest import make_observer
+from conftest import load_example, make_observer
 from test_fault_detection import MONITOR_FROM, monitor_design, thruster_fault_data  # noqa: F401 (a fixture)
 
 
@@ -349,15 +347,6 @@ def test_the_sample_covariance_is_the_mean_outer_product():
 # ---- Monte-Carlo evaluation of a detector ------------------------------------------------------
 
 STEPS, FAULT_AT, FAULT_SIZE = 3000, 1555, -0.01  # 300 s; theta_2 loses 1 % of its efficiency at 155.5 s
-
-
-def load_example(name):
-    """A module of python/examples (its functions; main() is not run)."""
-    path = pathlib.Path(__file__).resolve().parents[1] / "examples" / f"{name}.py"
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 def thruster_scenario(system, design):

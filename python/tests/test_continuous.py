@@ -5,10 +5,8 @@ with a callable regressor, garbage collection of a regressor cycle, and
 refusals."""
 
 import copy
-import os
 import pathlib
 import pickle
-import subprocess
 import sys
 
 import numpy as np
@@ -16,6 +14,7 @@ import pytest
 
 import adaptobs
 from adaptobs import ConfigurationError, UpdateStatus
+from conftest import assert_matches_recorded_samples, cxx_example_table
 
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "examples"))
@@ -42,19 +41,9 @@ def test_theta_and_the_state_converge(siso, make):
 
 @pytest.mark.parametrize("make, name", [(bastin_gevers, "bastin_gevers"), (marino_tomei, "marino_tomei")])
 def test_the_replay_matches_the_cxx_example(tmp_path, siso, make, name):
-    examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
-    if not examples:
-        pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
-    subprocess.run([os.path.join(examples, name), "--out", str(tmp_path)], check=True, capture_output=True)
-    table = np.genfromtxt(tmp_path / f"{name}.csv", delimiter=",", names=True)
+    table = cxx_example_table(tmp_path, name)
     system, data = siso
-    result = run(make(system), data)
-    every = 10  # the example records every tenth sample
-    assert np.array_equal(data["t"][::every], table["t"])
-    cxx = np.column_stack([table["thetahat_1"], table["thetahat_2"]])
-    assert np.max(np.abs(result.parameters[::every] - cxx)) <= 1e-12
-    cxx_state = np.column_stack([table[f"xhat_{i}"] for i in range(1, 4)])
-    assert np.max(np.abs(result.state[::every] - cxx_state)) <= 1e-12
+    assert_matches_recorded_samples(table, data, run(make(system), data), every=10, states=3)
 
 
 @pytest.mark.parametrize("make", [bastin_gevers, marino_tomei, besancon, zhang, kalman_bucy])

@@ -4,15 +4,14 @@ the C++ examples' CSV, pickled with its functions, and refused where an
 algorithm needs a constant model."""
 
 import math
-import os
 import pickle
-import subprocess
 
 import numpy as np
 import pytest
 
 import adaptobs
 from adaptobs import ConfigurationError, UpdateStatus
+from conftest import assert_matches_recorded_samples, cxx_example_table
 
 QUADRATIC = dict(input="quadratic", output="quadratic", excitation_window=629)
 
@@ -67,19 +66,9 @@ def test_the_model_gives_the_plant_s_matrices(periodic):
 
 @pytest.mark.parametrize("make, name", [(besancon, "besancon"), (zhang, "zhang_continuous")])
 def test_the_replay_matches_the_cxx_example(tmp_path, periodic, make, name):
-    examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
-    if not examples:
-        pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
-    subprocess.run([os.path.join(examples, name), "--out", str(tmp_path)], check=True, capture_output=True)
-    table = np.genfromtxt(tmp_path / f"{name}.csv", delimiter=",", names=True)
+    table = cxx_example_table(tmp_path, name)
     system, data = periodic
-    result = run(make(system), data)
-    every = 5  # the examples record every fifth sample
-    assert np.array_equal(data["t"][::every], table["t"])
-    cxx = np.column_stack([table["thetahat_1"], table["thetahat_2"]])
-    assert np.max(np.abs(result.parameters[::every] - cxx)) <= 1e-12
-    cxx_state = np.column_stack([table[f"xhat_{i}"] for i in range(1, 5)])
-    assert np.max(np.abs(result.state[::every] - cxx_state)) <= 1e-12
+    assert_matches_recorded_samples(table, data, run(make(system), data), every=5, states=4)
 
 
 @pytest.mark.parametrize("make", [besancon, zhang])

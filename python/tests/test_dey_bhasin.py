@@ -2,16 +2,12 @@
 section 5 identified, the C++ example's estimates to 1e-12, batch against
 step, pickling, and refusals."""
 
-import copy
-import os
-import pickle
-import subprocess
-
 import numpy as np
 import pytest
 
 import adaptobs
 from adaptobs import ConfigurationError, UpdateStatus
+from conftest import assert_update_follows_run, cxx_example_table
 
 
 def make_dey_bhasin(system):
@@ -52,12 +48,7 @@ def test_an_input_that_is_not_rich_leaves_the_estimates_wrong(mimo):
 
 
 def test_the_mimo_replay_matches_the_cxx_example(tmp_path, mimo):
-    examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
-    if not examples:
-        pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
-    subprocess.run([os.path.join(examples, "dey_bhasin_mimo"), "--out", str(tmp_path)], check=True,
-                   capture_output=True)
-    table = np.genfromtxt(tmp_path / "dey_bhasin_mimo_pe.csv", delimiter=",", names=True)
+    table = cxx_example_table(tmp_path, "dey_bhasin_mimo", csv="dey_bhasin_mimo_pe.csv")
     system, _ = mimo
     data = adaptobs.examples.simulate_dey_bhasin_mimo(len(table))
     assert np.array_equal(data["Y"][:, 1], table["y_2"])
@@ -76,18 +67,8 @@ def test_run_equals_update_and_copies_continue_bit_for_bit(mimo, make):
     present[50:60, 1] = False
     Y[50:60, 1] = np.nan  # absent: ignored
     Y[120, 0] = np.inf  # present: the sample is rejected
-    batch = make(system)
-    result = batch.run(U, Y, present=present)
-    stepped = make(system)
-    for k in range(len(Y)):
-        if k == 150:
-            stepped = pickle.loads(pickle.dumps(stepped))
-        if k == 250:
-            stepped = copy.deepcopy(stepped)
-        status = stepped.update(U[k], Y[k], present=present[k])
-        assert status == result.status[k]
-        assert np.array_equal(stepped.state, result.state[k])
-        assert np.array_equal(stepped.parameters, result.parameters[k])
+    result, batch, stepped = assert_update_follows_run(lambda: make(system), U, Y, present,
+                                                       {150: "pickle", 250: "deepcopy"})
     assert result.status[120] == UpdateStatus.nonfinite_input
     assert np.count_nonzero(result.status) == 1
     assert np.array_equal(stepped.covariance, batch.covariance)

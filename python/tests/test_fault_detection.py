@@ -11,9 +11,10 @@ import pytest
 
 import adaptobs
 from adaptobs import ConfigurationError, UpdateStatus
-from conftest import make_observer
+from conftest import load_example, make_observer
 
-MONITOR_FROM = 1000  # samples: the estimates have converged (100 s)
+satellite_fault = load_example("satellite_fault")
+MONITOR_FROM = satellite_fault.MONITOR_FROM  # samples: the estimates have converged (100 s)
 
 
 def thruster_fault_data(system, steps, fault_at, seed):
@@ -31,16 +32,10 @@ def thruster_fault_data(system, steps, fault_at, seed):
 
 @pytest.fixture(scope="module")
 def monitor_design():
-    """Twenty fault-free runs of 3100 s, false alarms every hour (36000 samples) per test."""
+    """The fault example's design: twenty fault-free runs of 3100 s, false alarms every hour (36000 samples)
+    per test."""
     system = adaptobs.examples.satellite()
-    parameters, errors = [], []
-    for seed in range(1, 21):
-        data = adaptobs.examples.simulate_satellite(31000, seed=seed)
-        result = make_observer(system).run(data["U"], data["Y"], data["Psi"])
-        parameters.append(result.parameters[MONITOR_FROM:])
-        errors.append(result.output_error[MONITOR_FROM:])
-    design = adaptobs.design_fault_monitor(parameters, errors, system["theta"], drift=1.0,
-                                           mean_samples_between_false_alarms=36000.0, stride=100, window=100)
+    design, parameters = satellite_fault.fault_free_design(system)
     return system, design, parameters
 
 

@@ -2,15 +2,14 @@
 design against the error matrix written here in NumPy, convergence on the
 paper's example with and without lost samples, and pickling."""
 
-import os
 import pickle
-import subprocess
 
 import numpy as np
 import pytest
 
 import adaptobs
 from adaptobs import ConfigurationError, UpdateStatus
+from conftest import cxx_example_table
 
 
 @pytest.fixture(scope="module")
@@ -77,11 +76,7 @@ def test_bad_gains_name_the_argument(guiro):
 def test_the_replay_matches_the_cxx_example(tmp_path):
     """The C++ example (examples/guiro.cpp, 60 samples on the regular grid, designed gains): the same
     theta_k before each update and the same corrected estimates z_{k-1} after it, to 1e-12."""
-    examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
-    if not examples:
-        pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
-    subprocess.run([os.path.join(examples, "guiro"), "--out", str(tmp_path)], check=True, capture_output=True)
-    table = np.genfromtxt(tmp_path / "guiro.csv", delimiter=",", names=True)
+    table = cxx_example_table(tmp_path, "guiro")
     system = adaptobs.examples.guiro()
     data = adaptobs.examples.simulate_guiro(len(table))
     assert np.max(np.abs(data["Y"][:, 0] - table["y_1"])) < 1e-12

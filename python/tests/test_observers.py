@@ -1,8 +1,6 @@
 """The observers from Python: run() against a loop of update(), rejected
 samples, masks, convergence, and the C++ example's estimates."""
 
-import os
-import subprocess
 import sys
 import threading
 
@@ -11,7 +9,7 @@ import pytest
 
 import adaptobs
 from adaptobs import UpdateStatus
-from conftest import make_filter, make_observer, step_by_step
+from conftest import cxx_example_table, make_filter, make_observer, step_by_step
 
 
 def test_update_status_is_an_int_enum():
@@ -101,11 +99,7 @@ def test_the_augmented_kalman_filter_converges_on_the_satellite(satellite):
 
 def test_the_satellite_replay_matches_the_cxx_example(tmp_path):
     """The C++ example's CSV (same plant, same seed) against the Python run, to 1e-12."""
-    examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
-    if not examples:
-        pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
-    subprocess.run([os.path.join(examples, "satellite"), "--out", str(tmp_path)], check=True, capture_output=True)
-    table = np.genfromtxt(tmp_path / "satellite.csv", delimiter=",", names=True)
+    table = cxx_example_table(tmp_path, "satellite")
     system = adaptobs.examples.satellite()
     data = adaptobs.examples.simulate_satellite(len(table), noise=0.01, seed=2003)
     assert np.array_equal(data["Y"][:, 0], table["y_1"])

@@ -2,11 +2,8 @@
 plant of section 6: the polytopic model, the observer (65)/(21), its replay of the
 C++ example, its copies and refusals, and the vertex LMIs of theorems 1-2."""
 
-import copy
 import gc
-import os
 import pickle
-import subprocess
 import weakref
 
 import numpy as np
@@ -14,6 +11,7 @@ import pytest
 
 import adaptobs
 from adaptobs import ConfigurationError, UpdateStatus
+from conftest import assert_update_follows_run, cxx_example_table
 
 B_CONSTANT = 0.4  # b of Table 1
 
@@ -110,14 +108,8 @@ def test_the_observer_estimates_the_growth_rate_error_and_the_unmeasured_substra
 
 def test_the_wwtp_replay_matches_the_cxx_example(tmp_path, wwtp):
     """The C++ example's CSV (same plant, same losses from the same seed) against the Python run, to 1e-12."""
-    examples = os.environ.get("ADAPTOBS_EXAMPLES_DIR")
-    if not examples:
-        pytest.skip("ADAPTOBS_EXAMPLES_DIR (the built C++ examples) is not set")
-    if not os.path.exists(os.path.join(examples, "wwtp")):
-        pytest.skip("the wwtp example is built only with DSDP (its LMI design)")
-    subprocess.run([os.path.join(examples, "wwtp"), "--out", str(tmp_path), "--drop", "0.2", "--seed", "7"],
-                   check=True, capture_output=True, text=True)
-    table = np.genfromtxt(tmp_path / "wwtp.csv", delimiter=",", names=True)
+    table = cxx_example_table(tmp_path, "wwtp", "--drop", "0.2", "--seed", "7",
+                              unbuilt="the wwtp example is built only with DSDP (its LMI design)")
     data = adaptobs.examples.simulate_wwtp(len(table), theta=0.1, drop=0.2, seed=7)
     assert np.array_equal(data["Y"][:, 0], table["y_1"])
     assert np.array_equal(data["present"][:, 0], table["y_available"] == 1)
@@ -158,21 +150,9 @@ def test_run_equals_update_and_copies_continue_bit_for_bit(wwtp, K_theta):
     present[100:130, 0] = False
     Y[100:130, 0] = np.nan  # absent: ignored
     Y[200, 0] = np.inf  # present: the sample is rejected
-    batch = make_observer(wwtp, K_theta)
-    result = batch.run(U, Y, present=present)
-    stepped = make_observer(wwtp, K_theta)
-    for k in range(len(Y)):
-        if k == 150:
-            stepped = pickle.loads(pickle.dumps(stepped))
-        if k == 250:
-            stepped = copy.deepcopy(stepped)
-        if k == 300:
-            stepped = copy.copy(stepped)
-        status = stepped.update(U[k], Y[k], present=present[k])
-        assert status == result.status[k]
-        assert np.array_equal(stepped.state, result.state[k])
-        assert np.array_equal(stepped.parameters, result.parameters[k])
-        assert np.array_equal(stepped.output_error, result.output_error[k])
+    result, batch, stepped = assert_update_follows_run(lambda: make_observer(wwtp, K_theta), U, Y, present,
+                                                       {150: "pickle", 250: "deepcopy", 300: "copy"},
+                                                       fields=("state", "parameters", "output_error"))
     assert result.status[200] == UpdateStatus.nonfinite_input
     assert np.count_nonzero(result.status) == 1
     assert stepped.step == batch.step == 399

@@ -129,12 +129,8 @@ template <typename Scalar>
     const std::vector<Eigen::MatrixX<Scalar>>& H_sequence) {
   using Matrix = Eigen::MatrixX<Scalar>;
   constexpr std::string_view who = "check_guiro_convergence";
-  detail::require_square(E, who, "E");
-  const Index n = E.rows(), m = C.rows(), p = Hbar.cols();
-  detail::require_shape(C, m, n, who, "C");
-  detail::require_shape(Hbar, n, p, who, "Hbar");
-  detail::require_shape(K, n, m, who, "K");
-  detail::require_shape(Gamma, p, m, who, "Gamma");
+  detail::require_guiro_sizes(E, C, Hbar, K, Gamma, who);
+  const Index n = E.rows(), p = Hbar.cols();
   const Matrix u = guiro_error_matrix_dynamic<Scalar>(E, C, Hbar, K, Gamma);
   detail::require_finite(u, who, "E, C, Hbar, K, Gamma");
 

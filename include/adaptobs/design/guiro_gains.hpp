@@ -83,6 +83,25 @@ struct GuiroGains {
   Scalar eigenvalue_mismatch = 0;  ///< largest |eig(U) − requested| (greedy matching)
 };
 
+namespace detail {
+
+/// The sizes U of Guiro et al. (2008), §2.2, is built from: refuses, naming
+/// `who`, an E that is not square and a C (m × n), \f$\bar H\f$ (n × p), K (n × m)
+/// or Γ (p × m) that does not fit it.
+template <typename Scalar>
+void require_guiro_sizes(const Eigen::MatrixX<Scalar>& E, const Eigen::MatrixX<Scalar>& C,
+                         const Eigen::MatrixX<Scalar>& Hbar, const Eigen::MatrixX<Scalar>& K,
+                         const Eigen::MatrixX<Scalar>& Gamma, std::string_view who) {
+  require_square(E, who, "E");
+  const Index n = E.rows(), p = Hbar.cols(), m = C.rows();
+  require_shape(C, m, n, who, "C");
+  require_shape(Hbar, n, p, who, "Hbar");
+  require_shape(K, n, m, who, "K");
+  require_shape(Gamma, p, m, who, "Gamma");
+}
+
+}  // namespace detail
+
 /// Error matrix \f$U = \begin{bmatrix}(I-KC)E & (I-KC)E\bar H\\ -\Gamma C & I\end{bmatrix}\f$
 /// of Guiro et al. (2008), §2.2 (eq. (5) with \f$H_0\f$ replaced by \f$\bar H\f$),
 /// on run-time sizes; `guiro_error_matrix` is the same for fixed-size
@@ -95,13 +114,8 @@ template <typename Scalar>
                                                                 const Eigen::MatrixX<Scalar>& K,
                                                                 const Eigen::MatrixX<Scalar>& Gamma) {
   using Matrix = Eigen::MatrixX<Scalar>;
-  constexpr std::string_view who = "guiro_error_matrix";
-  detail::require_square(E, who, "E");
-  const Index n = E.rows(), p = Hbar.cols(), m = C.rows();
-  detail::require_shape(C, m, n, who, "C");
-  detail::require_shape(Hbar, n, p, who, "Hbar");
-  detail::require_shape(K, n, m, who, "K");
-  detail::require_shape(Gamma, p, m, who, "Gamma");
+  detail::require_guiro_sizes(E, C, Hbar, K, Gamma, "guiro_error_matrix");
+  const Index n = E.rows(), p = Hbar.cols();
   const Matrix ikc_e = (Matrix::Identity(n, n) - K * C) * E;
   Matrix u(n + p, n + p);
   u.topLeftCorner(n, n) = ikc_e;

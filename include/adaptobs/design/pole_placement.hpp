@@ -564,12 +564,8 @@ template <class DA, class DC, class DP>
   const auto d =
       place_output_injection_dynamic<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(C),
                                              detail::complex_poles<Scalar>(poles, "place_output_injection"), options);
-  OutputInjectionGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime> result;
-  result.L = d.L;
-  result.cayley_hamilton_residual = d.cayley_hamilton_residual;
-  result.transformation_condition = d.transformation_condition;
-  result.eigenvalue_mismatch = d.eigenvalue_mismatch;
-  return result;
+  return OutputInjectionGain<Scalar, DA::RowsAtCompileTime, DC::RowsAtCompileTime>{
+      d.L, d.cayley_hamilton_residual, d.transformation_condition, d.eigenvalue_mismatch};
 }
 
 /// State-feedback gain K (m × N) with the certificate of its placement.
@@ -616,12 +612,8 @@ template <class DA, class DB, class DP>
   detail::require_finite_shape(B, A.rows(), B.cols(), who, "B");
   const auto d = place_state_feedback_dynamic<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(B),
                                                       detail::complex_poles<Scalar>(poles, who), options);
-  StateFeedbackGain<Scalar, DA::RowsAtCompileTime, DB::ColsAtCompileTime> result;
-  result.K = d.K;
-  result.cayley_hamilton_residual = d.cayley_hamilton_residual;
-  result.transformation_condition = d.transformation_condition;
-  result.eigenvalue_mismatch = d.eigenvalue_mismatch;
-  return result;
+  return StateFeedbackGain<Scalar, DA::RowsAtCompileTime, DB::ColsAtCompileTime>{
+      d.K, d.cayley_hamilton_residual, d.transformation_condition, d.eigenvalue_mismatch};
 }
 
 #ifdef ADAPTOBS_PRECOMPILED
