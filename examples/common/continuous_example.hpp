@@ -41,12 +41,7 @@ void run_continuous_with(Plant& plant, double seconds, double period, int every,
     if (k % every != 0) continue;
     const auto& s = plant.sample();
     table.begin_row().add("t", plant.time()).add("u", s.u).add("y", s.y).add("x", plant.state());
-    table.add(detail::column_name("xhat", first.suffix), first.observer.state());
-    table.add("theta", plant.parameters());
-    table.add(detail::column_name("thetahat", first.suffix), first.observer.parameters());
-    (table.add(detail::column_name("xhat", rest.suffix), rest.observer.state())
-         .add(detail::column_name("thetahat", rest.suffix), rest.observer.parameters()),
-     ...);
+    add_estimates(table, plant.parameters(), first, rest...);
   }
 }
 

@@ -4,7 +4,7 @@
 ///
 /// The dense decompositions behind design routines (eigenvalues, Schur forms,
 /// LU and Cholesky factorizations on dynamic sizes)
-/// cost seconds to compile in every translation unit that calls them. Each such
+/// are costly to compile in every translation unit that calls them. Each such
 /// routine therefore runs on dynamic-size matrices through one public function
 /// template per scalar type, named `<routine>_dynamic` and taking
 /// `Eigen::MatrixX<Scalar>` (`place_output_injection_dynamic`,

@@ -9,7 +9,8 @@
 /// regressors, covariances, counters, the windows of the monitors — written out
 /// and read back so that the restored object continues exactly like the
 /// original. A class opts in with two constants and one member template that
-/// lists its fields once, for writing and for reading:
+/// lists its fields once, for writing and for reading (the `Archive` is a
+/// `SnapshotWriter` or a `SnapshotReader`):
 ///
 /// \code
 ///   static constexpr std::string_view snapshot_type = "GuyaderZhangObserver";
@@ -130,23 +131,27 @@ class SnapshotArchiveBase {
   std::string prefix_;
 };
 
-/// Writes every field it is shown into a snapshot.
+}  // namespace detail
+
+/// The archive a `visit_state` is shown by `snapshot`: writes every field it
+/// is shown into a snapshot.
 template <typename Scalar>
-class SnapshotWriter : public SnapshotArchiveBase {
+class SnapshotWriter : public detail::SnapshotArchiveBase {
  public:
   explicit SnapshotWriter(Snapshot<Scalar>& out, std::string prefix = {})
       : SnapshotArchiveBase(std::move(prefix)), out_(out) {}
 
+  /// Writes `field` (a matrix, a scalar, a counter, a flag or an enumerator) as `name`.
   template <class T>
   void operator()(std::string_view name, const T& field) {
-    if constexpr (SnapshotEigen<T>) {
+    if constexpr (detail::SnapshotEigen<T>) {
       SnapshotMatrix<Scalar> m{full_name(name), field.rows(), field.cols(), {}};
       m.values.resize(static_cast<std::size_t>(field.size()));
       Eigen::Map<T>(m.values.data(), field.rows(), field.cols()) = field;
       out_.matrices.push_back(std::move(m));
     } else if constexpr (std::floating_point<T>) {
       out_.matrices.push_back({full_name(name), 1, 1, {static_cast<Scalar>(field)}});
-    } else if constexpr (SnapshotIntegral<T>) {
+    } else if constexpr (detail::SnapshotIntegral<T>) {
       add_integer(full_name(name), static_cast<std::int64_t>(field));
     } else {
       static_assert(sizeof(T) == 0, "adaptobs: a snapshot field must be a matrix, a scalar or an integer");
@@ -157,7 +162,7 @@ class SnapshotWriter : public SnapshotArchiveBase {
   template <class T>
   void operator()(std::string_view name, const std::vector<T>& list) {
     add_integer(full_name(name) + ".size", static_cast<std::int64_t>(list.size()));
-    for (std::size_t i = 0; i < list.size(); ++i) (*this)(element_name(name, i), list[i]);
+    for (std::size_t i = 0; i < list.size(); ++i) (*this)(detail::element_name(name, i), list[i]);
   }
 
   /// Configuration that fixes the shape of the rest (a window length, an option).
@@ -173,6 +178,7 @@ class SnapshotWriter : public SnapshotArchiveBase {
     T::visit_state(member, archive);
   }
 
+  /// False: nothing is read, so a `visit_state` has nothing to check.
   static constexpr bool reading = false;
 
  private:
@@ -180,18 +186,19 @@ class SnapshotWriter : public SnapshotArchiveBase {
   Snapshot<Scalar>& out_;
 };
 
-/// Reads the fields back, each checked to exist with the object's shape, and
-/// the settings to agree.
+/// The archive a `visit_state` is shown by `restore`: reads the fields back,
+/// each checked to exist with the object's shape, and the settings to agree.
 template <typename Scalar>
-class SnapshotReader : public SnapshotArchiveBase {
+class SnapshotReader : public detail::SnapshotArchiveBase {
  public:
   explicit SnapshotReader(const Snapshot<Scalar>& in, std::string prefix = {})
       : SnapshotArchiveBase(std::move(prefix)), in_(in) {}
 
+  /// Reads the field `name` into `field`, which keeps its shape.
   template <class T>
   void operator()(std::string_view name, T& field) {
     const std::string full = full_name(name);
-    if constexpr (SnapshotEigen<T>) {
+    if constexpr (detail::SnapshotEigen<T>) {
       const SnapshotMatrix<Scalar>& m = matrix(full);
       if (m.rows != field.rows() || m.cols != field.cols() || static_cast<Index>(m.values.size()) != m.rows * m.cols)
         fail_field_shape(full, m.rows, m.cols, field.rows(), field.cols());
@@ -200,29 +207,34 @@ class SnapshotReader : public SnapshotArchiveBase {
       const SnapshotMatrix<Scalar>& m = matrix(full);
       if (m.rows != 1 || m.cols != 1 || m.values.size() != 1) fail_field_shape(full, m.rows, m.cols, 1, 1);
       field = static_cast<T>(m.values.front());
-    } else if constexpr (SnapshotIntegral<T>) {
+    } else if constexpr (detail::SnapshotIntegral<T>) {
       field = static_cast<T>(integer(full));
     } else {
       static_assert(sizeof(T) == 0, "adaptobs: a snapshot field must be a matrix, a scalar or an integer");
     }
   }
 
+  /// A list of matrices, of the length it already has.
   template <class T>
   void operator()(std::string_view name, std::vector<T>& list) {
     check_setting(full_name(name) + ".size", static_cast<std::int64_t>(list.size()));
-    for (std::size_t i = 0; i < list.size(); ++i) (*this)(element_name(name, i), list[i]);
+    for (std::size_t i = 0; i < list.size(); ++i) (*this)(detail::element_name(name, i), list[i]);
   }
 
+  /// Configuration, which must agree with the snapshot's.
   void setting(std::string_view name, std::int64_t value) { check_setting(full_name(name), value); }
 
+  /// The archive for the fields of a member object, named "name.field".
   [[nodiscard]] SnapshotReader nested(std::string_view name) const { return SnapshotReader(in_, nested_prefix(name)); }
 
+  /// The fields of a member object with a `visit_state` of its own, under "name.".
   template <class T>
   void object(std::string_view name, T& member) {
     SnapshotReader archive = nested(name);
     T::visit_state(member, archive);
   }
 
+  /// True: the fields have just been read, and a `visit_state` may check them.
   static constexpr bool reading = true;
 
  private:
@@ -238,7 +250,7 @@ class SnapshotReader : public SnapshotArchiveBase {
   }
   [[noreturn]] void fail_field_shape(const std::string& full, Index rows, Index cols, Index own_rows,
                                      Index own_cols) const {
-    Message os;
+    detail::Message os;
     os << "holds field '" << full << "' of " << rows << "x" << cols << " where this " << in_.type << " has " << own_rows
        << "x" << own_cols;
     fail_argument("restore", "snapshot", os.str());
@@ -246,7 +258,7 @@ class SnapshotReader : public SnapshotArchiveBase {
   void check_setting(const std::string& full, std::int64_t value) const {
     const std::int64_t stored = integer(full);
     if (stored != value) {
-      Message os;
+      detail::Message os;
       os << "holds '" << full << "' = " << stored << " where this " << in_.type << " has " << value
          << ": restore into an object built with the same configuration";
       fail_argument("restore", "snapshot", os.str());
@@ -255,15 +267,13 @@ class SnapshotReader : public SnapshotArchiveBase {
   const Snapshot<Scalar>& in_;
 };
 
-}  // namespace detail
-
 /// The state of `object`, every field the next update reads.
 template <Snapshottable T>
 [[nodiscard]] Snapshot<snapshot_scalar_t<T>> snapshot(const T& object) {
   Snapshot<snapshot_scalar_t<T>> out;
   out.type = std::string(T::snapshot_type);
   out.version = T::snapshot_version;
-  detail::SnapshotWriter<snapshot_scalar_t<T>> writer(out);
+  SnapshotWriter<snapshot_scalar_t<T>> writer(out);
   T::visit_state(object, writer);
   return out;
 }
@@ -293,7 +303,7 @@ void restore(T& object, const Snapshot<snapshot_scalar_t<T>>& state) {
   detail::require_snapshot_type<T>(state);
   // Read into a copy, so that a failure at any field leaves `object` as it was.
   T candidate(object);
-  detail::SnapshotReader<snapshot_scalar_t<T>> reader(state);
+  SnapshotReader<snapshot_scalar_t<T>> reader(state);
   T::visit_state(candidate, reader);
   object = std::move(candidate);
 }

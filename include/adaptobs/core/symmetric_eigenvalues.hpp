@@ -7,8 +7,7 @@
 /// eigenvalues of small symmetric matrices. Jacobi rotations give them to high
 /// relative accuracy (Demmel & Veselić, "Jacobi's method is more accurate than
 /// QR", SIAM J. Matrix Anal. Appl. 13(4), 1992), and the routine is a few
-/// scalar loops: unlike a tridiagonal QR solver it costs next to nothing to
-/// compile in every translation unit that calls it.
+/// scalar loops, cheap to compile where it is called (unlike a tridiagonal QR solver).
 
 #include <adaptobs/core/dimensions.hpp>
 

@@ -5,7 +5,9 @@
 /// Bad configuration fails where it is given (a constructor or a design
 /// function) with a `ConfigurationError` whose message names the component and
 /// the offending argument, e.g. `GuyaderZhangObserver: argument 'mu' must be
-/// positive and finite (got -1)`.
+/// positive and finite (got -1)`. The argument checks are public, so that a
+/// model or observer written for the library's concepts refuses its bad
+/// configuration in the same terms.
 
 #include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/detail/finite.hpp>
@@ -31,14 +33,29 @@ class ConfigurationError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-namespace detail {
+/// \name Argument checks
+/// The checks every constructor and design routine of the library makes of its
+/// arguments, for a model, observer or design routine of one's own that is to
+/// fail as the library's do: each throws `ConfigurationError` with the message
+/// "<who>: argument '<argument>' <problem>", e.g.
+/// `require_positive(mu, "MyObserver", "mu")` for mu = −1 gives
+/// `MyObserver: argument 'mu' must be positive and finite (got -1)`.
+/// \{
 
+/// Throws `ConfigurationError` "<who>: argument '<argument>' <problem>".
 [[noreturn]] inline void fail_argument(std::string_view who, std::string_view argument, std::string_view problem) {
   std::string message;
   message.reserve(who.size() + argument.size() + problem.size() + 16);
   message.append(who).append(": argument '").append(argument).append("' ").append(problem);
   throw ConfigurationError(message);
 }
+
+/// `fail_argument(who, argument, problem)` unless `condition` holds.
+inline void require(bool condition, std::string_view who, std::string_view argument, std::string_view problem) {
+  if (!condition) fail_argument(who, argument, problem);
+}
+
+namespace detail {
 
 // The failures of the shape checks format their message outside the templates, so
 // that a translation unit compiles each once rather than once per matrix type.
@@ -71,10 +88,6 @@ namespace detail {
   return name.str();
 }
 
-inline void require(bool condition, std::string_view who, std::string_view argument, std::string_view problem) {
-  if (!condition) fail_argument(who, argument, problem);
-}
-
 /// A finite scalar of the sign `what` names ("positive", "non-negative").
 template <typename Scalar>
 void require_finite_with_sign(bool sign_holds, Scalar value, std::string_view who, std::string_view argument,
@@ -86,25 +99,39 @@ void require_finite_with_sign(bool sign_holds, Scalar value, std::string_view wh
   }
 }
 
+/// True when the symmetric `m` (lower triangle read) is positive definite: `cholesky_in_place` on a copy.
+template <class Derived>
+[[nodiscard]] bool cholesky_succeeds(const Eigen::MatrixBase<Derived>& m) {
+  Eigen::Matrix<typename Derived::Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> l = m;
+  return cholesky_in_place(l);
+}
+
+}  // namespace detail
+
+/// A positive, finite scalar (a gain, a period, a forgetting horizon).
 template <typename Scalar>
 void require_positive(Scalar value, std::string_view who, std::string_view argument) {
-  require_finite_with_sign(value > Scalar(0), value, who, argument, "positive");
+  detail::require_finite_with_sign(value > Scalar(0), value, who, argument, "positive");
 }
 
+/// A non-negative, finite scalar (a noise level, a margin).
 template <typename Scalar>
 void require_non_negative(Scalar value, std::string_view who, std::string_view argument) {
-  require_finite_with_sign(value >= Scalar(0), value, who, argument, "non-negative");
+  detail::require_finite_with_sign(value >= Scalar(0), value, who, argument, "non-negative");
 }
 
+/// A matrix of `rows` × `cols` (the check that keeps a run-time-sized argument
+/// from being multiplied with the wrong sizes).
 template <class Derived>
 void require_shape(const Eigen::EigenBase<Derived>& m, Index rows, Index cols, std::string_view who,
                    std::string_view argument) {
-  if (m.rows() != rows || m.cols() != cols) fail_shape(rows, cols, m.rows(), m.cols(), who, argument);
+  if (m.rows() != rows || m.cols() != cols) detail::fail_shape(rows, cols, m.rows(), m.cols(), who, argument);
 }
 
+/// A square matrix.
 template <class Derived>
 void require_square(const Eigen::EigenBase<Derived>& m, std::string_view who, std::string_view argument) {
-  if (m.rows() != m.cols()) fail_not_square(m.rows(), m.cols(), who, argument);
+  if (m.rows() != m.cols()) detail::fail_not_square(m.rows(), m.cols(), who, argument);
 }
 
 /// One row or one column, whatever the type (a 1 × n `MatrixXd` is a vector).
@@ -113,9 +140,10 @@ void require_vector(const Eigen::EigenBase<Derived>& m, std::string_view who, st
   if (m.rows() != 1 && m.cols() != 1) fail_argument(who, argument, "must be a vector (one row or one column)");
 }
 
+/// Only finite entries (no infinity, no NaN).
 template <class Derived>
 void require_finite(const Eigen::DenseBase<Derived>& m, std::string_view who, std::string_view argument) {
-  if (!all_finite(m)) fail_argument(who, argument, "must contain only finite numbers");
+  if (!detail::all_finite(m)) fail_argument(who, argument, "must contain only finite numbers");
 }
 
 /// The shape check, then the finiteness check, of one argument: the pair that
@@ -132,38 +160,8 @@ void require_finite_shape(const Eigen::DenseBase<Derived>& m, Index rows, Index 
 template <class Derived>
 void require_finite_shape(const Eigen::DenseBase<Derived>& m, Index rows, Index cols, std::string_view who,
                           std::string_view list, std::size_t index) {
-  if (m.rows() != rows || m.cols() != cols || !all_finite(m))
-    require_finite_shape(m, rows, cols, who, element_name(list, index));
-}
-
-/// The data of an observability question: A square and finite, C finite with
-/// A's columns (`output_matrix` names C). Returns the order n.
-template <class DA, class DC>
-Index require_output_pair(const Eigen::DenseBase<DA>& A, const Eigen::DenseBase<DC>& C, std::string_view who,
-                          std::string_view output_matrix = "C") {
-  require_square(A, who, "A");
-  require_finite(A, who, "A");
-  require_finite_shape(C, C.rows(), A.rows(), who, output_matrix);
-  return A.rows();
-}
-
-/// A single-output pair (A, c): `require_output_pair` with c one row. Returns
-/// the order n, which the design routines of SISO systems go on with.
-template <class DA, class DC>
-Index require_single_output_pair(const Eigen::DenseBase<DA>& A, const Eigen::DenseBase<DC>& c, std::string_view who) {
-  const Index n = require_output_pair(A, c, who, "c");
-  require_shape(c, 1, n, who, "c");
-  return n;
-}
-
-/// A single-input single-output triple (A, b, c): A square, b one column and
-/// c one row of its order, all finite. Returns the order n.
-template <class DA, class DB, class DC>
-Index require_siso_triple(const Eigen::DenseBase<DA>& A, const Eigen::DenseBase<DB>& b, const Eigen::DenseBase<DC>& c,
-                          std::string_view who) {
-  const Index n = require_single_output_pair(A, c, who);
-  require_finite_shape(b, n, 1, who, "b");
-  return n;
+  if (m.rows() != rows || m.cols() != cols || !detail::all_finite(m))
+    require_finite_shape(m, rows, cols, who, detail::element_name(list, index));
 }
 
 /// A size given at run time for a dimension of compile-time size `N`:
@@ -195,15 +193,16 @@ void require_system_sizes(const System& s, const Sizes& sizes, std::string_view 
   if (s.A.rows() == sizes.nx && s.A.cols() == sizes.nx && s.B.rows() == sizes.nx && s.B.cols() == sizes.nu &&
       s.C.rows() == sizes.ny && s.C.cols() == sizes.nx)
     return;
-  Message os;
+  detail::Message os;
   os << "returns A " << s.A.rows() << "x" << s.A.cols() << ", B " << s.B.rows() << "x" << s.B.cols() << ", C "
      << s.C.rows() << "x" << s.C.cols() << " where the model's sizes give A " << sizes.nx << "x" << sizes.nx << ", B "
      << sizes.nx << "x" << sizes.nu << ", C " << sizes.ny << "x" << sizes.nx;
   fail_argument(who, callable, os.str());
 }
 
-/// The initial estimates of an observer: a finite state column of nx entries
-/// and a finite parameter column of np entries, named in the error as given.
+/// The initial estimates of an observer (or the initial true values of a
+/// simulated plant): a finite state column of nx entries and a finite
+/// parameter column of np entries, named in the error as given.
 template <class X, class Theta>
 void require_initial_estimates(const Eigen::DenseBase<X>& x0, Index nx, const Eigen::DenseBase<Theta>& theta0, Index np,
                                std::string_view who, std::string_view x_name = "x0",
@@ -216,7 +215,7 @@ void require_initial_estimates(const Eigen::DenseBase<X>& x0, Index nx, const Ei
 template <class Derived>
 [[nodiscard]] bool is_symmetric(const Eigen::MatrixBase<Derived>& m) {
   using Scalar = typename Derived::Scalar;
-  if (m.rows() != m.cols() || !all_finite(m)) return false;
+  if (m.rows() != m.cols() || !detail::all_finite(m)) return false;
   if (m.size() == 0) return true;
   const Scalar scale = m.cwiseAbs().maxCoeff();
   const Scalar tol = Scalar(100) * std::numeric_limits<Scalar>::epsilon() * (scale > Scalar(0) ? scale : Scalar(1));
@@ -230,19 +229,12 @@ void require_symmetric(const Eigen::MatrixBase<Derived>& m, std::string_view who
   if (!is_symmetric(m)) fail_argument(who, argument, "must be symmetric");
 }
 
-/// True when the symmetric `m` (lower triangle read) is positive definite: `cholesky_in_place` on a copy.
-template <class Derived>
-[[nodiscard]] bool cholesky_succeeds(const Eigen::MatrixBase<Derived>& m) {
-  Eigen::Matrix<typename Derived::Scalar, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime> l = m;
-  return cholesky_in_place(l);
-}
-
 /// Symmetric positive definite (a Cholesky factorization exists).
 template <class Derived>
 void require_positive_definite(const Eigen::MatrixBase<Derived>& m, std::string_view who, std::string_view argument) {
   require_finite(m, who, argument);
   require_symmetric(m, who, argument);
-  if (!cholesky_succeeds(m)) fail_argument(who, argument, "must be positive definite");
+  if (!detail::cholesky_succeeds(m)) fail_argument(who, argument, "must be positive definite");
 }
 
 /// Symmetric positive semidefinite: no eigenvalue below −100 n ε max|λ| (round-off
@@ -254,12 +246,53 @@ void require_positive_semidefinite(const Eigen::MatrixBase<Derived>& m, std::str
   require_finite(m, who, argument);
   require_symmetric(m, who, argument);
   if (m.size() == 0) return;
-  // Configuration-time check on a dynamic copy: one instantiation per scalar type.
+  // On a dynamic copy: one instantiation per scalar type.
   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> lambda =
       symmetric_eigenvalues(Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>(m));
   const Scalar tol = Scalar(100) * Scalar(m.rows()) * std::numeric_limits<Scalar>::epsilon() *
                      std::max(std::abs(lambda(0)), std::abs(lambda(lambda.size() - 1)));
   if (!(lambda(0) >= -tol)) fail_argument(who, argument, "must be positive semidefinite");
+}
+
+/// \}
+
+namespace detail {
+
+// The argument checks under the names the library's own code uses for them.
+using adaptobs::fail_argument, adaptobs::require, adaptobs::require_positive, adaptobs::require_non_negative,
+    adaptobs::require_shape, adaptobs::require_square, adaptobs::require_vector, adaptobs::require_finite,
+    adaptobs::require_finite_shape, adaptobs::require_size, adaptobs::validate_state_space,
+    adaptobs::require_system_sizes, adaptobs::require_initial_estimates, adaptobs::is_symmetric,
+    adaptobs::require_symmetric, adaptobs::require_positive_definite, adaptobs::require_positive_semidefinite;
+
+/// The data of an observability question: A square and finite, C finite with
+/// A's columns (`output_matrix` names C). Returns the order n.
+template <class DA, class DC>
+Index require_output_pair(const Eigen::DenseBase<DA>& A, const Eigen::DenseBase<DC>& C, std::string_view who,
+                          std::string_view output_matrix = "C") {
+  require_square(A, who, "A");
+  require_finite(A, who, "A");
+  require_finite_shape(C, C.rows(), A.rows(), who, output_matrix);
+  return A.rows();
+}
+
+/// A single-output pair (A, c): `require_output_pair` with c one row. Returns
+/// the order n, which the design routines of SISO systems go on with.
+template <class DA, class DC>
+Index require_single_output_pair(const Eigen::DenseBase<DA>& A, const Eigen::DenseBase<DC>& c, std::string_view who) {
+  const Index n = require_output_pair(A, c, who, "c");
+  require_shape(c, 1, n, who, "c");
+  return n;
+}
+
+/// A single-input single-output triple (A, b, c): A square, b one column and
+/// c one row of its order, all finite. Returns the order n.
+template <class DA, class DB, class DC>
+Index require_siso_triple(const Eigen::DenseBase<DA>& A, const Eigen::DenseBase<DB>& b, const Eigen::DenseBase<DC>& c,
+                          std::string_view who) {
+  const Index n = require_single_output_pair(A, c, who);
+  require_finite_shape(b, n, 1, who, "b");
+  return n;
 }
 
 /// Throws `ConfigurationError` when a run-time-sized output mask does not have ny entries.

@@ -82,8 +82,8 @@ namespace detail {
 
 // The products here (and in stein.hpp, schur_stability.hpp, polynomial.hpp) are
 // Eigen's lazy, coefficient-based ones: the few dozen rows of a design problem
-// do not need the cache-blocked product, which a header-only program would
-// otherwise compile once per combination of transposed operands.
+// do not need the cache-blocked product, costly to compile per combination of
+// transposed operands.
 
 inline constexpr RiccatiRoles control_dare_roles{
     "solve_dare", "B",

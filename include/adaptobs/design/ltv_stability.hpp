@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <concepts>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <string_view>
@@ -82,7 +83,7 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> exponents_of_monodromy(
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   if (!m.allFinite()) return Vector::Constant(m.rows(), std::numeric_limits<Scalar>::quiet_NaN());
   Vector exponents = dense_eigenvalues(dynamic_copy(m)).cwiseAbs().array().log() / period;
-  std::sort(exponents.begin(), exponents.end(), [](Scalar a, Scalar b) { return a > b; });
+  std::sort(exponents.begin(), exponents.end(), std::greater<>());
   return exponents;
 }
 
@@ -156,17 +157,10 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn&
           std::isfinite(fine(i)) && std::isfinite(coarse(i)) && std::abs(fine(i) - coarse(i)) <= tolerance;
       if (!(fine(i) >= bound) && !agreed) fine(i) = coarse(i) = bound;
     }
-    std::sort(fine.begin(), fine.end(), [](Scalar a, Scalar b) { return a > b; });
-    std::sort(coarse.begin(), coarse.end(), [](Scalar a, Scalar b) { return a > b; });
-    Scalar difference = 0;
+    std::sort(fine.begin(), fine.end(), std::greater<>());
+    std::sort(coarse.begin(), coarse.end(), std::greater<>());
     Index worst = 0;
-    for (Index i = 0; i < count; ++i) {
-      const Scalar d = std::abs(fine(i) - coarse(i));
-      if (d > difference) {
-        difference = d;
-        worst = i;
-      }
-    }
+    const Scalar difference = (fine - coarse).head(count).cwiseAbs().maxCoeff(&worst);
     if (difference <= tolerance) return fine;
     if (doubling + 1 >= floquet_max_doublings) {
       std::ostringstream os;

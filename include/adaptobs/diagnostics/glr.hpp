@@ -44,7 +44,7 @@ namespace adaptobs {
 /// Longest window a GLR searches: each evaluation costs O(window) per component.
 inline constexpr Index glr_max_window = Index{1} << 20;
 /// Most window × components × mean_evaluations products `glr_threshold`
-/// simulates per candidate threshold (about ten seconds in all).
+/// simulates per candidate threshold, which bounds the run time of the search.
 inline constexpr double glr_max_simulation_work = 1e7;
 /// Longest mean run between false alarms `glr_threshold` simulates, in evaluations.
 inline constexpr double glr_max_mean_evaluations = 1e5;

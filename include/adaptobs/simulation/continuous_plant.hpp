@@ -52,7 +52,7 @@ class ContinuousLinearPlant : public Model::Dims {
         rk4_(eta_),
         rng_(options.seed) {
     constexpr std::string_view who = "ContinuousLinearPlant";
-    detail::require_plant_start(eta_, theta_, model_.sizes(), who, "eta0");
+    require_initial_estimates(eta_, model_.sizes().nx, theta_, model_.sizes().np, who, "eta0", "theta");
     detail::require_positive(options.period, who, "options.period");
     detail::require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
     detail::require_non_negative(options.output_noise, who, "options.output_noise");

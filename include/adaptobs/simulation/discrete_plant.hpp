@@ -48,7 +48,7 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
         noise_(noise),
         rng_(noise.seed) {
     constexpr std::string_view who = "DiscreteLinearPlant";
-    detail::require_plant_start(x_, theta_, model_.sizes(), who, "x0");
+    require_initial_estimates(x_, model_.sizes().nx, theta_, model_.sizes().np, who, "x0", "theta");
     detail::require_non_negative(noise.output, who, "noise.output");
     detail::require_non_negative(noise.state, who, "noise.state");
     detail::require_non_negative(noise.parameter, who, "noise.parameter");

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// What the simulated plants share: the check of their initial true state and
-/// parameters, and the trajectory of a discrete-time plant with its accessors.
+/// What the simulated plants share: the check of what their callables return,
+/// and the trajectory of a discrete-time plant with its accessors.
 
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -12,16 +12,6 @@
 namespace adaptobs {
 
 namespace detail {
-
-/// The initial true state and parameters of a simulated plant: finite columns
-/// of nx and np entries, named in the error as given (the state's name differs
-/// between the discrete and the continuous plants).
-template <class X, class Theta>
-void require_plant_start(const Eigen::DenseBase<X>& x0, const Eigen::DenseBase<Theta>& theta, const Sizes& sizes,
-                         std::string_view who, std::string_view x_name) {
-  require_finite_shape(x0, sizes.nx, 1, who, x_name);
-  require_finite_shape(theta, sizes.np, 1, who, "theta");
-}
 
 /// What a user callable of a plant returned (an input, a regressor, a next
 /// state), checked to be rows × cols before the plant stores or multiplies it:

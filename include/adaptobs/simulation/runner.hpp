@@ -54,23 +54,26 @@ inline std::string column_name(std::string_view base, std::string_view suffix) {
   if (!suffix.empty()) name.append("_").append(suffix);
   return name;
 }
-/// `xhat`, the true `theta`, `thetahat`, then the `xhat_*` and `thetahat_*` of
-/// every further observer: the estimates before the sample is consumed.
-template <class Parameters, Observer First, Observer... Rest>
-void add_estimates(SeriesTable& table, const Parameters& theta, const Tracked<First>& first,
-                   const Tracked<Rest>&... rest) {
-  table.add(column_name("xhat", first.suffix), first.observer.state());
-  table.add("theta", theta);
-  table.add(column_name("thetahat", first.suffix), first.observer.parameters());
-  (table.add(column_name("xhat", rest.suffix), rest.observer.state())
-       .add(column_name("thetahat", rest.suffix), rest.observer.parameters()),
-   ...);
-}
 struct NoExtraColumns {
   template <class P>
   void operator()(SeriesTable&, const P&) const {}
 };
 }  // namespace detail
+
+/// The estimate columns of a row as `simulate` writes them, for a simulation
+/// loop of one's own (a continuous-time plant, a hook between samples): `xhat`,
+/// the true `theta`, `thetahat`, then the `xhat_<suffix>` and `thetahat_<suffix>`
+/// of every further tracked observer.
+template <class Parameters, Observer First, Observer... Rest>
+void add_estimates(SeriesTable& table, const Parameters& theta, const Tracked<First>& first,
+                   const Tracked<Rest>&... rest) {
+  table.add(detail::column_name("xhat", first.suffix), first.observer.state());
+  table.add("theta", theta);
+  table.add(detail::column_name("thetahat", first.suffix), first.observer.parameters());
+  (table.add(detail::column_name("xhat", rest.suffix), rest.observer.state())
+       .add(detail::column_name("thetahat", rest.suffix), rest.observer.parameters()),
+   ...);
+}
 
 namespace detail {
 /// The loop of `simulate`; `loss` is null when every output arrives (and then

@@ -5,12 +5,10 @@
 ///
 /// Every update that weighs an error by an inverse covariance factors one: the
 /// innovation covariance of the Kalman filters and Riccati recursions, the
-/// \f$R + \varphi^T\Gamma\varphi\f$ of the least-squares laws, a few rows each. Eigen's
-/// `LLT` instantiates its blocked factorization and its triangular-solve and
-/// matrix-product kernels for every matrix type, a 2 × 2 one included: about a
-/// sixth of the compilation of a translation unit that runs a least-squares
-/// update. The loops below do the same arithmetic (left-looking Cholesky,
-/// forward and back substitution) for any size, fixed or dynamic.
+/// \f$R + \varphi^T\Gamma\varphi\f$ of the least-squares laws, a few rows each. The
+/// loops below do the arithmetic of Eigen's `LLT` (left-looking Cholesky,
+/// forward and back substitution) for any size, fixed or dynamic, without its
+/// blocked kernels, which are costly to compile for every matrix type.
 
 #include <adaptobs/core/dimensions.hpp>
 

@@ -1,7 +1,6 @@
 #pragma once
 /// \file
-/// Entry-by-entry copies: into dynamic-size matrices for design-time routines,
-/// and into a block of a stacked matrix for constructors (`copy_entries`).
+/// Entry-by-entry copies into dynamic-size matrices for design-time routines.
 ///
 /// Design routines (pole placement, gain design, stability certificates) work
 /// on dynamic-size matrices, so that their decompositions are instantiated
@@ -37,18 +36,8 @@ template <class Derived>
   return out;
 }
 
-/// `src` written into `dst` from entry (row, col) on, entry by entry: what a
-/// constructor filling a stacked matrix from its parts does once, without a
-/// block expression type per part (`dst` must be large enough).
-template <class Dst, class Src>
-void copy_entries(Eigen::MatrixBase<Dst>& dst, Index row, Index col, const Eigen::MatrixBase<Src>& src) {
-  for (Index j = 0; j < src.cols(); ++j)
-    for (Index i = 0; i < src.rows(); ++i) dst(row + i, col + j) = src(i, j);
-}
-
 /// `m.setZero(rows, cols)` without an expression: a constructor or a workspace sizes
-/// many small matrices of distinct types, and Eigen instantiates about twenty
-/// functions per type for `setZero`.
+/// many small matrices of distinct types, and `setZero` is costly to instantiate for each.
 template <class Derived>
 void zero_resize(Eigen::PlainObjectBase<Derived>& m, Index rows, Index cols) {
   m.resize(rows, cols);

@@ -2,13 +2,11 @@
 /// \file
 /// `Message`: the text of an error, built from strings and numbers.
 ///
-/// The checks of every constructor format their failure messages, so these few
-/// lines are compiled into every translation unit that builds an observer. An
-/// `std::ostringstream` brings its constructor, locale and destructor inline into
-/// each failure path; appending to a `std::string`, with `snprintf` for the
-/// numbers, gives the same text for a fraction of the code. Numbers print as a
-/// default `std::ostream` prints them: integers in full, floating-point values
-/// with `%g` (six significant digits, "inf", "nan").
+/// Appends to a `std::string`, with `snprintf` for the numbers, rather than
+/// streaming into an `std::ostringstream`: every constructor's failure path
+/// formats a message, and a string stream is costly to compile into each.
+/// Numbers print as a default `std::ostream` prints them: integers in full,
+/// floating-point values with `%g` (six significant digits, "inf", "nan").
 
 #include <cstdio>
 #include <string>

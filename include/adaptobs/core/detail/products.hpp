@@ -6,11 +6,9 @@
 /// Three evaluations, by size:
 /// - **tiny** (fixed, every dimension at most 3: the 3 × 3 times 3 × 1 and
 ///   1 × 2 times 2 × 2 products of the third-order and SISO observers): plain
-///   loops over the coefficients. Eigen's lazy product instantiates an evaluator
-///   and an unrolled reduction per pair of operand types, a large part of the
-///   compile time of a small observer's translation unit; at these sizes it
-///   vectorizes little, and the loops, which the compiler unrolls, run at least
-///   as fast (docs/performance.md).
+///   loops over the coefficients, which the compiler unrolls. Eigen's lazy
+///   product, costly to instantiate per pair of operand types, vectorizes
+///   little at these sizes (docs/performance.md).
 /// - **small** (fixed, every dimension at most 16): Eigen's lazy, coefficient-based
 ///   product, vectorized and unrolled. For fixed-size operands Eigen itself
 ///   switches to its cache-blocked GEMM kernel once rows + cols + depth reaches

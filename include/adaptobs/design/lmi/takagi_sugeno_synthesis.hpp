@@ -109,7 +109,7 @@ struct TakagiSugenoLmiProblem {
 namespace detail {
 inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSugenoLmiOptions& o,
                                  std::string_view who) {
-  const Index nx = data.nx(), ny = data.ny(), np = data.np();
+  const Index ny = data.ny(), np = data.np();
   require(std::isfinite(o.margin) && o.margin >= 0, who, "options.margin", "must be finite and non-negative");
   if (o.parameter_gain.size() > 0) {
     require_finite_shape(o.parameter_gain, np, ny, who, "options.parameter_gain");
@@ -126,7 +126,6 @@ inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSu
           "cannot minimise beta with options.fixed_gamma set (choose maximize_margin or feasibility)");
   require(!(o.objective == TakagiSugenoObjective::maximize_margin && !o.fixed_gamma), who, "options.fixed_gamma",
           "must be set for the maximize_margin objective (it normalizes the homogeneous LMIs)");
-  (void)nx;
 }
 }  // namespace detail
 
