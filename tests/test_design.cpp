@@ -389,13 +389,13 @@ TEST(Validation, PositiveSemidefiniteToleratesRoundingOnly) {
   RandomMatrices rng(33);
   const Eigen::MatrixXd g = rng.uniform<Eigen::MatrixXd>(2, 5);
   const Eigen::MatrixXd rank_two = g.transpose() * g;  // eigenvalues ~ 0 up to rounding
-  EXPECT_NO_THROW(adaptobs::detail::require_positive_semidefinite(rank_two, "test", "Q"));
+  EXPECT_NO_THROW(adaptobs::require_positive_semidefinite(rank_two, "test", "Q"));
   Eigen::MatrixXd indefinite = rank_two;
   indefinite(4, 4) -= 1e-6 * rank_two.norm();
   const Eigen::MatrixXd q = adaptobs::testing::random_orthogonal(rng, 5);
   const Eigen::MatrixXd rotated = q * Eigen::Vector<double, 5>(1, 2, 3, 4, -1e-6).asDiagonal() * q.transpose();
-  EXPECT_THROW(adaptobs::detail::require_positive_semidefinite(rotated, "test", "Q"), ConfigurationError);
-  EXPECT_THROW(adaptobs::detail::require_positive_semidefinite(indefinite, "test", "Q"), ConfigurationError);
+  EXPECT_THROW(adaptobs::require_positive_semidefinite(rotated, "test", "Q"), ConfigurationError);
+  EXPECT_THROW(adaptobs::require_positive_semidefinite(indefinite, "test", "Q"), ConfigurationError);
 }
 
 // The coefficients are read as a vector whatever its type: a 1 × 3 MatrixXd

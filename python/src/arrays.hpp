@@ -98,7 +98,8 @@ std::vector<std::size_t> shape_of(const A& a) {
 
 [[noreturn]] inline void fail_dimensions(std::string_view who, std::string_view name, std::string_view expected,
                                          const std::vector<std::size_t>& got) {
-  detail::fail_argument(who, name, std::string("must be ") + std::string(expected) + " (got " + shape_text(got) + ")");
+  adaptobs::fail_argument(who, name,
+                          std::string("must be ") + std::string(expected) + " (got " + shape_text(got) + ")");
 }
 
 /// The view of a 0-, 1- or 2-D array (a scalar 1 × 1, a vector a column).
@@ -126,7 +127,7 @@ inline Index integer_argument(nb::handle obj, std::string_view who, std::string_
   const Py_ssize_t value = PyNumber_AsSsize_t(obj.ptr(), PyExc_OverflowError);
   if (value == -1 && PyErr_Occurred()) {
     PyErr_Clear();
-    detail::fail_argument(who, name, "is out of range");
+    adaptobs::fail_argument(who, name, "is out of range");
   }
   return static_cast<Index>(value);
 }

@@ -80,8 +80,8 @@ std::vector<Eigen::MatrixXd> regressor_sequence(nb::handle obj, Index n, Index p
 /// A count argument that the library takes as an int.
 int int_argument(nb::handle obj, std::string_view who, std::string_view name) {
   const Index value = integer_argument(obj, who, name);
-  detail::require(value >= std::numeric_limits<int>::min() && value <= std::numeric_limits<int>::max(), who, name,
-                  "must fit an int");
+  adaptobs::require(value >= std::numeric_limits<int>::min() && value <= std::numeric_limits<int>::max(), who, name,
+                    "must fit an int");
   return static_cast<int>(value);
 }
 
@@ -109,14 +109,14 @@ struct PythonDynamics {
       if (a.ndim() != 2 || a.shape(0) != a.shape(1)) {
         std::ostringstream os;
         os << "must return a square matrix, an n x n array (got " << shape_text(shape) << " at t = " << t << ")";
-        detail::fail_argument(who, "A", os.str());
+        adaptobs::fail_argument(who, "A", os.str());
       }
       first_shape = shape;
     } else if (shape != first_shape) {
       std::ostringstream os;
       os << "must return an array of its first value's shape " << shape_text(first_shape) << " at every t (got "
          << shape_text(shape) << " at t = " << t << ")";
-      detail::fail_argument(who, "A", os.str());
+      adaptobs::fail_argument(who, "A", os.str());
     }
     return view(a, who, "A");
   }
@@ -129,7 +129,7 @@ PythonDynamics dynamics_of(nb::handle A, std::string_view who) {
   d.callable = PyCallable_Check(A.ptr()) != 0;
   if (!d.callable) {
     d.constant = matrix(A, who, "A");
-    detail::require_square(d.constant, who, "A");
+    adaptobs::require_square(d.constant, who, "A");
   }
   return d;
 }
@@ -142,7 +142,7 @@ MonitoredRun alarm_run(double start, double end, nb::handle times, nb::handle is
                        const std::string& times_name, const std::string& isolated_name) {
   MonitoredRun run{start, end, {}};
   if (times.is_none()) {
-    if (!isolated.is_none()) detail::fail_argument(who, isolated_name, "must come with the alarm times");
+    if (!isolated.is_none()) adaptobs::fail_argument(who, isolated_name, "must come with the alarm times");
     return run;
   }
   const Eigen::VectorXd t = vector(times, who, times_name);
@@ -223,13 +223,13 @@ DetectionSummary evaluate(nb::handle scenario, nb::handle fault_obj, nb::handle 
   constexpr std::string_view who = "evaluate_detection";
   const FaultDescription fault = fault_of(fault_obj, who);
   const Index first = integer_argument(first_seed_obj, who, "first_seed");
-  detail::require(first >= 0, who, "first_seed", "must be non-negative");
+  adaptobs::require(first >= 0, who, "first_seed", "must be non-negative");
   const Index threads = integer_argument(threads_obj, who, "threads");
-  detail::require(threads >= 0 && threads <= std::numeric_limits<unsigned>::max(), who, "threads",
-                  "must be non-negative (0: one per core)");
+  adaptobs::require(threads >= 0 && threads <= std::numeric_limits<unsigned>::max(), who, "threads",
+                    "must be non-negative (0: one per core)");
   const auto first_seed = static_cast<std::uint64_t>(first);
   if (PyCallable_Check(scenario.ptr())) {
-    if (seeds_obj.is_none()) detail::fail_argument(who, "seeds", "is required when the scenario is a callable");
+    if (seeds_obj.is_none()) adaptobs::fail_argument(who, "seeds", "is required when the scenario is a callable");
     const Index seeds = integer_argument(seeds_obj, who, "seeds");
     const PythonScenario python{scenario};
     nb::gil_scoped_release release;  // each scenario call takes the GIL back
@@ -242,12 +242,12 @@ DetectionSummary evaluate(nb::handle scenario, nb::handle fault_obj, nb::handle 
   const nb::object faulty_runs = scenario[0], fault_free_runs = scenario[1];
   const std::vector<MonitoredRun> faulty = recorded_runs(faulty_runs, who, "scenario[0]");
   const std::vector<MonitoredRun> twins = recorded_runs(fault_free_runs, who, "scenario[1]");
-  detail::require(faulty.size() == twins.size(), who, "scenario[1]",
-                  "must hold one fault-free run per faulty run of scenario[0] (" + std::to_string(faulty.size()) +
-                      ", got " + std::to_string(twins.size()) + ")");
+  adaptobs::require(faulty.size() == twins.size(), who, "scenario[1]",
+                    "must hold one fault-free run per faulty run of scenario[0] (" + std::to_string(faulty.size()) +
+                        ", got " + std::to_string(twins.size()) + ")");
   const auto recorded = static_cast<Index>(faulty.size());
   const Index seeds = seeds_obj.is_none() ? recorded : integer_argument(seeds_obj, who, "seeds");
-  detail::require(
+  adaptobs::require(
       seeds == recorded, who, "seeds",
       "must equal the number of recorded runs (" + std::to_string(recorded) + ", got " + std::to_string(seeds) + ")");
   const RecordedScenario replay{&faulty, &twins, first_seed};
@@ -310,7 +310,7 @@ void bind_checks(nb::module_& m) {
       [](nb::handle E, nb::handle C, nb::handle K, nb::handle Gamma, nb::handle Hbar, nb::handle H_sequence) {
         constexpr std::string_view who = "check_guiro_convergence";
         const Eigen::MatrixXd e = matrix(E, who, "E"), h = matrix(Hbar, who, "Hbar");
-        detail::require_square(e, who, "E");
+        adaptobs::require_square(e, who, "E");
         const std::vector<Eigen::MatrixXd> sequence =
             regressor_sequence(H_sequence, e.rows(), h.cols(), who, "H_sequence");
         return check_guiro_convergence(e, matrix(C, who, "C"), matrix(K, who, "K"), matrix(Gamma, who, "Gamma"), h,
@@ -434,7 +434,7 @@ void bind_checks(nb::module_& m) {
                               cc = row_argument(c, who, "c");
         const Index n = detail::require_siso_triple(a, bb, cc, who);
         const Eigen::MatrixXd p = matrix(P, who, "P");
-        detail::require_finite_shape(p, n, n, who, "P");
+        adaptobs::require_finite_shape(p, n, n, who, "P");
         return kyp_residuals(p, a, bb, cc);
       },
       nb::arg("P"), nb::arg("A"), nb::arg("b"), nb::arg("c"),

@@ -93,8 +93,8 @@ class PythonContinuousModel : public Dims {
     const auto [A, B, C] = system_tuple(matrices_at_(0.0), who, "matrices_at(0)");
     system_ = {matrix(A, who, "matrices_at(0)[0]"), matrix(B, who, "matrices_at(0)[1]"),
                matrix(C, who, "matrices_at(0)[2]")};
-    detail::validate_state_space(system_, who);
-    detail::require(np >= 0, who, "np", "must be non-negative");
+    adaptobs::validate_state_space(system_, who);
+    adaptobs::require(np >= 0, who, "np", "must be non-negative");
     sizes_ = {system_.A.rows(), system_.B.cols(), system_.C.rows(), np};
     detail::validate_regressor<Dims>(phi_, sizes_, who);
   }
@@ -112,7 +112,8 @@ class PythonContinuousModel : public Dims {
     read_as_at_zero(B, sizes_.nx, sizes_.nu, "matrices_at(t)[1]", system_.B);
     read_as_at_zero(C, sizes_.ny, sizes_.nx, "matrices_at(t)[2]", system_.C);
     if (!detail::all_finite(system_.A) || !detail::all_finite(system_.B) || !detail::all_finite(system_.C))
-      detail::fail_argument(who, "matrices_at(t)", "returned matrices that are not finite at t = " + std::to_string(t));
+      adaptobs::fail_argument(who, "matrices_at(t)",
+                              "returned matrices that are not finite at t = " + std::to_string(t));
     return system_;
   }
   [[nodiscard]] decltype(auto) regressor(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& y) const {
@@ -196,7 +197,7 @@ SignalReconstruction reconstruction_of(nb::handle obj, std::string_view who, std
   if (name == "hold") return SignalReconstruction::hold;
   if (name == "linear") return SignalReconstruction::linear;
   if (name == "quadratic") return SignalReconstruction::quadratic;
-  detail::fail_argument(who, argument, "must be 'hold', 'linear' or 'quadratic' (got '" + name + "')");
+  adaptobs::fail_argument(who, argument, "must be 'hold', 'linear' or 'quadratic' (got '" + name + "')");
 }
 
 // The sampling options from the keywords, each read by its Python name. The
@@ -205,8 +206,8 @@ UnifiedObserverOptions options_of(nb::handle substeps, nb::handle max_step, nb::
                                   nb::handle output, nb::handle excitation_window, std::string_view who) {
   const auto step_count = [who](nb::handle obj, std::string_view name) {
     const Index value = integer_argument(obj, who, name);
-    detail::require(value >= 1 && value <= std::numeric_limits<int>::max(), who, name,
-                    "must be at least 1 and fit an int");
+    adaptobs::require(value >= 1 && value <= std::numeric_limits<int>::max(), who, name,
+                      "must be at least 1 and fit an int");
     return static_cast<int>(value);
   };
   return {.sampling = {.substeps = step_count(substeps, "substeps"),
@@ -286,12 +287,12 @@ UpdateStatus continuous_step(ContinuousBound<Observer>& self, double t, nb::hand
   read_vector(y, s.ny, who, "y", self.sample.y);
   self.sample.t = t;
   if (u_mid.is_none() != y_mid.is_none())
-    detail::fail_argument(who, u_mid.is_none() ? "u_mid" : "y_mid", "must be given with the other midpoint signal");
+    adaptobs::fail_argument(who, u_mid.is_none() ? "u_mid" : "y_mid", "must be given with the other midpoint signal");
   if (u_mid.is_none()) {
     if (self.observer.started() && self.observer.sampling_options().needs_midpoint())
-      detail::fail_argument(who, "u_mid",
-                            "must be given, with y_mid: a 'quadratic' reconstruction needs the signals "
-                            "at the midpoint of every interval");
+      adaptobs::fail_argument(who, "u_mid",
+                              "must be given, with y_mid: a 'quadratic' reconstruction needs the signals "
+                              "at the midpoint of every interval");
     self.sample.midpoint.reset();
   } else {
     if (!self.sample.midpoint) self.sample.midpoint.emplace();
@@ -322,12 +323,12 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
   const Rows inputs = rows(u, samples, s.nu, who, "U");
   const Rows outputs = rows(y, samples, s.ny, who, "Y");
   if (u_mid.is_none() != y_mid.is_none())
-    detail::fail_argument(who, u_mid.is_none() ? "U_mid" : "Y_mid", "must be given with the other midpoint signal");
+    adaptobs::fail_argument(who, u_mid.is_none() ? "U_mid" : "Y_mid", "must be given with the other midpoint signal");
   const bool midpoints = !u_mid.is_none();
   if (!midpoints && self.observer.sampling_options().needs_midpoint() && (samples > 1 || self.observer.started()))
-    detail::fail_argument(who, "U_mid",
-                          "must be given, with Y_mid: a 'quadratic' reconstruction needs the signals at "
-                          "the midpoint of every interval");
+    adaptobs::fail_argument(who, "U_mid",
+                            "must be given, with Y_mid: a 'quadratic' reconstruction needs the signals at "
+                            "the midpoint of every interval");
   const Rows mid_inputs = midpoints ? rows(u_mid, samples, s.nu, who, "U_mid") : Rows{};
   const Rows mid_outputs = midpoints ? rows(y_mid, samples, s.ny, who, "Y_mid") : Rows{};
 
@@ -463,7 +464,7 @@ void bind_continuous_observers(nb::module_& m) {
           [](ContinuousModel* self, nb::handle A, nb::handle B, nb::handle C, nb::handle Phi, nb::handle np) {
             constexpr std::string_view who = "ContinuousLtiModel";
             PythonRegressor phi = regressor_of(Phi);
-            if (np.is_none() && phi.callable) detail::fail_argument(who, "np", "is required when Phi is a callable");
+            if (np.is_none() && phi.callable) adaptobs::fail_argument(who, "np", "is required when Phi is a callable");
             const Index parameters = np.is_none() ? phi.value.cols() : integer_argument(np, who, "np");
             new (self) ContinuousModel(matrix(A, who, "A"), matrix(B, who, "B"), matrix(C, who, "C"), std::move(phi),
                                        parameters);
@@ -487,7 +488,7 @@ void bind_continuous_observers(nb::module_& m) {
           [](PythonContinuousModel* self, nb::handle matrices_at, nb::handle Phi, nb::handle np) {
             constexpr std::string_view who = "ContinuousLtvModel";
             PythonRegressor phi = regressor_of(Phi, who);
-            if (np.is_none() && phi.callable) detail::fail_argument(who, "np", "is required when Phi is a callable");
+            if (np.is_none() && phi.callable) adaptobs::fail_argument(who, "np", "is required when Phi is a callable");
             const Index parameters = np.is_none() ? phi.value.cols() : integer_argument(np, who, "np");
             new (self) PythonContinuousModel(nb::borrow(matrices_at), std::move(phi), parameters, who);
           },
@@ -529,8 +530,8 @@ void bind_continuous_observers(nb::module_& m) {
           [](const Transform& t, nb::handle A, nb::handle B, nb::handle C) {
             constexpr std::string_view who = "StaticTransform.apply";
             const ContinuousSystem<Dims> system{matrix(A, who, "A"), matrix(B, who, "B"), matrix(C, who, "C")};
-            detail::validate_state_space(system, who);
-            detail::require_shape(system.A, t.T().rows(), t.T().rows(), who, "A");
+            adaptobs::validate_state_space(system, who);
+            adaptobs::require_shape(system.A, t.T().rows(), t.T().rows(), who, "A");
             const TransformedSystem<Dims> so = t.apply(system);
             nb::dict d;
             d["Ao"] = Eigen::MatrixXd(so.Ao);

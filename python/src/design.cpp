@@ -127,7 +127,7 @@ void bind_design(nb::module_& m) {
       [](nb::handle M, nb::handle margin) {
         constexpr std::string_view who = "is_schur_stable";
         const Eigen::MatrixXd a = matrix(M, who, "M");
-        detail::require_square(a, who, "M");
+        adaptobs::require_square(a, who, "M");
         return is_schur_stable(a, real_scalar(margin, who, "margin"));
       },
       nb::arg("M"), nb::arg("margin") = 0.0, "Every eigenvalue strictly inside the circle of radius 1 - margin.");
@@ -136,7 +136,7 @@ void bind_design(nb::module_& m) {
       [](nb::handle M, nb::handle margin) {
         constexpr std::string_view who = "is_hurwitz_stable";
         const Eigen::MatrixXd a = matrix(M, who, "M");
-        detail::require_square(a, who, "M");
+        adaptobs::require_square(a, who, "M");
         return is_hurwitz_stable(a, real_scalar(margin, who, "margin"));
       },
       nb::arg("M"), nb::arg("margin") = 0.0, "Every eigenvalue's real part below -margin.");

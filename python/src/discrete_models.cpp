@@ -54,9 +54,9 @@ SharedDiscreteModel ltv_from_arrays(nb::handle A, nb::handle B, nb::handle C, nb
     steps = p->steps();
   }
   if (steps == 0)
-    detail::fail_argument(who, "A",
-                          "(or B or C) must be given per step (steps x rows x cols); a model with the "
-                          "same matrices at every step is a DiscreteLtiModel");
+    adaptobs::fail_argument(who, "A",
+                            "(or B or C) must be given per step (steps x rows x cols); a model with the "
+                            "same matrices at every step is a DiscreteLtiModel");
   SharedDiscreteModel::Systems systems;
   systems.reserve(static_cast<std::size_t>(steps));
   for (Index k = 0; k < steps; ++k) systems.push_back({a.at(k), b.at(k), c.at(k)});
@@ -137,8 +137,8 @@ void bind_discrete_models(nb::module_& m) {
           "at",
           [](const SharedDiscreteModel& self, Index k) {
             if (k < 0 || k >= self.steps())
-              detail::fail_argument("DiscreteLtvModel.at", "k",
-                                    "must lie in [0, " + std::to_string(self.steps()) + ")");
+              adaptobs::fail_argument("DiscreteLtvModel.at", "k",
+                                      "must lie in [0, " + std::to_string(self.steps()) + ")");
             const System& s = self.at(k);
             return nb::make_tuple(Eigen::MatrixXd(s.A), Eigen::MatrixXd(s.B), Eigen::MatrixXd(s.C));
           },

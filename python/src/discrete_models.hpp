@@ -38,13 +38,13 @@ class SharedDiscreteModel : public Dims {
   /// `name(k, i)` is what an error calls matrix i (0: A, 1: B, 2: C) of step k.
   template <class Name>
   SharedDiscreteModel(Systems systems, Index np, std::string_view who, Name name) : np_(np), varying_(true) {
-    if (systems.empty()) detail::fail_argument(who, "steps", "must be at least 1");
-    detail::require(np >= 0, who, "np", "must be non-negative");
+    if (systems.empty()) adaptobs::fail_argument(who, "steps", "must be at least 1");
+    adaptobs::require(np >= 0, who, "np", "must be non-negative");
     const Sizes s = sizes_of(systems.front(), np);
     for (std::size_t k = 0; k < systems.size(); ++k) {
-      detail::require_finite_shape(systems[k].A, s.nx, s.nx, who, name(k, 0));
-      detail::require_finite_shape(systems[k].B, s.nx, s.nu, who, name(k, 1));
-      detail::require_finite_shape(systems[k].C, s.ny, s.nx, who, name(k, 2));
+      adaptobs::require_finite_shape(systems[k].A, s.nx, s.nx, who, name(k, 0));
+      adaptobs::require_finite_shape(systems[k].B, s.nx, s.nu, who, name(k, 1));
+      adaptobs::require_finite_shape(systems[k].C, s.ny, s.nx, who, name(k, 2));
     }
     systems_ = std::make_shared<const Systems>(std::move(systems));
   }
@@ -59,9 +59,9 @@ class SharedDiscreteModel : public Dims {
   [[nodiscard]] const System& at(Index k) const {
     if (!varying_) return systems_->front();
     if (k < 0 || k >= steps())
-      detail::fail_argument("DiscreteLtvModel", "steps",
-                            "holds the matrices of steps 0 to " + std::to_string(steps() - 1) + "; step " +
-                                std::to_string(k) + " is beyond them");
+      adaptobs::fail_argument("DiscreteLtvModel", "steps",
+                              "holds the matrices of steps 0 to " + std::to_string(steps() - 1) + "; step " +
+                                  std::to_string(k) + " is beyond them");
     return (*systems_)[static_cast<std::size_t>(k)];
   }
   [[nodiscard]] Sizes sizes() const noexcept { return sizes_of(systems_->front(), np_); }
@@ -82,8 +82,8 @@ class SharedDiscreteModel : public Dims {
     archive("B", stacked.B);
     archive("C", stacked.C);
     if constexpr (Archive::reading) {
-      detail::require(detail::all_finite(stacked.A) && detail::all_finite(stacked.B) && detail::all_finite(stacked.C),
-                      "restore", "snapshot", "holds model matrices that are not finite");
+      adaptobs::require(detail::all_finite(stacked.A) && detail::all_finite(stacked.B) && detail::all_finite(stacked.C),
+                        "restore", "snapshot", "holds model matrices that are not finite");
       self.systems_ = std::make_shared<const Systems>(stacked.unstacked(self.sizes()));
     }
   }
@@ -92,13 +92,13 @@ class SharedDiscreteModel : public Dims {
   static SharedDiscreteModel of_snapshot(const Snapshot<double>& s, const std::string& prefix) {
     const Index steps = integer(s, prefix + "steps");
     const Index np = integer(s, prefix + "np");
-    if (steps < 0) detail::fail_argument("restore", "snapshot", "holds a negative number of model steps");
+    if (steps < 0) adaptobs::fail_argument("restore", "snapshot", "holds a negative number of model steps");
     const Stacked stacked{field(s, prefix + "A"), field(s, prefix + "B"), field(s, prefix + "C")};
     const Index nx = stacked.A.rows();
     const Index count = std::max<Index>(steps, 1);
     if (nx == 0 || stacked.A.cols() != count * nx || stacked.B.cols() % count != 0 || stacked.C.cols() != count * nx)
-      detail::fail_argument("restore", "snapshot",
-                            "holds model matrices that are not " + std::to_string(count) + " steps of one size");
+      adaptobs::fail_argument("restore", "snapshot",
+                              "holds model matrices that are not " + std::to_string(count) + " steps of one size");
     const Sizes sizes{nx, stacked.B.cols() / count, stacked.C.rows(), np};
     if (steps == 0) return SharedDiscreteModel(LtiModel(stacked.A, stacked.B, stacked.C, np));
     return SharedDiscreteModel(stacked.unstacked(sizes), np, "restore", element_of_arrays);
@@ -141,9 +141,9 @@ class SharedDiscreteModel : public Dims {
 /// go beyond the last step of a time-varying model.
 inline void require_steps(const SharedDiscreteModel& model, Index first, Index samples, std::string_view who) {
   if (!model.is_time_invariant() && first + samples > model.steps())
-    detail::fail_argument(who, "Y",
-                          "has " + std::to_string(samples) + " samples from step " + std::to_string(first) +
-                              ", beyond the " + std::to_string(model.steps()) + " steps of the DiscreteLtvModel");
+    adaptobs::fail_argument(who, "Y",
+                            "has " + std::to_string(samples) + " samples from step " + std::to_string(first) +
+                                ", beyond the " + std::to_string(model.steps()) + " steps of the DiscreteLtvModel");
 }
 
 /// The model argument of a discrete observer: a DiscreteLtiModel or a DiscreteLtvModel.

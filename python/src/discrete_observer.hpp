@@ -91,7 +91,7 @@ inline Rows rows(const Array& array, Index samples, Index n, std::string_view wh
 
 inline Rows rows(nb::handle obj, Index samples, Index n, std::string_view who, std::string_view name) {
   if (!obj.is_none()) return rows(real_array(obj, who, name), samples, n, who, name);
-  if (n != 0) detail::fail_argument(who, name, "is required: the model has " + std::to_string(n) + " of them");
+  if (n != 0) adaptobs::fail_argument(who, name, "is required: the model has " + std::to_string(n) + " of them");
   Rows r;
   return r;
 }
@@ -118,7 +118,8 @@ inline Regressors regressors(nb::handle obj, Index samples, Index nx, Index np, 
   r.nx = nx;
   r.np = np;
   if (obj.is_none()) {
-    if (np != 0) detail::fail_argument(who, "Psi", "is required: the model has " + std::to_string(np) + " parameters");
+    if (np != 0)
+      adaptobs::fail_argument(who, "Psi", "is required: the model has " + std::to_string(np) + " parameters");
     return r;
   }
   r.keep = real_array(obj, who, "Psi");
@@ -166,7 +167,7 @@ struct RunResult {
 };
 
 [[noreturn]] inline void fail_no_regressor(std::string_view who) {
-  detail::fail_argument(who, "Psi", "must be None: this observer's samples have no regressor");
+  adaptobs::fail_argument(who, "Psi", "must be None: this observer's samples have no regressor");
 }
 
 template <class Observer>
@@ -276,14 +277,15 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
            const InUse guard(self.in_use.flag, who);
            const Sizes s = self.observer.sizes();
            if (u.is_none()) {
-             if (s.nu != 0) detail::fail_argument(who, "u", "is required: the model has inputs");
+             if (s.nu != 0) adaptobs::fail_argument(who, "u", "is required: the model has inputs");
            } else {
              read_vector(u, s.nu, who, "u", self.sample.u);
            }
            read_vector(y, s.ny, who, "y", self.sample.y);
            if constexpr (takes_regressor<Observer>) {
              if (psi.is_none() && s.np != 0)
-               detail::fail_argument(who, "Psi", "is required: the model has " + std::to_string(s.np) + " parameters");
+               adaptobs::fail_argument(who, "Psi",
+                                       "is required: the model has " + std::to_string(s.np) + " parameters");
              if (!psi.is_none()) read_matrix(psi, s.nx, s.np, who, "Psi", self.sample.Psi);
            } else if (!psi.is_none()) {
              fail_no_regressor(who);
@@ -311,7 +313,7 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
             else if (start_step == 0)
               self.observer.reset(vector(x0, who, "x0"), vector(theta0, who, "theta0"));
             else
-              detail::fail_argument(who, "start_step", "must be 0: this observer restarts its filters from step 0");
+              adaptobs::fail_argument(who, "start_step", "must be 0: this observer restarts its filters from step 0");
           },
           nb::arg("x0"), nb::arg("theta0"), nb::arg("start_step") = 0,
           "Restarts from the initial estimates at step `start_step`, clearing the filters.")

@@ -41,9 +41,9 @@ nb::dict satellite_system() {
 
 // N samples of the satellite: U (N x 2), Y (N x 2), Psi (N x 4 x 2) and the true states X (N x 4).
 nb::dict simulate_satellite(Index steps, double noise, std::uint64_t seed) {
-  detail::require(steps >= 0, "examples.simulate_satellite", "steps", "must be non-negative");
-  detail::require(noise >= 0 && std::isfinite(noise), "examples.simulate_satellite", "noise",
-                  "must be non-negative and finite");
+  adaptobs::require(steps >= 0, "examples.simulate_satellite", "steps", "must be non-negative");
+  adaptobs::require(noise >= 0 && std::isfinite(noise), "examples.simulate_satellite", "noise",
+                    "must be non-negative and finite");
   auto plant = satellite::make_plant<double>(noise, seed);
   const auto n = static_cast<std::size_t>(steps);
   OutputArray u({n, 2}), y({n, 2}), psi({n, 4, 2}), x({n, 4});
@@ -90,7 +90,7 @@ nb::dict guiro_system() {
 
 // `samples` samples of the paper's example, regular period T: Y, Psi (Psi_k = E H_k, N x 2 x 1) and X.
 nb::dict simulate_guiro(Index samples) {
-  detail::require(samples >= 0, "examples.simulate_guiro", "samples", "must be non-negative");
+  adaptobs::require(samples >= 0, "examples.simulate_guiro", "samples", "must be non-negative");
   auto plant = guiro::make_plant();
   const auto n = static_cast<std::size_t>(samples);
   OutputArray y({n, 1}), psi({n, 2, 1}), x({n, 2});
@@ -127,9 +127,9 @@ nb::dict siso_system() {
 template <class MakePlant>
 nb::dict simulate_continuous(MakePlant make_plant, Index steps, double period, double noise, std::uint64_t seed,
                              std::string_view who) {
-  detail::require(steps >= 1, who, "steps", "must be at least 1");
-  detail::require_positive(period, who, "period");
-  detail::require(noise >= 0 && std::isfinite(noise), who, "noise", "must be non-negative and finite");
+  adaptobs::require(steps >= 1, who, "steps", "must be at least 1");
+  adaptobs::require_positive(period, who, "period");
+  adaptobs::require(noise >= 0 && std::isfinite(noise), who, "noise", "must be non-negative and finite");
   auto plant = make_plant(ContinuousPlantOptions<double>{.period = period, .output_noise = noise, .seed = seed});
   const Sizes s = plant.model().sizes();
   const auto n = static_cast<std::size_t>(steps);
@@ -231,7 +231,7 @@ nb::dict record_canonical(Plant plant, Index steps, Index nu, Index ny, Index nx
 // The MIMO plant of §5 under the rich input u = (sin 0.3t + sin 1.3t,
 // sin 0.7t + sin 2.1t) or the one that is not rich enough.
 nb::dict simulate_dey_bhasin_mimo(Index steps, bool rich) {
-  detail::require(steps >= 0, "examples.simulate_dey_bhasin_mimo", "steps", "must be non-negative");
+  adaptobs::require(steps >= 0, "examples.simulate_dey_bhasin_mimo", "steps", "must be non-negative");
   const auto record = [steps](auto plant) {
     return record_canonical(std::move(plant), steps, mimo::inputs, mimo::outputs, mimo::states);
   };
@@ -258,7 +258,7 @@ nb::dict dey_bhasin_siso_system() {
 
 // The SISO plant of §5 under u_t = sin 0.2t, which is not persistently exciting.
 nb::dict simulate_dey_bhasin_siso(Index steps) {
-  detail::require(steps >= 0, "examples.simulate_dey_bhasin_siso", "steps", "must be non-negative");
+  adaptobs::require(steps >= 0, "examples.simulate_dey_bhasin_siso", "steps", "must be non-negative");
   return record_canonical(db_siso::make_plant(), steps, 1, 1, db_siso::order);
 }
 

@@ -39,8 +39,8 @@ SequentialTestOptions sequential_options(nb::handle stride, nb::handle hold_off,
   const SequentialTestOptions options{.stride = integer_argument(stride, who, "stride"),
                                       .hold_off = integer_argument(hold_off, who, "hold_off"),
                                       .reanchor = flag_argument(reanchor, who, "reanchor")};
-  detail::require(options.stride >= 1, who, "stride", "must be at least 1");
-  detail::require(options.hold_off >= 0, who, "hold_off", "must be non-negative");
+  adaptobs::require(options.stride >= 1, who, "stride", "must be at least 1");
+  adaptobs::require(options.hold_off >= 0, who, "hold_off", "must be non-negative");
   return options;
 }
 
@@ -243,7 +243,7 @@ nb::dict design_state(const MonitorDesign& d) {
 MonitorDesign design_of(const nb::dict& state) {
   const auto get = [&](const char* key, auto& out) {
     if (!state.contains(key) || !nb::try_cast(state[key], out))
-      detail::fail_argument("FaultMonitorDesign", "state", std::string("has no valid entry '") + key + "'");
+      adaptobs::fail_argument("FaultMonitorDesign", "state", std::string("has no valid entry '") + key + "'");
   };
   MonitorDesign d;
   get("nominal", d.nominal);
@@ -419,8 +419,8 @@ void bind_fault_detection(nb::module_& m) {
         FaultFreeRecord<double, X, X> record;
         record.parameters = vector_runs(parameters, who, "parameters");
         record.output_errors = vector_runs(output_errors, who, "output_errors");
-        detail::require(record.parameters.size() == record.output_errors.size(), who, "output_errors",
-                        "must hold one array per run of 'parameters'");
+        adaptobs::require(record.parameters.size() == record.output_errors.size(), who, "output_errors",
+                          "must hold one array per run of 'parameters'");
         return design_fault_monitor(
             record, Eigen::VectorXd(vector(nominal, who, "nominal")), real_scalar(drift, who, "drift"),
             real_scalar(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms"),

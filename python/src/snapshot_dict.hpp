@@ -40,7 +40,7 @@ inline Snapshot<double> from_dict(nb::handle obj) {
   if (!nb::isinstance<nb::dict>(obj)) fail_type(who, "state", obj, "a dict made by snapshot()");
   const nb::dict d = nb::borrow<nb::dict>(obj);
   for (const char* key : {"type", "version", "matrices", "integers"})
-    if (!d.contains(key)) detail::fail_argument(who, "state", std::string("has no key '") + key + "'");
+    if (!d.contains(key)) adaptobs::fail_argument(who, "state", std::string("has no key '") + key + "'");
   // Each entry of the wrong type is a TypeError naming its key.
   const auto entry = [&](nb::handle value, const std::string& key, auto& out, std::string_view expected) {
     if (!nb::try_cast(value, out)) fail_type(who, "state['" + key + "']", value, expected);

@@ -14,19 +14,19 @@ namespace adaptobs::python {
 inline Eigen::MatrixXd field(const Snapshot<double>& s, const std::string& name) {
   const SnapshotMatrix<double>* m = s.find_matrix(name);
   if (!m || static_cast<Index>(m->values.size()) != m->rows * m->cols)
-    detail::fail_argument("restore", "snapshot", "has no field '" + name + "'");
+    adaptobs::fail_argument("restore", "snapshot", "has no field '" + name + "'");
   return Eigen::Map<const Eigen::MatrixXd>(m->values.data(), m->rows, m->cols);
 }
 
 inline double scalar(const Snapshot<double>& s, const std::string& name) {
   const Eigen::MatrixXd m = field(s, name);
-  if (m.size() != 1) detail::fail_argument("restore", "snapshot", "field '" + name + "' must be a scalar");
+  if (m.size() != 1) adaptobs::fail_argument("restore", "snapshot", "field '" + name + "' must be a scalar");
   return m(0, 0);
 }
 
 inline Index integer(const Snapshot<double>& s, const std::string& name) {
   const SnapshotInteger* i = s.find_integer(name);
-  if (!i) detail::fail_argument("restore", "snapshot", "has no field '" + name + "'");
+  if (!i) adaptobs::fail_argument("restore", "snapshot", "has no field '" + name + "'");
   return static_cast<Index>(i->value);
 }
 

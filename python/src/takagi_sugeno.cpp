@@ -90,8 +90,8 @@ PythonPremises premises_of(nb::handle premises, Index nz, std::string_view who) 
   p.value.setZero(nz);
   if (premises.is_none()) {
     if (nz != 0)
-      detail::fail_argument(who, "premises",
-                            "is required: premise_bounds gives " + std::to_string(nz) + " premise variables");
+      adaptobs::fail_argument(who, "premises",
+                              "is required: premise_bounds gives " + std::to_string(nz) + " premise variables");
     p.source = nb::none();
     return p;
   }
@@ -194,10 +194,10 @@ TsModel model_of(const Snapshot<double>& s, const std::string& prefix, nb::handl
   theta.lower = field(s, prefix + "parameter_bounds.lower").reshaped();
   theta.upper = field(s, prefix + "parameter_bounds.upper").reshaped();
   const Index k = z.size() + theta.size();
-  detail::require(k <= 20, "restore", "snapshot", "holds more than 2^20 vertices");
+  adaptobs::require(k <= 20, "restore", "snapshot", "holds more than 2^20 vertices");
   const Index r = Index(1) << k, nx = A.rows();
-  detail::require(A.cols() == nx * r && B.rows() == nx && B.cols() % r == 0, "restore", "snapshot",
-                  "holds vertex matrices that do not match its sectors");
+  adaptobs::require(A.cols() == nx * r && B.rows() == nx && B.cols() % r == 0, "restore", "snapshot",
+                    "holds vertex matrices that do not match its sectors");
   const Index nu = B.cols() / r;
   std::vector<TakagiSugenoVertex<Dims>> vertices(static_cast<std::size_t>(r));
   for (Index i = 0; i < r; ++i) {
@@ -317,16 +317,16 @@ void bind_model(nb::module_& m) {
       .def(
           "A",
           [](const TsModel& self, Index i) {
-            detail::require(i >= 0 && i < self.vertex_count(), "TakagiSugenoModel.A", "i",
-                            "must be a vertex index in [0, vertex_count)");
+            adaptobs::require(i >= 0 && i < self.vertex_count(), "TakagiSugenoModel.A", "i",
+                              "must be a vertex index in [0, vertex_count)");
             return Eigen::MatrixXd(self.A(i));
           },
           nb::arg("i"), "Vertex matrix A_i (0-based).")
       .def(
           "B",
           [](const TsModel& self, Index i) {
-            detail::require(i >= 0 && i < self.vertex_count(), "TakagiSugenoModel.B", "i",
-                            "must be a vertex index in [0, vertex_count)");
+            adaptobs::require(i >= 0 && i < self.vertex_count(), "TakagiSugenoModel.B", "i",
+                              "must be a vertex index in [0, vertex_count)");
             return Eigen::MatrixXd(self.B(i));
           },
           nb::arg("i"), "Vertex matrix B_i (0-based).")
@@ -415,8 +415,8 @@ void bind_model(nb::module_& m) {
         const Sectors tb = sectors(parameter_bounds, who, "parameter_bounds");
         detail::validate_sectors(zb, zb.size(), who, "premise_bounds");
         detail::validate_sectors(tb, tb.size(), who, "parameter_bounds");
-        detail::require(zb.size() + tb.size() <= 20, who, "premise_bounds",
-                        "with parameter_bounds gives more than 2^20 vertices");
+        adaptobs::require(zb.size() + tb.size() <= 20, who, "premise_bounds",
+                          "with parameter_bounds gives more than 2^20 vertices");
         Eigen::VectorXd zv, tv;
         read_vector(z, zb.size(), who, "z", zv);
         read_vector(theta, tb.size(), who, "theta", tv);
@@ -701,8 +701,8 @@ void bind_synthesis(nb::module_& m) {
         o.solver.penalty = real_scalar(penalty, who, "penalty");
         o.solver.gap_tolerance = real_scalar(gap_tolerance, who, "gap_tolerance");
         const Index iterations = integer_argument(max_iterations, who, "max_iterations");
-        detail::require(iterations >= 1 && iterations <= std::numeric_limits<int>::max(), who, "max_iterations",
-                        "must be at least 1 and fit an int");
+        adaptobs::require(iterations >= 1 && iterations <= std::numeric_limits<int>::max(), who, "max_iterations",
+                          "must be at least 1 and fit an int");
         o.solver.max_iterations = static_cast<int>(iterations);
         Synthesis result;
         {
@@ -714,9 +714,9 @@ void bind_synthesis(nb::module_& m) {
         // no answer at the stated margin: refused with the library's message. An
         // infeasibility DSDP proved is an answer, returned with its status.
         if (result.status == SynthesisStatus::not_verified || result.status == SynthesisStatus::solver_failed)
-          detail::fail_argument(who, "model",
-                                std::string("gives no verified solution (") + std::string(to_string(result.status)) +
-                                    "): " + result.message);
+          adaptobs::fail_argument(who, "model",
+                                  std::string("gives no verified solution (") + std::string(to_string(result.status)) +
+                                      "): " + result.message);
         return result;
       },
       nb::arg("model"), nb::kw_only(), nb::arg("theorem") = TakagiSugenoTheorem::constant_parameters,
@@ -797,8 +797,8 @@ nb::dict wwtp_system() {
 // drawn from `seed` as the C++ example's OutputLoss draws them.
 nb::dict simulate_wwtp(Index steps, double theta, double drop, nb::handle outage, std::uint64_t seed) {
   constexpr std::string_view who = "examples.simulate_wwtp";
-  detail::require(steps >= 0, who, "steps", "must be non-negative");
-  detail::require(std::isfinite(theta), who, "theta", "must be finite");
+  adaptobs::require(steps >= 0, who, "steps", "must be non-negative");
+  adaptobs::require(std::isfinite(theta), who, "theta", "must be finite");
   OutputLossOptions options{.drop = drop, .seed = seed};
   if (!outage.is_none()) {
     if (!is_sequence(outage) || nb::len(outage) != 2) fail_type(who, "outage", outage, "a pair (t0, t1) or None");

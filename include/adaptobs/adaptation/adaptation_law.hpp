@@ -178,8 +178,8 @@ class LeastSquaresEstimate {
     archive("gamma[1]", self.gamma_[1]);
     archive("current", self.current_);
     if constexpr (Archive::reading)
-      detail::require(self.current_ == 0 || self.current_ == 1, "restore", "snapshot",
-                      "holds a current slot other than 0 or 1");
+      require(self.current_ == 0 || self.current_ == 1, "restore", "snapshot",
+              "holds a current slot other than 0 or 1");
   }
 
  private:
@@ -227,7 +227,7 @@ class RegressionLaw {
 
   /// Back to \f$\hat p_0\f$ and the law's initial gain.
   void restart(const Parameters& p0) {
-    detail::require_finite_shape(p0, law().parameter_count(), 1, Law::name_restart, "p0");
+    require_finite_shape(p0, law().parameter_count(), 1, Law::name_restart, "p0");
     law().restart_at(p0);
   }
 

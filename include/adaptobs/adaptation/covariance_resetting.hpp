@@ -97,12 +97,12 @@ class CovarianceResettingRls : public LeastSquaresLaw<CovarianceResettingRls<S, 
         correction_(p0.rows(), this->nz_) {
     constexpr std::string_view who = "CovarianceResettingRls";
     nz = this->measurement_count();  // the resolved size
-    detail::require_finite(p0, who, "p0");
-    detail::require_positive(options_.k0, who, "k0");
-    detail::require_positive(options_.kmin, who, "kmin");
-    detail::require(options_.kmin < options_.k0, who, "kmin", "must be smaller than k0");
-    detail::require_shape(options_.R, nz, nz, who, "R");
-    detail::require_positive_definite(options_.R, who, "R");
+    require_finite(p0, who, "p0");
+    require_positive(options_.k0, who, "k0");
+    require_positive(options_.kmin, who, "kmin");
+    require(options_.kmin < options_.k0, who, "kmin", "must be smaller than k0");
+    require_shape(options_.R, nz, nz, who, "R");
+    require_positive_definite(options_.R, who, "R");
     const Index np = p0.rows();
     if (nz > 0) {
       // Configuration time, on a dynamic copy: one instantiation per scalar type.

@@ -80,7 +80,7 @@ class ExponentialForgettingRls : public LeastSquaresLaw<ExponentialForgettingRls
     constexpr std::string_view who = "ExponentialForgettingRls";
     nz = this->measurement_count();  // the resolved size
     detail::validate_least_squares(p0, options_.gamma0, options_.R, nz, who);
-    detail::require(options_.lambda > Scalar(0) && options_.lambda <= Scalar(1), who, "lambda", "must lie in (0, 1]");
+    require(options_.lambda > Scalar(0) && options_.lambda <= Scalar(1), who, "lambda", "must lie in (0, 1]");
     weight_ = options_.lambda * options_.R;
     gamma_phi_.setZero(p0.rows(), nz);
     gain_transposed_.setZero(nz, p0.rows());

@@ -34,7 +34,7 @@ class GradientLaw {
   using ParameterMatrix = typename D::ParameterMatrix;
 
   explicit GradientLaw(ParameterMatrix gamma) : gamma_(std::move(gamma)) {
-    detail::require_positive_definite(gamma_, "GradientLaw", "gamma");
+    require_positive_definite(gamma_, "GradientLaw", "gamma");
   }
 
   /// \f$\dot{\hat\theta} = \Gamma R^T\varepsilon = \sum_j \Gamma_{:,j}\,(r_j^T\varepsilon)\f$, with

@@ -47,11 +47,11 @@ class NormalizedGradient : public RegressionLaw<NormalizedGradient<S, NP, NZ>, R
   NormalizedGradient(Parameters p0, Options options, Index nz = NZ)
       : Law(p0.rows(), std::max<Index>(NZ == Eigen::Dynamic ? nz : NZ, 0), false), options_(options) {
     constexpr std::string_view who = "NormalizedGradient";
-    detail::require(NZ != Eigen::Dynamic || nz >= 0, who, "nz",
-                    "must be given (non-negative) when the measurement size is dynamic");
-    detail::require_finite(p0, who, "p0");
-    detail::require(options_.mu > Scalar(0) && options_.mu < Scalar(2), who, "mu", "must lie in (0, 2)");
-    detail::require_positive(options_.offset, who, "offset");
+    require(NZ != Eigen::Dynamic || nz >= 0, who, "nz",
+            "must be given (non-negative) when the measurement size is dynamic");
+    require_finite(p0, who, "p0");
+    require(options_.mu > Scalar(0) && options_.mu < Scalar(2), who, "mu", "must lie in (0, 2)");
+    require_positive(options_.offset, who, "offset");
     innovation_.setZero(this->measurement_count());
     p_[0] = p0;
     p_[1] = std::move(p0);

@@ -52,12 +52,12 @@ struct AugmentedKalmanCovariances {
   /// `covariances.<member>` in the error.
   void validate(const Sizes& s, std::string_view who) const {
     const Index n = s.nx + s.np;
-    detail::require_shape(P0, n, n, who, "covariances.P0");
-    detail::require_positive_definite(P0, who, "covariances.P0");
-    detail::require_shape(Q, n, n, who, "covariances.Q");
-    detail::require_positive_semidefinite(Q, who, "covariances.Q");
-    detail::require_shape(R, s.ny, s.ny, who, "covariances.R");
-    detail::require_positive_definite(R, who, "covariances.R");
+    require_shape(P0, n, n, who, "covariances.P0");
+    require_positive_definite(P0, who, "covariances.P0");
+    require_shape(Q, n, n, who, "covariances.Q");
+    require_positive_semidefinite(Q, who, "covariances.Q");
+    require_shape(R, s.ny, s.ny, who, "covariances.R");
+    require_positive_definite(R, who, "covariances.R");
   }
 };
 
@@ -78,7 +78,7 @@ class AugmentedKalmanFilter
       : model_(std::move(model)), x_(std::move(x0)), theta_(std::move(theta0)), cov_(std::move(covariances)) {
     constexpr std::string_view who = "AugmentedKalmanFilter";
     const Sizes s = model_.sizes();
-    detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
+    require_initial_estimates(x_, s.nx, theta_, s.np, who);
     cov_.validate(s, who);
     p_ = cov_.P0;
     this->output_error_.setZero(s.ny);

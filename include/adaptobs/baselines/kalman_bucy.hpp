@@ -65,7 +65,7 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
         internal_(InternalState::Zero((sizes_.nx + sizes_.np) * (1 + sizes_.nx + sizes_.np))),
         integrator_(internal_, sizes_, options, name) {
     const Sizes& s = sizes_;
-    detail::require_initial_estimates(eta0, s.nx, theta0, s.np, name, "eta0", "theta0");
+    require_initial_estimates(eta0, s.nx, theta0, s.np, name, "eta0", "theta0");
     cov_.validate(s, name);
     (void)r_factor_.compute(cov_.R);  // positive definite: checked above
     work_.resize(s);
@@ -111,8 +111,7 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     archive("theta", self.theta_);
     archive("output_error", self.output_error_);
     if constexpr (Archive::reading)
-      detail::require(self.r_factor_.compute(self.cov_.R), "restore", "snapshot",
-                      "holds an R that is not positive definite");
+      require(self.r_factor_.compute(self.cov_.R), "restore", "snapshot", "holds an R that is not positive definite");
   }
 
  private:

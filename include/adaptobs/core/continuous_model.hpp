@@ -111,8 +111,8 @@ class ContinuousLtiModel : public D {
                      Index np = D::np)
       : system_{std::move(A), std::move(B), std::move(C)}, phi_(std::move(Phi)) {
     constexpr std::string_view who = "ContinuousLtiModel";
-    detail::validate_state_space(system_, who);
-    detail::require_size<D::np>(np, who, "np");
+    validate_state_space(system_, who);
+    require_size<D::np>(np, who, "np");
     sizes_ = {system_.A.rows(), system_.B.cols(), system_.C.rows(), np};
     detail::validate_regressor<D>(phi_, sizes_, who);
   }
@@ -155,13 +155,13 @@ class ContinuousLtvModel : public D {
   ContinuousLtvModel(MatricesFn matrices_at, RegressorFn Phi, Sizes sizes = {D::nx, D::nu, D::ny, D::np})
       : matrices_at_(std::move(matrices_at)), phi_(std::move(Phi)), sizes_(sizes) {
     constexpr std::string_view who = "ContinuousLtvModel";
-    detail::require(sizes_.nx >= 0 && sizes_.nu >= 0 && sizes_.ny >= 0 && sizes_.np >= 0, who, "sizes",
-                    "must be non-negative (dynamic dimensions need explicit sizes)");
+    require(sizes_.nx >= 0 && sizes_.nu >= 0 && sizes_.ny >= 0 && sizes_.np >= 0, who, "sizes",
+            "must be non-negative (dynamic dimensions need explicit sizes)");
     const ContinuousSystem<D> first = matrices_at_(typename D::Scalar(0));
-    detail::validate_state_space(first, who);
-    detail::require_size<D::np>(sizes_.np, who, "sizes.np");
-    detail::require(first.sizes().nx == sizes_.nx && first.sizes().nu == sizes_.nu && first.sizes().ny == sizes_.ny,
-                    who, "matrices_at", "returns matrices whose sizes differ from 'sizes'");
+    validate_state_space(first, who);
+    require_size<D::np>(sizes_.np, who, "sizes.np");
+    require(first.sizes().nx == sizes_.nx && first.sizes().nu == sizes_.nu && first.sizes().ny == sizes_.ny, who,
+            "matrices_at", "returns matrices whose sizes differ from 'sizes'");
     detail::validate_regressor<D>(phi_, sizes_, who);
   }
 
@@ -169,7 +169,7 @@ class ContinuousLtvModel : public D {
   /// `sizes` throw a `ConfigurationError` naming `matrices_at`, at any t.
   [[nodiscard]] ContinuousSystem<D> at(typename D::Scalar t) const {
     ContinuousSystem<D> system = matrices_at_(t);
-    if constexpr (!D::is_fixed) detail::require_system_sizes(system, sizes_, "ContinuousLtvModel", "matrices_at(t)");
+    if constexpr (!D::is_fixed) require_system_sizes(system, sizes_, "ContinuousLtvModel", "matrices_at(t)");
     return system;
   }
   [[nodiscard]] decltype(auto) regressor(typename D::Scalar t, const typename D::Input& u,

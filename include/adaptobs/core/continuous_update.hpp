@@ -93,7 +93,7 @@ class ContinuousUpdate : public Dims {
   template <class O = Observer>
   bool set_internal_state(const typename O::InternalState& s) {
     Observer& o = self();
-    detail::require_shape(s, o.internal_.rows(), 1, Observer::name, "s");
+    require_shape(s, o.internal_.rows(), 1, Observer::name, "s");
     if (!detail::all_finite(s)) return false;
     typename O::InternalState candidate = s;  // the check may adjust it (symmetrize P)
     if (o.check_step(candidate) != UpdateStatus::accepted) return false;
@@ -115,7 +115,7 @@ class ContinuousUpdate : public Dims {
   /// sample sets the time origin.
   void reset(const typename Dims::State& eta0, const typename Dims::Parameters& theta0) {
     Observer& o = self();
-    detail::require_initial_estimates(eta0, o.sizes_.nx, theta0, o.sizes_.np, Observer::name_reset, "eta0", "theta0");
+    require_initial_estimates(eta0, o.sizes_.nx, theta0, o.sizes_.np, Observer::name_reset, "eta0", "theta0");
     o.set_initial(eta0, theta0);
     o.output_error_.setZero();
     o.integrator_.restart();

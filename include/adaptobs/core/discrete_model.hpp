@@ -145,19 +145,19 @@ class DiscreteLtvModel : public D {
   explicit DiscreteLtvModel(F matrices_at, Sizes sizes = {D::nx, D::nu, D::ny, D::np})
       : matrices_at_(std::move(matrices_at)), sizes_(sizes) {
     constexpr std::string_view who = "DiscreteLtvModel";
-    detail::require(sizes_.nx >= 0 && sizes_.nu >= 0 && sizes_.ny >= 0 && sizes_.np >= 0, who, "sizes",
-                    "must be non-negative (dynamic dimensions need explicit sizes)");
+    require(sizes_.nx >= 0 && sizes_.nu >= 0 && sizes_.ny >= 0 && sizes_.np >= 0, who, "sizes",
+            "must be non-negative (dynamic dimensions need explicit sizes)");
     const DiscreteSystem<D> first = matrices_at_(Index{0});
     detail::validate_system(first, sizes_.np, who, "sizes.np");
-    detail::require(first.A.rows() == sizes_.nx && first.B.cols() == sizes_.nu && first.C.rows() == sizes_.ny, who,
-                    "matrices_at", "returns matrices whose sizes differ from 'sizes'");
+    require(first.A.rows() == sizes_.nx && first.B.cols() == sizes_.nu && first.C.rows() == sizes_.ny, who,
+            "matrices_at", "returns matrices whose sizes differ from 'sizes'");
   }
 
   /// \f$(A_k, B_k, C_k)\f$; with dynamic sizes, matrices of other sizes than
   /// `sizes` throw a `ConfigurationError` naming `matrices_at(k)`, at any k.
   [[nodiscard]] DiscreteSystem<D> at(Index k) const {
     DiscreteSystem<D> system = matrices_at_(k);
-    if constexpr (!D::is_fixed) detail::require_system_sizes(system, sizes_, "DiscreteLtvModel", "matrices_at(k)");
+    if constexpr (!D::is_fixed) require_system_sizes(system, sizes_, "DiscreteLtvModel", "matrices_at(k)");
     return system;
   }
   [[nodiscard]] Sizes sizes() const noexcept { return sizes_; }

@@ -106,8 +106,8 @@ class DiscreteUpdate : public Dims {
   void reset(const typename Dims::State& x0, const typename Dims::Parameters& theta0, Index start_step = 0) {
     constexpr std::string_view who = Observer::name_reset;
     const Sizes s = sizes();
-    detail::require_initial_estimates(x0, s.nx, theta0, s.np, who, Observer::name_initial_state);
-    detail::require(start_step >= 0, who, "start_step", "must be non-negative");
+    require_initial_estimates(x0, s.nx, theta0, s.np, who, Observer::name_initial_state);
+    require(start_step >= 0, who, "start_step", "must be non-negative");
     self().restart(x0, theta0);
     output_error_.setZero();
     step_ = start_step;
@@ -136,7 +136,7 @@ class DiscreteUpdate : public Dims {
     using Model = std::remove_cvref_t<decltype(self().model_)>;
     if constexpr (!Dims::is_fixed && !Model::time_invariant)
       if (!is_time_invariant(self().model_))
-        detail::require_system_sizes(system, sizes(), Observer::name_update, "model.at(k)");
+        require_system_sizes(system, sizes(), Observer::name_update, "model.at(k)");
   }
 
  private:

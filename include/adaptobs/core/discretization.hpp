@@ -41,10 +41,10 @@ template <class DerivedA, class DerivedB>
   constexpr int m = DerivedB::ColsAtCompileTime;
   constexpr int block = sum_of_sizes(n, m);
   constexpr std::string_view who = "discretize_zoh";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
-  detail::require_finite_shape(B, A.rows(), B.cols(), who, "B");
-  detail::require_positive(ts, who, "ts");
+  require_square(A, who, "A");
+  require_finite(A, who, "A");
+  require_finite_shape(B, A.rows(), B.cols(), who, "B");
+  require_positive(ts, who, "ts");
 
   const Index nn = A.rows();
   const Index mm = B.cols();
@@ -52,12 +52,12 @@ template <class DerivedA, class DerivedB>
   van_loan.topLeftCorner(nn, nn) = A * ts;
   van_loan.topRightCorner(nn, mm) = B * ts;
   constexpr std::string_view too_long = "give a sampled system beyond the floating-point range: shorten ts";
-  detail::require(van_loan.allFinite(), who, "A, ts", too_long);
+  require(van_loan.allFinite(), who, "A, ts", too_long);
   Eigen::Matrix<Scalar, block, block> e;
   try {
     e = matrix_exponential(van_loan);
   } catch (const ConfigurationError&) {  // the only refusal left for a finite square argument: overflow
-    detail::fail_argument(who, "A, ts", too_long);
+    fail_argument(who, "A, ts", too_long);
   }
   return ZeroOrderHold<Scalar, n, m>{e.topLeftCorner(nn, nn), e.topRightCorner(nn, mm)};
 }

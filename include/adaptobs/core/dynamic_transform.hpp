@@ -130,10 +130,10 @@ class DynamicTransform {
   DynamicTransform(std::optional<FilterMatrix> F, InjectionMatrix G, OutputMatrix H)
       : f_(std::move(F)), g_(std::move(G)), h_(std::move(H)) {
     constexpr std::string_view who = "DynamicTransform";
-    detail::require_finite(g_, who, "G");
-    detail::require_finite_shape(h_, g_.cols(), g_.rows(), who, "H");
+    require_finite(g_, who, "G");
+    require_finite_shape(h_, g_.cols(), g_.rows(), who, "H");
     if (f_) {
-      detail::require_finite_shape(*f_, g_.rows(), g_.rows(), who, "F");
+      require_finite_shape(*f_, g_.rows(), g_.rows(), who, "F");
     }
     if constexpr (may_be_identity) {
       identity_ = g_.rows() == g_.cols() &&

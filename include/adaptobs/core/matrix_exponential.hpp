@@ -146,16 +146,11 @@ template <int M, typename Scalar>
 template <typename Scalar>
 [[nodiscard]] DynamicMatrix<Scalar> pade_approximant(int degree, const DynamicMatrix<Scalar>& a) {
   switch (degree) {
-    case 3:
-      return pade_approximant<3>(a);
-    case 5:
-      return pade_approximant<5>(a);
-    case 7:
-      return pade_approximant<7>(a);
-    case 9:
-      return pade_approximant<9>(a);
-    default:
-      return pade_approximant<13>(a);
+    case 3: return pade_approximant<3>(a);
+    case 5: return pade_approximant<5>(a);
+    case 7: return pade_approximant<7>(a);
+    case 9: return pade_approximant<9>(a);
+    default: return pade_approximant<13>(a);
   }
 }
 
@@ -511,8 +506,8 @@ template <class Derived>
 [[nodiscard]] typename Derived::PlainObject matrix_exponential(const Eigen::MatrixBase<Derived>& a) {
   using Plain = typename Derived::PlainObject;
   using Scalar = std::remove_cv_t<typename Derived::Scalar>;
-  detail::require_square(a, "matrix_exponential", "A");
-  detail::require_finite(a, "matrix_exponential", "A");
+  require_square(a, "matrix_exponential", "A");
+  require_finite(a, "matrix_exponential", "A");
   const detail::DynamicMatrix<Scalar> e = detail::matrix_exponential_dense<Scalar>(detail::dynamic_copy(a));
   Plain out(a.rows(), a.cols());
   for (Index j = 0; j < a.cols(); ++j)

@@ -59,7 +59,7 @@ concept DiagnosableObserver = Observer<O> && requires(const O& co) {
 template <PartialOutputObserver O>
 [[nodiscard]] UpdateStatus update_finite_outputs(O& observer, const typename O::Sample& sample) {
   if constexpr (O::Dims::ny == Eigen::Dynamic)
-    detail::require_shape(sample.y, observer.sizes().ny, 1, "update_finite_outputs", "sample.y");
+    require_shape(sample.y, observer.sizes().ny, 1, "update_finite_outputs", "sample.y");
   const OutputMask<typename O::Dims> present = sample.y.array().isFinite();
   return observer.update(sample, present);
 }

@@ -92,11 +92,10 @@ class SampledIntegrator {
 
   SampledIntegrator(const InternalState& like, Sizes sizes, SamplingOptions options, std::string_view who)
       : rk4_(like), candidate_(like), sizes_(sizes), options_(options) {
-    detail::require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
-    detail::require(std::isfinite(options.max_step) && options.max_step >= 0, who, "options.max_step",
-                    "must be finite and non-negative (0 learns it from the first interval)");
-    detail::require(options.max_substeps >= options.substeps, who, "options.max_substeps",
-                    "must be at least options.substeps");
+    require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
+    require(std::isfinite(options.max_step) && options.max_step >= 0, who, "options.max_step",
+            "must be finite and non-negative (0 learns it from the first interval)");
+    require(options.max_substeps >= options.substeps, who, "options.max_substeps", "must be at least options.substeps");
     previous_.u.setZero(sizes.nu);
     previous_.y.setZero(sizes.ny);
     u_.setZero(sizes.nu);
@@ -147,7 +146,7 @@ class SampledIntegrator {
       return UpdateStatus::accepted;
     }
     if (options_.needs_midpoint() && !sample.midpoint)
-      detail::fail_argument(who, "sample.midpoint", "must be set for a quadratic signal reconstruction");
+      fail_argument(who, "sample.midpoint", "must be set for a quadratic signal reconstruction");
     if (!(sample.t > previous_.t)) return UpdateStatus::nonincreasing_time;
 
     const Scalar t0 = previous_.t;
@@ -210,9 +209,7 @@ class SampledIntegrator {
   template <class V>
   static void reconstruct(SignalReconstruction how, Scalar s, const V& v0, const V* mid, const V& v1, V& out) {
     switch (how) {
-      case SignalReconstruction::hold:
-        out = v0;
-        return;
+      case SignalReconstruction::hold: out = v0; return;
       case SignalReconstruction::linear:
         for (Index i = 0; i < out.size(); ++i) out(i) = (Scalar(1) - s) * v0(i) + s * v1(i);
         return;
@@ -234,11 +231,11 @@ class SampledIntegrator {
   }
 
   void check_sizes(const Sample& sample, std::string_view who) const {
-    detail::require_shape(sample.u, sizes_.nu, 1, who, "sample.u");
-    detail::require_shape(sample.y, sizes_.ny, 1, who, "sample.y");
+    require_shape(sample.u, sizes_.nu, 1, who, "sample.u");
+    require_shape(sample.y, sizes_.ny, 1, who, "sample.y");
     if (sample.midpoint) {
-      detail::require_shape(sample.midpoint->u, sizes_.nu, 1, who, "sample.midpoint.u");
-      detail::require_shape(sample.midpoint->y, sizes_.ny, 1, who, "sample.midpoint.y");
+      require_shape(sample.midpoint->u, sizes_.nu, 1, who, "sample.midpoint.u");
+      require_shape(sample.midpoint->y, sizes_.ny, 1, who, "sample.midpoint.y");
     }
   }
 

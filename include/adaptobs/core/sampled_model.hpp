@@ -24,7 +24,7 @@ template <StateSpace D, class DA, class DB, class DC>
 [[nodiscard]] DiscreteLtiModel<D> sampled_lti_model(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B,
                                                     const Eigen::MatrixBase<DC>& C, typename D::Scalar period,
                                                     Index np = D::np) {
-  detail::require_finite(A, "sampled_lti_model", "A");
+  require_finite(A, "sampled_lti_model", "A");
   const auto zoh = discretize_zoh(A, B, period);
   return DiscreteLtiModel<D>(typename D::StateMatrix(zoh.Ad), typename D::InputMatrix(zoh.Bd),
                              typename D::OutputMatrix(C), np);

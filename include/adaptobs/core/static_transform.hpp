@@ -90,11 +90,11 @@ class StaticTransform : public D {
   /// \param T invertible coordinate change \f$x = T\eta\f$; \param K output injection (n × m).
   StaticTransform(StateMatrix T, GainMatrix K) : t_(std::move(T)), k_(std::move(K)) {
     constexpr std::string_view who = "StaticTransform";
-    detail::require_square(t_, who, "T");
-    detail::require_finite(t_, who, "T");
-    detail::require_finite_shape(k_, t_.rows(), k_.cols(), who, "K");
+    require_square(t_, who, "T");
+    require_finite(t_, who, "T");
+    require_finite_shape(k_, t_.rows(), k_.cols(), who, "K");
     const auto inverse = detail::well_conditioned_inverse(detail::dynamic_copy(t_));
-    detail::require(inverse.has_value(), who, "T", "must be invertible (condition number below 1/(n eps))");
+    require(inverse.has_value(), who, "T", "must be invertible (condition number below 1/(n eps))");
     t_inverse_ = *inverse;
     identity_ = (t_.array() == StateMatrix::Identity(t_.rows(), t_.cols()).array()).all();
   }
@@ -118,7 +118,7 @@ class StaticTransform : public D {
 
   /// Replaces K (e.g. the gain of a Riccati differential equation at the current sample).
   void set_output_injection(const GainMatrix& K) {
-    detail::require_finite_shape(K, k_.rows(), k_.cols(), "StaticTransform::set_output_injection", "K");
+    require_finite_shape(K, k_.rows(), k_.cols(), "StaticTransform::set_output_injection", "K");
     k_ = K;
   }
 

@@ -23,16 +23,11 @@ enum class UpdateStatus {
 
 [[nodiscard]] constexpr std::string_view to_string(UpdateStatus s) noexcept {
   switch (s) {
-    case UpdateStatus::accepted:
-      return "accepted";
-    case UpdateStatus::nonfinite_input:
-      return "rejected: non-finite input sample";
-    case UpdateStatus::nonfinite_result:
-      return "rejected: the step would produce non-finite estimates";
-    case UpdateStatus::nonincreasing_time:
-      return "rejected: the sample's time does not advance";
-    case UpdateStatus::indefinite_covariance:
-      return "rejected: the step would leave the covariance indefinite";
+    case UpdateStatus::accepted: return "accepted";
+    case UpdateStatus::nonfinite_input: return "rejected: non-finite input sample";
+    case UpdateStatus::nonfinite_result: return "rejected: the step would produce non-finite estimates";
+    case UpdateStatus::nonincreasing_time: return "rejected: the sample's time does not advance";
+    case UpdateStatus::indefinite_covariance: return "rejected: the step would leave the covariance indefinite";
     case UpdateStatus::interval_too_long:
       return "rejected: the interval since the previous sample needs more than max_substeps integration steps";
   }

@@ -36,10 +36,10 @@ class SylvesterSolver {
 
   SylvesterSolver(const Matrix& A, const Matrix& B) {
     constexpr std::string_view who = "SylvesterSolver";
-    detail::require_square(A, who, "A");
-    detail::require_finite(A, who, "A");
-    detail::require_square(B, who, "B");
-    detail::require_finite(B, who, "B");
+    require_square(A, who, "A");
+    require_finite(A, who, "A");
+    require_square(B, who, "B");
+    require_finite(B, who, "B");
     n_ = A.rows();
     m_ = B.rows();
     if (n_ > 0) {
@@ -72,7 +72,7 @@ class SylvesterSolver {
   /// X with \f$AX + XB = C\f$ (real part of the complex computation; exact for
   /// real data up to round-off). Non-finite when `separation()` is 0.
   [[nodiscard]] Matrix solve(const Matrix& C) const {
-    detail::require_shape(C, n_, m_, "SylvesterSolver::solve", "C");
+    require_shape(C, n_, m_, "SylvesterSolver::solve", "C");
     if (n_ == 0 || m_ == 0) return Matrix::Zero(n_, m_);
     const ComplexMatrix r = qa_.adjoint() * C.template cast<Complex>() * qb_;
     ComplexMatrix y(n_, m_);
@@ -100,10 +100,10 @@ template <class DA, class DB, class DC>
     const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B, const Eigen::MatrixBase<DC>& C) {
   using Scalar = typename DA::Scalar;
   using Matrix = typename SylvesterSolver<Scalar>::Matrix;
-  detail::require_finite(C, "solve_sylvester", "C");
+  require_finite(C, "solve_sylvester", "C");
   const SylvesterSolver<Scalar> solver{Matrix(A), Matrix(B)};
   if (!(solver.separation() > Scalar(10) * std::numeric_limits<Scalar>::epsilon()))
-    detail::fail_argument("solve_sylvester", "A, B", "share an eigenvalue of A and -B: no unique solution");
+    fail_argument("solve_sylvester", "A, B", "share an eigenvalue of A and -B: no unique solution");
   return solver.solve(Matrix(C));
 }
 

@@ -258,13 +258,6 @@ void require_positive_semidefinite(const Eigen::MatrixBase<Derived>& m, std::str
 
 namespace detail {
 
-// The argument checks under the names the library's own code uses for them.
-using adaptobs::fail_argument, adaptobs::require, adaptobs::require_positive, adaptobs::require_non_negative,
-    adaptobs::require_shape, adaptobs::require_square, adaptobs::require_vector, adaptobs::require_finite,
-    adaptobs::require_finite_shape, adaptobs::require_size, adaptobs::validate_state_space,
-    adaptobs::require_system_sizes, adaptobs::require_initial_estimates, adaptobs::is_symmetric,
-    adaptobs::require_symmetric, adaptobs::require_positive_definite, adaptobs::require_positive_semidefinite;
-
 /// The data of an observability question: A square and finite, C finite with
 /// A's columns (`output_matrix` names C). Returns the order n.
 template <class DA, class DC>

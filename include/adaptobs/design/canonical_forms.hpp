@@ -125,9 +125,9 @@ template <typename Scalar>
   using Matrix = Eigen::MatrixX<Scalar>;
   constexpr std::string_view who = "bastin_gevers_form";
   const Index n = detail::require_single_output_pair(a, cc, who);
-  detail::require(zeros.size() == n && zeros(0) == Scalar(1), who, "zeros", "must be monic of degree n - 1");
-  detail::require_finite(zeros, who, "zeros");
-  detail::require(n == 1 || is_hurwitz_polynomial(zeros), who, "zeros", "must be Hurwitz (A22 is the zero dynamics)");
+  require(zeros.size() == n && zeros(0) == Scalar(1), who, "zeros", "must be monic of degree n - 1");
+  require_finite(zeros, who, "zeros");
+  require(n == 1 || is_hurwitz_polynomial(zeros), who, "zeros", "must be Hurwitz (A22 is the zero dynamics)");
   // Rows c B_k of the Faddeev–LeVerrier adjugate: C adj(sI − A) v has coefficients M v.
   const Polynomial<Scalar> den = characteristic_polynomial(a);
   detail::require_within_range(den, who, "the characteristic polynomial of A");
@@ -142,25 +142,25 @@ template <typename Scalar>
   // invertible exactly when (A, c) is observable, which the staircase decides
   // in any output or time units; M, whose rows grow like the powers of A, is
   // what v needs.
-  detail::require(observability(a, cc).observable(), who, "A, c", "must be an observable pair");
+  require(observability(a, cc).observable(), who, "A, c", "must be an observable pair");
   const Eigen::FullPivLU<Matrix> lu(m);
   constexpr std::string_view ill_conditioned =
       "is too ill-conditioned for the canonical form: the vector v of T^-1 = [v, W] (C adj(sI - A) v = zeros) "
       "cannot be computed to working accuracy";
-  detail::require(lu.isInvertible(), who, "A, c", ill_conditioned);
+  require(lu.isInvertible(), who, "A, c", ill_conditioned);
   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> v = lu.solve(zeros);
   Matrix w = kernel ? *kernel : detail::kernel_basis<Scalar>(cc, who);
-  detail::require_shape(w, n, n - 1, who, "kernel");
+  require_shape(w, n, n - 1, who, "kernel");
   // Relative to the sizes of c and W: c in other units has the same kernel.
-  detail::require((cc * w).cwiseAbs().maxCoeff() <= Scalar(1e-10) * cc.cwiseAbs().sum() * w.cwiseAbs().maxCoeff(), who,
-                  "kernel", "must span the kernel of c");
-  detail::require(w.fullPivLu().rank() == n - 1, who, "kernel", "must have independent columns");
+  require((cc * w).cwiseAbs().maxCoeff() <= Scalar(1e-10) * cc.cwiseAbs().sum() * w.cwiseAbs().maxCoeff(), who,
+          "kernel", "must span the kernel of c");
+  require(w.fullPivLu().rank() == n - 1, who, "kernel", "must have independent columns");
   Matrix t_inv(n, n);
   t_inv << v, w;
   // With c v = 1 and W a basis of ker c, [v, W] is invertible: a singular one
   // means that v was not computed accurately.
   const Eigen::FullPivLU<Matrix> t_lu(t_inv);
-  detail::require(t_lu.isInvertible(), who, "A, c", ill_conditioned);
+  require(t_lu.isInvertible(), who, "A, c", ill_conditioned);
   return detail::transform_with_injection_of_first_columns<Scalar>(Matrix(t_lu.inverse()), a, 1);
 }
 
@@ -186,7 +186,7 @@ template <typename Scalar>
   canonical.col(0) = -a.tail(n);
   Matrix e1 = Matrix::Zero(1, n);
   e1(0, 0) = Scalar(1);
-  detail::require(observability(A, c).observable(), who, "A, c", "must be an observable pair");
+  require(observability(A, c).observable(), who, "A, c", "must be an observable pair");
   const Matrix o = observability_matrix(A, c), o_canonical = observability_matrix(canonical, e1);
   detail::require_within_range(o, who, "the observability matrix of (A, c)");
   detail::require_within_range(o_canonical, who, "the observability matrix of the canonical pair");
@@ -214,7 +214,7 @@ template <typename Scalar>
   using Matrix = Eigen::MatrixX<Scalar>;
   constexpr std::string_view who = "besancon_form";
   const Index n = detail::require_output_pair(a, cc, who), m = cc.rows();
-  detail::require(decay >= 0 && std::isfinite(decay), who, "decay", "must be non-negative");
+  require(decay >= 0 && std::isfinite(decay), who, "decay", "must be non-negative");
   // The kernel first: it may refuse C, which must not happen inside an open
   // comma initializer (its destructor would then assert on the missing rows).
   const Matrix kernel = detail::kernel_basis<Scalar>(cc, who);
@@ -227,15 +227,15 @@ template <typename Scalar>
     const Matrix a12 = at.topRightCorner(m, r);
     // (A22 + decay I, A12) is observable with (A22, A12); the staircase judges the
     // unshifted pair, whose scale does not grow with `decay`.
-    detail::require(observability(Matrix(at.bottomRightCorner(r, r)), a12).observable(), who, "A, C",
-                    "must be an observable pair");
+    require(observability(Matrix(at.bottomRightCorner(r, r)), a12).observable(), who, "A, C",
+            "must be an observable pair");
     const Matrix a22 = at.bottomRightCorner(r, r) + decay * Matrix::Identity(r, r);
     // The unshifted pair is observable, and a shift keeps it so: a refusal of
     // the Riccati solver is numerical. It comes from the decay asked for when
     // the unshifted equation can be solved (the gain X, and with it
     // cond(T) ~ ||X||^2, grows with the decay), from the scale of A otherwise.
     const auto refuse_decay = [&](std::string_view reason) {
-      detail::fail_argument(
+      fail_argument(
           who, "decay",
           std::string("is too large for the scale of A: ").append(reason).append("; ask for a smaller decay"));
     };
@@ -258,10 +258,9 @@ template <typename Scalar>
         refuse_decay(
             "the Riccati equation of the shifted pair (A22 + decay I, A12), whose gain moves the eigenvalues "
             "of A22 left of -decay, cannot be solved to working accuracy");
-      detail::fail_argument(
-          who, "A",
-          "is beyond the range of the canonical form: the Riccati equation of the observable pair (A22, A12) "
-          "cannot be solved to working accuracy at its scale; rescale the states or the time unit");
+      fail_argument(who, "A",
+                    "is beyond the range of the canonical form: the Riccati equation of the observable pair (A22, A12) "
+                    "cannot be solved to working accuracy at its scale; rescale the states or the time unit");
     }
     Matrix left = Matrix::Identity(n, n);
     left.bottomLeftCorner(r, m) = -x;

@@ -283,13 +283,13 @@ template <typename Scalar>
     const detail::DynamicMatrix<Scalar>& A, const detail::DynamicMatrix<Scalar>& G,
     const detail::DynamicMatrix<Scalar>& Q, int max_iterations = 100) {
   constexpr std::string_view who = "solve_riccati_hamiltonian";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
-  detail::require_finite_shape(G, A.rows(), A.rows(), who, "G");
-  detail::require_symmetric(G, who, "G");
-  detail::require_finite_shape(Q, A.rows(), A.rows(), who, "Q");
-  detail::require_symmetric(Q, who, "Q");
-  detail::require(max_iterations >= 1, who, "max_iterations", "must be at least 1");
+  require_square(A, who, "A");
+  require_finite(A, who, "A");
+  require_finite_shape(G, A.rows(), A.rows(), who, "G");
+  require_symmetric(G, who, "G");
+  require_finite_shape(Q, A.rows(), A.rows(), who, "Q");
+  require_symmetric(Q, who, "Q");
+  require(max_iterations >= 1, who, "max_iterations", "must be at least 1");
   CareSolution<Scalar, Eigen::Dynamic> result;
   if (A.rows() == 0) return result;
   auto x = detail::care_sign_function_start<Scalar>(A, G, Q, max_iterations, result.iterations);
@@ -326,8 +326,8 @@ template <typename Scalar>
       "Hurwitz",
       "leave a mode of A on the imaginary axis unexcited by the process noise Q: the filter CARE has no stabilizing "
       "solution"};
-  detail::require_square(A, roles.who, "A");
-  detail::require_shape(C, C.rows(), A.cols(), roles.who, "C");
+  require_square(A, roles.who, "A");
+  require_shape(C, C.rows(), A.cols(), roles.who, "C");
   const auto dual = solve_care(Matrix(A.transpose()), Matrix(C.transpose()), Q, R, roles);
   KalmanBucyGain<Scalar, Eigen::Dynamic, Eigen::Dynamic> result;
   result.P = dual.X;

@@ -17,7 +17,7 @@ template <class Derived>
 [[nodiscard]] auto companion_matrix(const Eigen::MatrixBase<Derived>& a) {
   using Scalar = typename Derived::Scalar;
   constexpr int R = Derived::SizeAtCompileTime;
-  detail::require_vector(a, "companion_matrix", "a");
+  require_vector(a, "companion_matrix", "a");
   const Index r = a.size();
   Eigen::Matrix<Scalar, R, R> m = Eigen::Matrix<Scalar, R, R>::Zero(r, r);
   for (Index i = 0; i < r; ++i) m(i, 0) = a(i);
@@ -32,9 +32,9 @@ template <int Q = Eigen::Dynamic, class Derived>
   using Scalar = typename Derived::Scalar;
   constexpr int N = product_of_sizes(Derived::SizeAtCompileTime, Q);
   constexpr std::string_view who = "block_companion_matrix";
-  detail::require_vector(a, who, "a");
-  detail::require(q >= 1 && (Q == Eigen::Dynamic || q == Q), who, "q",
-                  Q == Eigen::Dynamic ? "must be at least 1" : "must be the fixed block size Q");
+  require_vector(a, who, "a");
+  require(q >= 1 && (Q == Eigen::Dynamic || q == Q), who, "q",
+          Q == Eigen::Dynamic ? "must be at least 1" : "must be the fixed block size Q");
   const Index r = a.size();
   const Index n = r * q;
   Eigen::Matrix<Scalar, N, N> m = Eigen::Matrix<Scalar, N, N>::Zero(n, n);

@@ -305,12 +305,12 @@ template <class DX, class DA, class DB, class DQ, class DR>
                                                          const Eigen::MatrixBase<DR>& R) {
   using detail::dynamic_copy;
   constexpr std::string_view who = "dare_relative_residual";
-  detail::require_square(A, who, "A");
+  require_square(A, who, "A");
   const Index n = A.rows(), m = B.cols();
-  detail::require_shape(B, n, m, who, "B");
-  detail::require_shape(X, n, n, who, "X");
-  detail::require_shape(Q, n, n, who, "Q");
-  detail::require_shape(R, m, m, who, "R");
+  require_shape(B, n, m, who, "B");
+  require_shape(X, n, n, who, "X");
+  require_shape(Q, n, n, who, "Q");
+  require_shape(R, m, m, who, "R");
   return dare_relative_residual(dynamic_copy(X), dynamic_copy(A), dynamic_copy(B), dynamic_copy(Q), dynamic_copy(R));
 }
 
@@ -357,8 +357,8 @@ template <typename Scalar>
       "must be detectable: a mode of A on or outside the unit circle is not seen by C, so no gain makes A - KC Schur",
       "leave a mode of A on the unit circle unexcited by the process noise Q: the filter DARE has no stabilizing "
       "solution"};
-  detail::require_square(A, roles.who, "A");
-  detail::require_shape(C, C.rows(), A.cols(), roles.who, "C");
+  require_square(A, roles.who, "A");
+  require_shape(C, C.rows(), A.cols(), roles.who, "C");
   const Matrix at = A.transpose();
   const Matrix ct = C.transpose();
   const auto dual = solve_dare(at, ct, Q, R, options, roles);

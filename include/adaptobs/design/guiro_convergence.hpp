@@ -56,12 +56,9 @@ enum class ConditionVerdict { holds, fails, undetermined };
 
 [[nodiscard]] constexpr std::string_view to_string(ConditionVerdict v) noexcept {
   switch (v) {
-    case ConditionVerdict::holds:
-      return "holds";
-    case ConditionVerdict::fails:
-      return "fails";
-    case ConditionVerdict::undetermined:
-      return "undetermined";
+    case ConditionVerdict::holds: return "holds";
+    case ConditionVerdict::fails: return "fails";
+    case ConditionVerdict::undetermined: return "undetermined";
   }
   return "unknown";
 }
@@ -132,7 +129,7 @@ template <typename Scalar>
   detail::require_guiro_sizes(E, C, Hbar, K, Gamma, who);
   const Index n = E.rows(), p = Hbar.cols();
   const Matrix u = guiro_error_matrix_dynamic<Scalar>(E, C, Hbar, K, Gamma);
-  detail::require_finite(u, who, "E, C, Hbar, K, Gamma");
+  require_finite(u, who, "E, C, Hbar, K, Gamma");
 
   GuiroConvergenceReport<Scalar> report;
   report.spectral_radius = spectral_radius(u);
@@ -141,7 +138,7 @@ template <typename Scalar>
   // ‖W(k)‖₂ = ‖(I − KC) E (H_k − H̄)‖₂.
   const Matrix ikc_e = (Matrix::Identity(n, n) - K * C) * E;
   for (const Matrix& h : H_sequence) {
-    detail::require_finite_shape(h, n, p, who, "H_sequence");
+    require_finite_shape(h, n, p, who, "H_sequence");
     report.w_norms.push_back(detail::largest_singular_value<Scalar>(ikc_e * (h - Hbar)));
   }
   const auto& w = report.w_norms;

@@ -156,11 +156,11 @@ template <typename Scalar>
     const ComplexVector<Scalar>& target, const GuiroDesignOptions& options = {}) {
   using Matrix = Eigen::MatrixX<Scalar>;
   constexpr std::string_view who = "design_guiro_gains";
-  detail::require_square(E, who, "E");
-  detail::require_finite(E, who, "E");
+  require_square(E, who, "E");
+  require_finite(E, who, "E");
   const Index n = E.rows(), m = C_given.rows(), p = Hbar.cols(), na = n + p;
-  detail::require_finite_shape(C_given, m, n, who, "C");
-  detail::require(m >= 1, who, "C", "must have at least one row (output)");
+  require_finite_shape(C_given, m, n, who, "C");
+  require(m >= 1, who, "C", "must have at least one row (output)");
   // The design does not depend on the units of the outputs: with C = D C_given,
   // D diagonal, the gains K D, Γ D and L D for C_given give the same KC, ΓC and U
   // (N = I − CK becomes the similar D⁻¹ND). It runs on the rows of C scaled by
@@ -168,26 +168,26 @@ template <typename Scalar>
   // of C and the rank test at the eigenvalue 1 judge each output in its own units.
   const auto output_exponents = detail::row_exponents<Scalar>(C_given);
   const Matrix C = detail::scaled_by_powers_of_two<Scalar>(C_given, output_exponents, true);
-  detail::require_finite_shape(Hbar, n, p, who, "Hbar");
+  require_finite_shape(Hbar, n, p, who, "Hbar");
   // Compared with `>` below, which a NaN fails: the refusal would blame the data.
-  detail::require_non_negative(options.rank_tolerance, who, "options.rank_tolerance");
-  detail::require_non_negative(options.singularity_tolerance, who, "options.singularity_tolerance");
+  require_non_negative(options.rank_tolerance, who, "options.rank_tolerance");
+  require_non_negative(options.singularity_tolerance, who, "options.singularity_tolerance");
   if (target.size() != na) {
     std::ostringstream os;
     os << "must hold n + p = " << na << " values (got " << target.size() << ")";
-    detail::fail_argument(who, "poles", os.str());
+    fail_argument(who, "poles", os.str());
   }
   for (Index i = 0; i < na; ++i)
-    detail::require(std::abs(target(i)) < Scalar(1), who, "poles",
-                    "must lie inside the unit circle (the error dynamics must be Schur stable)");
+    require(std::abs(target(i)) < Scalar(1), who, "poles",
+            "must lie inside the unit circle (the error dynamics must be Schur stable)");
 
   // θ identifiable through the eigenvalue 1 of Ā: (E, C) observable, p ≤ rank C,
   // then the exact rank test at 1.
   const auto state_report = observability(E, C, Scalar(options.placement.observability_tolerance));
   if (!state_report.observable()) {
-    detail::fail_argument(who, "E, C",
-                          "is not observable: its mode(s) " +
-                              detail::format_complex_list(state_report.unobservable_modes) + " cannot be moved");
+    fail_argument(who, "E, C",
+                  "is not observable: its mode(s) " + detail::format_complex_list(state_report.unobservable_modes) +
+                      " cannot be moved");
   }
   const Scalar c_scale = C.norm();
   const auto c_sigma = Eigen::JacobiSVD<Matrix>(C).singularValues();
@@ -197,7 +197,7 @@ template <typename Scalar>
     std::ostringstream os;
     os << "has p = " << p << " columns but C has rank " << c_rank << ": at least " << p - c_rank
        << " eigenvalue(s) of U stay at 1 for every K and Gamma (the outputs identify at most rank C parameters)";
-    detail::fail_argument(who, "Hbar", os.str());
+    fail_argument(who, "Hbar", os.str());
   }
   Matrix a_bar = Matrix::Zero(na, na);
   a_bar.topLeftCorner(n, n) = E;
@@ -206,16 +206,16 @@ template <typename Scalar>
   Matrix c_bar = Matrix::Zero(m, na);
   c_bar.leftCols(n) = C;
   if (p > 0 && !(pbh_margin(a_bar, c_bar, Scalar(1)) > Scalar(options.rank_tolerance))) {
-    detail::fail_argument(who, "Hbar",
-                          "leaves theta unidentifiable: rank [E - I, E Hbar; C, 0] < n + p, so an eigenvalue 1 of U "
-                          "cannot be moved by any K and Gamma");
+    fail_argument(who, "Hbar",
+                  "leaves theta unidentifiable: rank [E - I, E Hbar; C, 0] < n + p, so an eigenvalue 1 of U "
+                  "cannot be moved by any K and Gamma");
   }
 
   // K = E⁻¹L: an E singular to working accuracy would show only later, as an
   // I − CK that no draw makes invertible.
   const Eigen::PartialPivLU<Matrix> e_lu(E);
   if (!(e_lu.rcond() > Scalar(100) * std::numeric_limits<Scalar>::epsilon()))
-    detail::fail_argument(who, "E", "is too ill-conditioned to invert (reciprocal condition number at most 100 eps)");
+    fail_argument(who, "E", "is too ill-conditioned to invert (reciprocal condition number at most 100 eps)");
   PolePlacer<Scalar> placer(a_bar, c_bar, target, options.placement, who, "E, C", "observable");
   const Matrix identity_m = Matrix::Identity(m, m);
   struct Choice {
@@ -245,13 +245,12 @@ template <typename Scalar>
   }
   if (!best) {
     if (!any_candidate)
-      detail::fail_argument(who, "poles",
-                            "could not be placed: the Sylvester transformation was singular in every draw");
-    detail::fail_argument(who, "poles",
-                          m == 1 ? "cannot be assigned: I - C K is singular for the only gain that places them "
-                                   "(Gamma would be infinite)"
-                                 : "cannot be assigned: I - C K is singular for every placing gain tried "
-                                   "(Gamma would be infinite)");
+      fail_argument(who, "poles", "could not be placed: the Sylvester transformation was singular in every draw");
+    fail_argument(who, "poles",
+                  m == 1 ? "cannot be assigned: I - C K is singular for the only gain that places them "
+                           "(Gamma would be infinite)"
+                         : "cannot be assigned: I - C K is singular for every placing gain tried "
+                           "(Gamma would be infinite)");
   }
 
   GuiroGains<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic> gains;
@@ -269,13 +268,13 @@ template <typename Scalar>
     os << "could not be assigned to the required accuracy (Cayley-Hamilton residual " << gains.cayley_hamilton_residual
        << ", tolerance " << tol << ", spectral radius of U " << gains.spectral_radius
        << "): (E, C, Hbar) is too close to a case without solution";
-    detail::fail_argument(who, "poles", os.str());
+    fail_argument(who, "poles", os.str());
   }
   gains.K = detail::scaled_by_powers_of_two<Scalar>(best->K, output_exponents, false);
   gains.Gamma = detail::scaled_by_powers_of_two<Scalar>(gamma, output_exponents, false);
   gains.L = detail::scaled_by_powers_of_two<Scalar>(best->L, output_exponents, false);
   if (!gains.K.allFinite() || !gains.Gamma.allFinite() || !gains.L.allFinite())
-    detail::fail_argument(who, "C", "is so small that the gains for it lie beyond the floating-point range");
+    fail_argument(who, "C", "is so small that the gains for it lie beyond the floating-point range");
   return gains;
 }
 #ifdef ADAPTOBS_PRECOMPILED

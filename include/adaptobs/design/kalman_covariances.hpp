@@ -27,10 +27,10 @@ class KalmanCovariances : public D {
   /// `who` names the equation in the errors.
   KalmanCovariances(typename D::StateMatrix P0, typename D::StateMatrix Q, OutputCovariance R, std::string_view who)
       : p_(std::move(P0)), q_(std::move(Q)), r_(std::move(R)) {
-    detail::require_positive_definite(p_, who, "P0");
-    detail::require_shape(q_, p_.rows(), p_.rows(), who, "Q");
-    detail::require_positive_semidefinite(q_, who, "Q");
-    detail::require_positive_definite(r_, who, "R");
+    require_positive_definite(p_, who, "P0");
+    require_shape(q_, p_.rows(), p_.rows(), who, "Q");
+    require_positive_semidefinite(q_, who, "Q");
+    require_positive_definite(r_, who, "R");
   }
 
   typename D::StateMatrix p_;

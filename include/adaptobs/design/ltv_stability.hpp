@@ -189,10 +189,10 @@ Eigen::Matrix<Scalar, Eigen::Dynamic, 1> controlled_floquet_exponents(const AFn&
 template <class AFn, typename Scalar = double>
 [[nodiscard]] Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> transition_matrix(const AFn& A, Scalar t0,
                                                                                       Scalar t1, int steps = 2000) {
-  detail::require(std::isfinite(t0) && std::isfinite(t1), "transition_matrix", "t0, t1", "must be finite");
-  detail::require(steps >= 1, "transition_matrix", "steps", "must be at least 1");
+  require(std::isfinite(t0) && std::isfinite(t1), "transition_matrix", "t0, t1", "must be finite");
+  require(steps >= 1, "transition_matrix", "steps", "must be at least 1");
   const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a0 = A(t0);  // its order; RK4 checks every value
-  detail::require_square(a0, "transition_matrix", "A");
+  require_square(a0, "transition_matrix", "A");
   Scalar norm_seen = 0;
   return detail::checked_transition(A, t0, t1, steps, a0.rows(), "transition_matrix", norm_seen);
 }
@@ -237,7 +237,7 @@ template <class AFn, typename Scalar = double>
 [[nodiscard]] Eigen::Matrix<Scalar, Eigen::Dynamic, 1> floquet_exponents(const AFn& A, Scalar period,
                                                                          int steps = 2000) {
   const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a0 = A(Scalar(0));
-  detail::require_square(a0, "floquet_exponents", "A");
+  require_square(a0, "floquet_exponents", "A");
   detail::require_floquet_arguments(period, steps, "floquet_exponents");
   if (a0.rows() == 0) return Eigen::Matrix<Scalar, Eigen::Dynamic, 1>();
   return detail::controlled_floquet_exponents(A, period, steps, a0.rows(), a0.rows(), "floquet_exponents");
@@ -254,8 +254,8 @@ template <class AFn, typename Scalar = double>
 template <class AFn, typename Scalar = double>
 [[nodiscard]] bool is_exponentially_stable_periodic(const AFn& A, Scalar period, Scalar margin = 0, int steps = 2000) {
   const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> a0 = A(Scalar(0));
-  detail::require_square(a0, "is_exponentially_stable_periodic", "A");
-  detail::require(std::isfinite(margin), "is_exponentially_stable_periodic", "margin", "must be finite");
+  require_square(a0, "is_exponentially_stable_periodic", "A");
+  require(std::isfinite(margin), "is_exponentially_stable_periodic", "margin", "must be finite");
   detail::require_floquet_arguments(period, steps, "is_exponentially_stable_periodic");
   if (a0.rows() == 0) return true;
   return detail::controlled_floquet_exponents(A, period, steps, a0.rows(), 1, "is_exponentially_stable_periodic")(0) <

@@ -43,10 +43,10 @@ template <typename Scalar>
   using Complex = std::complex<Scalar>;
   using ComplexMatrix = Eigen::MatrixX<Complex>;
   constexpr std::string_view who = "solve_continuous_lyapunov";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
+  require_square(A, who, "A");
+  require_finite(A, who, "A");
   const Index n = A.rows();
-  detail::require_shape(Q, n, n, who, "Q");
+  require_shape(Q, n, n, who, "Q");
   if (n == 0) return Eigen::MatrixX<Scalar>(0, 0);
   const Eigen::ComplexSchur<ComplexMatrix> schur(ComplexMatrix(A.template cast<Complex>()));
   const ComplexMatrix& T = schur.matrixT();
@@ -57,7 +57,7 @@ template <typename Scalar>
   for (Index j = 0; j < n; ++j) {
     // The diagonal of T^H + t_jj I: the pivots of column j.
     if ((T.diagonal().conjugate().array() + T(j, j)).abs().minCoeff() <= singular)
-      detail::fail_argument(who, "A", "must not share an eigenvalue with -A (the equation is singular)");
+      fail_argument(who, "A", "must not share an eigenvalue with -A (the equation is singular)");
     const ComplexMatrix shifted = T.adjoint() + T(j, j) * ComplexMatrix::Identity(n, n);
     Y.col(j) = shifted.template triangularView<Eigen::Lower>().solve(-C.col(j) - Y.leftCols(j) * T.col(j).head(j));
   }
@@ -87,11 +87,11 @@ template <class DA, class DQ>
 solve_continuous_lyapunov(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DQ>& Q) {
   using Scalar = typename DA::Scalar;
   constexpr std::string_view who = "solve_continuous_lyapunov";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
-  detail::require_finite_shape(Q, A.rows(), A.rows(), who, "Q");
+  require_square(A, who, "A");
+  require_finite(A, who, "A");
+  require_finite_shape(Q, A.rows(), A.rows(), who, "Q");
   // The solution is symmetrized, which is only right for a symmetric Q.
-  detail::require_symmetric(Q, who, "Q");
+  require_symmetric(Q, who, "Q");
   return Eigen::Matrix<Scalar, DA::RowsAtCompileTime, DA::RowsAtCompileTime>(
       solve_continuous_lyapunov_dynamic<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(Q)));
 }

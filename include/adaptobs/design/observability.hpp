@@ -184,7 +184,7 @@ template <class DA, class DC>
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "pbh_margin";
   detail::require_output_pair(A, C, who);
-  detail::require(std::isfinite(mu), who, "mu", "must be finite");
+  require(std::isfinite(mu), who, "mu", "must be finite");
   const Index n = A.rows();
   if (n == 0) return Scalar(1);
   Matrix stacked(n + C.rows(), n);

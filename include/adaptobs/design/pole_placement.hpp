@@ -209,8 +209,7 @@ template <typename Scalar>
     Index partner = -1;
     for (Index j = i + 1; j < poles.size() && partner < 0; ++j)
       if (!used[std::size_t(j)] && abs(poles(j) - std::conj(p)) <= pair_tol * scale) partner = j;
-    if (partner < 0)
-      detail::fail_argument(who, "poles", "must be closed under complex conjugation (a real gain is sought)");
+    if (partner < 0) fail_argument(who, "poles", "must be closed under complex conjugation (a real gain is sought)");
     used[std::size_t(partner)] = true;
     blocks.push_back({p.real(), abs(p.imag())});
   }
@@ -268,8 +267,8 @@ template <class DM, class DP>
                                                            const Eigen::MatrixBase<DP>& poles) {
   using Scalar = typename DM::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  detail::require_square(M, "cayley_hamilton_residual", "M");
-  detail::require(poles.size() == M.rows(), "cayley_hamilton_residual", "poles", "must have one pole per row of M");
+  require_square(M, "cayley_hamilton_residual", "M");
+  require(poles.size() == M.rows(), "cayley_hamilton_residual", "poles", "must have one pole per row of M");
   const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> q = polynomial_from_roots(poles);
   const Index n = M.rows();
   const Matrix m = detail::dynamic_copy(M);
@@ -289,9 +288,9 @@ template <class DM, class DP>
 /// A simple target when only a stability margin (spectral radius ≤ radius) is wanted.
 template <typename Scalar>
 [[nodiscard]] Eigen::Matrix<Scalar, Eigen::Dynamic, 1> spread_poles(Index count, Scalar radius) {
-  detail::require(count >= 0, "spread_poles", "count", "must be non-negative");
-  detail::require(radius >= Scalar(0) && radius < std::numeric_limits<Scalar>::infinity(), "spread_poles", "radius",
-                  "must be non-negative and finite");
+  require(count >= 0, "spread_poles", "count", "must be non-negative");
+  require(radius >= Scalar(0) && radius < std::numeric_limits<Scalar>::infinity(), "spread_poles", "radius",
+          "must be non-negative and finite");
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1> p(count);
   for (Index i = 0; i < count; ++i) p(i) = radius * Scalar(count - i) / Scalar(count);
   return p;
@@ -331,20 +330,20 @@ class PolePlacer {
              std::string_view who = "PolePlacer", std::string_view pair = "A, C",
              std::string_view property = "observable")
       : options_(options), rng_(options.seed) {
-    detail::require_square(A, who, "A");
-    detail::require_finite(A, who, "A");
-    detail::require_finite_shape(C, C.rows(), A.rows(), who, "C");
-    detail::require(poles.size() == A.rows(), who, "poles", "must hold one pole per state");
-    detail::require(options.tries >= 1, who, "options.tries", "must be at least 1");
+    require_square(A, who, "A");
+    require_finite(A, who, "A");
+    require_finite_shape(C, C.rows(), A.rows(), who, "C");
+    require(poles.size() == A.rows(), who, "poles", "must hold one pole per state");
+    require(options.tries >= 1, who, "options.tries", "must be at least 1");
     const Index n = A.rows();
     outputs_ = C.rows();
-    detail::require(outputs_ >= 1 || n == 0, who, pair, "has no output to inject");
+    require(outputs_ >= 1 || n == 0, who, pair, "has no output to inject");
 
     const auto report = observability(A, C, Scalar(options.observability_tolerance));
     if (!report.observable()) {
-      detail::fail_argument(who, pair,
-                            "is not " + std::string(property) + ": its mode(s) " +
-                                detail::format_complex_list(report.unobservable_modes) + " cannot be moved");
+      fail_argument(who, pair,
+                    "is not " + std::string(property) + ": its mode(s) " +
+                        detail::format_complex_list(report.unobservable_modes) + " cannot be moved");
     }
     f_ = real_matrix_with_spectrum(poles, who);
     // The placement works with C's rows scaled by powers of two to unit size, as
@@ -468,7 +467,6 @@ template <typename Scalar>
     const Eigen::MatrixX<Scalar>& A, const Eigen::MatrixX<Scalar>& C, const ComplexVector<Scalar>& poles,
     const PolePlacementOptions& options = {}, const PlacementNames& names = {}) {
   using Matrix = Eigen::MatrixX<Scalar>;
-  using detail::fail_argument;
   const std::string_view who = names.who, pair = names.pair, property = names.property, closed_loop = names.closed_loop;
   const Scalar eig_tol = detail::default_eigenvalue_tolerance<Scalar>(options.eigenvalue_tolerance);
   if (!(options.eigenvalue_tolerance >= 0 && eig_tol < Scalar(1)))
@@ -588,10 +586,10 @@ template <typename Scalar>
     const Eigen::MatrixX<Scalar>& A, const Eigen::MatrixX<Scalar>& B, const ComplexVector<Scalar>& poles,
     const PolePlacementOptions& options = {}) {
   constexpr std::string_view who = "place_state_feedback";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
+  require_square(A, who, "A");
+  require_finite(A, who, "A");
   // Checked before the dual problem, which would name Bᵀ as its C.
-  detail::require_finite_shape(B, A.rows(), B.cols(), who, "B");
+  require_finite_shape(B, A.rows(), B.cols(), who, "B");
   const auto dual = place_output_injection_dynamic<Scalar>(A.transpose(), B.transpose(), poles, options,
                                                            {who, "A, B", "controllable", "A - BK"});
   return {dual.L.transpose(), dual.cayley_hamilton_residual, dual.transformation_condition, dual.eigenvalue_mismatch};
@@ -607,9 +605,9 @@ template <class DA, class DB, class DP>
                                         const Eigen::MatrixBase<DP>& poles, PolePlacementOptions options = {}) {
   using Scalar = typename DA::Scalar;
   constexpr std::string_view who = "place_state_feedback";
-  detail::require_square(A, who, "A");
-  detail::require_finite(A, who, "A");
-  detail::require_finite_shape(B, A.rows(), B.cols(), who, "B");
+  require_square(A, who, "A");
+  require_finite(A, who, "A");
+  require_finite_shape(B, A.rows(), B.cols(), who, "B");
   const auto d = place_state_feedback_dynamic<Scalar>(detail::dynamic_copy(A), detail::dynamic_copy(B),
                                                       detail::complex_poles<Scalar>(poles, who), options);
   return StateFeedbackGain<Scalar, DA::RowsAtCompileTime, DB::ColsAtCompileTime>{

@@ -85,8 +85,8 @@ template <typename Scalar>
 /// recursion (file comment), on a dynamic-size A.
 template <typename Scalar>
 [[nodiscard]] Polynomial<Scalar> characteristic_polynomial(const detail::DynamicMatrix<Scalar>& A) {
-  detail::require_square(A, "characteristic_polynomial", "A");
-  detail::require_finite(A, "characteristic_polynomial", "A");
+  require_square(A, "characteristic_polynomial", "A");
+  require_finite(A, "characteristic_polynomial", "A");
   return detail::faddeev_leverrier(A, [](Index, const detail::DynamicMatrix<Scalar>&) {});
 }
 
@@ -138,7 +138,7 @@ template <class Derived>
   if (m.size() == 0) return true;
   if (m.rows() != m.cols()) detail::fail_not_square(m.rows(), m.cols(), who, "m");
   const detail::DynamicMatrix<typename Derived::Scalar> a = detail::dynamic_copy(m);
-  detail::require_finite(a, who, "m");
+  require_finite(a, who, "m");
   return is_hurwitz_polynomial(characteristic_polynomial(a));
 }
 
@@ -150,8 +150,8 @@ template <class Derived>
 template <typename Scalar>
 [[nodiscard]] Index count_real_roots_above(const Polynomial<Scalar>& p, Scalar a,
                                            Scalar relative_tolerance = Scalar(1e-10)) {
-  detail::require_finite(p, "count_real_roots_above", "p");
-  detail::require(std::isfinite(a), "count_real_roots_above", "a", "must be finite");
+  require_finite(p, "count_real_roots_above", "p");
+  require(std::isfinite(a), "count_real_roots_above", "a", "must be finite");
   using detail::max_abs;
   // The coefficients from the first whose magnitude exceeds `relative_tolerance`
   // times `scale` on.
@@ -227,9 +227,9 @@ template <class Derived>
 [[nodiscard]] Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic> evaluate_polynomial(
     const Polynomial<typename Derived::Scalar>& p, const Eigen::MatrixBase<Derived>& m) {
   using Matrix = Eigen::Matrix<typename Derived::Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  detail::require_finite(p, "evaluate_polynomial", "p");
-  detail::require_square(m, "evaluate_polynomial", "m");
-  detail::require_finite(m, "evaluate_polynomial", "m");
+  require_finite(p, "evaluate_polynomial", "p");
+  require_square(m, "evaluate_polynomial", "m");
+  require_finite(m, "evaluate_polynomial", "m");
   const Index n = m.rows();
   Matrix result = Matrix::Zero(n, n);
   for (Index i = 0; i < p.size(); ++i) {

@@ -80,8 +80,8 @@ template <typename Scalar>
   using ComplexMatrix = Eigen::Matrix<Complex, Eigen::Dynamic, Eigen::Dynamic>;
   constexpr std::string_view who = "spr_frequency_sweep";
   const Index n = detail::require_siso_triple(A, b, c, who);
-  detail::require(omega_min > 0 && omega_max > omega_min && std::isfinite(omega_max) && points >= 2, who,
-                  "omega_min, omega_max, points", "must satisfy 0 < omega_min < omega_max < ∞ and points ≥ 2");
+  require(omega_min > 0 && omega_max > omega_min && std::isfinite(omega_max) && points >= 2, who,
+          "omega_min, omega_max, points", "must satisfy 0 < omega_min < omega_max < ∞ and points ≥ 2");
   SprSweep<Scalar> r;
   if (n == 0) {  // G = 0: not strictly positive real; an empty A has no unstable mode
     r.hurwitz = true;
@@ -123,11 +123,11 @@ template <typename Scalar>
                                                                            const Eigen::MatrixX<Scalar>& c) {
   using Matrix = Eigen::MatrixX<Scalar>;
   constexpr std::string_view who = "kyp_residuals";
-  detail::require_square(P, who, "P");
+  require_square(P, who, "P");
   const Index n = P.rows();
-  detail::require_shape(A, n, n, who, "A");
-  detail::require_shape(b, n, 1, who, "b");
-  detail::require_shape(c, 1, n, who, "c");
+  require_shape(A, n, n, who, "A");
+  require_shape(b, n, 1, who, "b");
+  require_shape(c, 1, n, who, "c");
   KypCertificate<Scalar, Eigen::Dynamic> k;
   k.P = P;
   k.equality_residual = (P * b - c.transpose()).cwiseAbs().template maxCoeff<Eigen::PropagateNaN>();
@@ -284,14 +284,14 @@ template <class DA, class DC>
   using Scalar = typename DA::Scalar;
   constexpr std::string_view who = "ackermann_observer_gain";
   const Index n = detail::require_single_output_pair(A, c, who);
-  detail::require(p.size() == n + 1 && p(0) == Scalar(1), who, "p", "must be monic of degree n");
-  detail::require_finite(p, who, "p");
+  require(p.size() == n + 1 && p(0) == Scalar(1), who, "p", "must be monic of degree n");
+  require_finite(p, who, "p");
   if (n == 0) return Eigen::Matrix<Scalar, DA::RowsAtCompileTime, 1>(0);
-  detail::require(observability(A, c).observable(), who, "A, c", "must be an observable pair");
+  require(observability(A, c).observable(), who, "A, c", "must be an observable pair");
   const Eigen::FullPivLU<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> lu(observability_matrix(A, c));
-  detail::require(lu.rank() == n, who, "A, c",
-                  "is too ill-conditioned for Ackermann's formula: its observability matrix is singular to working "
-                  "accuracy");
+  require(lu.rank() == n, who, "A, c",
+          "is too ill-conditioned for Ackermann's formula: its observability matrix is singular to working "
+          "accuracy");
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1> en = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>::Zero(n);
   en(n - 1) = Scalar(1);
   return evaluate_polynomial(p, A) * lu.solve(en);
@@ -309,14 +309,14 @@ template <class DA, class DC, class DG>
   using Scalar = typename DA::Scalar;
   constexpr std::string_view who = "spr_injection_gain";
   const Index n = detail::require_single_output_pair(A, c, who);
-  detail::require_finite_shape(gamma, n, 1, who, "gamma");
-  detail::require_positive(lambda, who, "lambda");
+  require_finite_shape(gamma, n, 1, who, "gamma");
+  require_positive(lambda, who, "lambda");
   const auto g = transfer_function(A, gamma, c);
   const Scalar cg = (c * gamma)(0, 0);
-  detail::require(cg > 0, who, "gamma", "must satisfy c gamma > 0 (relative degree one, positive gain)");
+  require(cg > 0, who, "gamma", "must satisfy c gamma > 0 (relative degree one, positive gain)");
   const Polynomial<Scalar> zeros = g.numerator / cg;  // monic, degree n − 1 since cγ = N's leading coefficient
-  detail::require(n == 1 || is_hurwitz_polynomial(zeros), who, "gamma",
-                  "gives a numerator c adj(sI - A) gamma that is not Hurwitz: no gain makes the function SPR");
+  require(n == 1 || is_hurwitz_polynomial(zeros), who, "gamma",
+          "gives a numerator c adj(sI - A) gamma that is not Hurwitz: no gain makes the function SPR");
   Polynomial<Scalar> pole(2);
   pole << Scalar(1), lambda;
   const Polynomial<Scalar> target = multiply_polynomials<Scalar>(pole, zeros);

@@ -60,9 +60,9 @@ template <class Derived>
                                                             typename Derived::Scalar lambda, Index max_power = 100000) {
   using Scalar = typename Derived::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  detail::require_square(U, "power_bound_constant", "U");
-  detail::require_finite(U, "power_bound_constant", "U");
-  detail::require_positive(lambda, "power_bound_constant", "lambda");
+  require_square(U, "power_bound_constant", "U");
+  require_finite(U, "power_bound_constant", "U");
+  require_positive(lambda, "power_bound_constant", "lambda");
   const Index n = U.rows();
   if (n == 0) return Scalar(1);
   const Matrix s = detail::dynamic_copy(U) / lambda;
@@ -88,9 +88,9 @@ template <class Derived>
                                                                                    Index grid = 64) {
   using Scalar = typename Derived::Scalar;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
-  detail::require(grid >= 2, "best_power_bound", "grid", "must be at least 2");
-  detail::require_square(U, "best_power_bound", "U");
-  detail::require_finite(U, "best_power_bound", "U");
+  require(grid >= 2, "best_power_bound", "grid", "must be at least 2");
+  require_square(U, "best_power_bound", "U");
+  require_finite(U, "best_power_bound", "U");
   const Matrix u = detail::dynamic_copy(U);
   const Scalar rho = spectral_radius(u);
   if (!(rho < Scalar(1))) return std::nullopt;

@@ -64,8 +64,8 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
   template <ContinuousModel Model>
   int advance(const Model& model, Scalar t0, Scalar t1, int min_steps = 1) {
     constexpr std::string_view who = "RiccatiDifferentialEquation::advance";
-    detail::require(min_steps >= 1, who, "min_steps", "must be at least 1");
-    detail::require(std::isfinite(t0) && std::isfinite(t1) && t1 >= t0, who, "t1", "must be finite and not before t0");
+    require(min_steps >= 1, who, "min_steps", "must be at least 1");
+    require(std::isfinite(t0) && std::isfinite(t1) && t1 >= t0, who, "t1", "must be finite and not before t0");
     const auto field = [&](const StateMatrix& p, StateMatrix& dp, Scalar t) {
       decltype(auto) s = model.at(t);
       derivative(s.A, s.C, p, dp, cp_, r_inv_cp_);
@@ -78,20 +78,18 @@ class RiccatiDifferentialEquation : public KalmanCovariances<D> {
       closed_loop_ = s.A;
       closed_loop_.noalias() -= gain_of(s.C, trial_) * s.C;
       const Scalar rate = Scalar(2) * closed_loop_.norm();
-      if (!std::isfinite(rate)) detail::fail_argument(who, "model", "gives a non-finite A - KC (or P is not finite)");
+      if (!std::isfinite(rate)) fail_argument(who, "model", "gives a non-finite A - KC (or P is not finite)");
       Scalar h = std::min(nominal, t1 - t);
       if (rate * h > Scalar(2.5)) h = Scalar(2.5) / rate;
       // The last step lands on t1 exactly: a remainder within the rounding that
       // the sum of the steps accumulates joins it instead of making a step of its own.
       const Scalar slack = std::max(Scalar(1e-6), Scalar(1000) * std::numeric_limits<Scalar>::epsilon()) * h;
       const Scalar next = t1 - t <= h + slack ? t1 : t + h;
-      if (!(next > t))
-        detail::fail_argument(who, "model", "gives a Riccati equation too stiff for a step to advance t");
+      if (!(next > t)) fail_argument(who, "model", "gives a Riccati equation too stiff for a step to advance t");
       rk4_.integrate(field, trial_, t, next, 1);
       trial_ = Scalar(0.5) * (trial_ + trial_.transpose()).eval();
       if (!trial_.allFinite()) {
-        detail::fail_argument(who, "model",
-                              "gives a non-finite A or C within the step, or P leaves the floating-point range");
+        fail_argument(who, "model", "gives a non-finite A or C within the step, or P leaves the floating-point range");
       }
       t = next;
     }

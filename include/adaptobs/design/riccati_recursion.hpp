@@ -52,8 +52,8 @@ class KalmanGainRecursion : public KalmanCovariances<D> {
   const GainMatrix& next_gain(const DiscreteSystem<D>& system) {
     const auto& A = system.A;
     const auto& C = system.C;
-    detail::require_finite_shape(A, p_.rows(), p_.rows(), "KalmanGainRecursion::next_gain", "system.A");
-    detail::require_finite_shape(C, r_.rows(), p_.rows(), "KalmanGainRecursion::next_gain", "system.C");
+    require_finite_shape(A, p_.rows(), p_.rows(), "KalmanGainRecursion::next_gain", "system.A");
+    require_finite_shape(C, r_.rows(), p_.rows(), "KalmanGainRecursion::next_gain", "system.C");
     cp_.noalias() = C * p_;
     s_ = r_;
     s_.noalias() += cp_ * C.transpose();

@@ -27,7 +27,7 @@ template <class Derived>
 [[nodiscard]] typename Derived::Scalar spectral_radius_bound(const Eigen::MatrixBase<Derived>& m,
                                                              typename Derived::Scalar target = 0) {
   using Scalar = typename Derived::Scalar;
-  detail::require_square(m, "spectral_radius_bound", "M");
+  require_square(m, "spectral_radius_bound", "M");
   if (m.size() == 0) return Scalar(0);
   if (!m.derived().allFinite()) return std::numeric_limits<Scalar>::infinity();
   const Scalar largest = m.cwiseAbs().maxCoeff();

@@ -53,12 +53,12 @@ template <typename Scalar>
 [[nodiscard]] SprTest<Scalar> strictly_positive_real(const Polynomial<Scalar>& numerator,
                                                      const Polynomial<Scalar>& denominator) {
   constexpr std::string_view who = "strictly_positive_real";
-  detail::require(denominator.size() >= 2 && denominator(0) == Scalar(1), who, "denominator",
-                  "must be monic of degree at least 1");
+  require(denominator.size() >= 2 && denominator(0) == Scalar(1), who, "denominator",
+          "must be monic of degree at least 1");
   const Index n = denominator.size() - 1;
-  detail::require(numerator.size() <= n, who, "numerator", "must have degree below the denominator's");
-  detail::require_finite(numerator, who, "numerator");
-  detail::require_finite(denominator, who, "denominator");
+  require(numerator.size() <= n, who, "numerator", "must have degree below the denominator's");
+  require_finite(numerator, who, "numerator");
+  require_finite(denominator, who, "denominator");
   // N padded to n coefficients (degree ≤ n − 1).
   Polynomial<Scalar> num = Polynomial<Scalar>::Zero(n);
   num.tail(numerator.size()) = numerator;
@@ -93,8 +93,8 @@ template <typename Scalar>
   while (degree > 0 && std::abs(q_asc(degree)) <= Scalar(1e-10) * q_scale) --degree;
   r.q = q_asc.head(degree + 1).reverse();
   // The Sturm count below needs finite coefficients (its root scaling reads their exponents).
-  detail::require(r.q.allFinite(), who, "numerator",
-                  "times the denominator overflows the floating-point range (Re G(jw) |D(jw)|^2)");
+  require(r.q.allFinite(), who, "numerator",
+          "times the denominator overflows the floating-point range (Re G(jw) |D(jw)|^2)");
 
   // q(0) > 0 is checked below, so a root on [0, ∞) is a root in (0, ∞) (Sturm count).
   const bool nonnegative_root = count_real_roots_above<Scalar>(r.q, Scalar(0), Scalar(1e-10)) > 0;

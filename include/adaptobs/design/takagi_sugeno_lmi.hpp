@@ -222,7 +222,7 @@ inline void validate_certificate(const TakagiSugenoLmiData& data, const TakagiSu
   constexpr std::string_view who = "takagi_sugeno_vertex_lmi";
   detail::validate_lmi_data(data, who);
   detail::validate_certificate(data, s, who);
-  detail::require(i >= 0 && i < data.vertex_count(), who, "i", "must be a vertex index in [0, data.A.size())");
+  require(i >= 0 && i < data.vertex_count(), who, "i", "must be a vertex index in [0, data.A.size())");
 
   const Index r = data.vertex_count(), nx = data.nx(), nu = data.nu(), np = data.np();
   const Index n1 = nx + np, nut = data.perturbation_size(), n5 = 2 * r * (nx + nu);

@@ -41,11 +41,11 @@ template <typename Scalar, int N>
   for (const auto& run : runs)
     for (const auto& v : run) {
       if (n < 0) n = v.size();
-      detail::require_finite_shape(v, n, 1, who, "runs");
+      require_finite_shape(v, n, 1, who, "runs");
       if (v.size() > 0) largest = std::max(largest, v.cwiseAbs().maxCoeff());
       ++count;
     }
-  detail::require(count >= 2, who, "runs", "must hold at least two vectors");
+  require(count >= 2, who, "runs", "must hold at least two vectors");
   const int exponent = largest > Scalar(1e150) ? std::ilogb(largest) : 0;
   const Scalar down = std::ldexp(Scalar(1), -exponent);
   Eigen::Matrix<Scalar, N, N> sum = Eigen::Matrix<Scalar, N, N>::Zero(n, n);
@@ -55,7 +55,7 @@ template <typename Scalar, int N>
   const Scalar up = std::ldexp(Scalar(1), exponent);
   covariance *= up;  // twice: 2^{2·exponent} itself may be beyond the doubles
   covariance *= up;
-  detail::require(covariance.allFinite(), who, "runs", "have a covariance beyond the floating-point range");
+  require(covariance.allFinite(), who, "runs", "have a covariance beyond the floating-point range");
   return covariance;
 }
 
@@ -116,17 +116,17 @@ template <typename Scalar, int N>
   constexpr std::string_view who = "calibrate_cusum";
   using Vector = Eigen::Matrix<Scalar, N, 1>;
   constexpr int max_lag = 5;
-  detail::require(nominal.size() >= 1, who, "nominal", "must have at least one component");
-  detail::require_finite(nominal, who, "nominal");
-  detail::require_positive(drift, who, "drift");
-  detail::require_positive(mean_evaluations, who, "mean_evaluations");
-  detail::require(stride >= 1, who, "stride", "must be at least 1");
+  require(nominal.size() >= 1, who, "nominal", "must have at least one component");
+  require_finite(nominal, who, "nominal");
+  require_positive(drift, who, "drift");
+  require_positive(mean_evaluations, who, "mean_evaluations");
+  require(stride >= 1, who, "stride", "must be at least 1");
   // Each limit is compared with `>`, which a NaN would silently pass.
-  detail::require_positive(options.max_lag_correlation, who, "options.max_lag_correlation");
-  detail::require_positive(options.max_long_run_excess, who, "options.max_long_run_excess");
-  detail::require_positive(options.max_bias, who, "options.max_bias");
-  detail::require(options.rate_tolerance >= 1 && std::isfinite(options.rate_tolerance), who, "options.rate_tolerance",
-                  "must be finite and at least 1");
+  require_positive(options.max_lag_correlation, who, "options.max_lag_correlation");
+  require_positive(options.max_long_run_excess, who, "options.max_long_run_excess");
+  require_positive(options.max_bias, who, "options.max_bias");
+  require(options.rate_tolerance >= 1 && std::isfinite(options.rate_tolerance), who, "options.rate_tolerance",
+          "must be finite and at least 1");
   const Index n = nominal.size();
   const auto step = static_cast<std::size_t>(stride);
   CusumCalibration<Scalar, N> result;
@@ -138,17 +138,17 @@ template <typename Scalar, int N>
   // feed them all to a detector.
   for (const auto& run : runs)
     for (std::size_t k = 0; k < run.size(); ++k) {
-      detail::require_finite_shape(run[k], n, 1, who, "runs");
+      require_finite_shape(run[k], n, 1, who, "runs");
       if (k % step != 0) continue;
       sum += run[k] - nominal;
       squares += (run[k] - nominal).cwiseAbs2();
       ++result.evaluations;
     }
-  detail::require(result.evaluations >= 500, who, "runs", "must hold at least 500 values at the stride");
+  require(result.evaluations >= 500, who, "runs", "must hold at least 500 values at the stride");
   const auto count = static_cast<Scalar>(result.evaluations);
   result.scale = (squares / count).cwiseSqrt();
-  detail::require((result.scale.array() > Scalar(0)).all(), who, "runs",
-                  "must vary in every component (a zero scale cannot normalize)");
+  require((result.scale.array() > Scalar(0)).all(), who, "runs",
+          "must vary in every component (a zero scale cannot normalize)");
   const Vector mean = sum / count;
   const Vector variance = (squares / count - mean.cwiseAbs2()).cwiseMax(std::numeric_limits<Scalar>::min());
   result.bias = (mean.array().abs() / result.scale.array()).maxCoeff();
@@ -157,7 +157,7 @@ template <typename Scalar, int N>
     os << "is " << result.bias << " scales from the fault-free runs' mean in some component (more than "
        << options.max_bias << "): a sum would drift toward an alarm without a fault; give the healthy value "
        << "the runs settle on";
-    detail::fail_argument(who, "nominal", os.str());
+    fail_argument(who, "nominal", os.str());
   }
 
   // Autocorrelations at 1 to 5 strides, about the mean, pooled over the runs.
@@ -171,8 +171,8 @@ template <typename Scalar, int N>
         products[static_cast<std::size_t>(l - 1)] += (run[k] - nominal - mean).cwiseProduct(run[j] - nominal - mean);
         ++pairs[static_cast<std::size_t>(l - 1)];
       }
-  detail::require(pairs[max_lag - 1] >= 100, who, "runs",
-                  "must hold runs of at least six evaluations, 100 pairs five strides apart in all");
+  require(pairs[max_lag - 1] >= 100, who, "runs",
+          "must hold runs of at least six evaluations, 100 pairs five strides apart in all");
   Vector long_run = Vector::Ones(n);
   for (int l = 0; l < max_lag; ++l) {
     const Vector rho = (products[static_cast<std::size_t>(l)] / static_cast<Scalar>(pairs[static_cast<std::size_t>(l)]))
@@ -187,7 +187,7 @@ template <typename Scalar, int N>
     os << "is too short: values one stride apart are correlated (lag-one autocorrelation " << result.lag_correlation
        << ", limit " << options.max_lag_correlation << "; long-run variance ratio off 1 by " << result.long_run_excess
        << ", limit " << options.max_long_run_excess << "), so the threshold would not give the rate asked for";
-    detail::fail_argument(who, "stride", os.str());
+    fail_argument(who, "stride", os.str());
   }
 
   // Replays a design on the runs and counts its alarms.
@@ -205,7 +205,7 @@ template <typename Scalar, int N>
     std::ostringstream os;
     os << "hold too few values at the stride (" << result.evaluations << ") for drift " << drift
        << ": a check expecting 50 false alarms on them needs a threshold below 0; give longer runs or lower the drift";
-    detail::fail_argument(who, "runs", os.str());
+    fail_argument(who, "runs", os.str());
   }
   const double check_threshold =
       cusum_threshold(static_cast<double>(drift), static_cast<double>(result.checked_mean_evaluations), n);
@@ -215,7 +215,7 @@ template <typename Scalar, int N>
     std::ostringstream os;
     os << "give " << result.checked_alarms << " false alarms to a design that expects 50 on them: the normalized "
        << "values are too far from independent normal draws (raise the stride)";
-    detail::fail_argument(who, "runs", os.str());
+    fail_argument(who, "runs", os.str());
   }
 
   result.threshold =

@@ -108,7 +108,7 @@ inline void require_chi_square_degrees_of_freedom(double degrees_of_freedom, std
 /// \f$\le \nu \le\f$ `chi_square_max_degrees_of_freedom`.
 [[nodiscard]] inline double chi_square_upper_tail(double degrees_of_freedom, double x) {
   detail::require_chi_square_degrees_of_freedom(degrees_of_freedom, "chi_square_upper_tail", "degrees_of_freedom");
-  detail::require(!std::isnan(x), "chi_square_upper_tail", "x", "must not be NaN");
+  require(!std::isnan(x), "chi_square_upper_tail", "x", "must not be NaN");
   if (x <= 0) return 1.0;
   if (std::isinf(x)) return 0.0;
   const double a = degrees_of_freedom / 2, half = x / 2;
@@ -122,14 +122,14 @@ inline void require_chi_square_degrees_of_freedom(double degrees_of_freedom, std
 [[nodiscard]] inline double chi_square_upper_quantile(double degrees_of_freedom, double p) {
   constexpr std::string_view who = "chi_square_upper_quantile";
   detail::require_chi_square_degrees_of_freedom(degrees_of_freedom, who, "degrees_of_freedom");
-  detail::require(p > 0 && p < 1, who, "p", "must lie in (0, 1)");
+  require(p > 0 && p < 1, who, "p", "must lie in (0, 1)");
   // The tail falls from 1 to 0 as x grows.
   const double x = detail::boundary_by_bisection(
       [&](double x) { return chi_square_upper_tail(degrees_of_freedom, x) > p; }, degrees_of_freedom + 10);
   // With few degrees of freedom and p near 1 the quantile, about
   // \f$2(\Gamma(\nu/2+1)(1-p))^{2/\nu}\f$, can fall below the normal doubles.
-  detail::require(x >= std::numeric_limits<double>::min(), who, "p",
-                  "is so close to 1 that the quantile at these degrees of freedom is below the smallest normal double");
+  require(x >= std::numeric_limits<double>::min(), who, "p",
+          "is so close to 1 that the quantile at these degrees of freedom is below the smallest normal double");
   return x;
 }
 

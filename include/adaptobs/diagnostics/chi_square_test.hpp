@@ -67,24 +67,23 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
   ChiSquareTest(const Matrix& covariance, Index window, Scalar false_alarm_probability, ChiSquareOptions options = {})
       : window_(window), false_alarm_probability_(false_alarm_probability) {
     constexpr std::string_view who = "ChiSquareTest";
-    detail::require_square(covariance, who, "covariance");
-    detail::require(covariance.rows() >= 1, who, "covariance", "must be at least 1x1");
-    detail::require_finite(covariance, who, "covariance");
-    detail::require_positive_definite(covariance, who, "covariance");
-    detail::require(window >= 1, who, "window", "must be at least 1");
-    detail::require(false_alarm_probability > Scalar(0) && false_alarm_probability < Scalar(1), who,
-                    "false_alarm_probability", "must lie in (0, 1)");
-    detail::require_positive(options.scale, who, "options.scale");
-    detail::require(options.degrees_of_freedom >= 0 && std::isfinite(options.degrees_of_freedom), who,
-                    "options.degrees_of_freedom", "must be non-negative and finite (0: window × outputs)");
+    require_square(covariance, who, "covariance");
+    require(covariance.rows() >= 1, who, "covariance", "must be at least 1x1");
+    require_finite(covariance, who, "covariance");
+    require_positive_definite(covariance, who, "covariance");
+    require(window >= 1, who, "window", "must be at least 1");
+    require(false_alarm_probability > Scalar(0) && false_alarm_probability < Scalar(1), who, "false_alarm_probability",
+            "must lie in (0, 1)");
+    require_positive(options.scale, who, "options.scale");
+    require(options.degrees_of_freedom >= 0 && std::isfinite(options.degrees_of_freedom), who,
+            "options.degrees_of_freedom", "must be non-negative and finite (0: window × outputs)");
     const Index ny = covariance.rows();
     detail::CholeskyFactor<Matrix> factor;
     (void)factor.compute(covariance);  // positive definite: checked above
     information_ = Matrix::Identity(ny, ny);
     factor.solve_in_place(information_);
     information_ = Scalar(0.5) * (information_ + information_.transpose()).eval();
-    detail::require(information_.allFinite(), who, "covariance",
-                    "has an inverse that overflows: rescale the output errors");
+    require(information_.allFinite(), who, "covariance", "has an inverse that overflows: rescale the output errors");
     // In floating point: window × outputs may not fit an Index.
     const double dof = options.degrees_of_freedom > 0 ? options.degrees_of_freedom
                                                       : static_cast<double>(window) * static_cast<double>(ny);
@@ -101,7 +100,7 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
   /// if even its scaled form is NaN).
   [[nodiscard]] UpdateStatus update(const Vector& output_error) {
     if constexpr (NY == Eigen::Dynamic)
-      detail::require_shape(output_error, information_.rows(), 1, "ChiSquareTest::update", "output_error");
+      require_shape(output_error, information_.rows(), 1, "ChiSquareTest::update", "output_error");
     if (!detail::all_finite(output_error)) return UpdateStatus::nonfinite_input;
     Scalar term = weighted_square(output_error);
     if (!std::isfinite(term)) {
@@ -153,8 +152,8 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
     archive("filled", self.filled_);
     archive("decisions", self.decisions_);
     if constexpr (Archive::reading)
-      detail::require(self.filled_ >= 0 && self.filled_ < self.window_, "restore", "snapshot",
-                      "holds a chi-square window position outside the window");
+      require(self.filled_ >= 0 && self.filled_ < self.window_, "restore", "snapshot",
+              "holds a chi-square window position outside the window");
     ChiSquareTest::visit_alarm_state(self, archive);
   }
 

@@ -82,14 +82,14 @@ namespace detail {
 /// 2·components·mean_evaluations increments, `cusum_mean_run_length`).
 [[nodiscard]] inline double cusum_threshold(double drift, double mean_evaluations, Index components = 1) {
   constexpr std::string_view who = "cusum_threshold";
-  detail::require_positive(drift, who, "drift");
-  detail::require_positive(mean_evaluations, who, "mean_evaluations");
-  detail::require(components >= 1, who, "components", "must be at least 1");
+  require_positive(drift, who, "drift");
+  require_positive(mean_evaluations, who, "mean_evaluations");
+  require(components >= 1, who, "components", "must be at least 1");
   const double per_sum = mean_evaluations * 2 * static_cast<double>(components);
-  detail::require(std::isfinite(per_sum), who, "mean_evaluations",
-                  "times 2 x components must be finite (no threshold reaches an infinite run length)");
-  detail::require(detail::cusum_threshold_exists(drift, mean_evaluations, components), who, "mean_evaluations",
-                  "is shorter than the run length at threshold 0: lower the drift");
+  require(std::isfinite(per_sum), who, "mean_evaluations",
+          "times 2 x components must be finite (no threshold reaches an infinite run length)");
+  require(detail::cusum_threshold_exists(drift, mean_evaluations, components), who, "mean_evaluations",
+          "is shorter than the run length at threshold 0: lower the drift");
   return detail::boundary_by_bisection([&](double h) { return cusum_mean_run_length(drift, h) < per_sum; });
 }
 
@@ -108,7 +108,7 @@ class CusumDetector : public SequentialTest<CusumDetector<Scalar, N>, Scalar, N>
   /// scales s (e.g. from `calibrate_cusum`); \param drift ν > 0; \param threshold h > 0.
   CusumDetector(Vector nominal, const Vector& scale, Scalar drift, Scalar threshold, CusumOptions options = {})
       : Base("CusumDetector", std::move(nominal), scale, threshold, options), drift_(drift) {
-    detail::require_positive(drift, "CusumDetector", "drift");
+    require_positive(drift, "CusumDetector", "drift");
     upper_.setZero(this->components());
     lower_.setZero(this->components());
   }

@@ -42,8 +42,8 @@ class ExcitationMonitor {
   /// \param window number L of samples averaged (≥ 1), \param np parameter count (p; with a
   /// compile-time NP it must be NP).
   explicit ExcitationMonitor(Index window, Index np = NP) : window_(window) {
-    detail::require(window >= 1, "ExcitationMonitor", "window", "must be at least 1");
-    detail::require_size<NP>(np, "ExcitationMonitor", "np");
+    require(window >= 1, "ExcitationMonitor", "window", "must be at least 1");
+    require_size<NP>(np, "ExcitationMonitor", "np");
     ring_.assign(static_cast<std::size_t>(window), Gramian::Zero(np, np));
     sum_.setZero(np, np);
   }
@@ -98,8 +98,8 @@ class ExcitationMonitor {
     archive("count", self.count_);
     archive("adds_since_overflow", self.adds_since_overflow_);
     if constexpr (Archive::reading)
-      detail::require(self.next_ < self.ring_.size() && self.count_ >= 0 && self.count_ <= self.window_, "restore",
-                      "snapshot", "holds an excitation window position outside the window");
+      require(self.next_ < self.ring_.size() && self.count_ >= 0 && self.count_ <= self.window_, "restore", "snapshot",
+              "holds an excitation window position outside the window");
   }
 
   void reset() {
@@ -115,8 +115,8 @@ class ExcitationMonitor {
   template <class Derived>
   void add_stored(const Eigen::MatrixBase<Derived>& phi, Scalar weight) {
     constexpr std::string_view who = "ExcitationMonitor::add";
-    detail::require_finite_shape(phi, phi.rows(), sum_.cols(), who, "phi");
-    detail::require(weight >= Scalar(0) && std::isfinite(weight), who, "weight", "must be non-negative and finite");
+    require_finite_shape(phi, phi.rows(), sum_.cols(), who, "phi");
+    require(weight >= Scalar(0) && std::isfinite(weight), who, "weight", "must be non-negative and finite");
     Gramian& slot = ring_[next_];
     sum_ -= slot;
     // The sum carries a rounding error of about ε times the terms it ever held;

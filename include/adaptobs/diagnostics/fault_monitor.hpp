@@ -91,21 +91,21 @@ template <typename Scalar, int NY, int NP>
     const FaultFreeRecord<Scalar, NY, NP>& record, const Eigen::Matrix<Scalar, NP, 1>& nominal, Scalar drift,
     Scalar mean_samples_between_false_alarms, Index stride, Index window, Index glr_window = 10) {
   constexpr std::string_view who = "design_fault_monitor";
-  detail::require_positive(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms");
-  detail::require(window >= 1 && Scalar(window) < mean_samples_between_false_alarms, who, "window",
-                  "must be at least 1 and shorter than mean_samples_between_false_alarms");
-  detail::require(stride >= 1, who, "stride", "must be at least 1");
-  detail::require_positive(drift, who, "drift");
-  detail::require(glr_window >= 1, who, "glr_window", "must be at least 1");
+  require_positive(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms");
+  require(window >= 1 && Scalar(window) < mean_samples_between_false_alarms, who, "window",
+          "must be at least 1 and shorter than mean_samples_between_false_alarms");
+  require(stride >= 1, who, "stride", "must be at least 1");
+  require_positive(drift, who, "drift");
+  require(glr_window >= 1, who, "glr_window", "must be at least 1");
   const double evaluations_between =
       static_cast<double>(mean_samples_between_false_alarms) / static_cast<double>(stride);
-  detail::require(evaluations_between >= 2 && evaluations_between <= glr_max_mean_evaluations, who,
-                  "mean_samples_between_false_alarms",
-                  "must lie between 2 and 1e5 strides (the GLR's threshold is simulated over 50 times as many)");
+  require(evaluations_between >= 2 && evaluations_between <= glr_max_mean_evaluations, who,
+          "mean_samples_between_false_alarms",
+          "must lie between 2 and 1e5 strides (the GLR's threshold is simulated over 50 times as many)");
   // The GLR's threshold is simulated (glr_threshold), at a cost of window × parameters × evaluations.
-  detail::require(detail::glr_simulation_affordable(glr_window, nominal.size(), evaluations_between), who, "glr_window",
-                  "times the parameters times mean_samples_between_false_alarms / stride must be at most 1e7 "
-                  "(glr_max_simulation_work: the GLR's threshold is simulated)");
+  require(detail::glr_simulation_affordable(glr_window, nominal.size(), evaluations_between), who, "glr_window",
+          "times the parameters times mean_samples_between_false_alarms / stride must be at most 1e7 "
+          "(glr_max_simulation_work: the GLR's threshold is simulated)");
   FaultMonitorDesign<Scalar, NY, NP> design;
   design.nominal = nominal;
   design.cusum = calibrate_cusum(record.parameters, nominal, drift,
@@ -116,10 +116,9 @@ template <typename Scalar, int NY, int NP>
   {
     const double checked = static_cast<double>(design.cusum.evaluations) / 50;
     // The check simulates its own threshold, within glr_threshold's range.
-    detail::require(
-        detail::glr_simulation_affordable(glr_window, nominal.size(), checked), who, "record",
-        "is too long for the GLR's check, whose threshold is simulated for its estimates at the stride / 50 "
-        "(at most 1e5, and 1e7 / (glr_window x parameters)): give fewer runs");
+    require(detail::glr_simulation_affordable(glr_window, nominal.size(), checked), who, "record",
+            "is too long for the GLR's check, whose threshold is simulated for its estimates at the stride / 50 "
+            "(at most 1e5, and 1e7 / (glr_window x parameters)): give fewer runs");
     GlrDetector<Scalar, NP> glr(nominal, design.cusum.scale, glr_window,
                                 static_cast<Scalar>(glr_threshold(glr_window, checked, nominal.size())),
                                 {.stride = stride});
@@ -132,7 +131,7 @@ template <typename Scalar, int NY, int NP>
       std::ostringstream os;
       os << "gives " << design.glr_checked_alarms << " false alarms to a GLR designed for 50 on it: the normalized "
          << "estimates are too far from independent normal draws";
-      detail::fail_argument(who, "record", os.str());
+      fail_argument(who, "record", os.str());
     }
   }
   design.output_error_covariance = sample_covariance(record.output_errors);
@@ -154,10 +153,10 @@ template <typename Scalar, int NY, int NP>
       ++windows;
     }
   }
-  detail::require(windows >= 200, who, "record", "must span at least 200 windows of the χ² test");
+  require(windows >= 200, who, "record", "must span at least 200 windows of the χ² test");
   const double mean = sum / static_cast<double>(windows);
   const double variance = (squares - sum * mean) / static_cast<double>(windows - 1);
-  detail::require(variance > 0, who, "record", "must have output errors that vary");
+  require(variance > 0, who, "record", "must have output errors that vary");
   design.chi_square_options = {.scale = variance / (2 * mean), .degrees_of_freedom = 2 * mean * mean / variance};
   // Window sums that hardly vary have a ν beyond what the χ² tail is computed for.
   const double dof = design.chi_square_options.degrees_of_freedom;
@@ -166,7 +165,7 @@ template <typename Scalar, int NY, int NP>
     os << "has window sums of the output errors with mean " << mean << " and variance " << variance
        << ": their matched χ² has " << dof << " degrees of freedom, outside [" << chi_square_min_degrees_of_freedom
        << ", " << chi_square_max_degrees_of_freedom << "]";
-    detail::fail_argument(who, "record", os.str());
+    fail_argument(who, "record", os.str());
   }
   design.chi_square_windows = windows;
   return design;
@@ -206,8 +205,8 @@ class FaultMonitor {
         chi_square_(std::move(output_error_detector)),
         parameters_(parameters),
         outputs_(outputs) {
-    detail::require_size<NP>(parameters, "FaultMonitor", "parameters");
-    detail::require_size<NY>(outputs, "FaultMonitor", "outputs");
+    require_size<NP>(parameters, "FaultMonitor", "parameters");
+    require_size<NY>(outputs, "FaultMonitor", "outputs");
   }
 
   /// Feeds the observer's estimates after an accepted update to the three tests.
@@ -249,8 +248,8 @@ class FaultMonitor {
   UpdateStatus observe(const P& parameters, const E& output_error, std::string_view parameters_name,
                        std::string_view output_error_name) {
     constexpr std::string_view who = "FaultMonitor::observe";
-    detail::require_shape(parameters, parameters_, 1, who, parameters_name);
-    detail::require_shape(output_error, outputs_, 1, who, output_error_name);
+    require_shape(parameters, parameters_, 1, who, parameters_name);
+    require_shape(output_error, outputs_, 1, who, output_error_name);
     if (!detail::all_finite(parameters, output_error)) return UpdateStatus::nonfinite_input;
     const UpdateStatus chi = chi_square_.update(output_error);
     if (!accepted(chi)) return chi;  // an overflowing weighted error: the others have not moved either

@@ -74,8 +74,8 @@ class GlrDetector : public SequentialTest<GlrDetector<Scalar, N>, Scalar, N> {
   /// \param options stride, hold-off and re-anchoring as for the CUSUM.
   GlrDetector(Vector nominal, const Vector& scale, Index window, Scalar threshold, SequentialTestOptions options = {})
       : Base("GlrDetector", std::move(nominal), scale, threshold, options), window_(window) {
-    detail::require(window >= 1 && window <= glr_max_window, "GlrDetector", "window",
-                    "must lie in [1, 2^20] (each evaluation costs O(window))");
+    require(window >= 1 && window <= glr_max_window, "GlrDetector", "window",
+            "must lie in [1, 2^20] (each evaluation costs O(window))");
     history_.setZero(this->components(), window);
     statistic_.setZero(this->components());
     half_inverse_.resize(window);
@@ -101,9 +101,8 @@ class GlrDetector : public SequentialTest<GlrDetector<Scalar, N>, Scalar, N> {
     archive("newest", self.newest_);
     archive("filled", self.filled_);
     if constexpr (Archive::reading)
-      detail::require(
-          self.newest_ >= 0 && self.newest_ < self.window_ && self.filled_ >= 0 && self.filled_ <= self.window_,
-          "restore", "snapshot", "holds a GLR window position outside the window");
+      require(self.newest_ >= 0 && self.newest_ < self.window_ && self.filled_ >= 0 && self.filled_ <= self.window_,
+              "restore", "snapshot", "holds a GLR window position outside the window");
   }
 
  private:
@@ -230,12 +229,12 @@ namespace detail {
 /// `glr_max_simulation_work` (each evaluation costs O(window) per component).
 [[nodiscard]] inline double glr_threshold(Index window, double mean_evaluations, Index components = 1) {
   constexpr std::string_view who = "glr_threshold";
-  detail::require(window >= 1 && window <= glr_max_window, who, "window", "must lie in [1, 2^20]");
-  detail::require(components >= 1, who, "components", "must be at least 1");
-  detail::require(mean_evaluations >= 2 && mean_evaluations <= glr_max_mean_evaluations, who, "mean_evaluations",
-                  "must lie in [2, 1e5] evaluations");
-  detail::require(detail::glr_simulation_affordable(window, components, mean_evaluations), who, "window",
-                  "times components times mean_evaluations must be at most 1e7 (glr_max_simulation_work)");
+  require(window >= 1 && window <= glr_max_window, who, "window", "must lie in [1, 2^20]");
+  require(components >= 1, who, "components", "must be at least 1");
+  require(mean_evaluations >= 2 && mean_evaluations <= glr_max_mean_evaluations, who, "mean_evaluations",
+          "must lie in [2, 1e5] evaluations");
+  require(detail::glr_simulation_affordable(window, components, mean_evaluations), who, "window",
+          "times components times mean_evaluations must be at most 1e7 (glr_max_simulation_work)");
   return detail::glr_threshold_search(window, mean_evaluations, components, Index{1} << 22);
 }
 

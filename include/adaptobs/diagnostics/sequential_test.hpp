@@ -53,7 +53,7 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   [[nodiscard]] UpdateStatus update(const Vector& value) {
     if constexpr (N == Eigen::Dynamic)
       if (value.size() != nominal_.size())
-        detail::require_shape(value, nominal_.size(), 1, std::string(name_) + "::update", "value");
+        require_shape(value, nominal_.size(), 1, std::string(name_) + "::update", "value");
     if (!detail::all_finite(value)) return UpdateStatus::nonfinite_input;
     this->clear_alarm();
     // Every stride-th value is evaluated: a countdown, not a division per value.
@@ -98,7 +98,7 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   /// last alarm named are kept.
   void rearm(const Vector& nominal) {
     const std::string who = std::string(name_) + "::rearm";
-    detail::require_finite_shape(nominal, nominal_.size(), 1, who, "nominal");
+    require_finite_shape(nominal, nominal_.size(), 1, who, "nominal");
     nominal_ = nominal;
     restart();
   }
@@ -124,17 +124,17 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
         initial_nominal_(nominal_),
         options_(options) {
     const Index n = nominal_.size();
-    detail::require(n >= 1, who, "nominal", "must have at least one component");
-    detail::require_finite(nominal_, who, "nominal");
-    detail::require_shape(scale, n, 1, who, "scale");
-    detail::require(((scale.array() > Scalar(0)) && scale.array().isFinite()).all(), who, "scale",
-                    "must be positive and finite");
+    require(n >= 1, who, "nominal", "must have at least one component");
+    require_finite(nominal_, who, "nominal");
+    require_shape(scale, n, 1, who, "scale");
+    require(((scale.array() > Scalar(0)) && scale.array().isFinite()).all(), who, "scale",
+            "must be positive and finite");
     inverse_scale_ = scale.cwiseInverse();
     // A subnormal scale has no finite reciprocal: every deviation would read ∞.
-    detail::require(inverse_scale_.allFinite(), who, "scale", "must have finite reciprocals (no subnormal entries)");
-    detail::require_positive(threshold, who, "threshold");
-    detail::require(options.stride >= 1, who, "options.stride", "must be at least 1");
-    detail::require(options.hold_off >= 0, who, "options.hold_off", "must be non-negative");
+    require(inverse_scale_.allFinite(), who, "scale", "must have finite reciprocals (no subnormal entries)");
+    require_positive(threshold, who, "threshold");
+    require(options.stride >= 1, who, "options.stride", "must be at least 1");
+    require(options.hold_off >= 0, who, "options.hold_off", "must be non-negative");
     z_.setZero(n);
   }
 
@@ -159,9 +159,9 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
     archive("alarm_statistic", self.alarm_statistic_);
     archive("reanchor_pending", self.reanchor_pending_);
     if constexpr (Archive::reading)
-      detail::require(self.skip_ >= 0 && self.skip_ < self.options_.stride && self.holding_ >= 0 &&
-                          self.holding_ <= self.options_.hold_off,
-                      "restore", "snapshot", "holds a stride or hold-off position outside its option");
+      require(self.skip_ >= 0 && self.skip_ < self.options_.stride && self.holding_ >= 0 &&
+                  self.holding_ <= self.options_.hold_off,
+              "restore", "snapshot", "holds a stride or hold-off position outside its option");
     ThresholdAlarm<Scalar>::visit_alarm_state(self, archive);
   }
 

@@ -112,9 +112,9 @@ class RegressorIntegralBase {
  protected:
   /// A square and finite, T > 0; `who` names the integral in the errors.
   RegressorIntegralBase(const StateMatrix& A, Scalar period, std::string_view who) : period_(period) {
-    detail::require_square(A, who, "A");
-    detail::require_finite(A, who, "A");
-    detail::require_positive(period, who, "period");
+    require_square(A, who, "A");
+    require_finite(A, who, "A");
+    require_positive(period, who, "period");
   }
 
   /// e^M of one of the integral's exponentials (of ±σA with σ up to T): an
@@ -124,9 +124,9 @@ class RegressorIntegralBase {
     try {
       return matrix_exponential(m);
     } catch (const ConfigurationError&) {  // the only refusal left for a finite square argument: overflow
-      detail::fail_argument(who, "A, period",
-                            "give exponentials e^{±A t}, 0 <= t <= period, beyond the floating-point range: shorten "
-                            "period");
+      fail_argument(who, "A, period",
+                    "give exponentials e^{±A t}, 0 <= t <= period, beyond the floating-point range: shorten "
+                    "period");
     }
   }
 
@@ -153,10 +153,10 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
   RegressorIntegral(const StateMatrix& A, Scalar period, RegressorIntegralOptions options = {})
       : Base(A, period, "RegressorIntegral"), options_(options) {
     constexpr std::string_view who = "RegressorIntegral";
-    detail::require(options.max_depth >= 0 && options.max_depth <= 40, who, "options.max_depth", "must be in [0, 40]");
-    detail::require(options.max_panels >= 1, who, "options.max_panels", "must be at least 1");
-    detail::require(options.relative_tolerance >= 0 && options.absolute_tolerance >= 0, who, "options",
-                    "tolerances must be non-negative");
+    require(options.max_depth >= 0 && options.max_depth <= 40, who, "options.max_depth", "must be in [0, 40]");
+    require(options.max_panels >= 1, who, "options.max_panels", "must be at least 1");
+    require(options.relative_tolerance >= 0 && options.absolute_tolerance >= 0, who, "options",
+            "tolerances must be non-negative");
     relative_tolerance_ = options.relative_tolerance > 0
                               ? Scalar(options.relative_tolerance)
                               : std::pow(std::numeric_limits<Scalar>::epsilon(), Scalar(0.75));
@@ -268,7 +268,7 @@ class RegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP> {
       const Scalar sigma = half_width * (Scalar(1) + Scalar(Rule::nodes[i]));
       decltype(auto) value = phi(panel.start + sigma);
       if (columns_ == Eigen::Dynamic) columns_ = value.cols();
-      detail::require_finite_shape(value, n_, columns_, "RegressorIntegral::integrate", "phi(t)");
+      require_finite_shape(value, n_, columns_, "RegressorIntegral::integrate", "phi(t)");
       term.noalias() = level.kernel[i] * value;
       if (i == 0) {
         panel.integral = Scalar(Rule::kronrod_weights[i]) * term;
@@ -308,7 +308,7 @@ class PolynomialRegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP>
   PolynomialRegressorIntegral(const StateMatrix& A, Scalar period, int degree)
       : Base(A, period, "PolynomialRegressorIntegral") {
     constexpr std::string_view who = "PolynomialRegressorIntegral";
-    detail::require(degree >= 0 && degree <= 16, who, "degree", "must be in [0, 16]");
+    require(degree >= 0 && degree <= 16, who, "degree", "must be in [0, 16]");
     using Dynamic = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
     const Index n = A.rows();
     const Index blocks = degree + 2;
@@ -357,10 +357,10 @@ class PolynomialRegressorIntegral : public RegressorIntegralBase<Scalar, NX, NP>
 
   void integrate(std::span<const Regressor> coefficients, Result& out) const {
     constexpr std::string_view who = "PolynomialRegressorIntegral::integrate";
-    detail::require(!coefficients.empty() && coefficients.size() <= psi_moments_.size(), who, "coefficients",
-                    "must hold 1 to degree + 1 matrices");
+    require(!coefficients.empty() && coefficients.size() <= psi_moments_.size(), who, "coefficients",
+            "must hold 1 to degree + 1 matrices");
     for (const Regressor& p : coefficients)
-      detail::require_finite_shape(p, this->transition_.rows(), coefficients[0].cols(), who, "coefficients");
+      require_finite_shape(p, this->transition_.rows(), coefficients[0].cols(), who, "coefficients");
     out.H.noalias() = h_moments_[0] * coefficients[0];
     out.Psi.noalias() = psi_moments_[0] * coefficients[0];
     for (std::size_t j = 1; j < coefficients.size(); ++j) {

@@ -191,7 +191,7 @@ template <StateSpace D, int NZ, class F>
   detail::validate_sectors(premise_bounds, premise_bounds.lower.size(), who, "premise_bounds");
   detail::validate_sectors(parameter_bounds, parameter_bounds.lower.size(), who, "parameter_bounds");
   const Index k = premise_bounds.size() + parameter_bounds.size();
-  detail::require(k <= 20, who, "premise_bounds", "with parameter_bounds gives more than 2^20 vertices");
+  require(k <= 20, who, "premise_bounds", "with parameter_bounds gives more than 2^20 vertices");
   const Index r = Index(1) << k;
   std::vector<TakagiSugenoVertex<D>> vertices(static_cast<std::size_t>(r));
   Eigen::Matrix<S, NZ, 1> z;
@@ -241,16 +241,16 @@ class TakagiSugenoModel : public D {
     detail::validate_sectors(premise_bounds_, premise_bounds_.lower.size(), who, "premise_bounds");
     detail::validate_sectors(parameter_bounds_, parameter_bounds_.lower.size(), who, "parameter_bounds");
     const Index k = premise_bounds_.size() + parameter_bounds_.size();
-    detail::require(k <= 20, who, "premise_bounds", "with parameter_bounds gives more than 2^20 vertices");
+    require(k <= 20, who, "premise_bounds", "with parameter_bounds gives more than 2^20 vertices");
     const Index r = Index(1) << k;
     if (std::ssize(vertices) != r) detail::fail_count(r, vertices.size(), "2^(nz + np) vertices", who, "vertices");
     const Index nx = vertices_.front().A.rows();
     const Index nu = vertices_.front().B.cols();
     for (const Vertex& v : vertices_) {
-      detail::require_finite_shape(v.A, nx, nx, who, "vertices[i].A");
-      detail::require_finite_shape(v.B, nx, nu, who, "vertices[i].B");
+      require_finite_shape(v.A, nx, nx, who, "vertices[i].A");
+      require_finite_shape(v.B, nx, nu, who, "vertices[i].B");
     }
-    detail::require_finite_shape(C_, C_.rows(), nx, who, "C");
+    require_finite_shape(C_, C_.rows(), nx, who, "C");
   }
 
   [[nodiscard]] Sizes sizes() const noexcept {
@@ -280,7 +280,7 @@ class TakagiSugenoModel : public D {
                     z.rows();
                     z.cols();
                   })
-      detail::require_shape(z, premise_count(), 1, "TakagiSugenoModel", "premises(x, u, theta)");
+      require_shape(z, premise_count(), 1, "TakagiSugenoModel", "premises(x, u, theta)");
     return PremiseVector(z);
   }
 
@@ -338,9 +338,9 @@ class TakagiSugenoModel : public D {
     archive("parameter_bounds.upper", self.parameter_bounds_.upper);
     if constexpr (Archive::reading) {
       constexpr std::string_view who = "restore";
-      detail::require_finite(A, who, "snapshot field 'A'");
-      detail::require_finite(B, who, "snapshot field 'B'");
-      detail::require_finite(self.C_, who, "snapshot field 'C'");
+      require_finite(A, who, "snapshot field 'A'");
+      require_finite(B, who, "snapshot field 'B'");
+      require_finite(self.C_, who, "snapshot field 'C'");
       detail::validate_sectors(self.premise_bounds_, self.premise_bounds_.size(), who,
                                "snapshot field 'premise_bounds'");
       detail::validate_sectors(self.parameter_bounds_, self.parameter_bounds_.size(), who,

@@ -57,7 +57,7 @@ struct BastinGevers {
       : static_transform(std::move(transform)),
         dynamic_transform(make_dynamic_transform(static_transform)),
         k(std::move(gain)) {
-    detail::require_finite_shape(k, static_transform.T().rows(), 1, name, "k");
+    require_finite_shape(k, static_transform.T().rows(), 1, name, "k");
   }
 
   void injection_gain(const TransformedSystem<D>& /*so*/, Scalar /*t*/, typename D::GainMatrix& L) const { L = k; }
@@ -83,8 +83,8 @@ struct BastinGevers {
   void check(const TransformedSystem<D>& so, const Sizes& sizes, bool time_invariant) const {
     detail::require_single_output_spr_form(so, sizes, time_invariant, name);
     const Index n = sizes.nx;
-    detail::require(n == 1 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(n - 1, n - 1)), name,
-                    "static_transform", "must give a Hurwitz A22 (form (5))");
+    require(n == 1 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(n - 1, n - 1)), name,
+            "static_transform", "must give a Hurwitz A22 (form (5))");
     Eigen::Matrix<Scalar, D::nx, 1> gamma = Eigen::Matrix<Scalar, D::nx, 1>::Zero(n);
     gamma(0) = Scalar(1);
     detail::require_spr_error_system(so, k, gamma, "e1", name);

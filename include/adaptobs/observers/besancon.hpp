@@ -56,7 +56,7 @@ struct Besancon {
         dynamic_transform(make_dynamic_transform(static_transform)),
         K1(std::move(gain)) {
     const Index m = static_transform.K().cols();
-    detail::require_finite_shape(K1, m, m, name, "K1");
+    require_finite_shape(K1, m, m, name, "K1");
   }
 
   /// \f$L = [K_1; A_{21}(t)]\f$: \f$K_1(y - \hat z_1)\f$ in the first block, \f$A_{21}y\f$ in the second.
@@ -85,17 +85,17 @@ struct Besancon {
   }
 
   void check(const TransformedSystem<D>& so, const Sizes& sizes, bool time_invariant) const {
-    detail::require(detail::is_leading_identity(so.Co), name, "static_transform", "must give C_o = C T^-1 = [I 0]");
+    require(detail::is_leading_identity(so.Co), name, "static_transform", "must give C_o = C T^-1 = [I 0]");
     if (!time_invariant) return;
     const Index m = sizes.ny, r = sizes.nx - sizes.ny;
     using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  // one instantiation per scalar
-    detail::require(r == 0 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(r, r)), name,
-                    "static_transform", "must give a Hurwitz A22 (form (8))");
+    require(r == 0 || has_hurwitz_characteristic_polynomial(so.Ao.bottomRightCorner(r, r)), name, "static_transform",
+            "must give a Hurwitz A22 (form (8))");
     const Dense a11 = so.Ao.topLeftCorner(m, m) - K1;
     const Dense sym = Scalar(0.5) * (a11 + a11.transpose());
-    detail::require(symmetric_eigenvalues(sym)(m - 1) < 0, name, "K1",
-                    "must make A11 - K1 + (A11 - K1)^T negative definite (the library's sufficient condition "
-                    "for the Lyapunov function above, not a condition of the paper)");
+    require(symmetric_eigenvalues(sym)(m - 1) < 0, name, "K1",
+            "must make A11 - K1 + (A11 - K1)^T negative definite (the library's sufficient condition "
+            "for the Lyapunov function above, not a condition of the paper)");
   }
 
  private:

@@ -72,13 +72,12 @@ class CanonicalFormFilters {
   CanonicalFormFilters(Coefficients f, Index q = Q, Index m = M)
       : f_(std::move(f)), q_(Q == Eigen::Dynamic ? q : Q), m_(M == Eigen::Dynamic ? m : M) {
     constexpr std::string_view who = "CanonicalFormFilters";
-    detail::require(f_.size() >= 1, who, "f", "must have at least one entry (the order r)");
-    detail::require_finite(f_, who, "f");
-    detail::require(q_ >= 1, who, "q", "must be at least 1");
-    detail::require(m_ >= 0, who, "m", "must be non-negative");
-    detail::require(
-        is_schur_stable(companion_matrix(f_)), who, "f",
-        "must make F Schur stable (eq. (6)): the roots of z^r - f_1 z^(r-1) - ... - f_r must lie in |z| < 1");
+    require(f_.size() >= 1, who, "f", "must have at least one entry (the order r)");
+    require_finite(f_, who, "f");
+    require(q_ >= 1, who, "q", "must be at least 1");
+    require(m_ >= 0, who, "m", "must be non-negative");
+    require(is_schur_stable(companion_matrix(f_)), who, "f",
+            "must make F Schur stable (eq. (6)): the roots of z^r - f_1 z^(r-1) - ... - f_r must lie in |z| < 1");
     const Index r = order();
     first_rows_.setZero(r, r);
     first_rows_(r - 1, 0) = Scalar(1);

@@ -90,7 +90,7 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
         x0_(std::move(x0)) {
     constexpr std::string_view who = "DeyBhasinObserver";
     // n = rq with the filters' q: a compile-time Q is not the q of x0's length.
-    detail::require_finite_shape(x0_, filters_.states(), 1, who, "x0");
+    require_finite_shape(x0_, filters_.states(), 1, who, "x0");
     const Sizes s = filters_.sizes();
     bank_.setZero(s.ny + s.nu, filters_.order());
     last_.setZero(s.ny + s.nu);
@@ -162,7 +162,7 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   /// \f$S_tp + F^t\hat x_0\f$ for any p at the last sample t: the state (12) of the model
   /// with parameters p (with \f$\hat x_0 = x_0\f$ and the true p it is \f$x_t\f$).
   [[nodiscard]] State state_with(const Parameters& p) const {
-    detail::require_shape(p, filters_.parameters(), 1, "DeyBhasinObserver::state_with", "p");
+    require_shape(p, filters_.parameters(), 1, "DeyBhasinObserver::state_with", "p");
     State x(filters_.states());
     filters_.state(bank_, p, current_free_, x);
     return x;
@@ -190,7 +190,7 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   /// Restarts from \f$\hat x_0\f$ and \f$\hat p_0\f$ at t = 0: filters cleared, law restarted.
   void reset(const State& x0, const Parameters& p0) {
     constexpr std::string_view who = "DeyBhasinObserver::reset";
-    detail::require_initial_estimates(x0, filters_.states(), p0, filters_.parameters(), who, "x0", "p0");
+    require_initial_estimates(x0, filters_.states(), p0, filters_.parameters(), who, "x0", "p0");
     law_.restart(p0);
     x0_ = x0;
     restart_filters();
@@ -249,17 +249,17 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   };
 
   static Index outputs_of(const Coefficients& f, const State& x0) {
-    detail::require(f.size() >= 1, "DeyBhasinObserver", "f", "must have at least one entry (the order r)");
-    detail::require(x0.size() >= f.size() && x0.size() % f.size() == 0, "DeyBhasinObserver", "x0",
-                    "must have n = r q entries, a multiple of the order r = size of f");
+    require(f.size() >= 1, "DeyBhasinObserver", "f", "must have at least one entry (the order r)");
+    require(x0.size() >= f.size() && x0.size() % f.size() == 0, "DeyBhasinObserver", "x0",
+            "must have n = r q entries, a multiple of the order r = size of f");
     return x0.size() / f.size();
   }
 
   static Parameters initial_parameters(const Filters& filters, const Coefficients& a0, const InputMatrix& B0) {
     constexpr std::string_view who = "DeyBhasinObserver";
     const Index r = filters.order();
-    detail::require_finite_shape(a0, r, 1, who, "a0");
-    detail::require_finite_shape(B0, filters.states(), filters.inputs(), who, "B0");
+    require_finite_shape(a0, r, 1, who, "a0");
+    require_finite_shape(B0, filters.states(), filters.inputs(), who, "B0");
     Parameters p(filters.parameters());
     p.template head<R>(r) = a0 - filters.coefficients();
     p.template segment<product_of_sizes(M, Dims::nx)>(r, B0.size()) = B0.reshaped();
@@ -283,8 +283,8 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   UpdateStatus step_with(const U& u, const Y& y, const OutputMask<Dims>* present) {
     // At every size: a sample of any type may hold vectors of run-time size
     // even when the observer's are fixed (free when both are fixed).
-    detail::require_shape(u, filters_.inputs(), 1, "DeyBhasinObserver::update", "sample.u");
-    detail::require_shape(y, filters_.outputs(), 1, "DeyBhasinObserver::update", "sample.y");
+    require_shape(u, filters_.inputs(), 1, "DeyBhasinObserver::update", "sample.u");
+    require_shape(y, filters_.outputs(), 1, "DeyBhasinObserver::update", "sample.y");
     return work_.run([&](Workspace& w) { return advance(u, y, present, w); });
   }
 

@@ -85,9 +85,9 @@ class GuiroObserver : public DiscreteUpdate<GuiroObserver<Model>, typename Model
         options_(options) {
     constexpr std::string_view who = "GuiroObserver";
     const Sizes s = model_.sizes();
-    detail::require_finite_shape(gain_, s.nx, s.ny, who, "K");
-    detail::require_finite_shape(parameter_gain_, s.np, s.ny, who, "Gamma");
-    detail::require_initial_estimates(z_, s.nx, theta_, s.np, who, name_initial_state, "theta0");
+    require_finite_shape(gain_, s.nx, s.ny, who, "K");
+    require_finite_shape(parameter_gain_, s.np, s.ny, who, "Gamma");
+    require_initial_estimates(z_, s.nx, theta_, s.np, who, name_initial_state, "theta0");
     corrected_ = z_;
     this->output_error_.setZero(s.ny);
     work_.resize(s);
@@ -106,8 +106,8 @@ class GuiroObserver : public DiscreteUpdate<GuiroObserver<Model>, typename Model
   /// schedule over varying intervals).
   void set_gains(const GainMatrix& K, const ParameterGain& Gamma) {
     constexpr std::string_view who = "GuiroObserver::set_gains";
-    detail::require_finite_shape(K, gain_.rows(), gain_.cols(), who, "K");
-    detail::require_finite_shape(Gamma, parameter_gain_.rows(), parameter_gain_.cols(), who, "Gamma");
+    require_finite_shape(K, gain_.rows(), gain_.cols(), who, "K");
+    require_finite_shape(Gamma, parameter_gain_.rows(), parameter_gain_.cols(), who, "Gamma");
     gain_ = K;
     parameter_gain_ = Gamma;
   }

@@ -90,10 +90,10 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
         normalized_step_(options.normalized_step) {
     constexpr std::string_view who = "GuyaderZhangObserver";
     const Sizes s = model_.sizes();
-    detail::require_finite_shape(gain_, s.nx, s.ny, who, "K");
-    detail::require_positive(mu_, who, "mu");
-    detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
-    detail::require(options.excitation_window >= 0, who, "options.excitation_window", "must be non-negative");
+    require_finite_shape(gain_, s.nx, s.ny, who, "K");
+    require_positive(mu_, who, "mu");
+    require_initial_estimates(x_, s.nx, theta_, s.np, who);
+    require(options.excitation_window >= 0, who, "options.excitation_window", "must be non-negative");
     if (options.excitation_window > 0) excitation_.emplace(options.excitation_window, s.np);
 
     upsilon_.setZero(s.nx, s.np);
@@ -112,14 +112,14 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
 
   /// Gain \f$K_k\f$ used from the next update on (e.g. from `KalmanGainRecursion`).
   void set_gain(const GainMatrix& K) {
-    detail::require_finite_shape(K, gain_.rows(), gain_.cols(), "GuyaderZhangObserver::set_gain", "K");
+    require_finite_shape(K, gain_.rows(), gain_.cols(), "GuyaderZhangObserver::set_gain", "K");
     gain_ = K;
     if (is_time_invariant(model_)) update_closed_loop();
   }
 
   /// Step size \f$\mu_k > 0\f$ used from the next update on.
   void set_mu(Scalar mu) {
-    detail::require_positive(mu, "GuyaderZhangObserver::set_mu", "mu");
+    require_positive(mu, "GuyaderZhangObserver::set_mu", "mu");
     mu_ = mu;
   }
 

@@ -58,10 +58,10 @@ struct MarinoTomei {
         gamma(std::move(gamma_vector)),
         k(std::move(gain)) {
     const Index n = static_transform.T().rows();
-    detail::require(gamma(0) == Scalar(1), name, "gamma", "must have a first entry equal to 1");
-    detail::require(n == 1 || is_hurwitz_polynomial(Polynomial<Scalar>(gamma)), name, "gamma",
-                    "must hold the coefficients of a Hurwitz polynomial (F must be Hurwitz)");
-    detail::require_finite_shape(k, n, 1, name, "k");
+    require(gamma(0) == Scalar(1), name, "gamma", "must have a first entry equal to 1");
+    require(n == 1 || is_hurwitz_polynomial(Polynomial<Scalar>(gamma)), name, "gamma",
+            "must hold the coefficients of a Hurwitz polynomial (F must be Hurwitz)");
+    require_finite_shape(k, n, 1, name, "k");
   }
 
   void injection_gain(const TransformedSystem<D>& /*so*/, Scalar /*t*/, typename D::GainMatrix& L) const { L = k; }
@@ -90,8 +90,8 @@ struct MarinoTomei {
     shift.diagonal(1).setOnes();
     const Scalar tol =
         Scalar(1e3) * std::numeric_limits<Scalar>::epsilon() * std::max(Scalar(1), so.Ao.cwiseAbs().maxCoeff());
-    detail::require(n == 1 || (so.Ao.rightCols(n - 1) - shift.rightCols(n - 1)).cwiseAbs().maxCoeff() <= tol, name,
-                    "static_transform", "must give the shift matrix A_o of form (7) (columns 2..n)");
+    require(n == 1 || (so.Ao.rightCols(n - 1) - shift.rightCols(n - 1)).cwiseAbs().maxCoeff() <= tol, name,
+            "static_transform", "must give the shift matrix A_o of form (7) (columns 2..n)");
     detail::require_spr_error_system(so, k, gamma, "gamma", name);
   }
 
@@ -99,7 +99,7 @@ struct MarinoTomei {
   static DynamicTransform<Scalar, D::nx, filter_rows> make_dynamic_transform(const StaticTransform<D>& transform,
                                                                              const Vector& gamma) {
     const Index r = detail::unmeasured_states(transform.T().rows(), 1, name, "transform"), n = r + 1;
-    detail::require_finite_shape(gamma, n, 1, name, "gamma");
+    require_finite_shape(gamma, n, 1, name, "gamma");
     const Eigen::Matrix<Scalar, filter_rows, 1> g = gamma.tail(r);
     Eigen::Matrix<Scalar, filter_rows, filter_rows> f = Eigen::Matrix<Scalar, filter_rows, filter_rows>::Zero(r, r);
     f.col(0) = -g;

@@ -71,7 +71,7 @@ class TakagiSugenoObserver
       : model_(std::move(model)), x_(std::move(x0)), theta_(std::move(theta0)) {
     constexpr std::string_view who = "TakagiSugenoObserver";
     const Sizes s = model_.sizes();
-    detail::require_initial_estimates(x_, s.nx, theta_, s.np, who);
+    require_initial_estimates(x_, s.nx, theta_, s.np, who);
     check_gains(gains, who);
     gains_ = gains;
     detail::zero_resize(weights_, model_.vertex_count());
@@ -139,11 +139,11 @@ class TakagiSugenoObserver
     if (std::ssize(gains.L) != r) detail::fail_count(r, gains.L.size(), "one matrix per vertex", who, "gains.L");
     if (std::ssize(gains.K) != r) detail::fail_count(r, gains.K.size(), "one matrix per vertex", who, "gains.K");
     for (std::size_t i = 0; i < gains.L.size(); ++i) {
-      detail::require_finite_shape(gains.L[i], s.nx, s.ny, who, "gains.L", i);
-      detail::require_finite_shape(gains.K[i], s.np, s.ny, who, "gains.K", i);
+      require_finite_shape(gains.L[i], s.nx, s.ny, who, "gains.L", i);
+      require_finite_shape(gains.K[i], s.np, s.ny, who, "gains.K", i);
     }
     if (gains.K_theta) {
-      detail::require_finite_shape(*gains.K_theta, s.np, s.np, who, "gains.K_theta");
+      require_finite_shape(*gains.K_theta, s.np, s.np, who, "gains.K_theta");
     }
   }
 

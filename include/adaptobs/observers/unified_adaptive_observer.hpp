@@ -125,14 +125,14 @@ class UnifiedAdaptiveObserver
         integrator_(internal_, sizes_, options.sampling, name) {
     constexpr std::string_view who = name;
     const Sizes& s = sizes_;
-    detail::require(s.np >= 1, who, "model", "must have at least one unknown parameter");
-    detail::require_shape(algorithm_.static_transform.T(), s.nx, s.nx, who, "static_transform.T");
-    detail::require_shape(algorithm_.static_transform.K(), s.nx, s.ny, who, "static_transform.K");
-    if constexpr (requires { law_.gamma(); }) detail::require_shape(law_.gamma(), s.np, s.np, who, "law.gamma");
-    detail::require(algorithm_.dynamic_transform.state_size() == s.nx, who, "dynamic_transform",
-                    "must act on a state of the model's size");
-    detail::require_initial_estimates(eta0, s.nx, theta0, s.np, who, "eta0", "theta0");
-    detail::require(options.excitation_window >= 0, who, "options.excitation_window", "must be non-negative");
+    require(s.np >= 1, who, "model", "must have at least one unknown parameter");
+    require_shape(algorithm_.static_transform.T(), s.nx, s.nx, who, "static_transform.T");
+    require_shape(algorithm_.static_transform.K(), s.nx, s.ny, who, "static_transform.K");
+    if constexpr (requires { law_.gamma(); }) require_shape(law_.gamma(), s.np, s.np, who, "law.gamma");
+    require(algorithm_.dynamic_transform.state_size() == s.nx, who, "dynamic_transform",
+            "must act on a state of the model's size");
+    require_initial_estimates(eta0, s.nx, theta0, s.np, who, "eta0", "theta0");
+    require(options.excitation_window >= 0, who, "options.excitation_window", "must be non-negative");
     if (options.excitation_window > 0) excitation_.emplace(options.excitation_window, s.np);
     work_.resize(s, r_);
     output_error_.setZero(s.ny);

@@ -75,7 +75,7 @@ struct ZhangContinuous {
 
   void check(const TransformedSystem<D>& so, const Sizes& /*sizes*/, bool time_invariant) const {
     if (time_invariant)
-      detail::require(has_hurwitz_characteristic_polynomial(so.Ao), name, "K", "must make A - K C Hurwitz (eq. (13))");
+      require(has_hurwitz_characteristic_polynomial(so.Ao), name, "K", "must make A - K C Hurwitz (eq. (13))");
   }
 };
 
@@ -88,7 +88,7 @@ template <ContinuousModel Model>
     Model model, typename Model::Dims::GainMatrix K, typename Model::Dims::ParameterMatrix gamma,
     typename Model::Dims::State eta0, typename Model::Dims::Parameters theta0, UnifiedObserverOptions options = {}) {
   using D = typename Model::Dims;
-  detail::require_shape(K, model.sizes().nx, model.sizes().ny, ZhangContinuous<D>::name, "K");
+  require_shape(K, model.sizes().nx, model.sizes().ny, ZhangContinuous<D>::name, "K");
   return detail::make_gradient_observer(std::move(model), ZhangContinuous<D>(std::move(K)), std::move(gamma), "gamma",
                                         std::move(eta0), std::move(theta0), options);
 }

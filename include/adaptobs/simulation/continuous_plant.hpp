@@ -53,10 +53,10 @@ class ContinuousLinearPlant : public Model::Dims {
         rng_(options.seed) {
     constexpr std::string_view who = "ContinuousLinearPlant";
     require_initial_estimates(eta_, model_.sizes().nx, theta_, model_.sizes().np, who, "eta0", "theta");
-    detail::require_positive(options.period, who, "options.period");
-    detail::require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
-    detail::require_non_negative(options.output_noise, who, "options.output_noise");
-    detail::require(std::isfinite(options.start_time), who, "options.start_time", "must be finite");
+    require_positive(options.period, who, "options.period");
+    require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
+    require_non_negative(options.output_noise, who, "options.output_noise");
+    require(std::isfinite(options.start_time), who, "options.start_time", "must be finite");
     sample_.t = origin_;
     sample_.u = input_at(sample_.t);
     sample_.y = measure(sample_.t, eta_);

@@ -78,13 +78,13 @@ template <class Scenario>
 [[nodiscard]] DetectionSummary evaluate_detection(const Scenario& scenario, const FaultDescription& fault,
                                                   std::uint64_t first_seed, Index seeds, unsigned threads = 0) {
   constexpr std::string_view who = "evaluate_detection";
-  detail::require(seeds >= 1, who, "seeds", "must be at least 1");
+  require(seeds >= 1, who, "seeds", "must be at least 1");
   // Both runs of every seed are kept until scoring: a count past what a
   // vector can hold would only fail later, as std::length_error.
-  detail::require(static_cast<std::size_t>(seeds) <= std::vector<MonitoredRun>().max_size(), who, "seeds",
-                  "must be at most std::vector<MonitoredRun>::max_size() (each seed's runs are kept for scoring)");
-  detail::require(std::isfinite(fault.time), who, "fault.time", "must be finite");
-  detail::require(fault.parameter >= -1, who, "fault.parameter", "must be -1 (not scored) or a parameter index");
+  require(static_cast<std::size_t>(seeds) <= std::vector<MonitoredRun>().max_size(), who, "seeds",
+          "must be at most std::vector<MonitoredRun>::max_size() (each seed's runs are kept for scoring)");
+  require(std::isfinite(fault.time), who, "fault.time", "must be finite");
+  require(fault.parameter >= -1, who, "fault.parameter", "must be -1 (not scored) or a parameter index");
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   threads = static_cast<unsigned>(std::min<Index>(threads, seeds));
 
@@ -117,9 +117,8 @@ template <class Scenario>
     for (const MonitoredRun& run : *runs) {
       bool valid = std::isfinite(run.end - run.start) && run.start <= run.end;
       for (const Alarm& alarm : run.alarms) valid = valid && alarm.time >= run.start && alarm.time <= run.end;
-      detail::require(
-          valid, who, "scenario",
-          "must return runs with finite start <= end, a finite span, and every alarm time within [start, end]");
+      require(valid, who, "scenario",
+              "must return runs with finite start <= end, a finite span, and every alarm time within [start, end]");
     }
 
   DetectionSummary summary;
@@ -153,8 +152,8 @@ template <class Scenario>
     const auto rank = static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(sorted.size())));
     summary.p95_detection_delay = sorted[std::max<std::size_t>(rank, 1) - 1];
   }
-  detail::require(std::isfinite(summary.fault_free_time), who, "scenario",
-                  "must return fault-free runs whose monitored time sums to a finite number");
+  require(std::isfinite(summary.fault_free_time), who, "scenario",
+          "must return fault-free runs whose monitored time sums to a finite number");
   summary.false_alarm_rate = summary.fault_free_time > 0
                                  ? static_cast<double>(summary.false_alarms) / summary.fault_free_time
                                  : std::numeric_limits<double>::quiet_NaN();

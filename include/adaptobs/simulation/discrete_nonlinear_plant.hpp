@@ -37,15 +37,15 @@ class DiscreteNonlinearPlant : public DiscretePlantState<D, InputOutputSample<D>
         input_(std::move(input)),
         parameters_at_(std::move(parameters_at)) {
     constexpr std::string_view who = "DiscreteNonlinearPlant";
-    detail::require_finite_shape(C_, C_.rows(), x_.rows(), who, "C");
-    detail::require_finite(x_, who, "x0");
-    detail::require_positive(sampling_period, who, "sampling_period");
+    require_finite_shape(C_, C_.rows(), x_.rows(), who, "C");
+    require_finite(x_, who, "x0");
+    require_positive(sampling_period, who, "sampling_period");
     // The plant has no model to give nu and np: step 0's input and parameters
     // set them (with run-time sizes), and every later step must keep them.
     sample_.u = input_(Index{0});
     theta_ = parameters_at_(Index{0});
-    detail::require_shape(sample_.u, sample_.u.rows(), 1, who, "input(k)");
-    detail::require_finite(theta_, who, "parameters_at(k)");
+    require_shape(sample_.u, sample_.u.rows(), 1, who, "input(k)");
+    require_finite(theta_, who, "parameters_at(k)");
     sample_.y.noalias() = C_ * x_;
   }
 
@@ -58,7 +58,7 @@ class DiscreteNonlinearPlant : public DiscretePlantState<D, InputOutputSample<D>
     // What may throw comes first, before anything moves.
     typename D::Input u = detail::require_returned_shape(input_(k), sample_.u.rows(), 1, who, "input(k)");
     Parameters theta = detail::require_returned_shape(parameters_at_(k), theta_.rows(), 1, who, "parameters_at(k)");
-    detail::require_finite(theta, who, "parameters_at(k)");
+    require_finite(theta, who, "parameters_at(k)");
     x_ = detail::require_returned_shape(transition_(std::as_const(x_), std::as_const(sample_.u), std::as_const(theta_)),
                                         x_.rows(), 1, who, "transition(x, u, theta)");
     k_ = k;

@@ -49,10 +49,10 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
         rng_(noise.seed) {
     constexpr std::string_view who = "DiscreteLinearPlant";
     require_initial_estimates(x_, model_.sizes().nx, theta_, model_.sizes().np, who, "x0", "theta");
-    detail::require_non_negative(noise.output, who, "noise.output");
-    detail::require_non_negative(noise.state, who, "noise.state");
-    detail::require_non_negative(noise.parameter, who, "noise.parameter");
-    detail::require_positive(sampling_period, who, "sampling_period");
+    require_non_negative(noise.output, who, "noise.output");
+    require_non_negative(noise.state, who, "noise.state");
+    require_non_negative(noise.parameter, who, "noise.parameter");
+    require_positive(sampling_period, who, "sampling_period");
     make_sample();
   }
 
@@ -61,7 +61,7 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
   /// Sets \f$\theta\f$ from this step on, e.g. to inject a fault; the current
   /// sample is unchanged (θ_k enters x_{k+1}, not y_k).
   void set_parameters(const Parameters& theta) {
-    detail::require_finite_shape(theta, theta_.rows(), 1, "DiscreteLinearPlant::set_parameters", "theta");
+    require_finite_shape(theta, theta_.rows(), 1, "DiscreteLinearPlant::set_parameters", "theta");
     theta_ = theta;
   }
 

@@ -66,7 +66,7 @@ class JointIntegration {
   /// `UpdateStatus::nonfinite_result`. An h not finite and positive throws a
   /// `ConfigurationError` naming `h`.
   UpdateStatus step(Scalar h) {
-    detail::require_positive(h, "JointIntegration::step", "h");
+    require_positive(h, "JointIntegration::step", "h");
     const Index n = plant_.state().rows();
     const auto f = [&](const JointState& x, JointState& dx, Scalar t) {
       eta_ = x.head(n);

@@ -35,10 +35,10 @@ class OutputLoss {
  public:
   explicit OutputLoss(OutputLossOptions options = {}) : options_(options), rng_(options.seed) {
     constexpr std::string_view who = "OutputLoss";
-    detail::require(options.drop >= 0 && options.drop < 1, who, "drop", "must be in [0, 1)");
-    detail::require(!std::isnan(options.outage_begin) && !std::isnan(options.outage_end), who, "outage",
-                    "bounds must not be NaN");
-    detail::require(options.channel >= -1, who, "channel", "must be −1 (whole sample) or a channel index");
+    require(options.drop >= 0 && options.drop < 1, who, "drop", "must be in [0, 1)");
+    require(!std::isnan(options.outage_begin) && !std::isnan(options.outage_end), who, "outage",
+            "bounds must not be NaN");
+    require(options.channel >= -1, who, "channel", "must be −1 (whole sample) or a channel index");
   }
 
   /// Whether the model ever loses a sample.
@@ -53,7 +53,7 @@ class OutputLoss {
     const bool in_outage = t >= options_.outage_begin && t <= options_.outage_end;
     const bool dropped = options_.drop > 0 && std::bernoulli_distribution(options_.drop)(rng_);
     if (in_outage || dropped) {
-      detail::require(options_.channel < ny, "OutputLoss", "channel", "exceeds the number of outputs");
+      require(options_.channel < ny, "OutputLoss", "channel", "exceeds the number of outputs");
       if (options_.channel < 0)
         present.setConstant(false);
       else

@@ -29,7 +29,7 @@ concept Plant = requires(P& p, const P& cp) {
 /// order: a sample stream recorded once and replayed into observers.
 template <Plant P>
 [[nodiscard]] std::vector<typename P::Sample> record_samples(P plant, Index n) {
-  detail::require(n >= 0, "record_samples", "n", "must be non-negative");
+  require(n >= 0, "record_samples", "n", "must be non-negative");
   std::vector<typename P::Sample> samples;
   samples.reserve(static_cast<std::size_t>(n));
   for (Index k = 0; k < n; ++k) {

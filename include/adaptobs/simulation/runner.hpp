@@ -82,11 +82,11 @@ template <Plant P, class Extras, Observer First, Observer... Rest>
 SimulationReport<1 + sizeof...(Rest)> simulate(P& plant, Index steps, SeriesTable& table, OutputLoss* loss,
                                                Extras& extra_columns, Tracked<First> first, Tracked<Rest>... rest) {
   using Dims = typename First::Dims;
-  detail::require(steps >= 0, "simulate", "steps", "must be non-negative");
+  require(steps >= 0, "simulate", "steps", "must be non-negative");
   // The lost channel is checked before the first row, not at the first loss.
   if (loss && loss->options().channel >= 0)
-    detail::require(loss->options().channel < plant.sample().y.size(), "simulate", "loss",
-                    "loses a channel beyond the plant's outputs");
+    require(loss->options().channel < plant.sample().y.size(), "simulate", "loss",
+            "loses a channel beyond the plant's outputs");
   SimulationReport<1 + sizeof...(Rest)> report;
   for (Index k = 0; k < steps; ++k) {
     const auto& sample = plant.sample();

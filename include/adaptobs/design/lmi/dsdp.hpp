@@ -55,16 +55,11 @@ enum class SdpStatus {
 
 [[nodiscard]] constexpr std::string_view to_string(SdpStatus s) noexcept {
   switch (s) {
-    case SdpStatus::feasible:
-      return "feasible";
-    case SdpStatus::infeasible:
-      return "infeasible";
-    case SdpStatus::unbounded:
-      return "unbounded";
-    case SdpStatus::unknown:
-      return "unknown";
-    case SdpStatus::error:
-      return "error";
+    case SdpStatus::feasible: return "feasible";
+    case SdpStatus::infeasible: return "infeasible";
+    case SdpStatus::unbounded: return "unbounded";
+    case SdpStatus::unknown: return "unknown";
+    case SdpStatus::error: return "error";
   }
   return "unknown";
 }
@@ -85,24 +80,15 @@ namespace detail {
 
 [[nodiscard]] inline std::string_view dsdp_stop_reason(DSDPTerminationReason r) noexcept {
   switch (r) {
-    case DSDP_CONVERGED:
-      return "converged";
-    case DSDP_INFEASIBLE_START:
-      return "infeasible start";
-    case DSDP_SMALL_STEPS:
-      return "small steps";
-    case DSDP_INDEFINITE_SCHUR_MATRIX:
-      return "indefinite Schur matrix";
-    case DSDP_MAX_IT:
-      return "maximum iterations";
-    case DSDP_NUMERICAL_ERROR:
-      return "numerical error";
-    case DSDP_UPPERBOUND:
-      return "objective upper bound";
-    case DSDP_USER_TERMINATION:
-      return "user termination";
-    case CONTINUE_ITERATING:
-      return "not stopped";
+    case DSDP_CONVERGED: return "converged";
+    case DSDP_INFEASIBLE_START: return "infeasible start";
+    case DSDP_SMALL_STEPS: return "small steps";
+    case DSDP_INDEFINITE_SCHUR_MATRIX: return "indefinite Schur matrix";
+    case DSDP_MAX_IT: return "maximum iterations";
+    case DSDP_NUMERICAL_ERROR: return "numerical error";
+    case DSDP_UPPERBOUND: return "objective upper bound";
+    case DSDP_USER_TERMINATION: return "user termination";
+    case CONTINUE_ITERATING: return "not stopped";
   }
   return "unknown";
 }
@@ -133,15 +119,14 @@ class DsdpSession {
 /// Never throws on solver trouble: failures come back as `SdpStatus::error`.
 [[nodiscard]] inline SdpSolution solve_with_dsdp(const LmiProblem& problem, const DsdpOptions& options = {}) {
   constexpr std::string_view who = "solve_with_dsdp";
-  adaptobs::detail::require(problem.variable_count() > 0, who, "problem", "has no decision variables");
-  adaptobs::detail::require(!problem.constraints().empty(), who, "problem", "has no constraints");
-  adaptobs::detail::require(std::isfinite(options.variable_bound) && options.variable_bound > 0, who,
-                            "options.variable_bound", "must be positive and finite");
-  adaptobs::detail::require(std::isfinite(options.penalty) && options.penalty > 0, who, "options.penalty",
-                            "must be positive and finite");
-  adaptobs::detail::require(std::isfinite(options.gap_tolerance) && options.gap_tolerance > 0, who,
-                            "options.gap_tolerance", "must be positive and finite");
-  adaptobs::detail::require(options.max_iterations > 0, who, "options.max_iterations", "must be positive");
+  require(problem.variable_count() > 0, who, "problem", "has no decision variables");
+  require(!problem.constraints().empty(), who, "problem", "has no constraints");
+  require(std::isfinite(options.variable_bound) && options.variable_bound > 0, who, "options.variable_bound",
+          "must be positive and finite");
+  require(std::isfinite(options.penalty) && options.penalty > 0, who, "options.penalty", "must be positive and finite");
+  require(std::isfinite(options.gap_tolerance) && options.gap_tolerance > 0, who, "options.gap_tolerance",
+          "must be positive and finite");
+  require(options.max_iterations > 0, who, "options.max_iterations", "must be positive");
 
   const auto start = std::chrono::steady_clock::now();
   SdpSolution result;
@@ -216,14 +201,10 @@ class DsdpSession {
   ADAPTOBS_DSDP_CALL(DSDPGetSolutionType(dsdp, &type));
 #undef ADAPTOBS_DSDP_CALL
   switch (type) {
-    case DSDP_PDFEASIBLE:
-      return finish(SdpStatus::feasible);
-    case DSDP_INFEASIBLE:
-      return finish(SdpStatus::infeasible);
-    case DSDP_UNBOUNDED:
-      return finish(SdpStatus::unbounded);
-    case DSDP_PDUNKNOWN:
-      break;
+    case DSDP_PDFEASIBLE: return finish(SdpStatus::feasible);
+    case DSDP_INFEASIBLE: return finish(SdpStatus::infeasible);
+    case DSDP_UNBOUNDED: return finish(SdpStatus::unbounded);
+    case DSDP_PDUNKNOWN: break;
   }
   return finish(SdpStatus::unknown);
 }

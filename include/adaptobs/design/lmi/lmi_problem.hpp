@@ -44,7 +44,7 @@ class AffineMatrix {
   [[nodiscard]] static AffineMatrix identity(Index n) { return AffineMatrix(Eigen::MatrixXd::Identity(n, n)); }
   /// The single decision variable k as a 1 × 1 expression, or with coefficient matrix E.
   [[nodiscard]] static AffineMatrix variable(Index k, Eigen::MatrixXd coefficient = Eigen::MatrixXd::Ones(1, 1)) {
-    detail::require(k >= 0, "AffineMatrix::variable", "k", "must be a non-negative variable index");
+    require(k >= 0, "AffineMatrix::variable", "k", "must be a non-negative variable index");
     AffineMatrix a(Eigen::MatrixXd::Zero(coefficient.rows(), coefficient.cols()));
     a.terms_.push_back({k, std::move(coefficient)});
     return a;
@@ -59,8 +59,8 @@ class AffineMatrix {
   /// \f$G(y)\f$ at a point; y needs an entry for every variable the expression uses.
   [[nodiscard]] Eigen::MatrixXd value(const Eigen::VectorXd& y) const {
     // The terms are sorted by variable: the last one has the largest index.
-    detail::require(terms_.empty() || terms_.back().variable < y.size(), "AffineMatrix::value", "y",
-                    "must have an entry for every variable of the expression");
+    require(terms_.empty() || terms_.back().variable < y.size(), "AffineMatrix::value", "y",
+            "must have an entry for every variable of the expression");
     Eigen::MatrixXd m = constant_;
     for (const Term& t : terms_) m += y(t.variable) * t.coefficient;
     return m;
@@ -75,7 +75,7 @@ class AffineMatrix {
 
   /// A 1 × 1 expression times \f$I_n\f$.
   [[nodiscard]] AffineMatrix times_identity(Index n) const {
-    detail::require(rows() == 1 && cols() == 1, "AffineMatrix::times_identity", "this", "must be 1 x 1");
+    require(rows() == 1 && cols() == 1, "AffineMatrix::times_identity", "this", "must be 1 x 1");
     const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
     AffineMatrix a(constant_(0, 0) * I);
     for (const Term& t : terms_) a.terms_.push_back({t.variable, t.coefficient(0, 0) * I});
@@ -117,14 +117,14 @@ class AffineMatrix {
   friend AffineMatrix operator*(double s, AffineMatrix a) { return a *= s; }
   /// Constant matrix times expression, and expression times constant matrix.
   friend AffineMatrix operator*(const Eigen::MatrixXd& m, const AffineMatrix& a) {
-    detail::require(m.cols() == a.rows(), "AffineMatrix", "operator*", "has mismatched inner dimensions");
+    require(m.cols() == a.rows(), "AffineMatrix", "operator*", "has mismatched inner dimensions");
     AffineMatrix out(m * a.constant_);
     out.terms_.reserve(a.terms_.size());
     for (const Term& t : a.terms_) out.terms_.push_back({t.variable, m * t.coefficient});
     return out;
   }
   friend AffineMatrix operator*(const AffineMatrix& a, const Eigen::MatrixXd& m) {
-    detail::require(a.cols() == m.rows(), "AffineMatrix", "operator*", "has mismatched inner dimensions");
+    require(a.cols() == m.rows(), "AffineMatrix", "operator*", "has mismatched inner dimensions");
     AffineMatrix out(a.constant_ * m);
     out.terms_.reserve(a.terms_.size());
     for (const Term& t : a.terms_) out.terms_.push_back({t.variable, t.coefficient * m});
@@ -134,8 +134,8 @@ class AffineMatrix {
   /// Adds `block` into the rectangle at (row, col) of this expression.
   void add_block(Index row, Index col, const AffineMatrix& block) {
     if (block.empty()) return;
-    detail::require(row >= 0 && col >= 0 && row + block.rows() <= rows() && col + block.cols() <= cols(),
-                    "AffineMatrix::add_block", "row, col", "must place the block inside the expression");
+    require(row >= 0 && col >= 0 && row + block.rows() <= rows() && col + block.cols() <= cols(),
+            "AffineMatrix::add_block", "row, col", "must place the block inside the expression");
     constant_.block(row, col, block.rows(), block.cols()) += block.constant_;
     for (const Term& t : block.terms_) {
       auto it = std::lower_bound(terms_.begin(), terms_.end(), t.variable,
@@ -149,10 +149,9 @@ class AffineMatrix {
  private:
   void check_same_shape(const AffineMatrix& other, const char* op) const {
     if (rows() != other.rows() || cols() != other.cols())
-      detail::fail_argument("AffineMatrix", op,
-                            "needs operands of the same shape (" + std::to_string(rows()) + "x" +
-                                std::to_string(cols()) + " and " + std::to_string(other.rows()) + "x" +
-                                std::to_string(other.cols()) + ")");
+      fail_argument("AffineMatrix", op,
+                    "needs operands of the same shape (" + std::to_string(rows()) + "x" + std::to_string(cols()) +
+                        " and " + std::to_string(other.rows()) + "x" + std::to_string(other.cols()) + ")");
   }
 
   Eigen::MatrixXd constant_;
@@ -175,23 +174,23 @@ class AffineMatrix {
   const std::size_t nc = nr ? grid.front().size() : 0;
   std::vector<Index> heights(nr, -1), widths(nc, -1);
   for (std::size_t i = 0; i < nr; ++i) {
-    detail::require(grid[i].size() == nc, who, "grid", "must have rows of equal length");
+    require(grid[i].size() == nc, who, "grid", "must have rows of equal length");
     for (std::size_t j = 0; j < nc; ++j) {
       const AffineMatrix& b = grid[i][j];
       if (b.empty()) continue;
-      detail::require(heights[i] < 0 || heights[i] == b.rows(), who, "grid", "has blocks of unequal height in a row");
-      detail::require(widths[j] < 0 || widths[j] == b.cols(), who, "grid", "has blocks of unequal width in a column");
+      require(heights[i] < 0 || heights[i] == b.rows(), who, "grid", "has blocks of unequal height in a row");
+      require(widths[j] < 0 || widths[j] == b.cols(), who, "grid", "has blocks of unequal width in a column");
       heights[i] = b.rows();
       widths[j] = b.cols();
     }
   }
   Index rows = 0, cols = 0;
   for (Index h : heights) {
-    detail::require(h >= 0, who, "grid", "has a block row with no sized block");
+    require(h >= 0, who, "grid", "has a block row with no sized block");
     rows += h;
   }
   for (Index w : widths) {
-    detail::require(w >= 0, who, "grid", "has a block column with no sized block");
+    require(w >= 0, who, "grid", "has a block column with no sized block");
     cols += w;
   }
   AffineMatrix out = AffineMatrix::zero(rows, cols);
@@ -267,8 +266,7 @@ class LmiProblem {
   }
   /// Minimise the 1 × 1 expression `objective` (its constant part is ignored).
   void minimize(const AffineMatrix& objective) {
-    detail::require(objective.rows() == 1 && objective.cols() == 1, "LmiProblem::minimize", "objective",
-                    "must be 1 x 1");
+    require(objective.rows() == 1 && objective.cols() == 1, "LmiProblem::minimize", "objective", "must be 1 x 1");
     objective_ = objective;
   }
 
@@ -285,7 +283,7 @@ class LmiProblem {
   /// \f$\max_j \lambda_{\max}(G_j(y))\f$: negative iff y satisfies every constraint strictly (the
   /// margins ε only help a solver land strictly inside).
   [[nodiscard]] double largest_eigenvalue(const Eigen::VectorXd& y) const {
-    detail::require_shape(y, variable_count_, 1, "LmiProblem::largest_eigenvalue", "y");
+    require_shape(y, variable_count_, 1, "LmiProblem::largest_eigenvalue", "y");
     double worst = -std::numeric_limits<double>::infinity();
     for (const Constraint& c : constraints_) {
       const Eigen::MatrixXd g = c.G.value(y);
@@ -300,10 +298,10 @@ class LmiProblem {
  private:
   void add(const std::string& name, const AffineMatrix& G, double margin) {
     constexpr const char* who = "LmiProblem";
-    detail::require(G.rows() == G.cols() && G.rows() > 0, who, "G", "must be a non-empty square matrix");
-    detail::require(std::isfinite(margin) && margin >= 0, who, "margin", "must be finite and non-negative");
+    require(G.rows() == G.cols() && G.rows() > 0, who, "G", "must be a non-empty square matrix");
+    require(std::isfinite(margin) && margin >= 0, who, "margin", "must be finite and non-negative");
     for (const auto& t : G.terms())
-      detail::require(t.variable >= 0 && t.variable < variable_count_, who, "G", "uses a variable of another problem");
+      require(t.variable >= 0 && t.variable < variable_count_, who, "G", "uses a variable of another problem");
     constraints_.push_back({name, G, margin});
   }
 

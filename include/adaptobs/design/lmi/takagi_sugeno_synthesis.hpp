@@ -278,15 +278,9 @@ inline void validate_lmi_options(const TakagiSugenoLmiData& data, const TakagiSu
   }
 
   switch (options.objective) {
-    case TakagiSugenoObjective::minimize_beta:
-      pb.minimize(*out.beta);
-      break;
-    case TakagiSugenoObjective::maximize_margin:
-      pb.minimize(-*out.t);
-      break;
-    case TakagiSugenoObjective::feasibility:
-      pb.minimize(lmi::trace(out.P0));
-      break;
+    case TakagiSugenoObjective::minimize_beta: pb.minimize(*out.beta); break;
+    case TakagiSugenoObjective::maximize_margin: pb.minimize(-*out.t); break;
+    case TakagiSugenoObjective::feasibility: pb.minimize(lmi::trace(out.P0)); break;
   }
   out.data = std::move(data);
   return out;
@@ -307,15 +301,15 @@ template <TakagiSugenoSystem Model>
   TakagiSugenoLmiData data;
   const Sizes s = model.sizes();
   if (options.Q_x.size() > 0) {
-    detail::require_shape(options.Q_x, s.nx, s.nx, who, "options.Q_x");
-    detail::require_positive_semidefinite(options.Q_x, who, "options.Q_x");
+    require_shape(options.Q_x, s.nx, s.nx, who, "options.Q_x");
+    require_positive_semidefinite(options.Q_x, who, "options.Q_x");
   }
   if (options.Q_theta.size() > 0) {
-    detail::require_shape(options.Q_theta, s.np, s.np, who, "options.Q_theta");
-    detail::require_positive_semidefinite(options.Q_theta, who, "options.Q_theta");
+    require_shape(options.Q_theta, s.np, s.np, who, "options.Q_theta");
+    require_positive_semidefinite(options.Q_theta, who, "options.Q_theta");
   }
   if (options.theorem == TakagiSugenoTheorem::time_varying_parameters) {
-    detail::require_finite_shape(options.K_theta, s.np, s.np, who, "options.K_theta");
+    require_finite_shape(options.K_theta, s.np, s.np, who, "options.K_theta");
   }
   for (Index i = 0; i < model.vertex_count(); ++i) {
     data.A.push_back(model.A(i).template cast<double>());
@@ -344,14 +338,10 @@ enum class SynthesisStatus {
 
 [[nodiscard]] constexpr std::string_view to_string(SynthesisStatus s) noexcept {
   switch (s) {
-    case SynthesisStatus::feasible:
-      return "feasible";
-    case SynthesisStatus::infeasible:
-      return "infeasible";
-    case SynthesisStatus::not_verified:
-      return "not verified";
-    case SynthesisStatus::solver_failed:
-      return "solver failed";
+    case SynthesisStatus::feasible: return "feasible";
+    case SynthesisStatus::infeasible: return "infeasible";
+    case SynthesisStatus::not_verified: return "not verified";
+    case SynthesisStatus::solver_failed: return "solver failed";
   }
   return "unknown";
 }
