@@ -8,11 +8,16 @@
 
 namespace adaptobs::detail {
 
-/// True when every coefficient of every argument is finite (Eigen's `allFinite`,
-/// which relies on IEEE arithmetic: not valid under `-ffast-math`).
-template <class... Blocks>
-[[nodiscard]] bool all_finite(const Eigen::DenseBase<Blocks>&... blocks) {
-  return (blocks.derived().allFinite() && ...);
+/// True when every coefficient of every argument is finite. The sum of
+/// \f$0\cdot v_i\f$ over all of them is 0 when every \f$v_i\f$ is finite and NaN as
+/// soon as one is NaN or ±Inf (0·Inf = NaN): one vectorized reduction instead of
+/// a compare and a branch per coefficient, on every update path. Like Eigen's
+/// `allFinite`, it relies on IEEE arithmetic: not valid under `-ffast-math`.
+template <class First, class... Rest>
+[[nodiscard]] bool all_finite(const Eigen::DenseBase<First>& first, const Eigen::DenseBase<Rest>&... rest) {
+  using Scalar = typename First::Scalar;
+  const Scalar sum = ((first.derived().array() * Scalar(0)).sum() + ... + (rest.derived().array() * Scalar(0)).sum());
+  return sum == sum;
 }
 
 /// True when the entries of y whose channel is present (all of them for a null
