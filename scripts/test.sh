@@ -4,8 +4,8 @@
 # and runs the CTest suite, then builds them again with clang++ under
 # AddressSanitizer and UndefinedBehaviorSanitizer, with the benchmarks
 # (uninstrumented) and every public header compiled on its own, and runs the
-# suite there, the benchmark smoke run included and the detectors' Monte-Carlo
-# statistics left to the g++ phase; last, under ThreadSanitizer,
+# suite there, the benchmark smoke run included, the example programs and the
+# detectors' Monte-Carlo statistics left to the g++ phase; last, under ThreadSanitizer,
 # two threads sharing one observer's odeint_system (tests/tsan).
 #
 # Between the two, the Python package is installed with `pip install .` into a
@@ -99,14 +99,16 @@ if ((sanitize)); then
   echo "== clang++ AddressSanitizer + UndefinedBehaviorSanitizer build"
   # -O0 with line tables: the cheapest instrumented build whose reports still
   # name file and line (test_long_runs alone at -O1, see tests/CMakeLists.txt).
-  # Eigen's own assertions stay on (no NDEBUG). lld links the
+  # Eigen's own assertions stay on (no NDEBUG). The example programs run in the
+  # g++ phase only: they drive library code the tests run here, and their own
+  # compilation was a fifth of this phase's build. lld links the
   # instrumented executables five times faster than ld.bfd (a minute and a half
   # of CPU in all, several seconds of it at the end of the build, where nothing
   # else runs beside it).
   configure "$root/build/sanitize" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_CXX_FLAGS_DEBUG="-O0 -gline-tables-only" -DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld \
     -DADAPTOBS_SANITIZE=ON -DADAPTOBS_WARNINGS_AS_ERRORS=ON -DADAPTOBS_BUILD_BENCHMARKS=ON \
-    -DADAPTOBS_VERIFY_HEADERS=ON -DADAPTOBS_UNITY_TESTS=ON
+    -DADAPTOBS_BUILD_EXAMPLES=OFF -DADAPTOBS_VERIFY_HEADERS=ON -DADAPTOBS_UNITY_TESTS=ON
   cmake --build "$root/build/sanitize" -j "$jobs"
   # The Monte-Carlo statistics of the fault detectors (thousands of seeds of one
   # scenario) are asserted in the g++ phase. Under the sanitizers they would run
