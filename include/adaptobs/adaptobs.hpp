@@ -12,6 +12,7 @@
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
+#include <adaptobs/core/health.hpp>
 #include <adaptobs/core/observer.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/sampled_integration.hpp>

@@ -21,6 +21,7 @@
 #include <adaptobs/design/dare.hpp>
 #include <adaptobs/design/guiro_convergence.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
+#include <adaptobs/design/guyader_zhang_tuning.hpp>
 #include <adaptobs/design/ltv_stability.hpp>
 #include <adaptobs/design/lyapunov.hpp>
 #include <adaptobs/design/observability.hpp>

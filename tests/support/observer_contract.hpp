@@ -296,6 +296,35 @@ TYPED_TEST_P(ObserverContract, AnOverflowingStepIsRejectedAndChangesNothing) {
   EXPECT_EQ(observer.update(run[half]), UpdateStatus::accepted);
 }
 
+// One overflowing sample is a bad sample; a run of them is divergence, which
+// health() reports from the first of them on, until a reset.
+TYPED_TEST_P(ObserverContract, ARunOfOverflowingStepsIsReportedAsDivergence) {
+  const auto run = TypeParam::samples();
+  const std::size_t half = run.size() / 2;
+  auto observer = TestFixture::after(run, half);
+  const Index first_refused = observer.step();
+  EXPECT_EQ(observer.update(TestFixture::overflowing(run[half])), UpdateStatus::nonfinite_result);
+  EXPECT_EQ(observer.update(run[half]), UpdateStatus::accepted);
+  const auto bad = TestFixture::overflowing(run[half + 1]);  // a continuous-time sample must be later
+  EXPECT_EQ(observer.health().state, Health::healthy) << observer.health().message;
+  constexpr Index refusals = HealthRecord<typename TestFixture::Scalar>::divergence_refusals;
+  for (Index i = 0; i < refusals; ++i) {
+    EXPECT_EQ(observer.health().state, Health::healthy) << "after " << i << " refusals";
+    EXPECT_EQ(observer.update(bad), UpdateStatus::nonfinite_result);
+  }
+  const HealthReport diverged = observer.health();
+  EXPECT_EQ(diverged.state, Health::diverged);
+  EXPECT_EQ(diverged.step, first_refused + 1);
+  EXPECT_NE(diverged.message.find("from step " + std::to_string(first_refused + 1)), std::string::npos)
+      << diverged.message;
+  // Kept while the run goes on (a caller that checks at the end still sees it), and in a copy.
+  EXPECT_EQ(observer.update(run[half + 1]), UpdateStatus::accepted);
+  EXPECT_EQ(observer.health().state, Health::diverged);
+  observer.reset(TypeParam::make().state(), TypeParam::make().parameters());
+  EXPECT_EQ(observer.health().state, Health::healthy);
+  EXPECT_EQ(observer.health().step, -1);
+}
+
 TYPED_TEST_P(ObserverContract, ResetEqualsAFreshConstruction) {
   const auto run = TypeParam::samples();
   const auto fresh = TypeParam::make();
@@ -465,9 +494,9 @@ struct ContractName {
 };
 
 REGISTER_TYPED_TEST_SUITE_P(ObserverContract, SatisfiesTheObserverConcept, NonFiniteSamplesAreRejectedAndChangeNothing,
-                            AnOverflowingStepIsRejectedAndChangesNothing, ResetEqualsAFreshConstruction,
-                            ResetRefusesBadArgumentsAndChangesNothing, OutputErrorIsTheErrorOfTheLastAcceptedUpdate,
-                            FixedSizeUpdatesAndReadingsDoNotAllocate);
+                            ARunOfOverflowingStepsIsReportedAsDivergence, AnOverflowingStepIsRejectedAndChangesNothing,
+                            ResetEqualsAFreshConstruction, ResetRefusesBadArgumentsAndChangesNothing,
+                            OutputErrorIsTheErrorOfTheLastAcceptedUpdate, FixedSizeUpdatesAndReadingsDoNotAllocate);
 
 }  // namespace adaptobs::testing
 

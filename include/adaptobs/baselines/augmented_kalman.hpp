@@ -69,6 +69,8 @@ class AugmentedKalmanFilter
     : public DiscreteUpdate<AugmentedKalmanFilter<Model>, typename Model::Dims, DiscreteSample> {
  public:
   ADAPTOBS_DISCRETE_UPDATE_INTERFACE(AugmentedKalmanFilter, DiscreteSample);
+  /// No condition is checked per step: a covariance that turns indefinite is refused as `indefinite_covariance`.
+  static constexpr CheckedAssumption checked_assumption{};
   using Covariances = AugmentedKalmanCovariances<Dims>;
   static constexpr int na = Covariances::na;
   using AugmentedVector = Eigen::Matrix<Scalar, na, 1>;

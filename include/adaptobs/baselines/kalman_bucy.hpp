@@ -110,6 +110,7 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     archive("eta", self.eta_);
     archive("theta", self.theta_);
     archive("output_error", self.output_error_);
+    AugmentedKalmanBucyFilter::visit_update_state(self, archive);
     if constexpr (Archive::reading)
       require(self.r_factor_.compute(self.cov_.R), "restore", "snapshot", "holds an R that is not positive definite");
   }

@@ -6,6 +6,7 @@
 
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/health.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -33,7 +34,8 @@ namespace adaptobs {
 ///   output error at the sample, per-step diagnostics);
 /// - `set_initial(eta0, theta0)`, which restarts `internal_` and its diagnostics;
 /// - `check_step(candidate)`, which may adjust an integrated state and returns
-///   `accepted` or the reason to reject it.
+///   `accepted` or the reason to reject it;
+/// - a `visit_state` that calls `visit_update_state`, the base's own fields.
 template <class Observer, StateSpace Dims>
 class ContinuousUpdate : public Dims {
   using Scalar = typename Dims::Scalar;
@@ -54,11 +56,20 @@ class ContinuousUpdate : public Dims {
                           const typename Dims::Output& y) { o.derivative(s, ds, t, u, y, o.work_); };
     const auto check = [&o](InternalState& candidate) { return o.check_step(candidate); };
     const UpdateStatus status = o.integrator_.advance(sample, o.internal_, rhs, Observer::name, check);
+    health_.note(status, samples_);
     if (status != UpdateStatus::accepted) return status;
+    ++samples_;
     o.refresh_estimates();
     o.finish_update(sample, stepping);
     return status;
   }
+
+  /// Whether the run is sound (core/health.hpp): `diverged` from the sample at
+  /// which consecutive intervals began to overflow, with a message naming the
+  /// remedy. No condition of the observer's theorem is checked per sample.
+  [[nodiscard]] HealthReport health() const { return health_.report({}, {}); }
+  /// Number of accepted samples since construction or the last reset.
+  [[nodiscard]] Index step() const noexcept { return samples_; }
 
   /// Run-time sizes (nx, nu, ny, np).
   [[nodiscard]] Sizes sizes() const noexcept { return self().sizes_; }
@@ -119,11 +130,25 @@ class ContinuousUpdate : public Dims {
     o.set_initial(eta0, theta0);
     o.output_error_.setZero();
     o.integrator_.restart();
+    health_.clear();
+    samples_ = 0;
+  }
+
+ protected:
+  /// The base's part of an observer's `visit_state` (core/snapshot.hpp): the
+  /// sample counter and the health record.
+  template <class Self, class Archive>
+  static void visit_update_state(Self& self, Archive& archive) {
+    archive("samples", self.samples_);
+    archive.object("health", self.health_);
   }
 
  private:
   Observer& self() noexcept { return static_cast<Observer&>(*this); }
   const Observer& self() const noexcept { return static_cast<const Observer&>(*this); }
+
+  HealthRecord<Scalar> health_;
+  Index samples_ = 0;
 };
 
 }  // namespace adaptobs

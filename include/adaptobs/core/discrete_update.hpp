@@ -8,6 +8,7 @@
 #include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/discrete_model.hpp>
+#include <adaptobs/core/health.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -56,6 +57,9 @@ constexpr std::string_view initial_state_name(std::string_view paper_letter) { r
 ///   `Observer::name_initial_state`, the names its errors give (the macro
 ///   declares them);
 /// - `restart(x0, theta0)`, the rest of `reset`;
+/// - `checked_assumption`, a `CheckedAssumption` naming the condition of its
+///   theorem that its `advance` checks (reporting failures to `health_`), and
+///   the remedy; empty for an observer that checks none;
 /// - `work_`, a `detail::UpdateWorkspace` of the step's scratch
 ///   (core/detail/update_workspace.hpp: built on the stack for each step with
 ///   fixed sizes, kept and sized at construction otherwise, so that no step
@@ -87,6 +91,14 @@ class DiscreteUpdate : public Dims {
     return checked_step(sample, detail::partial_mask<Dims>(present, sizes().ny, Observer::name_update));
   }
 
+  /// Whether the run is sound (core/health.hpp): `diverged` from the step at
+  /// which consecutive updates began to overflow, `assumption_violated` from
+  /// the first step at which the checked assumption of the observer's theorem
+  /// failed, with a message naming the cause and the remedy.
+  [[nodiscard]] HealthReport health() const {
+    return health_.report(Observer::checked_assumption.condition, Observer::checked_assumption.remedy);
+  }
+
   /// Run-time sizes (nx, nu, ny, np).
   [[nodiscard]] Sizes sizes() const noexcept { return self().model_.sizes(); }
   /// Parameter estimate \f$\hat\theta_k\f$.
@@ -110,19 +122,24 @@ class DiscreteUpdate : public Dims {
     require(start_step >= 0, who, "start_step", "must be non-negative");
     self().restart(x0, theta0);
     output_error_.setZero();
+    health_.clear();
     step_ = start_step;
   }
 
  protected:
   /// The output error of the last accepted step, sized and written by the observer.
   typename Dims::Output output_error_;
+  /// The record behind `health()`; the base notes every outcome, the observer
+  /// the failures of its checked assumption.
+  HealthRecord<typename Dims::Scalar> health_;
 
   /// The base's part of an observer's `visit_state` (core/snapshot.hpp): the
-  /// step counter and the last output error.
+  /// step counter, the last output error and the health record.
   template <class Self, class Archive>
   static void visit_update_state(Self& self, Archive& archive) {
     archive("step", self.step_);
     archive("output_error", self.output_error_);
+    archive.object("health", self.health_);
   }
 
   /// Checks the matrices the model gives for the current step against its
@@ -144,6 +161,7 @@ class DiscreteUpdate : public Dims {
     if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, sizes(), Observer::name_update);
     if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
     const UpdateStatus status = self().work_.run([&](auto& w) { return self().advance(sample, present, w); });
+    health_.note(status, step_);
     if (status == UpdateStatus::accepted) ++step_;
     return status;
   }

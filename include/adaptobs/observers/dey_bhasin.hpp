@@ -42,6 +42,7 @@
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/health.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/observers/canonical_form_filters.hpp>
@@ -173,6 +174,10 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   [[nodiscard]] const AdaptationLawType& law() const noexcept { return law_; }
   /// Number of accepted samples since construction or the last reset.
   [[nodiscard]] Index step() const noexcept { return step_; }
+  /// Whether the run is sound (core/health.hpp): `diverged` from the sample at
+  /// which consecutive steps began to overflow, with a message naming the
+  /// remedy. No condition of the theorem is checked per sample.
+  [[nodiscard]] HealthReport health() const { return health_.report({}, {}); }
   [[nodiscard]] Sizes sizes() const noexcept { return filters_.sizes(); }
   [[nodiscard]] const State& initial_state() const noexcept { return x0_; }
 
@@ -194,6 +199,7 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
     law_.restart(p0);
     x0_ = x0;
     restart_filters();
+    health_.clear();
   }
 
   /// \f$[(a - f)^T\ \mathrm{vec}(B)^T]^T\f$ for first-column entries a and input matrix B.
@@ -223,6 +229,7 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
     archive("state", self.state_);
     archive("next_state", self.next_state_);
     archive("step", self.step_);
+    archive.object("health", self.health_);
   }
 
  private:
@@ -285,7 +292,9 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
     // even when the observer's are fixed (free when both are fixed).
     require_shape(u, filters_.inputs(), 1, "DeyBhasinObserver::update", "sample.u");
     require_shape(y, filters_.outputs(), 1, "DeyBhasinObserver::update", "sample.y");
-    return work_.run([&](Workspace& w) { return advance(u, y, present, w); });
+    const UpdateStatus status = work_.run([&](Workspace& w) { return advance(u, y, present, w); });
+    health_.note(status, step_);
+    return status;
   }
 
   template <class U, class Y>
@@ -358,6 +367,7 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   State state_;                      // x̂_t (13)
   State next_state_;                 // x̂_{t+1|t}
   Index step_ = 0;
+  HealthRecord<S> health_;
   // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
   detail::UpdateWorkspace<Workspace, Dims::is_fixed> work_;
 };

@@ -70,6 +70,8 @@ template <DiscreteModel Model>
 class GuiroObserver : public DiscreteUpdate<GuiroObserver<Model>, typename Model::Dims, DiscreteSample> {
  public:
   ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuiroObserver, DiscreteSample, "z0");
+  /// No condition is checked per step: `guiro_convergence` checks its gains at design.
+  static constexpr CheckedAssumption checked_assumption{};
   using typename Dims::GainMatrix;
   using ParameterGain = typename Dims::template Matrix<Dims::np, Dims::ny>;  ///< Γ, p × m
 

@@ -44,6 +44,7 @@
 #include <adaptobs/core/validation.hpp>
 #include <adaptobs/diagnostics/excitation_monitor.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -76,6 +77,13 @@ template <DiscreteModel Model>
 class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, typename Model::Dims, DiscreteSample> {
  public:
   ADAPTOBS_DISCRETE_UPDATE_INTERFACE(GuyaderZhangObserver, DiscreteSample);
+  /// Checked at every accepted step, by the measure \f$\|\sqrt{\mu_k}\bar C_k\Upsilon_k\|_2\f$
+  /// that `assumption2_norm` returns. Past 1 the error recursion of θ̃ (file
+  /// comment) may expand along \f$\Upsilon_k^TC_k^T\f$; past √2 it does, and θ̂ diverges.
+  static constexpr CheckedAssumption checked_assumption{
+      "assumption 2 (eq. (3)), ||sqrt(mu_k) C_k Upsilon_k|| <= 1,",
+      "divide mu by at least the square of that measure (guyader_zhang_mu_bound gives the bound from the "
+      "regressors), or set options.normalized_step"};
   using typename Dims::GainMatrix, typename Dims::RegressorMatrix;
 
   /// \param K output-injection gain making \f$A_k - KC_k\f$ exponentially stable (assumption 1);
@@ -250,6 +258,7 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
     detail::commit(last_c_upsilon_, w.c_upsilon);
     detail::commit(this->output_error_, w.innovation);
     last_mu_ = mu_k * error_scale;  // μ_k, 0 when it underflowed
+    check_assumption2(last_c_upsilon_, mu_k);
     if (excitation_) {
       if (last_mu_ > Scalar(0)) [[likely]] {
         excitation_->add(last_c_upsilon_, last_mu_);
@@ -259,6 +268,17 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
       }
     }
     return UpdateStatus::accepted;
+  }
+
+  // Assumption 2 at this step, for `health()`. ‖·‖_F bounds ‖·‖_2 from above,
+  // so the spectral norm is computed only when μ_k‖C̄Υ‖²_F exceeds both 1 and
+  // the worst measure so far; the normalized step keeps it at most 1.
+  void check_assumption2(const typename Dims::OutputRegressor& c_upsilon, Scalar mu_k) {
+    if (normalized_step_) return;
+    const Scalar worst = std::max(Scalar(1), this->health_.worst_measure());
+    if (!(mu_k * c_upsilon.squaredNorm() > worst * worst)) return;
+    const Scalar measure = std::sqrt(mu_k) * spectral_norm(c_upsilon);
+    if (measure > Scalar(1)) this->health_.note_assumption_violated(this->step(), measure);
   }
 
   // 1/‖M‖_F from the scaled entries, for an M whose squared norm overflows

@@ -60,6 +60,8 @@ class TakagiSugenoObserver
     : public DiscreteUpdate<TakagiSugenoObserver<Model>, typename Model::Dims, InputOutputSample> {
  public:
   ADAPTOBS_DISCRETE_UPDATE_INTERFACE(TakagiSugenoObserver, InputOutputSample);
+  /// No condition is checked per step: the LMI its gains solve (design/takagi_sugeno_lmi.hpp) is its condition.
+  static constexpr CheckedAssumption checked_assumption{};
   using Gains = TakagiSugenoGains<Dims>;
   using PremiseVector = typename Model::PremiseVector;
   using Weights = typename Model::Weights;

@@ -228,6 +228,7 @@ class UnifiedAdaptiveObserver
     archive("output_error", self.output_error_);
     archive.setting("excitation_window", self.excitation_ ? self.excitation_->window() : 0);
     if (self.excitation_) archive.object("excitation", *self.excitation_);
+    UnifiedAdaptiveObserver::visit_update_state(self, archive);
     if constexpr (Archive::reading) self.refresh_time_invariant_system();
   }
 
