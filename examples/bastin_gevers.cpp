@@ -17,9 +17,8 @@
 namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
 
-int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(argc, argv, "bastin_gevers",
-                                           {{"seconds", "100"}, {"noise", "0"}, {"seed", "1"}});
+int main(int argc, char** argv) try {
+  const adaptobs::examples::Arguments args(argc, argv, "bastin_gevers", adaptobs::examples::continuous_options("100"));
   auto observer = designs::bastin_gevers_observer<double>();
   const auto& algorithm = observer.algorithm();
   const auto so = observer.transformed_system(0.0);
@@ -34,4 +33,6 @@ int main(int argc, char** argv) {
       observer, args, "bastin_gevers",
       "Bastin-Gevers adaptive observer (Zhang 2005, Algorithm 1) on a third-order SISO plant");
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("bastin_gevers");
 }

@@ -19,8 +19,8 @@ namespace periodic = adaptobs::examples::periodic;
 namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
 
-int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(argc, argv, "besancon", {{"seconds", "40"}, {"noise", "0"}, {"seed", "1"}});
+int main(int argc, char** argv) try {
+  const adaptobs::examples::Arguments args(argc, argv, "besancon", adaptobs::examples::continuous_options("40"));
   auto observer = designs::besancon_observer<double>({.sampling = designs::quadratic(), .excitation_window = 629});
   const auto& algorithm = observer.algorithm();
   print_value("T", algorithm.static_transform.T());
@@ -44,4 +44,6 @@ int main(int argc, char** argv) {
       adaptobs::examples::estimates_and_errors_figure(
           "Besancon adaptive observer (Zhang 2005, Algorithm 3) on a periodic MIMO plant", "1 and -2", 2, 4));
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("besancon");
 }

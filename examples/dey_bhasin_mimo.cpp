@@ -126,13 +126,21 @@ unset multiplot)";
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
+  auto channel = adaptobs::examples::integer_in(0, mimo::outputs);
+  channel.range = "0 (the whole sample) or an output channel, 1 or 2";
   const adaptobs::examples::Arguments args(
       argc, argv, "dey_bhasin_mimo",
-      adaptobs::examples::with_output_loss({{"steps", "1000"}, {"channel", "0"}, {"seed", "1"}}));
-  const auto steps = static_cast<adaptobs::Index>(args.number("steps"));
-  const auto loss = adaptobs::examples::output_loss_options(args, static_cast<std::uint64_t>(args.number("seed")),
-                                                            adaptobs::Index(std::llround(args.number("channel"))) - 1);
+      adaptobs::examples::with_output_loss(
+          {{"steps", "1000", "samples of each run", "", adaptobs::examples::integer_in(10, 1e7)},
+           {"channel", "0", "output channel that a lost sample loses, as a partial update (0: all of them)", "",
+            channel},
+           adaptobs::examples::seed_option("1", "seed of the lost samples")},
+          "samples"));
+  const auto steps = static_cast<adaptobs::Index>(args.integer("steps"));
+  const auto loss =
+      adaptobs::examples::output_loss_options(args, static_cast<std::uint64_t>(args.integer("seed")), double(steps),
+                                              adaptobs::Index(args.integer("channel")) - 1);
 
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
   const Matrix6 a_matrix = adaptobs::block_companion_matrix<2>(mimo::a());
@@ -171,4 +179,6 @@ int main(int argc, char** argv) {
       {{nonpe.table, "dey_bhasin_mimo_nonpe", "nonpe"}, {pe.table, "dey_bhasin_mimo_pe", "pe"}}, args.out_dir(),
       "dey_bhasin_mimo", adaptobs::examples::gap_shading(pe.table, loss) + figure_script);
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("dey_bhasin_mimo");
 }

@@ -257,16 +257,25 @@ unset multiplot)");
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
+  using adaptobs::examples::real_in;
   const adaptobs::examples::Arguments args(
       argc, argv, "guiro",
       adaptobs::examples::with_output_loss(
-          {{"samples", "60"}, {"tolerance", "1e-12"}, {"jitter", "0"}, {"seed", "1"}}));
-  const auto samples = static_cast<Index>(std::llround(args.number("samples")));
+          {{"samples", "60", "samples of the run", "", adaptobs::examples::integer_in(1, 1e5)},
+           {"tolerance", "1e-12", "relative tolerance of the quadrature of H_k (0: the default, eps^0.75)", "",
+            real_in(0, 1, "[)")},
+           {"jitter", "0", "jitter J of the sampling intervals T (1 + J u), u uniform in [-1, 1]", "",
+            real_in(0, 1, "[)")},
+           adaptobs::examples::seed_option("1", "seed of the jitter (the lost samples draw from seed + 1)")},
+          "sample times, T = 1"));
+  const auto samples = static_cast<Index>(args.integer("samples"));
   const bool jittered = args.number("jitter") != 0;
-  const auto seed = static_cast<std::uint64_t>(args.number("seed"));
+  const auto seed = static_cast<std::uint64_t>(args.integer("seed"));
   const double tolerance = args.number("tolerance");
-  adaptobs::OutputLoss loss(adaptobs::examples::output_loss_options(args, seed + 1));
+  // The samples come at t_0 = 0 < ... < t_N <= N T (1 + J): an outage must begin before (N + 1) T (1 + J).
+  adaptobs::OutputLoss loss(adaptobs::examples::output_loss_options(
+      args, seed + 1, double(samples + 1) * g::period * (1 + args.number("jitter"))));
 
   Integral integral(g::continuous_dynamics<double>(), g::period, {.relative_tolerance = tolerance});
   const auto model = g::model<double>();
@@ -284,4 +293,6 @@ int main(int argc, char** argv) {
   print_final_estimates(samples, *run);
   write_figure(*run, args, loss);
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("guiro");
 }

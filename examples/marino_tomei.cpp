@@ -17,9 +17,8 @@
 namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
 
-int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(argc, argv, "marino_tomei",
-                                           {{"seconds", "100"}, {"noise", "0"}, {"seed", "1"}});
+int main(int argc, char** argv) try {
+  const adaptobs::examples::Arguments args(argc, argv, "marino_tomei", adaptobs::examples::continuous_options("100"));
   auto observer = designs::marino_tomei_observer<double>();
   const auto& algorithm = observer.algorithm();
   const auto so = observer.transformed_system(0.0);
@@ -36,4 +35,6 @@ int main(int argc, char** argv) {
       observer, args, "marino_tomei",
       "Marino-Tomei adaptive observer (Zhang 2005, Algorithm 2) on a third-order SISO plant");
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("marino_tomei");
 }

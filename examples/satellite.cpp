@@ -109,12 +109,17 @@ unset multiplot)");
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   const adaptobs::examples::Arguments args(
       argc, argv, "satellite",
-      adaptobs::examples::with_output_loss({{"seconds", "300"}, {"seed", "2003"}, {"noise", "0.01"}}));
-  const auto seed = static_cast<std::uint64_t>(args.number("seed"));
-  adaptobs::OutputLoss loss(adaptobs::examples::output_loss_options(args, seed + 1));
+      adaptobs::examples::with_output_loss(
+          {{"seconds", "300", "length of the run", "s", adaptobs::examples::real_in(1, 1e6)},
+           adaptobs::examples::seed_option("2003", "seed of the output noise (the lost samples draw from seed + 1)"),
+           adaptobs::examples::noise_option(
+               "0.01", "output noise, standard deviation on both outputs (radial position and angle)")},
+          "s"));
+  const auto seed = static_cast<std::uint64_t>(args.integer("seed"));
+  adaptobs::OutputLoss loss(adaptobs::examples::output_loss_options(args, seed + 1, args.number("seconds")));
   const auto steps = static_cast<adaptobs::Index>(std::llround(args.number("seconds") / satellite::sampling_period));
   const double noise = args.number("noise");
 
@@ -146,4 +151,6 @@ int main(int argc, char** argv) {
   print_value("assumption2_norm", observer.assumption2_norm());
   write_figure(table, args, loss);
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("satellite");
 }

@@ -60,7 +60,7 @@ void one_run(const satellite::MonitorDesign& design, const satellite::ThrusterFa
   double first_alarm = -1;
   adaptobs::Index isolated = -1;
   const auto steps = static_cast<adaptobs::Index>(std::llround(args.number("seconds") / satellite::sampling_period));
-  satellite::Simulation{fault}(static_cast<std::uint64_t>(args.number("seed")), true, steps,
+  satellite::Simulation{fault}(static_cast<std::uint64_t>(args.integer("seed")), true, steps,
                                [&](adaptobs::Index k, const auto& observer, const auto& plant, const auto& sample) {
                                  const double t = static_cast<double>(k) * satellite::sampling_period;
                                  const bool watching =
@@ -91,25 +91,33 @@ void one_run(const satellite::MonitorDesign& design, const satellite::ThrusterFa
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(argc, argv, "satellite_fault",
-                                           {{"fault-param", "2"},
-                                            {"fault-time", "150"},
-                                            {"fault-size", "-0.4"},
-                                            {"drift", "off"},
-                                            {"seconds", "300"},
-                                            {"seed", "2003"},
-                                            {"seeds", "0"},
-                                            {"mtbfa", "1e5"},
-                                            {"threads", "0"}});
-  satellite::ThrusterFault fault{.parameter = static_cast<adaptobs::Index>(args.number("fault-param")) - 1,
+int main(int argc, char** argv) try {
+  using adaptobs::examples::integer_in;
+  using adaptobs::examples::real_in;
+  const double monitor_start = double(satellite::monitor_from) * satellite::sampling_period;
+  const adaptobs::examples::Arguments args(
+      argc, argv, "satellite_fault",
+      {{"fault-param", "2", "thrust efficiency that fails: 1 radial, 2 tangential", "", integer_in(1, 2)},
+       {"fault-time", "150", "start of the fault, after the monitor's start (100 s) and before the run's end", "s",
+        real_in(monitor_start, 1e6)},
+       {"fault-size", "-0.4", "relative change D of the efficiency: theta_I becomes (1 + D) theta_I", "",
+        real_in(-1, 10, "()")},
+       adaptobs::examples::toggle("drift", "the fault builds up along a 50-s ramp instead of at once"),
+       {"seconds", "300", "length of the single run (with --seeds, each run lasts fault-time + ramp + 100 s)", "s",
+        real_in(1, 1e6)},
+       adaptobs::examples::seed_option("2003", "seed of the single run's output noise"),
+       {"seeds", "0", "seeds of the Monte-Carlo evaluation, each with its fault-free twin (0: one run and its figure)",
+        "", integer_in(0, 1e6)},
+       {"mtbfa", "1e5", "designed mean time between false alarms of each test", "s", real_in(20, 1e6)},
+       {"threads", "0", "threads of the evaluation (0: one per core)", "", integer_in(0, 1024)}});
+  const auto seeds = static_cast<adaptobs::Index>(args.integer("seeds"));
+  args.require(seeds > 0 || args.number("fault-time") < args.number("seconds"), "fault-time",
+               "in [" + adaptobs::examples::format_number(monitor_start) + ", " +
+                   adaptobs::examples::format_number(args.number("seconds")) + ") (inside the run, --seconds)");
+  satellite::ThrusterFault fault{.parameter = static_cast<adaptobs::Index>(args.integer("fault-param")) - 1,
                                  .time = args.number("fault-time"),
                                  .relative_size = args.number("fault-size"),
                                  .ramp = args.on("drift") ? 50.0 : 0.0};
-  if (fault.parameter < 0 || fault.parameter > 1) {
-    std::cerr << "satellite_fault: --fault-param must be 1 or 2\n";
-    return 2;
-  }
   const double mtbfa = args.number("mtbfa");
 
   // The three tests designed from 20 fault-free runs of 3100 s (seeds 1 to 20).
@@ -121,17 +129,19 @@ int main(int argc, char** argv) {
   print_value("fault_size", fault.relative_size);
   print_value("fault_ramp", fault.ramp);
 
-  if (const auto seeds = static_cast<adaptobs::Index>(args.number("seeds")); seeds > 0) {
+  if (seeds > 0) {
     const double seconds = fault.time + fault.ramp + 100;
     adaptobs::examples::print_evaluation(
         [&](Detector which, std::uint64_t seed, bool faulty) {
           return satellite::monitored_run(design, which, fault, seed, faulty, seconds);
         },
-        {.time = fault.time, .parameter = fault.parameter}, seeds, static_cast<unsigned>(args.number("threads")),
-        1 / mtbfa);
+        {.time = fault.time, .parameter = fault.parameter}, seeds, static_cast<unsigned>(args.integer("threads")),
+        1 / mtbfa, args.out_dir(), "satellite_fault");
     return 0;
   }
 
   one_run(design, fault, args);
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("satellite_fault");
 }

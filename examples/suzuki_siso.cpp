@@ -115,10 +115,13 @@ unset multiplot)");
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(argc, argv, "suzuki_siso",
-                                           {{"steps", "3000"}, {"lambda", std::to_string(siso::lambda)}});
-  const auto steps = static_cast<adaptobs::Index>(args.number("steps"));
+int main(int argc, char** argv) try {
+  const adaptobs::examples::Arguments args(
+      argc, argv, "suzuki_siso",
+      {{"steps", "3000", "samples of the run", "", adaptobs::examples::integer_in(10, 1e7)},
+       {"lambda", std::to_string(siso::lambda), "forgetting factor of the Suzuki et al. observer", "",
+        adaptobs::examples::real_in(0, 1, "(]")}});
+  const auto steps = static_cast<adaptobs::Index>(args.integer("steps"));
   const double lambda = args.number("lambda");
 
   auto resetting = siso::make_observer();
@@ -176,4 +179,6 @@ int main(int argc, char** argv) {
 
   write_figure(table, args);
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("suzuki_siso");
 }

@@ -58,9 +58,9 @@ plot csv using 't':(e('thetahat_bg', '')) with lines lw 1.5 title 'Alg. 1 Bastin
      csv using 't':(e('thetahat_kb', '')) with lines lw 1.5 dt 2 title 'Kalman-Bucy [x; theta]'
 unset multiplot)";
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   const adaptobs::examples::Arguments args(argc, argv, "unified_comparison",
-                                           {{"seconds", "100"}, {"noise", "0"}, {"seed", "1"}});
+                                           adaptobs::examples::continuous_options("100"));
   auto bg = designs::bastin_gevers_observer<double>();
   auto mt = designs::marino_tomei_observer<double>();
   auto bes = designs::siso_besancon_observer<double>();
@@ -100,4 +100,6 @@ int main(int argc, char** argv) {
 
   adaptobs::examples::write_outputs(table, args.out_dir(), "unified_comparison", figure_script);
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("unified_comparison");
 }

@@ -171,13 +171,19 @@ unset multiplot)");
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   const adaptobs::examples::Arguments args(
-      argc, argv, "wwtp", adaptobs::examples::with_output_loss({{"theta", "0.1"}, {"steps", "500"}, {"seed", "1"}}));
-  adaptobs::OutputLoss loss(
-      adaptobs::examples::output_loss_options(args, static_cast<std::uint64_t>(args.number("seed"))));
+      argc, argv, "wwtp",
+      adaptobs::examples::with_output_loss(
+          {{"theta", "0.1", "growth-rate error of the plant, a = 0.5 + theta (the input keeps it in its sector)", "",
+            adaptobs::examples::real_in(-0.225, 0.3)},
+           {"steps", "500", "samples of the run", "", adaptobs::examples::integer_in(10, 1e7)},
+           adaptobs::examples::seed_option("1", "seed of the lost samples")},
+          "samples"));
   const double theta = args.number("theta");
-  const auto steps = static_cast<adaptobs::Index>(args.number("steps"));
+  const auto steps = static_cast<adaptobs::Index>(args.integer("steps"));
+  adaptobs::OutputLoss loss(
+      adaptobs::examples::output_loss_options(args, static_cast<std::uint64_t>(args.integer("seed")), double(steps)));
 
   const auto model = wwtp::model<double>();
   compare_printed_vertices(model);
@@ -224,4 +230,6 @@ int main(int argc, char** argv) {
 
   write_figure(table, args, loss);
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("wwtp");
 }

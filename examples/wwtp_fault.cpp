@@ -45,7 +45,7 @@ void run_once(const adaptobs::examples::Arguments& args, const wwtp::MonitorDesi
   adaptobs::SeriesTable table;
   double first_alarm = -1;
   wwtp::Simulation{fault}(
-      static_cast<std::uint64_t>(args.number("seed")), true, static_cast<adaptobs::Index>(args.number("steps")),
+      static_cast<std::uint64_t>(args.integer("seed")), true, static_cast<adaptobs::Index>(args.integer("steps")),
       [&](adaptobs::Index k, const auto& observer, const auto& plant, const auto& sample) {
         const bool watching = k >= wwtp::monitor_from && adaptobs::accepted(monitor.observe(observer));
         if (watching && monitor.cusum().alarm() && first_alarm < 0) first_alarm = double(k);
@@ -73,17 +73,29 @@ void run_once(const adaptobs::examples::Arguments& args, const wwtp::MonitorDesi
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(argc, argv, "wwtp_fault",
-                                           {{"fault-time", "400"},
-                                            {"fault-size", "0.15"},
-                                            {"drift", "off"},
-                                            {"steps", "800"},
-                                            {"seed", "1"},
-                                            {"seeds", "0"},
-                                            {"mtbfa", "1e5"},
-                                            {"threads", "0"}});
-  const wwtp::GrowthFault fault{.step = static_cast<adaptobs::Index>(args.number("fault-time")),
+int main(int argc, char** argv) try {
+  using adaptobs::examples::integer_in;
+  using adaptobs::examples::real_in;
+  const adaptobs::examples::Arguments args(
+      argc, argv, "wwtp_fault",
+      {{"fault-time", "400",
+        "sample at which the change starts, after the monitor's start (300) and before the run's end", "samples",
+        integer_in(double(wwtp::monitor_from), 1e7)},
+       {"fault-size", "0.15", "theta after the change, from 0 (the input keeps the plant in its sector)", "",
+        real_in(-0.225, 0.3)},
+       adaptobs::examples::toggle("drift", "the change builds up along a 50-sample ramp instead of at once"),
+       {"steps", "800", "length of the single run (with --seeds, each run lasts fault-time + ramp + 200 samples)",
+        "samples", integer_in(1, 1e7)},
+       adaptobs::examples::seed_option("1", "seed of the single run's measurement noise"),
+       {"seeds", "0", "seeds of the Monte-Carlo evaluation, each with its fault-free twin (0: one run and its figure)",
+        "", integer_in(0, 1e6)},
+       {"mtbfa", "1e5", "designed mean time between false alarms of each test", "samples", real_in(200, 1e7)},
+       {"threads", "0", "threads of the evaluation (0: one per core)", "", integer_in(0, 1024)}});
+  const auto seeds = static_cast<adaptobs::Index>(args.integer("seeds"));
+  args.require(seeds > 0 || args.integer("fault-time") < args.integer("steps"), "fault-time",
+               "an integer in [" + std::to_string(wwtp::monitor_from) + ", " + std::to_string(args.integer("steps")) +
+                   ") (inside the run, --steps)");
+  const wwtp::GrowthFault fault{.step = static_cast<adaptobs::Index>(args.integer("fault-time")),
                                 .size = args.number("fault-size"),
                                 .ramp = args.on("drift") ? 50 : 0};
   const double mtbfa = args.number("mtbfa");
@@ -96,16 +108,19 @@ int main(int argc, char** argv) {
   print_value("fault_size", fault.size);
   print_value("fault_ramp", double(fault.ramp));
 
-  if (const auto seeds = static_cast<adaptobs::Index>(args.number("seeds")); seeds > 0) {
+  if (seeds > 0) {
     const adaptobs::Index steps = fault.step + fault.ramp + 200;
     adaptobs::examples::print_evaluation(
         [&](Detector which, std::uint64_t seed, bool faulty) {
           return wwtp::monitored_run(design, which, fault, seed, faulty, steps);
         },
-        {.time = double(fault.step), .parameter = 0}, seeds, static_cast<unsigned>(args.number("threads")), 1 / mtbfa);
+        {.time = double(fault.step), .parameter = 0}, seeds, static_cast<unsigned>(args.integer("threads")), 1 / mtbfa,
+        args.out_dir(), "wwtp_fault");
     return 0;
   }
 
   run_once(args, design, fault);
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("wwtp_fault");
 }

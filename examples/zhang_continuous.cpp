@@ -17,6 +17,8 @@
 #include "common/example_support.hpp"
 #include "models/unified_designs.hpp"
 
+#include <utility>
+
 namespace periodic = adaptobs::examples::periodic;
 namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
@@ -41,9 +43,12 @@ plot csv using 't':(sqrt((column('thetahat_1')-column('theta_1'))**2 + (column('
      csv using 't':(sqrt((column('thetahat_riccati_1')-column('theta_1'))**2 + (column('thetahat_riccati_2')-column('theta_2'))**2)) with lines lw 1.5 title 'Riccati K(t)'
 unset multiplot)";
 
-int main(int argc, char** argv) {
-  const adaptobs::examples::Arguments args(argc, argv, "zhang_continuous",
-                                           {{"seconds", "40"}, {"gamma", "50"}, {"noise", "0"}, {"seed", "1"}});
+int main(int argc, char** argv) try {
+  auto flags = adaptobs::examples::continuous_options("40");
+  flags.insert(flags.begin() + 1,
+               {"gamma", "50", "adaptation gain, Gamma = gamma I (the run at h = 0.01 s diverges at 1000)", "",
+                adaptobs::examples::real_in(0, 500, "(]")});
+  const adaptobs::examples::Arguments args(argc, argv, "zhang_continuous", std::move(flags));
   const double gamma = args.number("gamma");
   const adaptobs::UnifiedObserverOptions options{.sampling = designs::quadratic(), .excitation_window = 629};
   auto observer = designs::zhang_observer<double>(gamma, options);
@@ -86,4 +91,6 @@ int main(int argc, char** argv) {
 
   adaptobs::examples::write_outputs(table, args.out_dir(), "zhang_continuous", figure_script);
   return 0;
+} catch (...) {
+  return adaptobs::examples::failure("zhang_continuous");
 }

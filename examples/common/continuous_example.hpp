@@ -18,6 +18,8 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace adaptobs::examples {
 
@@ -49,6 +51,14 @@ template <class Plant, class First, class... Rest>
 void run_continuous(Plant& plant, double seconds, double period, int every, SeriesTable& table, Tracked<First> first,
                     Tracked<Rest>... rest) {
   run_continuous_with(plant, seconds, period, every, table, [](double, double) {}, first, rest...);
+}
+
+/// The flags of the continuous-time examples: the run's length (default
+/// `seconds`), the output noise and its seed.
+inline std::vector<Option> continuous_options(std::string seconds) {
+  return {{"seconds", std::move(seconds), "length of the run", "s", real_in(1, 1e5)},
+          noise_option("0"),
+          seed_option("1", "seed of the output noise")};
 }
 
 /// Prints θ, θ̂ and the final relative errors of θ̂ and of the state estimate.

@@ -17,6 +17,10 @@
 #include <adaptobs/simulation/series_table.hpp>
 
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
 #include <string>
 
 namespace adaptobs::examples {
@@ -65,28 +69,35 @@ MonitoredRun monitored_run(const Simulate& simulate, const FaultMonitorDesign<do
 
 /// Runs `seeds` seeds (from 1000, beyond any design's) of a fault and of its
 /// fault-free twin, for each test, and prints the summaries as `name = value`
-/// lines: the CUSUM's unprefixed, the GLR's prefixed `glr_`, the χ² test's `chi_square_`.
-/// `run(which, seed, faulty)` is one monitored run.
+/// lines: the CUSUM's unprefixed, the GLR's prefixed `glr_`, the χ² test's `chi_square_`;
+/// the same lines go to DIR/<name>_evaluation.txt. `run(which, seed, faulty)` is one monitored run.
 template <class Run>
 void print_evaluation(const Run& run, const FaultDescription& fault, Index seeds, unsigned threads,
-                      double designed_false_alarm_rate) {
+                      double designed_false_alarm_rate, const std::filesystem::path& dir, const std::string& name) {
+  std::string summary;
   double fault_free_time = 0;
   for (const Detector which : {Detector::cusum, Detector::glr, Detector::chi_square}) {
-    const auto summary = evaluate_detection([&](std::uint64_t seed, bool faulty) { return run(which, seed, faulty); },
-                                            fault, 1000, seeds, threads);
+    const auto result = evaluate_detection([&](std::uint64_t seed, bool faulty) { return run(which, seed, faulty); },
+                                           fault, 1000, seeds, threads);
     const std::string prefix = which == Detector::cusum ? "" : which == Detector::glr ? "glr_" : "chi_square_";
-    print_value(prefix + "detection_rate", summary.detection_rate);
-    print_value(prefix + "mean_detection_delay", summary.mean_detection_delay);
-    print_value(prefix + "p95_detection_delay", summary.p95_detection_delay);
-    if (which != Detector::chi_square) print_value(prefix + "isolation_rate", summary.isolation_rate);
-    print_value(prefix + "quiet_before_fault_rate", summary.quiet_before_fault_rate);
-    print_value(prefix + "false_alarms", double(summary.false_alarms));
-    print_value(prefix + "false_alarm_rate", summary.false_alarm_rate);
-    fault_free_time = summary.fault_free_time;
+    summary += value_line(prefix + "detection_rate", result.detection_rate);
+    summary += value_line(prefix + "mean_detection_delay", result.mean_detection_delay);
+    summary += value_line(prefix + "p95_detection_delay", result.p95_detection_delay);
+    if (which != Detector::chi_square) summary += value_line(prefix + "isolation_rate", result.isolation_rate);
+    summary += value_line(prefix + "quiet_before_fault_rate", result.quiet_before_fault_rate);
+    summary += value_line(prefix + "false_alarms", double(result.false_alarms));
+    summary += value_line(prefix + "false_alarm_rate", result.false_alarm_rate);
+    fault_free_time = result.fault_free_time;
   }
-  print_value("seeds", double(seeds));
-  print_value("fault_free_time", fault_free_time);
-  print_value("designed_false_alarm_rate", designed_false_alarm_rate);
+  summary += value_line("seeds", double(seeds));
+  summary += value_line("fault_free_time", fault_free_time);
+  summary += value_line("designed_false_alarm_rate", designed_false_alarm_rate);
+  std::cout << summary;
+  const std::filesystem::path file = dir / (name + "_evaluation.txt");
+  std::ofstream out(file);
+  out << summary;
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+  print_text("summary", file.string());
 }
 
 /// The monitor of a single watched run: after an alarm its CUSUM holds off for
