@@ -156,6 +156,14 @@ refuses zhang_continuous "--gamma must be in (0, 500], got 0" --gamma 0
 refuses zhang_continuous "--gamma must be in (0, 500], got 1000" --gamma 1000
 describes zhang_continuous seconds gamma noise seed
 
+common dc_motor
+refuses dc_motor "--seconds (s) must be in [5, 10000], got 1" --seconds 1
+refuses dc_motor "--seed must be an integer in [0, 1e15], got -1" --seed -1
+refuses dc_motor "--fault-time (s) must be in [2, 10000], got 1" --fault-time 1
+refuses dc_motor "--fault-time (s) must be in [2, 29) (at least 1 s before the end of the run, --seconds), got 40" --fault-time 40
+refuses dc_motor "--friction-factor must be in (0, 100], got 0" --friction-factor 0
+describes dc_motor seconds seed fault-time friction-factor
+
 common satellite_fault
 refuses satellite_fault "--seeds must be an integer in [0, 1e6], got -1" --seeds -1
 refuses satellite_fault "--seeds must be an integer in [0, 1e6], got 1.5" --seeds 1.5

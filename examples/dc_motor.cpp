@@ -53,11 +53,20 @@ Eigen::Vector2d relative_rms_error(const std::vector<Eigen::Vector2d>& estimates
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
+  using adaptobs::examples::real_in;
   const adaptobs::examples::Arguments args(
-      argc, argv, "dc_motor", {{"seconds", "30"}, {"seed", "1"}, {"fault-time", "15"}, {"friction-factor", "2"}});
+      argc, argv, "dc_motor",
+      {{"seconds", "30", "length of the run with the fault", "s", real_in(5, 1e4)},
+       adaptobs::examples::seed_option("1", "seed of the sensor noise (the design runs draw from seed + 1 on)"),
+       {"fault-time", "15", "time at which the friction changes, after the estimates settle (2 s)", "s",
+        real_in(2, 1e4)},
+       {"friction-factor", "2", "factor of the friction from the fault time on", "", real_in(0, 100, "(]")}});
+  args.require(args.number("fault-time") < args.number("seconds") - 1, "fault-time",
+               "in [2, " + adaptobs::examples::format_number(args.number("seconds") - 1) +
+                   ") (at least 1 s before the end of the run, --seconds)");
   const double seconds = args.number("seconds");
-  const auto seed = static_cast<std::uint64_t>(args.number("seed"));
+  const auto seed = static_cast<std::uint64_t>(args.integer("seed"));
   const motor::Scenario fault_free;  // the defaults: T_L = 0.02 N·m, b = 1e-4 N·m·s/rad, no fault
   motor::Scenario faulty = fault_free;
   faulty.fault_time = args.number("fault-time");
@@ -205,4 +214,6 @@ unset multiplot)";
   const bool detected = alarm_time > faulty.fault_time && alarm_time < faulty.fault_time + 3 && isolated == 1;
   const bool diverged_reported = reckless.health().state == adaptobs::Health::diverged;
   return estimates_within && detected && diverged_reported ? 0 : 1;
+} catch (...) {
+  return adaptobs::examples::failure("dc_motor");
 }

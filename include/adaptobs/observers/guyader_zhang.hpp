@@ -143,7 +143,10 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
   [[nodiscard]] bool assumption2_holds() const { return assumption2_norm() <= Scalar(1); }
 
   /// Excitation level α of assumption 3 (eq. (4)) over the last L accepted
-  /// steps, i.e. the smallest eigenvalue of \f$\frac1L\sum\mu_i\Upsilon_i^TC_i^TC_i\Upsilon_i\f$;
+  /// steps, i.e. the smallest eigenvalue of \f$\frac1L\sum\mu_i\Upsilon_i^TC_i^TC_i\Upsilon_i\f$.
+  /// 1/α steps is the averaging theory's time constant of θ̂, which holds only
+  /// while \f$\mu_k\|C_k\Upsilon_k\|^2 \ll 1\f$; `guyader_zhang_convergence`
+  /// (design/guyader_zhang_tuning.hpp) gives the exact rate over a regressor sequence.
   /// empty while the monitor is off, its window has not filled, or a contribution
   /// in the window overflowed (`ExcitationMonitor::available`).
   [[nodiscard]] std::optional<Scalar> excitation_level() const {
