@@ -406,6 +406,10 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
       .def_prop_ro(
           "time", [](const B& self) { return self.observer.time(); }, "time of the last accepted sample")
       .def_prop_ro(
+          "health", [](const B& self) { return self.observer.health(); },
+          "HealthReport: healthy, or diverged from the first of consecutive samples refused because the\n"
+          "integration overflows, with the remedy.")
+      .def_prop_ro(
           "internal_state", [](const B& self) { return Eigen::VectorXd(self.observer.internal_state()); },
           "(z_hat, vec Xi, theta_hat), what the RK4 steps integrate")
       .def_prop_ro("excitation_level",

@@ -329,6 +329,10 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
           "step", [](const B& self) { return self.observer.step(); },
           "Number of accepted samples since construction or the last reset.")
       .def_prop_ro(
+          "health", [](const B& self) { return self.observer.health(); },
+          "HealthReport: healthy, assumption_violated (from the step a checked assumption failed) or diverged\n"
+          "(from the first of consecutive updates refused because the step overflows), with the remedy.")
+      .def_prop_ro(
           "sizes", [](const B& self) { return sizes_tuple(self.observer.sizes()); }, "(nx, nu, ny, np).")
       .def(
           "snapshot", [](const B& self) { return to_dict(adaptobs::snapshot(self.observer)); },

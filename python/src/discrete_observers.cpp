@@ -8,6 +8,7 @@
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/design/guiro_gains.hpp>
+#include <adaptobs/design/guyader_zhang_tuning.hpp>
 #include <adaptobs/observers/guiro.hpp>
 #include <adaptobs/observers/guyader_zhang.hpp>
 
@@ -37,7 +38,75 @@ SharedDiscreteModel model_of(const Snapshot<double>& s) { return SharedDiscreteM
 
 }  // namespace
 
+namespace {
+
+// The Ψ_k of an N x nx x np array, for the tuning routines.
+std::vector<Eigen::MatrixXd> regressor_list(nb::handle psi, const SharedDiscreteModel& model, std::string_view who) {
+  const Sizes s = model.sizes();
+  const Array array = real_array(psi, who, "Psi");
+  if (array.ndim() != 3 || array.shape(0) == 0)
+    fail_dimensions(who, "Psi", "(N, " + std::to_string(s.nx) + ", " + std::to_string(s.np) + ") with N >= 1",
+                    shape_of(array));
+  const auto samples = static_cast<Index>(array.shape(0));
+  const Regressors r = regressors(psi, samples, s.nx, s.np, who);
+  std::vector<Eigen::MatrixXd> list;
+  list.reserve(static_cast<std::size_t>(samples));
+  for (Index k = 0; k < samples; ++k) list.emplace_back(r.at(k));
+  return list;
+}
+
+nb::dict convergence_dict(const GuyaderZhangConvergence<double>& c) {
+  nb::dict d;
+  d["mu"] = c.mu;
+  d["rate"] = c.rate;
+  d["time_constant"] = c.time_constant;
+  d["averaged_time_constant"] = c.averaged_time_constant;
+  d["assumption2_measure"] = c.assumption2_measure;
+  d["averaging_holds"] = c.averaging_holds;
+  return d;
+}
+
+void bind_guyader_zhang_tuning(nb::module_& m) {
+  m.def(
+      "guyader_zhang_mu_bound",
+      [](nb::handle model, nb::handle K, nb::handle Psi) {
+        constexpr std::string_view who = "guyader_zhang_mu_bound";
+        const SharedDiscreteModel shared = discrete_model(model, who);
+        return guyader_zhang_mu_bound(shared, Eigen::MatrixXd(matrix(K, who, "K")), regressor_list(Psi, shared, who));
+      },
+      nb::arg("model"), nb::arg("K"), nb::arg("Psi"),
+      "Largest mu for which assumption 2, ||sqrt(mu) C_k Upsilon_k|| <= 1, holds at every step of the\n"
+      "regressors Psi (N x nx x np) with gain K: 1 / max_k ||C_k Upsilon_k||^2 (Upsilon of eq. (2a)).");
+  m.def(
+      "guyader_zhang_convergence",
+      [](nb::handle model, nb::handle K, nb::handle Psi, nb::handle mu) {
+        constexpr std::string_view who = "guyader_zhang_convergence";
+        const SharedDiscreteModel shared = discrete_model(model, who);
+        return convergence_dict(guyader_zhang_convergence(shared, Eigen::MatrixXd(matrix(K, who, "K")),
+                                                          regressor_list(Psi, shared, who),
+                                                          real_scalar(mu, who, "mu")));
+      },
+      nb::arg("model"), nb::arg("K"), nb::arg("Psi"), nb::arg("mu"),
+      "The convergence of theta_hat at step size mu over the regressors: a dict of rate (per step),\n"
+      "time_constant (steps), averaged_time_constant (the averaging theory's), assumption2_measure and\n"
+      "averaging_holds (docs/tuning.md).");
+  m.def(
+      "guyader_zhang_fastest_mu",
+      [](nb::handle model, nb::handle K, nb::handle Psi, int points) {
+        constexpr std::string_view who = "guyader_zhang_fastest_mu";
+        const SharedDiscreteModel shared = discrete_model(model, who);
+        return convergence_dict(guyader_zhang_fastest_mu(shared, Eigen::MatrixXd(matrix(K, who, "K")),
+                                                         regressor_list(Psi, shared, who), 0, points));
+      },
+      nb::arg("model"), nb::arg("K"), nb::arg("Psi"), nb::arg("points") = 25,
+      "The fastest mu among `points` values from 1e-4 to 1 times guyader_zhang_mu_bound, with its\n"
+      "convergence (the dict of guyader_zhang_convergence).");
+}
+
+}  // namespace
+
 void bind_discrete_observers(nb::module_& m) {
+  bind_guyader_zhang_tuning(m);
   nb::class_<RunResult>(m, "RunResult", "The arrays of a run(): row k is the observer after sample k.")
       .def_ro("state", &RunResult::state, "state estimates, N x nx")
       .def_ro("parameters", &RunResult::parameters, "parameter estimates, N x np")

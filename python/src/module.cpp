@@ -3,10 +3,12 @@
 
 #include "arrays.hpp"
 
+#include <adaptobs/core/health.hpp>
 #include <adaptobs/core/status.hpp>
 #include <adaptobs/core/validation.hpp>
 
 #include <nanobind/nanobind.h>
+#include <nanobind/stl/string.h>
 
 namespace adaptobs::python {
 void bind_discrete_models(nb::module_& m);
@@ -36,6 +38,16 @@ NB_MODULE(_core, m) {
       .value("nonincreasing_time", UpdateStatus::nonincreasing_time)
       .value("indefinite_covariance", UpdateStatus::indefinite_covariance)
       .value("interval_too_long", UpdateStatus::interval_too_long);
+
+  nb::enum_<adaptobs::Health>(m, "Health", "The worst an observer's run has shown since construction or reset.")
+      .value("healthy", adaptobs::Health::healthy)
+      .value("assumption_violated", adaptobs::Health::assumption_violated)
+      .value("diverged", adaptobs::Health::diverged);
+  nb::class_<adaptobs::HealthReport>(m, "HealthReport", "An observer's health(): state, the step it began, message.")
+      .def_ro("state", &adaptobs::HealthReport::state)
+      .def_ro("step", &adaptobs::HealthReport::step, "the step at which the run entered `state` (-1 while healthy)")
+      .def_ro("message", &adaptobs::HealthReport::message, "the cause and the remedy")
+      .def("__repr__", [](const adaptobs::HealthReport& r) { return "<HealthReport " + r.message + ">"; });
 
   adaptobs::python::bind_discrete_models(m);
   adaptobs::python::bind_discrete_observers(m);
