@@ -341,6 +341,17 @@ namespace {
 
 using adaptobs::testing::configuration_error_of;
 
+// With run-time sizes A fixes nx: a B or C that disagrees with it is the one
+// blamed, and the message says where nx came from.
+TEST(GuyaderZhang, WithRunTimeSizesTheOrderOfAFixesNxAndTheRefusalSaysSo) {
+  using Model = adaptobs::DiscreteLtiModel<adaptobs::DynamicDimensions<double>>;
+  const Eigen::MatrixXd A = Eigen::MatrixXd::Identity(3, 3);
+  EXPECT_EQ(configuration_error_of([&] { Model(A, Eigen::MatrixXd::Zero(4, 1), Eigen::MatrixXd::Zero(1, 3), 1); }),
+            "DiscreteLtiModel: argument 'B' must be 3x1 (got 4x1): nx = 3 is the order of A");
+  EXPECT_EQ(configuration_error_of([&] { Model(A, Eigen::MatrixXd::Zero(3, 1), Eigen::MatrixXd::Zero(1, 4), 1); }),
+            "DiscreteLtiModel: argument 'C' must be 1x3 (got 1x4): nx = 3 is the order of A");
+}
+
 TEST(GuyaderZhang, ATimeVaryingModelOfWrongSizesAtAStepIsRefusedAndChangesNothing) {
   adaptobs::testing::expect_resized_step_refused([](auto model) {
     return adaptobs::GuyaderZhangObserver(std::move(model), Eigen::MatrixXd::Constant(2, 1, 0.3), 0.5,

@@ -107,9 +107,17 @@ class ContinuousLtiModel : public D {
   static constexpr bool time_invariant = true;
 
   /// \param np number of unknown parameters (`D::np` itself when that is fixed).
-  ContinuousLtiModel(typename D::StateMatrix A, typename D::InputMatrix B, typename D::OutputMatrix C, RegressorFn Phi,
-                     Index np = D::np)
-      : system_{std::move(A), std::move(B), std::move(C)}, phi_(std::move(Phi)) {
+  /// Compile-time sizes that disagree with D's are refused by a `static_assert`
+  /// naming the matrix; run-time sizes are checked against the order of A.
+  template <class DA, class DB, class DC>
+  ContinuousLtiModel(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B, const Eigen::MatrixBase<DC>& C,
+                     RegressorFn Phi, Index np = D::np)
+      : system_{detail::fitted<typename D::StateMatrix>(A), detail::fitted<typename D::InputMatrix>(B),
+                detail::fitted<typename D::OutputMatrix>(C)},
+        phi_(std::move(Phi)) {
+    static_assert(detail::fits_size<DA, D::nx, D::nx>, "ContinuousLtiModel: A must be nx x nx");
+    static_assert(detail::fits_size<DB, D::nx, D::nu>, "ContinuousLtiModel: B must be nx x nu");
+    static_assert(detail::fits_size<DC, D::ny, D::nx>, "ContinuousLtiModel: C must be ny x nx");
     constexpr std::string_view who = "ContinuousLtiModel";
     validate_state_space(system_, who);
     require_size<D::np>(np, who, "np");

@@ -109,8 +109,17 @@ class DiscreteLtiModel : public D {
   static constexpr bool time_invariant = true;
 
   /// \param np number of unknown parameters (`D::np` itself when that is fixed).
-  DiscreteLtiModel(typename D::StateMatrix A, typename D::InputMatrix B, typename D::OutputMatrix C, Index np = D::np)
-      : system_{std::move(A), std::move(B), std::move(C)}, np_(np) {
+  /// Compile-time sizes that disagree with D's are refused by a `static_assert`
+  /// naming the matrix; run-time sizes are checked against the order of A.
+  template <class DA, class DB, class DC>
+  DiscreteLtiModel(const Eigen::MatrixBase<DA>& A, const Eigen::MatrixBase<DB>& B, const Eigen::MatrixBase<DC>& C,
+                   Index np = D::np)
+      : system_{detail::fitted<typename D::StateMatrix>(A), detail::fitted<typename D::InputMatrix>(B),
+                detail::fitted<typename D::OutputMatrix>(C)},
+        np_(np) {
+    static_assert(detail::fits_size<DA, D::nx, D::nx>, "DiscreteLtiModel: A must be nx x nx");
+    static_assert(detail::fits_size<DB, D::nx, D::nu>, "DiscreteLtiModel: B must be nx x nu");
+    static_assert(detail::fits_size<DC, D::ny, D::nx>, "DiscreteLtiModel: C must be ny x nx");
     detail::validate_system(system_, np_, "DiscreteLtiModel", "np");
   }
 

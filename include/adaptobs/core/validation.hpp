@@ -66,10 +66,29 @@ namespace detail {
 }
 
 [[noreturn]] inline void fail_shape(Index rows, Index cols, Index got_rows, Index got_cols, std::string_view who,
-                                    std::string_view argument) {
+                                    std::string_view argument, std::string_view because = {}) {
   Message os;
   os << "must be " << rows << "x" << cols << " (got " << got_rows << "x" << got_cols << ")";
+  if (!because.empty()) os << ": " << because;
   fail_argument(who, argument, os.str());
+}
+
+/// Whether an Eigen expression of type `Derived` can be assigned to a matrix
+/// of compile-time size R × C: every dimension fixed on both sides agrees.
+template <class Derived, int R, int C>
+inline constexpr bool fits_size =
+    (Derived::RowsAtCompileTime == Eigen::Dynamic || R == Eigen::Dynamic || Derived::RowsAtCompileTime == R) &&
+    (Derived::ColsAtCompileTime == Eigen::Dynamic || C == Eigen::Dynamic || Derived::ColsAtCompileTime == C);
+
+/// `m` as a `Target` when its compile-time size fits, else an empty `Target`:
+/// a constructor's `static_assert` on `fits_size` then names the argument, and
+/// is the only error (not Eigen's, deep inside the conversion).
+template <class Target, class Derived>
+[[nodiscard]] Target fitted(const Eigen::MatrixBase<Derived>& m) {
+  if constexpr (fits_size<Derived, Target::RowsAtCompileTime, Target::ColsAtCompileTime>)
+    return Target(m);
+  else
+    return Target();
 }
 
 /// A list argument (one matrix per vertex, per mode, ...) of the wrong length:
@@ -179,8 +198,16 @@ template <class System>
 void validate_state_space(const System& s, std::string_view who) {
   require_square(s.A, who, "A");
   require_finite(s.A, who, "A");
-  require_finite_shape(s.B, s.A.rows(), s.B.cols(), who, "B");
-  require_finite_shape(s.C, s.C.rows(), s.A.rows(), who, "C");
+  // A fixes nx: B and C are measured against it, and their refusal says so.
+  const auto fail_against_a = [&](std::string_view argument, Index rows, Index cols, const auto& m) {
+    detail::Message from_a;
+    from_a << "nx = " << s.A.rows() << " is the order of A";
+    detail::fail_shape(rows, cols, m.rows(), m.cols(), who, argument, from_a.str());
+  };
+  if (s.B.rows() != s.A.rows()) fail_against_a("B", s.A.rows(), s.B.cols(), s.B);
+  require_finite(s.B, who, "B");
+  if (s.C.cols() != s.A.rows()) fail_against_a("C", s.C.rows(), s.A.rows(), s.C);
+  require_finite(s.C, who, "C");
 }
 
 /// The matrices a time-varying model's callable returned, checked against the

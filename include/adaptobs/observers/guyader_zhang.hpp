@@ -88,14 +88,20 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
 
   /// \param K output-injection gain making \f$A_k - KC_k\f$ exponentially stable (assumption 1);
   /// \param mu step size \f$\mu > 0\f$ small enough for assumption 2.
-  GuyaderZhangObserver(Model model, GainMatrix K, Scalar mu, State x0, Parameters theta0,
-                       GuyaderZhangOptions options = {})
+  /// Compile-time sizes of K, x0 or θ0 that disagree with the model's are
+  /// refused by a `static_assert` naming the argument.
+  template <class DK, class DX, class DT>
+  GuyaderZhangObserver(Model model, const Eigen::MatrixBase<DK>& K, Scalar mu, const Eigen::MatrixBase<DX>& x0,
+                       const Eigen::MatrixBase<DT>& theta0, GuyaderZhangOptions options = {})
       : model_(std::move(model)),
-        gain_(std::move(K)),
+        gain_(detail::fitted<GainMatrix>(K)),
         mu_(mu),
-        x_(std::move(x0)),
-        theta_(std::move(theta0)),
+        x_(detail::fitted<State>(x0)),
+        theta_(detail::fitted<Parameters>(theta0)),
         normalized_step_(options.normalized_step) {
+    static_assert(detail::fits_size<DK, Dims::nx, Dims::ny>, "GuyaderZhangObserver: K must be nx x ny");
+    static_assert(detail::fits_size<DX, Dims::nx, 1>, "GuyaderZhangObserver: x0 must be an nx-vector");
+    static_assert(detail::fits_size<DT, Dims::np, 1>, "GuyaderZhangObserver: theta0 must be an np-vector");
     constexpr std::string_view who = "GuyaderZhangObserver";
     const Sizes s = model_.sizes();
     require_finite_shape(gain_, s.nx, s.ny, who, "K");
