@@ -776,6 +776,7 @@ TEST(FaultMonitorDesign, ChoosesTheStrideAtWhichThetaHatDecorrelatesAndTheNomina
   // The smallest: its correlations within the limits, its predecessor's and its half's not.
   ASSERT_EQ(design.stride_correlations.size(), static_cast<std::size_t>(stride));
   EXPECT_EQ(design.stride_correlations.back().stride, stride);
+  EXPECT_EQ(design.stride_correlations.back().lag_correlation, design.cusum.lag_correlation);
   EXPECT_LE(design.cusum.lag_correlation, 0.1);
   EXPECT_LE(design.cusum.long_run_excess, 0.25);
   const auto before = adaptobs::stride_statistics(record.parameters, Eigen::Vector2d(theta), stride - 1);

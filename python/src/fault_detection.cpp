@@ -243,7 +243,8 @@ nb::dict design_state(const MonitorDesign& d) {
   state["explanation"] = d.explanation;
   nb::list correlations;
   for (const auto& c : d.stride_correlations)
-    correlations.append(nb::make_tuple(c.stride, c.lag_correlation, c.long_run_excess, c.evaluations));
+    correlations.append(
+        nb::make_tuple(c.stride, c.lag_correlation, c.long_run_excess, c.evaluations, c.checked_alarms));
   state["stride_correlations"] = correlations;
   return state;
 }
@@ -280,11 +281,14 @@ MonitorDesign design_of(const nb::dict& state) {
   // Absent from the states of designs pickled before the stride search.
   if (state.contains("explanation")) get("explanation", d.explanation);
   if (state.contains("stride_correlations")) {
-    std::vector<std::tuple<Index, double, double, Index>> correlations;
+    std::vector<std::tuple<Index, double, double, Index, Index>> correlations;
     get("stride_correlations", correlations);
-    for (const auto& [stride, lag, excess, values] : correlations)
-      d.stride_correlations.push_back(
-          {.stride = stride, .lag_correlation = lag, .long_run_excess = excess, .evaluations = values});
+    for (const auto& [stride, lag, excess, values, alarms] : correlations)
+      d.stride_correlations.push_back({.stride = stride,
+                                       .lag_correlation = lag,
+                                       .long_run_excess = excess,
+                                       .evaluations = values,
+                                       .checked_alarms = alarms});
   }
   Monitor check(d);  // refuses, naming the argument, what no monitor can be built from
   (void)check;
@@ -418,11 +422,12 @@ void bind_fault_detection(nb::module_& m) {
           [](const MonitorDesign& d) {
             nb::list out;
             for (const auto& c : d.stride_correlations)
-              out.append(nb::make_tuple(c.stride, c.lag_correlation, c.long_run_excess, c.evaluations));
+              out.append(
+                  nb::make_tuple(c.stride, c.lag_correlation, c.long_run_excess, c.evaluations, c.checked_alarms));
             return out;
           },
-          "(stride, lag-one autocorrelation, long-run variance excess, values) of each stride measured")
-      .def("__repr__", [](const MonitorDesign& d) { return d.explanation; })
+          "(stride, lag-one autocorrelation, long-run variance excess, values, alarms of the rate check where it\n"
+          "refused the stride or -1) of each stride measured")
       .def("__getstate__", &design_state)
       .def("__setstate__",
            [](MonitorDesign& self, const nb::dict& state) { new (&self) MonitorDesign(design_of(state)); });
@@ -465,8 +470,8 @@ void bind_fault_detection(nb::module_& m) {
       "Designs the three tests from fault-free runs (`parameters`, `output_errors`: one array per run,\n"
       "N_r x np and N_r x ny), choosing the stride (the smallest multiple of `stride_multiple` at which the\n"
       "estimates decorrelate by calibrate_cusum's criteria) and the nominal value (their mean at the stride).\n"
-      "The design's `explanation` says what was chosen and why, `stride_correlations` lists (stride,\n"
-      "lag-one autocorrelation, long-run variance excess) for each stride tried. Runs too short for the\n"
+      "The design's `explanation` says what was chosen and why, `stride_correlations` lists what each\n"
+      "stride tried showed. Runs too short for the\n"
       "stride are refused naming 'record', with the remedy quantified.");
   m.def(
       "design_fault_monitor",

@@ -461,6 +461,10 @@ FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor_searched(const FaultFree
       fail_argument(who, argument, os.str());
     throw;
   }
+  // The stride chosen as calibrate_cusum measured it, about the nominal value
+  // (the search's sums were about a reference value: the last digits differ).
+  correlations.back().lag_correlation = design.cusum.lag_correlation;
+  correlations.back().long_run_excess = design.cusum.long_run_excess;
   design.stride_correlations = std::move(correlations);
   design.explanation = explain_design(design, runs.size(), true, options.stride_multiple);
   return design;
