@@ -171,7 +171,8 @@ std::string explain_design(const FaultMonitorDesign<Scalar, NY, NP>& design, std
   for (Index i = 0; i < design.nominal.size(); ++i) os << (i ? ", " : "") << std::setprecision(6) << design.nominal(i);
   os << std::setprecision(3) << "], " << design.cusum.bias << " scales from the runs' mean; scales [";
   for (Index i = 0; i < design.cusum.scale.size(); ++i) os << (i ? ", " : "") << design.cusum.scale(i);
-  os << "].\nCUSUM: drift " << design.cusum.drift << " scales, threshold " << design.cusum.threshold << " (a check "
+  os << "].\nCUSUM: drift " << design.cusum.drift << " (in scales), threshold " << design.cusum.threshold
+     << " (a check "
      << "designed for 50 false alarms on the record raised " << design.cusum.checked_alarms << "). GLR: window "
      << design.glr_window << ", threshold " << design.glr_threshold << " (its check raised "
      << design.glr_checked_alarms << " of 50). chi-square: windows of " << design.window << " samples, false-alarm "
