@@ -70,12 +70,14 @@ struct Simulation {
 using MonitorDesign = FaultMonitorDesign<double, 1, 1>;
 
 /// The three tests designed for false alarms every `mean_samples_between_false_alarms`
-/// samples each, from fault-free runs of seeds 1 to `seeds`, `steps` long.
+/// samples each, from fault-free runs of seeds 1 to `seeds`, `steps` long. The
+/// stride is searched among multiples of the dilution period, and the first,
+/// `cusum_stride`, decorrelates; the nominal value is the mean of θ̂ there.
 inline MonitorDesign design_monitor(double mean_samples_between_false_alarms, double drift = 1.0, int seeds = 20,
                                     Index steps = 10300) {
   const auto record = record_fault_free<1, 1>(Simulation{}, seeds, steps, monitor_from);
-  return design_fault_monitor(record, Vector1<double>(0.0), drift, mean_samples_between_false_alarms, cusum_stride,
-                              chi_square_window);
+  return design_fault_monitor(record, drift, mean_samples_between_false_alarms, chi_square_window,
+                              {.stride_multiple = cusum_stride});
 }
 
 inline MonitoredRun monitored_run(const MonitorDesign& design, Detector which, const GrowthFault& fault,

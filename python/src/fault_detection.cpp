@@ -16,7 +16,10 @@
 
 #include <nanobind/eigen/dense.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
+#include <nanobind/stl/vector.h>
 
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -237,6 +240,12 @@ nb::dict design_state(const MonitorDesign& d) {
   state["chi_square_scale"] = d.chi_square_options.scale;
   state["chi_square_degrees_of_freedom"] = d.chi_square_options.degrees_of_freedom;
   state["chi_square_windows"] = d.chi_square_windows;
+  state["explanation"] = d.explanation;
+  nb::list correlations;
+  for (const auto& c : d.stride_correlations)
+    correlations.append(
+        nb::make_tuple(c.stride, c.lag_correlation, c.long_run_excess, c.evaluations, c.checked_alarms));
+  state["stride_correlations"] = correlations;
   return state;
 }
 
@@ -269,6 +278,18 @@ MonitorDesign design_of(const nb::dict& state) {
   get("chi_square_scale", d.chi_square_options.scale);
   get("chi_square_degrees_of_freedom", d.chi_square_options.degrees_of_freedom);
   get("chi_square_windows", d.chi_square_windows);
+  // Absent from the states of designs pickled before the stride search.
+  if (state.contains("explanation")) get("explanation", d.explanation);
+  if (state.contains("stride_correlations")) {
+    std::vector<std::tuple<Index, double, double, Index, Index>> correlations;
+    get("stride_correlations", correlations);
+    for (const auto& [stride, lag, excess, values, alarms] : correlations)
+      d.stride_correlations.push_back({.stride = stride,
+                                       .lag_correlation = lag,
+                                       .long_run_excess = excess,
+                                       .evaluations = values,
+                                       .checked_alarms = alarms});
+  }
   Monitor check(d);  // refuses, naming the argument, what no monitor can be built from
   (void)check;
   return d;
@@ -395,6 +416,18 @@ void bind_fault_detection(nb::module_& m) {
       .def_prop_ro("chi_square_degrees_of_freedom",
                    [](const MonitorDesign& d) { return d.chi_square_options.degrees_of_freedom; })
       .def_ro("chi_square_windows", &MonitorDesign::chi_square_windows)
+      .def_ro("explanation", &MonitorDesign::explanation, "what the design chose and why")
+      .def_prop_ro(
+          "stride_correlations",
+          [](const MonitorDesign& d) {
+            nb::list out;
+            for (const auto& c : d.stride_correlations)
+              out.append(
+                  nb::make_tuple(c.stride, c.lag_correlation, c.long_run_excess, c.evaluations, c.checked_alarms));
+            return out;
+          },
+          "(stride, lag-one autocorrelation, long-run variance excess, values, alarms of the rate check where it\n"
+          "refused the stride or -1) of each stride measured")
       .def("__getstate__", &design_state)
       .def("__setstate__",
            [](MonitorDesign& self, const nb::dict& state) { new (&self) MonitorDesign(design_of(state)); });
@@ -411,6 +444,35 @@ void bind_fault_detection(nb::module_& m) {
       "A CUSUM raising false alarms every `mean_evaluations` evaluations on average, from fault-free\n"
       "runs (a list of N_r x n arrays) sampled every step and read every `stride`-th; refuses runs\n"
       "that break its assumptions (correlation, bias, rate), naming the remedy.");
+  // The form that chooses the stride and the nominal value first: a call with
+  // seven or eight positional arguments has too many for it and goes on to the
+  // form with a given stride and nominal value.
+  m.def(
+      "design_fault_monitor",
+      [](nb::handle parameters, nb::handle output_errors, nb::handle drift,
+         nb::handle mean_samples_between_false_alarms, nb::handle window, nb::handle glr_window,
+         nb::handle stride_multiple) {
+        constexpr std::string_view who = "design_fault_monitor";
+        FaultFreeRecord<double, X, X> record;
+        record.parameters = vector_runs(parameters, who, "parameters");
+        record.output_errors = vector_runs(output_errors, who, "output_errors");
+        adaptobs::require(record.parameters.size() == record.output_errors.size(), who, "output_errors",
+                          "must hold one array per run of 'parameters'");
+        return design_fault_monitor(
+            record, real_scalar(drift, who, "drift"),
+            real_scalar(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms"),
+            integer_argument(window, who, "window"),
+            {.glr_window = integer_argument(glr_window, who, "glr_window"),
+             .stride_multiple = integer_argument(stride_multiple, who, "stride_multiple")});
+      },
+      nb::arg("parameters"), nb::arg("output_errors"), nb::arg("drift"), nb::arg("mean_samples_between_false_alarms"),
+      nb::arg("window"), nb::kw_only(), nb::arg("glr_window") = 10, nb::arg("stride_multiple") = 1,
+      "Designs the three tests from fault-free runs (`parameters`, `output_errors`: one array per run,\n"
+      "N_r x np and N_r x ny), choosing the stride (the smallest multiple of `stride_multiple` at which the\n"
+      "estimates decorrelate by calibrate_cusum's criteria) and the nominal value (their mean at the stride).\n"
+      "The design's `explanation` says what was chosen and why, `stride_correlations` lists what each\n"
+      "stride tried showed. Runs too short for the\n"
+      "stride are refused naming 'record', with the remedy quantified.");
   m.def(
       "design_fault_monitor",
       [](nb::handle parameters, nb::handle output_errors, nb::handle nominal, nb::handle drift,

@@ -232,3 +232,56 @@ def test_bad_detector_configuration_names_the_argument(monitor_design):
     after = monitor.snapshot()
     assert before["integers"] == after["integers"]
     assert all(np.array_equal(before["matrices"][k], after["matrices"][k]) for k in before["matrices"])
+
+
+def ar1_runs(tau, runs, length, seed):
+    """Fault-free runs whose estimates are AR(1) about (1.5, -0.3), correlation times `tau` (samples),
+    standard deviation 0.01, and white unit output errors."""
+    rng = np.random.default_rng(seed)
+    phi = np.exp(-1.0 / np.asarray(tau, float))
+    x = rng.standard_normal((runs, 2))
+    noise = rng.standard_normal((length, runs, 2)) * np.sqrt(1 - phi**2)
+    values = np.empty((length, runs, 2))
+    for k in range(length):
+        x = phi * x + noise[k]
+        values[k] = x
+    parameters = [np.array([1.5, -0.3]) + 0.01 * values[:, r, :] for r in range(runs)]
+    errors = [rng.standard_normal((length, 1)) for _ in range(runs)]
+    return parameters, errors
+
+
+def test_the_design_chooses_the_stride_and_the_nominal_value():
+    """Correlation times 40 and 10 samples: the stride where exp(-s/40) = 0.1 is 40 ln 10 = 92.1 samples."""
+    parameters, errors = ar1_runs([40, 10], 40, 25000, seed=3)
+    design = adaptobs.design_fault_monitor(parameters, errors, 1.0, 200.0 * 93, 100)
+    assert 83 <= design.stride <= 103, design.explanation
+    correlations = design.stride_correlations
+    assert [c[0] for c in correlations] == list(range(1, design.stride + 1))
+    assert correlations[-1][1] <= 0.1 and correlations[-1][2] <= 0.25
+    assert correlations[-2][1] > 0.1 or correlations[-2][2] > 0.25  # the smallest
+    assert correlations[design.stride // 2 - 1][1] > 0.25  # exp(-46/40) = 0.32
+    at_stride = np.concatenate([p[:: design.stride] for p in parameters])
+    assert np.allclose(design.nominal, at_stride.mean(axis=0), rtol=0, atol=1e-14)
+    assert design.cusum.lag_correlation == correlations[-1][1]
+    assert design.explanation.startswith(f"stride {design.stride} samples, the smallest")
+    assert "nominal = mean of theta-hat at the stride" in design.explanation
+    copied = pickle.loads(pickle.dumps(design))
+    assert copied.explanation == design.explanation and copied.stride_correlations == correlations
+    # A multiple of a period only.
+    periodic = adaptobs.design_fault_monitor(parameters, errors, 1.0, 200.0 * 100, 100, stride_multiple=50)
+    assert periodic.stride == 100 and [c[0] for c in periodic.stride_correlations] == [50, 100]
+
+
+def test_runs_too_short_for_the_stride_are_refused_with_the_remedy():
+    """Correlation time 400 samples, 100 runs of 1500: the largest stride they support is 299, the stride
+    needed about 921, so runs of about 5 x 921 + 1 = 4606 samples."""
+    parameters, errors = ar1_runs([400, 10], 100, 1500, seed=4)
+    with pytest.raises(ConfigurationError) as error:
+        adaptobs.design_fault_monitor(parameters, errors, 1.0, 1e5, 10)
+    message = str(error.value)
+    assert message.startswith("design_fault_monitor: argument 'record' has runs too short"), message
+    assert "at 299 samples, the largest stride they support" in message
+    length = float(message.split("remedies: runs of at least ")[1].split()[0])
+    assert 0.8 * 4606 <= length <= 1.25 * 4606, message
+    assert "more runs of 1500 samples cannot help" in message
+    assert "a step size mu about" in message

@@ -59,6 +59,81 @@ template <typename Scalar, int N>
   return covariance;
 }
 
+/// What the values of fault-free runs read every `stride`-th step (steps 0,
+/// stride, 2·stride, ... of each run) show: the moments the scales come from and
+/// the autocorrelations the independence that a CUSUM's threshold assumes is
+/// checked by (`calibrate_cusum`; the stride search of `design_fault_monitor`).
+template <typename Scalar, int N>
+struct StrideStatistics {
+  static constexpr int max_lag = 5;    ///< autocorrelations over 1 to 5 strides
+  Index stride = 1;                    ///< samples between the values read
+  Eigen::Matrix<Scalar, N, 1> mean;    ///< mean deviation of a component from the reference
+  Eigen::Matrix<Scalar, N, 1> square;  ///< mean square deviation of a component from the reference
+  Index evaluations = 0;               ///< values read over all runs
+  Index pairs = 0;                     ///< pairs of them five strides apart within a run
+  /// Largest |lag-one| (one stride) autocorrelation of a component, about its mean
+  /// (NaN without pairs five strides apart).
+  Scalar lag_correlation = std::numeric_limits<Scalar>::quiet_NaN();
+  /// Largest departure from 1 of a component's long-run variance ratio
+  /// \f$1 + 2\sum_{l=1}^{5}\rho_l\f$ (NaN without pairs five strides apart).
+  Scalar long_run_excess = std::numeric_limits<Scalar>::quiet_NaN();
+};
+
+/// The statistics of the values of `runs` every `stride`-th step, as
+/// deviations from `reference` (the nominal value, or any value near the runs':
+/// it only keeps the sums of squares from cancelling). The autocorrelations are
+/// about each component's mean and pooled over the runs, with pairs only within
+/// a run. The values are taken as they are: a caller checks their sizes and
+/// finiteness first (`calibrate_cusum` checks every value of every run).
+template <typename Scalar, int N>
+[[nodiscard]] StrideStatistics<Scalar, N> stride_statistics(
+    const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs, const Eigen::Matrix<Scalar, N, 1>& reference,
+    Index stride) {
+  using Vector = Eigen::Matrix<Scalar, N, 1>;
+  constexpr int max_lag = StrideStatistics<Scalar, N>::max_lag;
+  require(stride >= 1, "stride_statistics", "stride", "must be at least 1");
+  const Index n = reference.size();
+  const auto step = static_cast<std::size_t>(stride);
+  StrideStatistics<Scalar, N> result;
+  result.stride = stride;
+  Vector sum = Vector::Zero(n), squares = Vector::Zero(n);
+  for (const auto& run : runs)
+    for (std::size_t k = 0; k < run.size(); k += step) {
+      sum += run[k] - reference;
+      squares += (run[k] - reference).cwiseAbs2();
+      ++result.evaluations;
+    }
+  if (result.evaluations == 0) return result;
+  const auto count = static_cast<Scalar>(result.evaluations);
+  result.mean = sum / count;
+  result.square = squares / count;
+  const Vector variance = (result.square - result.mean.cwiseAbs2()).cwiseMax(std::numeric_limits<Scalar>::min());
+
+  // Autocorrelations at 1 to 5 strides, about the mean, pooled over the runs.
+  std::array<Vector, max_lag> products;
+  std::array<Index, max_lag> pairs{};
+  products.fill(Vector::Zero(n));
+  for (const auto& run : runs)
+    for (std::size_t k = 0; k < run.size(); k += step)
+      for (int l = 1; l <= max_lag && k >= static_cast<std::size_t>(l) * step; ++l) {
+        const std::size_t j = k - static_cast<std::size_t>(l) * step;
+        products[static_cast<std::size_t>(l - 1)] +=
+            (run[k] - reference - result.mean).cwiseProduct(run[j] - reference - result.mean);
+        ++pairs[static_cast<std::size_t>(l - 1)];
+      }
+  result.pairs = pairs[max_lag - 1];
+  if (result.pairs == 0) return result;
+  Vector long_run = Vector::Ones(n);
+  for (int l = 0; l < max_lag; ++l) {
+    const Vector rho = (products[static_cast<std::size_t>(l)] / static_cast<Scalar>(pairs[static_cast<std::size_t>(l)]))
+                           .cwiseQuotient(variance);
+    if (l == 0) result.lag_correlation = rho.cwiseAbs().maxCoeff();
+    long_run += Scalar(2) * rho;
+  }
+  result.long_run_excess = (long_run.array() - Scalar(1)).abs().maxCoeff();
+  return result;
+}
+
 /// What `calibrate_cusum` designed, and what it measured on the runs.
 template <typename Scalar, int N>
 struct CusumCalibration {
@@ -114,8 +189,6 @@ template <typename Scalar, int N>
     const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs, const Eigen::Matrix<Scalar, N, 1>& nominal,
     Scalar drift, Scalar mean_evaluations, Index stride, CusumCalibrationOptions options = {}) {
   constexpr std::string_view who = "calibrate_cusum";
-  using Vector = Eigen::Matrix<Scalar, N, 1>;
-  constexpr int max_lag = 5;
   require(nominal.size() >= 1, who, "nominal", "must have at least one component");
   require_finite(nominal, who, "nominal");
   require_positive(drift, who, "drift");
@@ -128,30 +201,22 @@ template <typename Scalar, int N>
   require(options.rate_tolerance >= 1 && std::isfinite(options.rate_tolerance), who, "options.rate_tolerance",
           "must be finite and at least 1");
   const Index n = nominal.size();
-  const auto step = static_cast<std::size_t>(stride);
   CusumCalibration<Scalar, N> result;
   result.drift = drift;
 
-  // Mean and RMS deviation from nominal over the evaluated values.
-  Vector sum = Vector::Zero(n), squares = Vector::Zero(n);
   // Every value is checked, not only those at the stride: the replays below
   // feed them all to a detector.
   for (const auto& run : runs)
-    for (std::size_t k = 0; k < run.size(); ++k) {
-      require_finite_shape(run[k], n, 1, who, "runs");
-      if (k % step != 0) continue;
-      sum += run[k] - nominal;
-      squares += (run[k] - nominal).cwiseAbs2();
-      ++result.evaluations;
-    }
+    for (const auto& v : run) require_finite_shape(v, n, 1, who, "runs");
+  const StrideStatistics<Scalar, N> statistics = stride_statistics(runs, nominal, stride);
+  result.evaluations = statistics.evaluations;
   require(result.evaluations >= 500, who, "runs", "must hold at least 500 values at the stride");
   const auto count = static_cast<Scalar>(result.evaluations);
-  result.scale = (squares / count).cwiseSqrt();
+  // RMS deviation from nominal over the evaluated values.
+  result.scale = statistics.square.cwiseSqrt();
   require((result.scale.array() > Scalar(0)).all(), who, "runs",
           "must vary in every component (a zero scale cannot normalize)");
-  const Vector mean = sum / count;
-  const Vector variance = (squares / count - mean.cwiseAbs2()).cwiseMax(std::numeric_limits<Scalar>::min());
-  result.bias = (mean.array().abs() / result.scale.array()).maxCoeff();
+  result.bias = (statistics.mean.array().abs() / result.scale.array()).maxCoeff();
   if (result.bias > Scalar(options.max_bias)) {
     std::ostringstream os;
     os << "is " << result.bias << " scales from the fault-free runs' mean in some component (more than "
@@ -159,28 +224,10 @@ template <typename Scalar, int N>
        << "the runs settle on";
     fail_argument(who, "nominal", os.str());
   }
-
-  // Autocorrelations at 1 to 5 strides, about the mean, pooled over the runs.
-  std::array<Vector, max_lag> products;
-  std::array<Index, max_lag> pairs{};
-  products.fill(Vector::Zero(n));
-  for (const auto& run : runs)
-    for (std::size_t k = 0; k < run.size(); k += step)
-      for (int l = 1; l <= max_lag && k >= static_cast<std::size_t>(l) * step; ++l) {
-        const std::size_t j = k - static_cast<std::size_t>(l) * step;
-        products[static_cast<std::size_t>(l - 1)] += (run[k] - nominal - mean).cwiseProduct(run[j] - nominal - mean);
-        ++pairs[static_cast<std::size_t>(l - 1)];
-      }
-  require(pairs[max_lag - 1] >= 100, who, "runs",
+  require(statistics.pairs >= 100, who, "runs",
           "must hold runs of at least six evaluations, 100 pairs five strides apart in all");
-  Vector long_run = Vector::Ones(n);
-  for (int l = 0; l < max_lag; ++l) {
-    const Vector rho = (products[static_cast<std::size_t>(l)] / static_cast<Scalar>(pairs[static_cast<std::size_t>(l)]))
-                           .cwiseQuotient(variance);
-    if (l == 0) result.lag_correlation = rho.cwiseAbs().maxCoeff();
-    long_run += Scalar(2) * rho;
-  }
-  result.long_run_excess = (long_run.array() - Scalar(1)).abs().maxCoeff();
+  result.lag_correlation = statistics.lag_correlation;
+  result.long_run_excess = statistics.long_run_excess;
   if (result.lag_correlation > Scalar(options.max_lag_correlation) ||
       result.long_run_excess > Scalar(options.max_long_run_excess)) {
     std::ostringstream os;

@@ -6,9 +6,11 @@
 /// output errors, which sees the change while the observer adapts to it; all
 /// designed from fault-free runs for one mean time between false alarms each.
 ///
-/// Typical use, in the loop after each accepted update:
+/// Typical use: a design from fault-free runs, then the loop after each accepted update:
 /// \code
-/// adaptobs::FaultMonitor monitor(design);           // design_fault_monitor(...)
+/// // record: fault-free runs (FaultFreeRecord); the stride and nominal value chosen from them
+/// const auto design = adaptobs::design_fault_monitor(record, drift, mean_samples_between_false_alarms, window);
+/// adaptobs::FaultMonitor monitor(design);           // design.explanation says what was chosen
 /// if (accepted(observer.update(sample))) (void)monitor.observe(observer);
 /// if (monitor.cusum().alarm()) isolate(monitor.cusum().isolated());
 /// \endcode
@@ -23,9 +25,16 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <cmath>
 #include <concepts>
+#include <cstdint>
+#include <functional>
+#include <iomanip>
 #include <sstream>
+#include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -53,6 +62,39 @@ struct FaultFreeRecord {
   }
 };
 
+namespace detail {
+
+template <class T>
+inline constexpr bool is_fault_free_record = false;
+template <typename Scalar, int NY, int NP>
+inline constexpr bool is_fault_free_record<FaultFreeRecord<Scalar, NY, NP>> = true;
+
+template <class Record>
+struct record_scalar;
+template <typename Scalar, int NY, int NP>
+struct record_scalar<FaultFreeRecord<Scalar, NY, NP>> {
+  using type = Scalar;
+};
+/// The scalar of the records a simulator returns.
+template <class Simulate>
+using simulated_scalar =
+    typename record_scalar<std::remove_cvref_t<std::invoke_result_t<Simulate&, std::uint64_t>>>::type;
+
+}  // namespace detail
+
+/// What the parameter estimates of fault-free runs showed at one stride.
+template <typename Scalar>
+struct StrideCorrelation {
+  Index stride = 1;            ///< samples between the values read
+  Scalar lag_correlation = 0;  ///< largest |lag-one| autocorrelation of a component (`StrideStatistics`)
+  Scalar long_run_excess = 0;  ///< largest departure from 1 of a long-run variance ratio
+  Index evaluations = 0;       ///< values read over all runs
+  /// Where the correlations were within their limits but `calibrate_cusum`'s
+  /// rate check refused the stride: the false alarms of its check (designed
+  /// for 50); −1 elsewhere.
+  Index checked_alarms = -1;
+};
+
 /// The design of a `FaultMonitor`.
 template <typename Scalar, int NY, int NP>
 struct FaultMonitorDesign {
@@ -67,7 +109,80 @@ struct FaultMonitorDesign {
   Scalar false_alarm_probability = 0;                     ///< per χ² window
   ChiSquareOptions chi_square_options;                    ///< its two-moment correction
   Index chi_square_windows = 0;                           ///< fault-free windows the correction was measured on
+  /// The strides whose correlations were measured: the one given, or every one
+  /// the search tried, smallest first (the last is the stride chosen).
+  std::vector<StrideCorrelation<Scalar>> stride_correlations;
+  /// What the design chose and why, in a few lines: the stride and the
+  /// correlations that justify it, the nominal value, and each test's threshold.
+  std::string explanation;
 };
+
+/// Settings of the `design_fault_monitor` that chooses the stride and the nominal value.
+struct FaultMonitorDesignOptions {
+  Index glr_window = 10;  ///< evaluations the GLR searches for the change's start
+  /// The strides searched are multiples of this: the period of a periodic
+  /// excitation, so that the parameter tests read \f$\hat\theta\f$ at one phase
+  /// of it (its mean there may differ from phase to phase).
+  Index stride_multiple = 1;
+};
+
+namespace detail {
+
+/// The `explanation` of a design: its stride and the correlations behind it,
+/// its nominal value, and the tests' thresholds with their checks on the record.
+template <typename Scalar, int NY, int NP>
+std::string explain_design(const FaultMonitorDesign<Scalar, NY, NP>& design, std::size_t runs, bool searched,
+                           Index multiple) {
+  const CusumCalibrationOptions limits;  // calibrate_cusum's defaults
+  std::ostringstream os;
+  os << std::setprecision(3);
+  const Index stride = design.cusum_options.stride;
+  const auto& at = design.stride_correlations.back();
+  os << "stride " << stride << " samples, ";
+  if (searched)
+    os << "the smallest " << (multiple > 1 ? "multiple of " + std::to_string(multiple) + " " : std::string())
+       << "at which theta-hat decorrelates";
+  else
+    os << "as given";
+  os << ": lag-one autocorrelation of theta-hat " << at.lag_correlation << " (limit " << limits.max_lag_correlation
+     << "), long-run variance ratio off 1 by " << at.long_run_excess << " (limit " << limits.max_long_run_excess
+     << "), over " << at.evaluations << " values in " << runs << " runs";
+  if (searched && design.stride_correlations.size() >= 2) {
+    const auto& before = design.stride_correlations[design.stride_correlations.size() - 2];
+    os << "; at " << before.stride << " samples " << before.lag_correlation << " and " << before.long_run_excess;
+    const Index half = stride / 2 / multiple * multiple;
+    for (const auto& c : design.stride_correlations)
+      if (c.stride == half && half != before.stride)
+        os << ", at " << half << " (half the stride) " << c.lag_correlation << " and " << c.long_run_excess;
+    // Shorter strides whose correlations passed but whose rate check did not.
+    std::ostringstream refused;
+    Index worst = 0, count = 0;
+    for (const auto& c : design.stride_correlations)
+      if (c.checked_alarms >= 0) {
+        refused << (count++ ? ", " : "") << c.stride;
+        worst = std::max(worst, c.checked_alarms);
+      }
+    if (count > 0)
+      os << "; the rate check of calibrate_cusum refused " << count << " shorter stride(s) whose correlations were "
+         << "within the limits (" << refused.str() << " samples: up to " << worst
+         << " false alarms where 50 were designed)";
+  }
+  os << ".\nnominal = " << (searched ? "mean of theta-hat at the stride" : "as given") << ": [";
+  for (Index i = 0; i < design.nominal.size(); ++i) os << (i ? ", " : "") << std::setprecision(6) << design.nominal(i);
+  os << std::setprecision(3) << "], " << design.cusum.bias << " scales from the runs' mean; scales [";
+  for (Index i = 0; i < design.cusum.scale.size(); ++i) os << (i ? ", " : "") << design.cusum.scale(i);
+  os << "].\nCUSUM: drift " << design.cusum.drift << " (in scales), threshold " << design.cusum.threshold
+     << " (a check "
+     << "designed for 50 false alarms on the record raised " << design.cusum.checked_alarms << "). GLR: window "
+     << design.glr_window << ", threshold " << design.glr_threshold << " (its check raised "
+     << design.glr_checked_alarms << " of 50). chi-square: windows of " << design.window << " samples, false-alarm "
+     << "probability " << design.false_alarm_probability << " per window, matched to "
+     << design.chi_square_options.scale << " chi-square with " << design.chi_square_options.degrees_of_freedom
+     << " degrees of freedom over " << design.chi_square_windows << " windows.";
+  return os.str();
+}
+
+}  // namespace detail
 
 /// Designs the three tests from fault-free runs for false alarms every
 /// `mean_samples_between_false_alarms` samples on average, each:
@@ -168,7 +283,254 @@ template <typename Scalar, int NY, int NP>
     fail_argument(who, "record", os.str());
   }
   design.chi_square_windows = windows;
+  design.stride_correlations = {{.stride = stride,
+                                 .lag_correlation = design.cusum.lag_correlation,
+                                 .long_run_excess = design.cusum.long_run_excess,
+                                 .evaluations = design.cusum.evaluations}};
+  design.explanation = detail::explain_design(design, record.parameters.size(), false, 1);
   return design;
+}
+
+namespace detail {
+
+/// The ratio ρ₁ of a correlation decaying as ρ_l = ρ₁^l whose long-run variance
+/// ratio \f$1 + 2\sum_{l=1}^{5}\rho_1^l\f$ is off 1 by `excess` (bisection: the
+/// sum grows with ρ₁ on [0, 1]).
+inline double ratio_of_long_run_excess(double excess) {
+  double low = 0, high = 1;
+  for (int i = 0; i < 60; ++i) {
+    const double q = (low + high) / 2;
+    double sum = 0, power = 1;
+    for (int l = 1; l <= 5; ++l) sum += power *= q;
+    (2 * sum > excess ? high : low) = q;
+  }
+  return (low + high) / 2;
+}
+
+/// The refusal of a record whose runs support no stride at which the estimates
+/// decorrelate, with the remedies that are possible and how much of each. The
+/// correlation at the largest stride the runs support, S, is extrapolated as
+/// an exponential decay, ρ(s) = exp(−s/τ): the needed stride is where it meets
+/// the limits. θ̂'s correlation time τ is about 1/(μ·excitation) for an update
+/// law of step size μ (averaging: θ̃ decays at the rate μ·λ_min of the
+/// regressors' mean product), so a larger μ or a richer input shortens it.
+[[noreturn]] inline void fail_without_decorrelation(std::string_view who, std::string_view argument,
+                                                    const std::vector<std::size_t>& lengths,
+                                                    const std::vector<StrideCorrelation<double>>& tried, Index multiple,
+                                                    const CusumCalibrationOptions& limits) {
+  const auto runs = static_cast<double>(lengths.size());
+  double total = 0;
+  for (const std::size_t n : lengths) total += static_cast<double>(n);
+  const double mean_length = std::floor(total / runs);
+  // Values a run must hold at the stride: six (five strides between the first
+  // and the last), 500 over all runs, and 100 pairs five strides apart.
+  const double values_per_run = std::max({6.0, std::ceil(500 / runs), 5 + std::ceil(100 / runs)});
+  std::ostringstream os;
+  os << std::setprecision(3);
+  double needed = static_cast<double>(multiple), supported = 0;
+  if (tried.empty()) {
+    os << "holds too few values for any stride (" << total << " samples in " << lengths.size()
+       << " runs; at the stride, at least 500 values in all and runs of at least six are needed): the stride needs "
+          "at least "
+       << multiple << " samples";
+  } else {
+    const StrideCorrelation<double>& last = tried.back();
+    supported = static_cast<double>(last.stride);
+    const double q_needed = std::min(limits.max_lag_correlation, ratio_of_long_run_excess(limits.max_long_run_excess));
+    const double q =
+        std::clamp(std::max(last.lag_correlation, ratio_of_long_run_excess(last.long_run_excess)), 1e-9, 1 - 1e-9);
+    const double tau = -supported / std::log(q);
+    needed = std::max(supported + static_cast<double>(multiple), std::ceil(tau * std::log(1 / q_needed)));
+    needed = std::ceil(needed / static_cast<double>(multiple)) * static_cast<double>(multiple);
+    os << "has runs too short for theta-hat to decorrelate within them: at " << last.stride
+       << " samples, the largest stride they support (at the stride, runs of at least six values and 500 values in "
+          "all), the lag-one autocorrelation of theta-hat is "
+       << last.lag_correlation << " (limit " << limits.max_lag_correlation << ") and the long-run variance ratio is "
+       << "off 1 by " << last.long_run_excess << " (limit " << limits.max_long_run_excess
+       << "); as an exponential decay, theta-hat's correlation time is about " << tau
+       << " samples and the stride needs about " << needed << " samples";
+  }
+  os << std::setprecision(12) << ". Possible remedies: runs of at least " << (values_per_run - 1) * needed + 1
+     << " samples each (now " << lengths.size() << " runs of " << mean_length << " samples on average";
+  const double values = std::ceil(mean_length / needed);
+  if (values >= 6) {
+    const double more = std::max(std::ceil(500 / values), std::ceil(100 / (values - 5))) - runs;
+    os << "), or " << std::max(1.0, more) << " more runs of " << mean_length << " samples";
+  } else {
+    os << "; more runs of " << mean_length << " samples cannot help: each holds fewer than six strides)";
+  }
+  if (supported > 0)
+    os << std::setprecision(3) << ", or a correlation time of theta-hat about " << needed / supported
+       << " times shorter: it is about 1/(mu x excitation), so a step size mu about " << needed / supported
+       << " times larger (within its admissible range) or a richer input";
+  fail_argument(who, argument, os.str());
+}
+
+/// The stride search and the design at the stride found (`design_fault_monitor`
+/// without a stride), its refusals naming `argument` (the record or its runs).
+template <typename Scalar, int NY, int NP>
+FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor_searched(const FaultFreeRecord<Scalar, NY, NP>& record,
+                                                                 Scalar drift, Scalar mean_samples_between_false_alarms,
+                                                                 Index window, const FaultMonitorDesignOptions& options,
+                                                                 std::string_view who, std::string_view argument) {
+  using Vector = Eigen::Matrix<Scalar, NP, 1>;
+  require_positive(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms");
+  require(window >= 1 && Scalar(window) < mean_samples_between_false_alarms, who, "window",
+          "must be at least 1 and shorter than mean_samples_between_false_alarms");
+  require_positive(drift, who, "drift");
+  require(options.glr_window >= 1, who, "options.glr_window", "must be at least 1");
+  require(options.stride_multiple >= 1, who, "options.stride_multiple", "must be at least 1");
+  require(record.parameters.size() == record.output_errors.size(), who, argument,
+          "must hold as many runs of output errors as of parameters");
+  const auto& runs = record.parameters;
+  Index n = -1;
+  std::vector<std::size_t> lengths;
+  for (const auto& run : runs) {
+    lengths.push_back(run.size());
+    for (const auto& v : run) {
+      if (n < 0) n = v.size();
+      require_finite_shape(v, n, 1, who, argument);
+    }
+  }
+  require(n >= 1, who, argument, "must hold parameter estimates of at least one component");
+  const CusumCalibrationOptions limits;  // calibrate_cusum's defaults, which it checks again at the stride
+  // Values and pairs five strides apart that the runs hold at a stride: these
+  // decrease as the stride grows, which ends the search.
+  const auto supported = [&](Index stride) {
+    Index values = 0, pairs = 0;
+    for (const std::size_t length : lengths) {
+      const Index v = (static_cast<Index>(length) + stride - 1) / stride;
+      values += v;
+      pairs += std::max<Index>(0, v - StrideStatistics<Scalar, NP>::max_lag);
+    }
+    return values >= 500 && pairs >= 100;
+  };
+  const Vector reference = [&] {
+    for (const auto& run : runs)
+      if (!run.empty()) return Vector(run.front());
+    return Vector();
+  }();
+  std::vector<StrideCorrelation<double>> tried;
+  std::vector<StrideCorrelation<Scalar>> correlations;
+  Vector nominal;
+  bool found = false;
+  for (Index stride = options.stride_multiple; supported(stride); stride += options.stride_multiple) {
+    const StrideStatistics<Scalar, NP> s = stride_statistics(runs, reference, stride);
+    correlations.push_back({.stride = stride,
+                            .lag_correlation = s.lag_correlation,
+                            .long_run_excess = s.long_run_excess,
+                            .evaluations = s.evaluations});
+    tried.push_back({.stride = stride,
+                     .lag_correlation = static_cast<double>(s.lag_correlation),
+                     .long_run_excess = static_cast<double>(s.long_run_excess),
+                     .evaluations = s.evaluations});
+    if (!(s.lag_correlation <= Scalar(limits.max_lag_correlation) &&
+          s.long_run_excess <= Scalar(limits.max_long_run_excess)))
+      continue;
+    nominal = reference + s.mean;
+    // Correlations within their limits may still hide a dependence the rate
+    // check sees (θ̂ read at drifting phases of a periodic excitation): then
+    // calibrate_cusum's refusal asks for a longer stride, and the search goes on.
+    try {
+      (void)calibrate_cusum(runs, nominal, drift, mean_samples_between_false_alarms / static_cast<Scalar>(stride),
+                            stride, limits);
+    } catch (const ConfigurationError& e) {
+      if (std::string_view(e.what()).find("(raise the stride)") == std::string_view::npos) throw;
+      const auto alarms = std::stod(std::string(e.what()).substr(std::string_view(e.what()).find("give ") + 5));
+      correlations.back().checked_alarms = static_cast<Index>(alarms);
+      continue;
+    }
+    found = true;
+    break;
+  }
+  if (!found) fail_without_decorrelation(who, argument, lengths, tried, options.stride_multiple, limits);
+  const Index stride = correlations.back().stride;
+  FaultMonitorDesign<Scalar, NY, NP> design;
+  try {
+    design = design_fault_monitor(record, nominal, drift, mean_samples_between_false_alarms, stride, window,
+                                  options.glr_window);
+  } catch (const ConfigurationError& e) {
+    // The checks at the stride found refuse the record, whatever argument of
+    // the form with a given stride their message names.
+    const std::string_view message = e.what();
+    std::ostringstream os;
+    os << "was refused at the stride found, " << stride << " samples: " << message;
+    if (message.find("argument 'runs'") != std::string_view::npos ||
+        message.find("argument 'record'") != std::string_view::npos ||
+        message.find("argument 'stride'") != std::string_view::npos ||
+        message.find("argument 'nominal'") != std::string_view::npos)
+      fail_argument(who, argument, os.str());
+    throw;
+  }
+  // The stride chosen as calibrate_cusum measured it, about the nominal value
+  // (the search's sums were about a reference value: the last digits differ).
+  correlations.back().lag_correlation = design.cusum.lag_correlation;
+  correlations.back().long_run_excess = design.cusum.long_run_excess;
+  design.stride_correlations = std::move(correlations);
+  design.explanation = explain_design(design, runs.size(), true, options.stride_multiple);
+  return design;
+}
+
+}  // namespace detail
+
+/// Designs the three tests from fault-free runs, choosing the stride and the
+/// nominal value from the runs themselves, for false alarms every
+/// `mean_samples_between_false_alarms` samples on average each:
+/// - the stride is the smallest (multiple of `options.stride_multiple`) at which
+///   \f$\hat\theta\f$ read every stride decorrelates by `calibrate_cusum`'s own
+///   criteria at their default limits (`CusumCalibrationOptions`): lag-one
+///   autocorrelation at most 0.1 and long-run variance ratio within 0.25 of 1,
+///   measured by `stride_statistics`; the search tries every stride up to the
+///   largest the runs support (500 values at the stride in all, and runs of at
+///   least six). A stride whose correlations pass but whose values fail
+///   `calibrate_cusum`'s check of the rate (its refusal asks for a longer
+///   stride: θ̂ read at drifting phases of a periodic excitation) is passed over;
+/// - the nominal value is the mean of \f$\hat\theta\f$ at that stride, over
+///   every run: the healthy value the CUSUM's sums stay centred on;
+/// - then the tests as by the form with a given stride and nominal value.
+///
+/// The design's `explanation` says what was chosen and why, and
+/// `stride_correlations` holds the correlations of every stride tried.
+///
+/// Throws `ConfigurationError` naming 'record' where no stride the runs
+/// support decorrelates, or the runs hold too few values; the message says
+/// which remedy is possible and how much of it: runs at least N samples long,
+/// M more runs, or a correlation time of \f$\hat\theta\f$ shorter by a factor
+/// (a larger step size or a richer input). The refusals of the tests'
+/// checks at the stride chosen name 'record' too.
+template <typename Scalar, int NY, int NP>
+[[nodiscard]] FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor(const FaultFreeRecord<Scalar, NY, NP>& record,
+                                                                      Scalar drift,
+                                                                      Scalar mean_samples_between_false_alarms,
+                                                                      Index window,
+                                                                      FaultMonitorDesignOptions options = {}) {
+  return detail::design_fault_monitor_searched(record, drift, mean_samples_between_false_alarms, window, options,
+                                               "design_fault_monitor", "record");
+}
+
+/// The same from a simulator: `simulate(seed)` returns one fault-free run (a
+/// `FaultFreeRecord` holding it, or several), recorded from the estimates'
+/// convergence on, for seeds 1 to `runs`. The refusals for too few or too
+/// short runs name 'runs'.
+template <class Simulate>
+  requires detail::is_fault_free_record<std::remove_cvref_t<std::invoke_result_t<Simulate&, std::uint64_t>>>
+[[nodiscard]] auto design_fault_monitor(Simulate&& simulate, Index runs, detail::simulated_scalar<Simulate> drift,
+                                        detail::simulated_scalar<Simulate> mean_samples_between_false_alarms,
+                                        Index window, FaultMonitorDesignOptions options = {}) {
+  constexpr std::string_view who = "design_fault_monitor";
+  require(runs >= 1, who, "runs", "must be at least 1");
+  std::remove_cvref_t<std::invoke_result_t<Simulate&, std::uint64_t>> record;
+  for (Index seed = 1; seed <= runs; ++seed) {
+    auto run = std::invoke(simulate, static_cast<std::uint64_t>(seed));
+    require(run.parameters.size() == run.output_errors.size(), who, "simulate",
+            "must return a record with as many runs of output errors as of parameters");
+    for (std::size_t r = 0; r < run.parameters.size(); ++r) {
+      record.parameters.push_back(std::move(run.parameters[r]));
+      record.output_errors.push_back(std::move(run.output_errors[r]));
+    }
+  }
+  return detail::design_fault_monitor_searched(record, drift, mean_samples_between_false_alarms, window, options, who,
+                                               "runs");
 }
 
 /// Three change detectors fed together after each accepted update: two on the
