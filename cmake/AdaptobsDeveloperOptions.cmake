@@ -32,8 +32,14 @@ target_link_libraries(adaptobs_developer_options INTERFACE adaptobs_warnings)
 # adaptobs::precompiled: the double-precision design routines compiled once
 # (include/adaptobs/core/precompiled.hpp). The tests and examples link it; the
 # README example, the header checks, the installed-package consumer and the
-# benchmarks (built for x86-64-v3) stay header-only.
-add_library(adaptobs_precompiled STATIC "${PROJECT_SOURCE_DIR}/src/precompiled.cpp")
+# benchmarks (built for x86-64-v3) stay header-only. adaptobs::precompiled_base, which
+# it links, holds the part that running an observer with given gains calls (the
+# matrix exponential and the dense eigenvalues): the satellite example of
+# scripts/demo.sh links that alone, and the demo compiles none of the design routines.
+add_library(adaptobs_precompiled_base STATIC ${ADAPTOBS_PRECOMPILED_BASE_SOURCES})
+add_library(adaptobs::precompiled_base ALIAS adaptobs_precompiled_base)
+target_compile_definitions(adaptobs_precompiled_base PUBLIC ADAPTOBS_PRECOMPILED)
+target_link_libraries(adaptobs_precompiled_base PRIVATE adaptobs_developer_options PUBLIC adaptobs::adaptobs)
+add_library(adaptobs_precompiled STATIC ${ADAPTOBS_PRECOMPILED_DESIGN_SOURCES})
 add_library(adaptobs::precompiled ALIAS adaptobs_precompiled)
-target_compile_definitions(adaptobs_precompiled PUBLIC ADAPTOBS_PRECOMPILED)
-target_link_libraries(adaptobs_precompiled PRIVATE adaptobs_developer_options PUBLIC adaptobs::adaptobs)
+target_link_libraries(adaptobs_precompiled PRIVATE adaptobs_developer_options PUBLIC adaptobs::precompiled_base)

@@ -46,6 +46,9 @@ ADAPTOBS_TEST_PACKAGES+=(libboost-dev)
 # The formatter whose output the tree is checked against (scripts/format.sh): one
 # version, since each release formats some constructs differently.
 ADAPTOBS_TEST_PACKAGES+=(clang-format-19:clang-format-19)
+# MathJax 2, copied into the reference manual (when doxygen is installed) so that its
+# formulas render offline (CMakeLists.txt, "The reference manual").
+ADAPTOBS_TEST_PACKAGES+=(libjs-mathjax)
 # The sanitizer build of scripts/test.sh: clang, its sanitizer runtimes, and LLVM's
 # linker (an instrumented test executable links in about 1 s with it, 6 s with ld.bfd).
 ADAPTOBS_SANITIZER_PACKAGES=(clang:clang++ libclang-rt-dev lld:ld.lld)

@@ -64,6 +64,8 @@ struct AugmentedKalmanCovariances {
 /// Kalman filter on the state augmented with the parameters (file comment).
 /// Its `output_error()` is \f$\varepsilon_k = y_k - C_k\hat x_{k|k-1}\f$, the Kalman
 /// innovation \f$y_k - H_k\hat\xi_{k|k-1}\f$ of the correction (before it).
+///
+/// \copydoc augmented_kalman.hpp
 template <DiscreteModel Model>
 class AugmentedKalmanFilter
     : public DiscreteUpdate<AugmentedKalmanFilter<Model>, typename Model::Dims, DiscreteSample> {

@@ -38,6 +38,9 @@
 
 namespace adaptobs {
 
+/// Kalman–Bucy filter on the state augmented with θ, over a continuous model.
+///
+/// \copydoc kalman_bucy.hpp
 template <ContinuousModel Model>
 class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFilter<Model>, typename Model::Dims> {
   friend ContinuousUpdate<AugmentedKalmanBucyFilter, typename Model::Dims>;

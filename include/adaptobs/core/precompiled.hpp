@@ -12,7 +12,8 @@
 /// itself, for fixed-size or expression arguments, copies them and sizes the
 /// result. A `_dynamic` routine's refusals name the routine without the suffix.
 /// The optional library `adaptobs::precompiled`
-/// (src/precompiled.cpp) instantiates those templates for `double` (the matrix
+/// (src/precompiled/, several translation units, each the definitions of some
+/// headers' lines) instantiates those templates for `double` (the matrix
 /// exponential, which sampled float models also call, for `float` too), and whatever
 /// links it is compiled with `ADAPTOBS_PRECOMPILED` defined. That turns the
 /// `ADAPTOBS_INSTANTIATE` lines after each routine into explicit instantiation

@@ -42,6 +42,8 @@
 namespace adaptobs {
 
 /// Algorithm 1 (§III-A) as an algorithm of the unified formulation.
+///
+/// \copydoc bastin_gevers.hpp
 template <StateSpace D>
 struct BastinGevers {
   using Scalar = typename D::Scalar;

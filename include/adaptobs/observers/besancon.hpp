@@ -39,6 +39,8 @@
 namespace adaptobs {
 
 /// Algorithm 3 (§III-C) as an algorithm of the unified formulation.
+///
+/// \copydoc besancon.hpp
 template <StateSpace D>
 struct Besancon {
   using Scalar = typename D::Scalar;

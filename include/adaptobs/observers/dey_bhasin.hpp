@@ -58,6 +58,8 @@ namespace adaptobs {
 /// Dey–Bhasin adaptive observer of order `R` with `Q` outputs and `M` inputs
 /// (`Eigen::Dynamic` allowed), adapting with `Law` (default: covariance
 /// resetting, eq. (23)).
+///
+/// \copydoc dey_bhasin.hpp
 template <typename S, int R, int Q, int M, template <typename, int, int> class Law = CovarianceResettingRls>
 class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
  public:

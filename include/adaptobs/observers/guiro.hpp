@@ -66,6 +66,8 @@ struct GuiroOptions {
 /// eq. (2), second line, corrects \f$z^-_k\f$ with (also when the paper's uncorrected
 /// \f$z_0\f$ skips that correction), not the a-posteriori error \f$Cz_k - y_k\f$ of
 /// the θ̂ update.
+///
+/// \copydoc guiro.hpp
 template <DiscreteModel Model>
 class GuiroObserver : public DiscreteUpdate<GuiroObserver<Model>, typename Model::Dims, DiscreteSample> {
  public:

@@ -73,6 +73,8 @@ struct GuyaderZhangOptions {
 /// constant unless changed with `set_gain` / `set_mu` between updates. Its
 /// `output_error()` is \f$\varepsilon_k = y_k - C_k\hat x_k\f$, the innovation of
 /// eq. (2b)–(2c).
+///
+/// \copydoc guyader_zhang.hpp
 template <DiscreteModel Model>
 class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, typename Model::Dims, DiscreteSample> {
  public:

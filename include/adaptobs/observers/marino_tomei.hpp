@@ -40,6 +40,8 @@
 namespace adaptobs {
 
 /// Algorithm 2 (§III-B) as an algorithm of the unified formulation.
+///
+/// \copydoc marino_tomei.hpp
 template <StateSpace D>
 struct MarinoTomei {
   using Scalar = typename D::Scalar;

@@ -55,6 +55,8 @@ namespace adaptobs {
 /// Takagi–Sugeno adaptive observer, eq. (65) (eq. (21) with \f$K_\theta\f$ set). Its
 /// `output_error()` is \f$\varepsilon_k = D_k(y_k - C\hat x_k)\f$, the error that drives
 /// both \f$L_i\f$ and \f$K_{y,i}\f$.
+///
+/// \copydoc takagi_sugeno.hpp
 template <TakagiSugenoSystem Model>
 class TakagiSugenoObserver
     : public DiscreteUpdate<TakagiSugenoObserver<Model>, typename Model::Dims, InputOutputSample> {

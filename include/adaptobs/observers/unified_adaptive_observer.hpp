@@ -91,6 +91,8 @@ struct UnifiedObserverOptions {
 /// Continuous-time adaptive observer of the unified formulation, for any
 /// `Algorithm` (Bastin–Gevers, Marino–Tomei, Besançon, Zhang, or a new variant)
 /// and any parameter update law (`GradientLaw` by default).
+///
+/// \copydoc unified_adaptive_observer.hpp
 template <ContinuousModel Model, UnifiedAlgorithm<typename Model::Dims> Algorithm,
           ContinuousAdaptationLaw<typename Model::Dims> Law = GradientLaw<typename Model::Dims>>
 class UnifiedAdaptiveObserver

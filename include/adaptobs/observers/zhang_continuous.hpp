@@ -37,6 +37,8 @@
 namespace adaptobs {
 
 /// Algorithm 4 (§III-D) as an algorithm of the unified formulation.
+///
+/// \copydoc zhang_continuous.hpp
 template <StateSpace D>
 struct ZhangContinuous {
   using Scalar = typename D::Scalar;
