@@ -130,10 +130,17 @@ int main(int argc, char** argv) try {
     for (std::size_t k = 0; k < healthy_run.samples.size(); ++k)
       if (accepted(healthy.update(healthy_run.samples[k])) && adaptobs::Index(k) >= settle) record.add(healthy);
   }
-  const adaptobs::Index stride = 1000;
-  const Eigen::Vector2d nominal = fault_free.parameters_at(plant.motor, 0);
-  const auto design = adaptobs::design_fault_monitor(record, nominal, 1.0, 1e6, stride, 500);
+  // The stride, the number of samples between the values of θ̂ the parameter tests see, must
+  // let θ̂ decorrelate; the design searches for the shortest that does, among whole periods
+  // of the test voltage (500 samples), so that θ̂ is read at one phase of it, with its
+  // correlations at most half their limits (margin 0.5), clear of the record's sampling error.
+  const auto design =
+      adaptobs::design_fault_monitor(record, /*drift=*/1.0, /*samples between false alarms=*/1e6,
+                                     /*chi-square window=*/500, {.stride_multiple = 500, .margin = 0.5});
   adaptobs::FaultMonitor monitor(design);
+  print_value("stride", double(design.cusum_options.stride));
+  print_value("nominal", design.nominal);
+  print_text("design", design.explanation);
 
   adaptobs::SeriesTable table;
   double alarm_time = -1;
@@ -161,7 +168,7 @@ int main(int argc, char** argv) try {
     table.add("thetahat_2", observer.parameters()(1));
     table.add("alarm", alarm_time >= 0 ? 1.0 : 0.0);
   }
-  print_value("theta_before_fault", nominal);
+  print_value("theta_before_fault", fault_free.parameters_at(plant.motor, 0));
   print_value("theta_after_fault", run.parameters.back());
   print_value("thetahat", observer.parameters());
   print_value("alarm_time", alarm_time);

@@ -823,6 +823,19 @@ TEST(FaultMonitorDesign, ChoosesTheStrideAtWhichThetaHatDecorrelatesAndTheNomina
 // period than on average. Read at that phase (strides that are multiples of
 // the period), its mean there is the nominal value; the overall mean would be
 // refused 1.2 scales off.
+// With a margin of 0.5 the search asks for ρ ≤ 0.05: 40 ln 20 = 119.8 samples.
+TEST(FaultMonitorDesign, AMarginKeepsTheStrideClearOfTheLimits) {
+  const auto record = ar1_record(Eigen::Vector2d(1.5, -0.3), Eigen::Vector2d(40, 10), 40, 25000, 1);
+  const auto design = adaptobs::design_fault_monitor(record, 1.0, 200.0 * 120, Index{100}, {.margin = 0.5});
+  EXPECT_GE(design.cusum_options.stride, 108);
+  EXPECT_LE(design.cusum_options.stride, 132);
+  EXPECT_LE(design.cusum.lag_correlation, 0.05);
+  EXPECT_EQ(adaptobs::testing::configuration_error_of([&] {
+              (void)adaptobs::design_fault_monitor(record, 1.0, 1e5, Index{10}, {.margin = 0.0});
+            }).rfind("design_fault_monitor: argument 'options.margin'", 0),
+            0u);
+}
+
 TEST(FaultMonitorDesign, NominalIsTheMeanAtThePhaseTheStrideReads) {
   auto record = ar1_record(Eigen::Vector2d(1.5, -0.3), Eigen::Vector2d(35, 10), 40, 25000, 1);
   for (auto& run : record.parameters)
