@@ -243,7 +243,9 @@ void write_figure(const Run& run, const adaptobs::examples::Arguments& args, con
                                     adaptobs::examples::gap_shading(run.table, loss.options()) + R"(
 set multiplot layout 2,1 title 'Guiro-Iggidr-Ngom-Toure adaptive observer, continuous dynamics and sampled output (Guiro et al. 2008, section 4; the paper gives no units)'
 set grid
-set xlabel 't (time units; samples at k T on the regular grid, T = 1)'
+# The two time axes aligned under one another.
+set lmargin 10
+set xlabel 't (time units; sampling period T = 1)'
 # Autoscaled, with a margin, so that neither the start nor the true value lies on a border.
 set offsets 0, 0, graph 0.05, graph 0.05
 set title 'Figure 1: state x_1 (dx_1/dt = phi_1(t) theta; not measured, the output is y = x_2) and its estimate z_1'

@@ -46,7 +46,7 @@ set grid
 # The legends beside the plots, and the time axes aligned under one another.
 set key outside right top
 set lmargin at screen 0.07
-set rmargin at screen 0.80
+set rmargin at screen 0.78
 set xlabel 't (s)'
 set title 'thrust efficiencies: estimates with their fault-free spread (2 scales), and the true values'
 set ylabel 'thrust efficiency (no unit)'
