@@ -98,29 +98,34 @@ RunResult run(Input input, adaptobs::Index steps, const std::string& name, adapt
 // Gnuplot body of dey_bhasin_mimo.png, after the shading of the lost samples:
 // figures 1–3 of the paper, without and with a rich input.
 constexpr const char* figure_script = R"(
-set multiplot layout 3,2 title 'Dey-Bhasin adaptive observer, MIMO example (Dey and Bhasin 2022, section 5)'
+set multiplot layout 3,2 title 'Dey-Bhasin adaptive observer, MIMO example (Dey and Bhasin 2022, section 5; the paper gives no units)'
 set grid
-set xlabel 't'
+set xlabel 't (samples)'
 set key off
-set title 'Figure 1(a): normalized estimates, input not sufficiently rich'
+# Autoscaled, with a margin: the start-up transient is part of the figure.
+set offsets 0, 0, graph 0.05, graph 0.05
+set title 'Figure 1(a): normalized estimates, input not sufficiently rich (15 entries of A and B)'
+set ylabel 'estimate / true value (1: exact)'
 plot for [i=1:15] nonpe using 't':(column(sprintf('thetahat_norm_%d', i))) with lines
-set title 'Figure 1(b): normalized estimates, sufficiently rich input'
-set yrange [-1:3]
+set title 'Figure 1(b): normalized estimates, sufficiently rich input (15 entries of A and B)'
 plot for [i=1:15] pe using 't':(column(sprintf('thetahat_norm_%d', i))) with lines
-set autoscale y
+set offsets 0, 0, 0, 0
 set logscale y
 set format y '10^{%T}'
 set key top right
-set title 'Figure 2: 2-norm of the state estimation error, input not sufficiently rich'
-plot nonpe using 't':'xerr_norm' with lines lw 1.5 title '||x - xhat||'
-set title 'Figure 2: 2-norm of the state estimation error, sufficiently rich input'
-plot pe using 't':'xerr_norm' with lines lw 1.5 title '||x - xhat||'
+set ylabel '||x - xhat|| (no unit, log)'
+set title 'Figure 2(a): 2-norm of the state estimation error, input not sufficiently rich'
+plot nonpe using 't':(floored(column('xerr_norm'), 1e-17)) with lines lw 1.5 title '||x - xhat|| (values below 10^{-17} drawn at 10^{-17})'
+set title 'Figure 2(b): 2-norm of the state estimation error, sufficiently rich input'
+plot pe using 't':(floored(column('xerr_norm'), 1e-17)) with lines lw 1.5 title '||x - xhat|| (values below 10^{-17} drawn at 10^{-17})'
 unset logscale y
 set format y '%g'
+set ylabel 'input (no unit)'
+set key opaque
 set xrange [0:200]
-set title 'Figure 3(a): input not sufficiently rich'
+set title 'Figure 3(a): input not sufficiently rich (first 200 samples)'
 plot nonpe using 't':'u_1' with lines title 'u^1', nonpe using 't':'u_2' with lines title 'u^2'
-set title 'Figure 3(b): sufficiently rich input'
+set title 'Figure 3(b): sufficiently rich input (first 200 samples)'
 plot pe using 't':'u_1' with lines title 'u^1', pe using 't':'u_2' with lines title 'u^2'
 unset multiplot)";
 
@@ -177,7 +182,8 @@ int main(int argc, char** argv) try {
 
   adaptobs::examples::write_outputs(
       {{nonpe.table, "dey_bhasin_mimo_nonpe", "nonpe"}, {pe.table, "dey_bhasin_mimo_pe", "pe"}}, args.out_dir(),
-      "dey_bhasin_mimo", adaptobs::examples::gap_shading(pe.table, loss) + figure_script);
+      "dey_bhasin_mimo",
+      adaptobs::examples::gap_shading(pe.table, loss) + adaptobs::examples::log_floor_function + figure_script);
   return 0;
 } catch (...) {
   return adaptobs::examples::failure("dey_bhasin_mimo");

@@ -241,14 +241,21 @@ void print_final_estimates(Index samples, const Run& run) {
 void write_figure(const Run& run, const adaptobs::examples::Arguments& args, const adaptobs::OutputLoss& loss) {
   adaptobs::examples::write_outputs(run.table, args.out_dir(), "guiro",
                                     adaptobs::examples::gap_shading(run.table, loss.options()) + R"(
-set multiplot layout 2,1 title 'Guiro-Iggidr-Ngom-Toure adaptive observer, continuous dynamics and sampled output (Guiro et al. 2008, section 4)'
+set multiplot layout 2,1 title 'Guiro-Iggidr-Ngom-Toure adaptive observer, continuous dynamics and sampled output (Guiro et al. 2008, section 4; the paper gives no units)'
 set grid
-set xlabel 't (sample times: k on the regular grid, T = 1)'
-set title 'Figure 1: state x_1 and its estimate z_1'
+# The two time axes aligned under one another.
+set lmargin 10
+set xlabel 't (time units; sampling period T = 1)'
+# Autoscaled, with a margin, so that neither the start nor the true value lies on a border.
+set offsets 0, 0, graph 0.05, graph 0.05
+set title 'Figure 1: state x_1 (dx_1/dt = phi_1(t) theta; not measured, the output is y = x_2) and its estimate z_1'
+set ylabel 'x_1 (no unit)'
+set key top left
 plot csv using 't':'x_1' with lines lw 2 title 'x_1', \
      csv using 't':'xhat_1' with linespoints pt 7 ps 0.6 title 'z_1 (designed gains)'
 set title 'Figure 2: parameter estimate (true value 5)'
-set yrange [-3:12]
+set ylabel 'theta (no unit)'
+set key top right
 plot csv using 't':'thetahat_1' with linespoints pt 7 ps 0.6 title 'theta estimate (designed gains)', \
      csv using 't':'thetahat_printed_1' with lines dt 2 title 'printed K, Gamma = 1.8730773', \
      csv using 't':'theta_1' with lines lc 'black' dt 3 title 'theta = 5'

@@ -76,35 +76,40 @@ double samples_without_output(const adaptobs::SeriesTable& table) {
 
 void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::Arguments& args,
                   const adaptobs::OutputLoss& loss) {
+  // Four panels: the state errors in two, positions and velocities, each pair in one unit.
   adaptobs::examples::write_outputs(table, args.out_dir(), "satellite",
                                     adaptobs::examples::gap_shading(table, loss.options()) + R"(
-set multiplot layout 3,1 title 'Guyader-Zhang adaptive observer, controlled satellite (Guyader and Zhang 2003, section 4)'
+set multiplot layout 4,1 title 'Guyader-Zhang adaptive observer, controlled satellite (Guyader and Zhang 2003, section 4): orbit radius normalized to 1'
 set grid
-# The legends beside the plots, and the three time axes aligned under one another.
+# The legends beside the plots, and the four time axes aligned under one another.
 set key outside right top
-set lmargin at screen 0.06
-set rmargin at screen 0.80
+set lmargin at screen 0.08
+set rmargin at screen 0.76
 set xlabel 't (s)'
 set title 'Figure 1: thrusts'
+set ylabel 'thrust (unit pulses)'
 set yrange [-0.2:1.2]
 plot csv using 't':'u_1' with lines lw 1.5 title 'u^1 radial', \
      csv using 't':'u_2' with lines lw 1.5 title 'u^2 tangential'
-set title 'Figure 2: state estimation errors'
 set autoscale y
-set yrange [-0.06:0.06]
-plot csv using 't':(column('xhat_1') - column('x_1')) with lines title 'error x^1', \
-     csv using 't':(column('xhat_2') - column('x_2')) with lines title 'error x^2', \
-     csv using 't':(column('xhat_3') - column('x_3')) with lines title 'error x^3', \
-     csv using 't':(column('xhat_4') - column('x_4')) with lines title 'error x^4'
-set title 'Figure 3: parameter estimates (true 1 and 1.5)'
-set yrange [0:2]
-plot csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1 adaptive observer', \
-     csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2 adaptive observer', \
-     csv using 't':'thetahat_akf_1' with lines dt 2 title 'theta^1 augmented KF', \
-     csv using 't':'thetahat_akf_2' with lines dt 2 title 'theta^2 augmented KF', \
+set title 'Figure 2: state estimation errors, positions (estimate - true)'
+set ylabel 'error (orbit radii; rad)'
+plot csv using 't':(column('xhat_1') - column('x_1')) with lines title 'radial position r (orbit radii)', \
+     csv using 't':(column('xhat_3') - column('x_3')) with lines title 'angle (rad)'
+set title 'Figure 2: state estimation errors, velocities (estimate - true)'
+set ylabel 'error (orbit radii/s; rad/s)'
+plot csv using 't':(column('xhat_2') - column('x_2')) with lines title 'radial velocity (orbit radii/s)', \
+     csv using 't':(column('xhat_4') - column('x_4')) with lines title 'angular velocity (rad/s)'
+set title 'Figure 3: parameter estimates (true 1 and 1.5; KF: Kalman filter on [x; theta])'
+set ylabel 'thrust efficiency (no unit)'
+plot csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1 radial, observer', \
+     csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2 tangential, observer', \
+     csv using 't':'thetahat_akf_1' with lines dt 2 title 'theta^1 radial, KF', \
+     csv using 't':'thetahat_akf_2' with lines dt 2 title 'theta^2 tangential, KF', \
      csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true', \
      csv using 't':'theta_2' with lines lc 'black' dt 3 notitle
-unset multiplot)");
+unset multiplot)",
+                                    "1200,1200");
 }
 
 }  // namespace

@@ -30,22 +30,31 @@ using adaptobs::examples::print_value;
 
 namespace {
 
-// θ̂ with its fault-free spread (± 2 scales), above the monitor's panels.
+// θ̂ with its fault-free spread (± 2 scales), above the monitor's panels;
+// dotted lines at the monitor's start and the fault's.
 void write_figure(const adaptobs::SeriesTable& table, const satellite::MonitorDesign& design,
-                  const adaptobs::examples::Arguments& args) {
+                  const satellite::ThrusterFault& fault, const adaptobs::examples::Arguments& args) {
   std::ostringstream band;  // θ̂ ± 2 scales: its spread without a fault
   band.precision(10);
   band << "s1 = " << design.cusum.scale(0) << "; s2 = " << design.cusum.scale(1) << "\n";
+  const double monitor_start = double(satellite::monitor_from) * satellite::sampling_period;
   adaptobs::examples::write_outputs(table, args.out_dir(), "satellite_fault",
-                                    band.str() + R"(
+                                    band.str() + adaptobs::examples::log_floor_function +
+                                        adaptobs::examples::fault_markers(monitor_start, fault.time, fault.ramp) + R"(
 set multiplot layout 3,1 title 'Thruster fault on the satellite: tests on the Guyader-Zhang estimates (Guyader and Zhang 2003, section 4)'
 set grid
+# The legends beside the plots, and the time axes aligned under one another.
+set key outside right top
+set lmargin at screen 0.07
+set rmargin at screen 0.78
 set xlabel 't (s)'
-set title 'parameter estimates, with their fault-free spread (2 scales)'
-plot csv using 't':(column('thetahat_1') - 2*s1):(column('thetahat_1') + 2*s1) with filledcurves fs transparent solid 0.3 title 'theta^1 band', \
-     csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1 estimate', \
-     csv using 't':(column('thetahat_2') - 2*s2):(column('thetahat_2') + 2*s2) with filledcurves fs transparent solid 0.3 title 'theta^2 band', \
-     csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2 estimate', \
+set title 'thrust efficiencies: estimates with their fault-free spread (2 scales), and the true values'
+set ylabel 'thrust efficiency (no unit)'
+set offsets 0, 0, graph 0.05, graph 0.05
+plot csv using 't':(column('thetahat_1') - 2*s1):(column('thetahat_1') + 2*s1) with filledcurves fs transparent solid 0.3 title 'theta^1 radial, band', \
+     csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1 radial, estimate', \
+     csv using 't':(column('thetahat_2') - 2*s2):(column('thetahat_2') + 2*s2) with filledcurves fs transparent solid 0.3 title 'theta^2 tangential, band', \
+     csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2 tangential, estimate', \
      csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true', \
      csv using 't':'theta_2' with lines lc 'black' dt 3 notitle)" +
                                         std::string(adaptobs::examples::monitor_panels) + "unset multiplot");
@@ -86,7 +95,7 @@ void one_run(const satellite::MonitorDesign& design, const satellite::ThrusterFa
   print_value("cusum_alarms", double(monitor.cusum().alarm_count()));
   print_value("chi_square_alarms", double(monitor.chi_square().alarm_count()));
 
-  write_figure(table, design, args);
+  write_figure(table, design, fault, args);
 }
 
 }  // namespace

@@ -83,31 +83,45 @@ struct RawForgettingLaw {
   }
 };
 
-void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::Arguments& args) {
-  adaptobs::examples::write_outputs(table, args.out_dir(), "suzuki_siso", R"(
-set multiplot layout 3,2 title 'Covariance resetting against exponential forgetting, SISO example (Dey and Bhasin 2022, section 5)'
+// The figure; `overflow` (when not negative) is the step at which the
+// forgetting law's covariance stops being finite, marked on every panel.
+void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::Arguments& args,
+                  adaptobs::Index overflow) {
+  const std::string marker =
+      overflow >= 0 ? adaptobs::examples::time_marker(double(overflow), "forgetting overflows") : "";
+  adaptobs::examples::write_outputs(table, args.out_dir(), "suzuki_siso",
+                                    std::string(adaptobs::examples::log_floor_function) + marker + R"(
+set multiplot layout 3,2 title 'Covariance resetting against exponential forgetting, SISO example (Dey and Bhasin 2022, section 5; no units)'
 set grid
-set xlabel 't'
+set xlabel 't (samples)'
+# Autoscaled, with a margin: the start-up transient is part of the figure.
+set offsets 0, 0, graph 0.05, graph 0.05
+set ylabel 'estimate / true value (1: exact)'
+set key bottom right
 set title 'Figure 4(a): normalized estimates, Suzuki et al. (forgetting, lambda = sqrt 0.5)'
-set yrange [-0.5:1.5]
 plot for [i=1:4] csv using 't':(column(sprintf('thetahat_norm_suzuki_%d', i))) with lines lw 1.5 title sprintf('theta %d', i)
 set title 'Figure 4(b): normalized estimates, covariance resetting'
 plot for [i=1:4] csv using 't':(column(sprintf('thetahat_norm_%d', i))) with lines lw 1.5 title sprintf('theta %d', i)
-set autoscale y
+set offsets 0, 0, 0, 0
 set logscale y
 set format y '10^{%T}'
-set title 'Figure 5(a): 2-norm of the state estimation error, Suzuki et al.'
-plot csv using 't':'xerr_norm_suzuki' with lines lw 1.5 title '||x - xhat||'
-set title 'Figure 5(b): 2-norm of the state estimation error, covariance resetting'
-plot csv using 't':'xerr_norm' with lines lw 1.5 title '||x - xhat||'
+set ylabel '||x - xhat|| (log; 0 drawn at 10^{-16})'
+set title 'Figure 5(a): 2-norm of the state estimation error (0 at t = 0, 1), Suzuki et al.'
+plot csv using 't':(floored(column('xerr_norm_suzuki'), 1e-16)) with lines lw 1.5 title '||x - xhat||'
+set title 'Figure 5(b): 2-norm of the state estimation error (0 at t = 0, 1), resetting'
+plot csv using 't':(floored(column('xerr_norm'), 1e-16)) with lines lw 1.5 title '||x - xhat||'
 set title 'Why: largest covariance entry (forgetting overflows, resetting stays in [kmin, k0])'
+set ylabel 'largest |Gamma| entry (no unit, log)'
+set key top left
 set yrange [1e-6:1e308]
 plot csv using 't':'gamma_max_suzuki' with lines lw 1.5 title 'forgetting', \
      csv using 't':'gamma_max' with lines lw 1.5 title 'resetting'
 unset logscale y
 set autoscale y
 set format y '%g'
-set title 'Input and output'
+set ylabel 'u, y (no unit)'
+set key top right opaque
+set title 'Input and output (first 300 samples)'
 set xrange [0:300]
 plot csv using 't':'u_1' with lines title 'u', csv using 't':'y_1' with lines title 'y'
 unset multiplot)");
@@ -177,7 +191,7 @@ int main(int argc, char** argv) try {
   print_value("thetahat_norm_suzuki_observer_final",
               db::normalized_estimates(suzuki, siso::a(), siso::B()).transpose());
 
-  write_figure(table, args);
+  write_figure(table, args, raw.covariance_nonfinite);
   return 0;
 } catch (...) {
   return adaptobs::examples::failure("suzuki_siso");

@@ -21,19 +21,22 @@
 #include "models/unified_designs.hpp"
 
 #include <cmath>
+#include <string>
 
 namespace siso = adaptobs::examples::siso;
 namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
 
 // Gnuplot body of unified_comparison.png: both parameter estimates of the five
-// observers, and their error.
+// observers, and their error (below 1e-12 drawn at 1e-12).
 constexpr const char* figure_script = R"(
-set multiplot layout 3,1 title 'Zhang (2005): four adaptive observers of one unified formulation, and the Kalman-Bucy filter on [x; theta]'
+set multiplot layout 3,1 title 'Zhang (2005): four adaptive observers of one unified formulation, and the Kalman-Bucy filter on [x; theta] (no units)'
 set grid
 set xlabel 't (s)'
 set key outside right
+set lmargin 12
 set title 'theta^1 (true 2)'
+set ylabel 'theta^1 estimate (no unit)'
 plot csv using 't':'thetahat_bg_1' with lines lw 1.5 title 'Alg. 1 Bastin-Gevers', \
      csv using 't':'thetahat_mt_1' with lines lw 1.5 title 'Alg. 2 Marino-Tomei', \
      csv using 't':'thetahat_bes_1' with lines lw 1.5 title 'Alg. 3 Besancon', \
@@ -41,16 +44,18 @@ plot csv using 't':'thetahat_bg_1' with lines lw 1.5 title 'Alg. 1 Bastin-Gevers
      csv using 't':'thetahat_kb_1' with lines lw 1.5 dt 2 title 'Kalman-Bucy [x; theta]', \
      csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true'
 set title 'theta^2 (true -1)'
+set ylabel 'theta^2 estimate (no unit)'
 plot csv using 't':'thetahat_bg_2' with lines lw 1.5 title 'Alg. 1 Bastin-Gevers', \
      csv using 't':'thetahat_mt_2' with lines lw 1.5 title 'Alg. 2 Marino-Tomei', \
      csv using 't':'thetahat_bes_2' with lines lw 1.5 title 'Alg. 3 Besancon', \
      csv using 't':'thetahat_2' with lines lw 1.5 title 'Alg. 4 Zhang', \
      csv using 't':'thetahat_kb_2' with lines lw 1.5 dt 2 title 'Kalman-Bucy [x; theta]', \
      csv using 't':'theta_2' with lines lc 'black' dt 3 title 'true'
-set title 'parameter estimation error |estimate - theta|'
+set title 'parameter estimation error (log scale: below 10^{-12} drawn at 10^{-12})'
+set ylabel '|estimate - theta| (no unit)'
 set logscale y
 set format y '10^{%T}'
-e(a, b) = sqrt((column(a.'_1') - column('theta_1'))**2 + (column(a.'_2') - column('theta_2'))**2)
+e(a, b) = floored(sqrt((column(a.'_1') - column('theta_1'))**2 + (column(a.'_2') - column('theta_2'))**2), 1e-12)
 plot csv using 't':(e('thetahat_bg', '')) with lines lw 1.5 title 'Alg. 1 Bastin-Gevers', \
      csv using 't':(e('thetahat_mt', '')) with lines lw 1.5 title 'Alg. 2 Marino-Tomei', \
      csv using 't':(e('thetahat_bes', '')) with lines lw 1.5 title 'Alg. 3 Besancon', \
@@ -98,7 +103,8 @@ int main(int argc, char** argv) try {
   print_value("theta_relative_error_besancon", relative(bes));
   print_value("theta_relative_error_kalman_bucy", relative(kb));
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "unified_comparison", figure_script);
+  adaptobs::examples::write_outputs(table, args.out_dir(), "unified_comparison",
+                                    std::string(adaptobs::examples::log_floor_function) + figure_script);
   return 0;
 } catch (...) {
   return adaptobs::examples::failure("unified_comparison");

@@ -143,27 +143,33 @@ void write_figure(const adaptobs::SeriesTable& table, const adaptobs::examples::
                   const adaptobs::OutputLoss& loss) {
   adaptobs::examples::write_outputs(table, args.out_dir(), "wwtp",
                                     adaptobs::examples::gap_shading(table, loss.options()) + R"(
-set multiplot layout 3,2 title 'Takagi-Sugeno adaptive observer, waste water treatment plant (Srinivasarengan et al. 2018, section 6)'
+set multiplot layout 3,2 title 'Takagi-Sugeno adaptive observer, waste water treatment plant (Srinivasarengan et al. 2018, section 6; the paper gives no units)'
 set grid
-set xlabel 'k'
-set title 'Figure 1: estimation of x_1'
+set xlabel 'k (samples, T_s = 1)'
+# Autoscaled, with a margin, so that neither the start nor the true value lies on a border.
+set offsets 0, 0, graph 0.05, graph 0.05
+set title 'Figure 1: estimation of x_1, the biomass (measured, y = x_1)'
+set ylabel 'biomass x_1'
 plot csv using 't':'x_1' with lines lw 2 lc 'black' title 'plant', \
      csv using 't':'xhat_1' with lines lw 1.5 title 'printed gains', \
      csv using 't':'xhat_lmi_1' with lines lw 1.5 dt 2 title 'LMI gains'
-set title 'Figure 2: estimation of x_2'
+set title 'Figure 2: estimation of x_2, the substrate (not measured)'
+set ylabel 'substrate x_2'
 plot csv using 't':'x_2' with lines lw 2 lc 'black' title 'plant', \
      csv using 't':'xhat_2' with lines lw 1.5 title 'printed gains', \
      csv using 't':'xhat_lmi_2' with lines lw 1.5 dt 2 title 'LMI gains'
-set title 'Figure 3: estimation of theta'
-set yrange [-0.1:0.2]
+set title 'Figure 3: estimation of theta, the growth-rate error (a = 0.5 + theta)'
+set ylabel 'theta (no unit)'
 plot csv using 't':'theta_1' with lines lw 2 lc 'black' title 'true', \
      csv using 't':'thetahat_1' with lines lw 1.5 title 'printed gains', \
      csv using 't':'thetahat_lmi_1' with lines lw 1.5 dt 2 title 'LMI gains'
-set title 'Figure 4: input (dilution rate)'
+set title 'Figure 4: input, the dilution rate (its sector [0, 0.4])'
+set ylabel 'dilution rate u (1/T_s)'
+set offsets 0, 0, 0, 0
 set yrange [0:0.4]
 plot csv using 't':'u_1' with lines lw 1.5 title 'u'
-set autoscale y
 set title 'Figure 5: weights h_i (printed-gain observer)'
+set ylabel 'weight h_i (no unit)'
 set yrange [0:1]
 plot for [i=1:8] csv using 't':(column(sprintf('h_%d', i))) with lines lw 1.5 title sprintf('h_%d', i)
 unset multiplot)");

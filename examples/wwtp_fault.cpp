@@ -27,12 +27,18 @@ using adaptobs::examples::print_value;
 namespace {
 
 // Gnuplot panel of the estimate and its fault-free band (s1, the CUSUM scale);
-// the monitor panels follow.
+// the monitor panels follow. The paper gives the plant no units.
 constexpr const char* estimate_panel = R"(
 set multiplot layout 3,1 title 'Growth-rate change in the waste water treatment plant: Takagi-Sugeno observer (Srinivasarengan et al. 2018, section 6)'
 set grid
-set xlabel 'sample'
-set title 'parameter estimate, with its fault-free spread (2 scales)'
+# The legends beside the plots, and the time axes aligned under one another.
+set key outside right top
+set lmargin at screen 0.07
+set rmargin at screen 0.80
+set xlabel 'k (samples, T_s = 1)'
+set title 'growth-rate error theta (a = 0.5 + theta): estimate with its fault-free spread (2 scales), and the true value'
+set ylabel 'theta (no unit)'
+set offsets 0, 0, graph 0.05, graph 0.05
 plot csv using 't':(column('thetahat_1') - 2*s1):(column('thetahat_1') + 2*s1) with filledcurves fs transparent solid 0.3 title 'band', \
      csv using 't':'thetahat_1' with lines lw 1.5 title 'theta estimate', \
      csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true')";
@@ -68,7 +74,9 @@ void run_once(const adaptobs::examples::Arguments& args, const wwtp::MonitorDesi
   const std::string band = "s1 = " + std::to_string(design.cusum.scale(0)) + "\n";
   adaptobs::examples::write_outputs(
       table, args.out_dir(), "wwtp_fault",
-      band + estimate_panel + std::string(adaptobs::examples::monitor_panels) + "unset multiplot");
+      band + adaptobs::examples::log_floor_function +
+          adaptobs::examples::fault_markers(double(wwtp::monitor_from), double(fault.step), double(fault.ramp)) +
+          estimate_panel + std::string(adaptobs::examples::monitor_panels) + "unset multiplot");
 }
 
 }  // namespace

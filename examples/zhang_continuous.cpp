@@ -17,6 +17,7 @@
 #include "common/example_support.hpp"
 #include "models/unified_designs.hpp"
 
+#include <string>
 #include <utility>
 
 namespace periodic = adaptobs::examples::periodic;
@@ -24,23 +25,26 @@ namespace designs = adaptobs::examples::designs;
 using adaptobs::examples::print_value;
 
 // Gnuplot body of zhang_continuous.png: the estimates and their error, constant K
-// against the Riccati K(t).
+// against the Riccati K(t); the error below 1e-12 is drawn at 1e-12.
 constexpr const char* figure_script = R"(
-set multiplot layout 2,1 title 'Zhang (2002) adaptive observer (Zhang 2005, Algorithm 4) on a periodic MIMO plant'
+set multiplot layout 2,1 title 'Zhang (2002) adaptive observer (Zhang 2005, Algorithm 4) on a periodic MIMO plant (no units)'
 set grid
+set lmargin 12
 set xlabel 't (s)'
 set title 'parameter estimates (true 1 and -2)'
+set ylabel 'theta (no unit)'
 plot csv using 't':'thetahat_1' with lines lw 1.5 title 'theta^1, constant K', \
      csv using 't':'thetahat_2' with lines lw 1.5 title 'theta^2, constant K', \
      csv using 't':'thetahat_riccati_1' with lines dt 2 title 'theta^1, Riccati K(t)', \
      csv using 't':'thetahat_riccati_2' with lines dt 2 title 'theta^2, Riccati K(t)', \
      csv using 't':'theta_1' with lines lc 'black' dt 3 title 'true', \
      csv using 't':'theta_2' with lines lc 'black' dt 3 notitle
-set title 'parameter estimation error'
+set title 'parameter estimation error (log scale: below 10^{-12} drawn at 10^{-12})'
+set ylabel '|theta estimate - theta| (no unit)'
 set logscale y
 set format y '10^{%T}'
-plot csv using 't':(sqrt((column('thetahat_1')-column('theta_1'))**2 + (column('thetahat_2')-column('theta_2'))**2)) with lines lw 1.5 title 'constant K', \
-     csv using 't':(sqrt((column('thetahat_riccati_1')-column('theta_1'))**2 + (column('thetahat_riccati_2')-column('theta_2'))**2)) with lines lw 1.5 title 'Riccati K(t)'
+plot csv using 't':(floored(sqrt((column('thetahat_1')-column('theta_1'))**2 + (column('thetahat_2')-column('theta_2'))**2), 1e-12)) with lines lw 1.5 title 'constant K', \
+     csv using 't':(floored(sqrt((column('thetahat_riccati_1')-column('theta_1'))**2 + (column('thetahat_riccati_2')-column('theta_2'))**2), 1e-12)) with lines lw 1.5 title 'Riccati K(t)'
 unset multiplot)";
 
 int main(int argc, char** argv) try {
@@ -89,7 +93,8 @@ int main(int argc, char** argv) try {
   print_value("excitation_level_eq15", observer.excitation_level().value_or(0.0));
   print_value("riccati_final_K", riccati.gain(model.at(plant.time()).C));
 
-  adaptobs::examples::write_outputs(table, args.out_dir(), "zhang_continuous", figure_script);
+  adaptobs::examples::write_outputs(table, args.out_dir(), "zhang_continuous",
+                                    std::string(adaptobs::examples::log_floor_function) + figure_script);
   return 0;
 } catch (...) {
   return adaptobs::examples::failure("zhang_continuous");

@@ -105,22 +105,27 @@ inline std::string error_norm_expression(std::string_view a, std::string_view b,
 }
 
 /// The figure of a one-observer example: θ̂ against the true θ, then the norms
-/// of the parameter and state errors on a log scale.
+/// of the parameter and state errors on a log scale, below 1e-12 drawn at
+/// 1e-12. The plants of these examples are the library's own and have no units.
 inline std::string estimates_and_errors_figure(std::string_view title, std::string_view truth, int parameters,
                                                int states) {
-  std::string script = "set multiplot layout 2,1 title '" + std::string(title) +
-                       "'\nset grid\nset xlabel 't (s)'\nset title 'parameter estimates (true " + std::string(truth) +
-                       ")'\nplot ";
+  std::string script =
+      std::string(log_floor_function) + "set multiplot layout 2,1 title '" + std::string(title) +
+      " (no units)'\nset grid\nset lmargin 12\nset xlabel 't (s)'\nset title 'parameter estimates (true " +
+      std::string(truth) + ")'\nset ylabel 'theta (no unit)'\nplot ";
   for (int i = 1; i <= parameters; ++i)
     script += "csv using 't':'thetahat_" + std::to_string(i) + "' with lines lw 1.5 title 'theta^" + std::to_string(i) +
-              "', \\\n     ";
+              " estimate', \\\n     ";
   for (int i = 1; i <= parameters; ++i)
     script += "csv using 't':'theta_" + std::to_string(i) + "' with lines lc 'black' dt 3 " +
               (i == 1 ? "title 'true'" : "notitle") + (i < parameters ? ", \\\n     " : "\n");
-  script += "set title 'estimation errors'\nset logscale y\nset format y '10^{%T}'\nplot csv using 't':(" +
-            error_norm_expression("thetahat", "theta", parameters) + ") with lines lw 1.5 title '|theta error|', \\\n" +
-            "     csv using 't':(" + error_norm_expression("xhat", "x", states) +
-            ") with lines lw 1.5 title '|state error|'\nunset multiplot\n";
+  script +=
+      "set title 'estimation errors (log scale: below 10^{-12} drawn at 10^{-12})'\n"
+      "set ylabel 'error norm (no unit)'\nset logscale y\nset format y '10^{%T}'\nplot csv using 't':(floored(" +
+      error_norm_expression("thetahat", "theta", parameters) +
+      ", 1e-12)) with lines lw 1.5 title '|theta estimate - theta|', \\\n" + "     csv using 't':(floored(" +
+      error_norm_expression("xhat", "x", states) +
+      ", 1e-12)) with lines lw 1.5 title '|state estimate - x|'\nunset multiplot\n";
   return script;
 }
 

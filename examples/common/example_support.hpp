@@ -285,10 +285,29 @@ inline OutputLossOptions output_loss_options(const Arguments& args, std::uint64_
   return options;
 }
 
+/// Gnuplot commands that draw, on every later plot, a vertical dotted line at
+/// time `t` (in the units of the x axis) with `label` at its top: a fault, the
+/// ends of an outage, the start of a monitor.
+inline std::string time_marker(double t, std::string_view label, std::string_view color = "#c00000") {
+  std::ostringstream gp;
+  gp.precision(10);
+  gp << "set arrow from " << t << ", graph 0 to " << t << ", graph 1 nohead front dt 3 lw 1.5 lc rgb '" << color
+     << "'\nset label '" << label << "' at " << t << ", graph 1 offset 0.4, -0.8 front textcolor rgb '" << color
+     << "'\n";
+  return gp.str();
+}
+
+/// Gnuplot function `floored(v, lo)`: v, or lo where v is smaller, NaN staying
+/// NaN. A log axis drops a zero (a statistic at rest, an error that is exactly
+/// 0); plotted through it, such a sample shows at lo, which the panel names
+/// (in its title, axis label or legend).
+inline constexpr const char* log_floor_function = "floored(v, lo) = v != v ? NaN : (v > lo ? v : lo)\n";
+
 /// Gnuplot commands that shade, on every later plot, the stretches of `table`
 /// whose samples lacked an output channel (column `y_available` below its
 /// largest value), from the first such sample to the next complete one, and a
-/// label naming the losses of `options` ("" when nothing was lost).
+/// label naming the losses of `options` ("" when nothing was lost); an outage's
+/// beginning and end are marked by dotted lines.
 inline std::string gap_shading(const SeriesTable& table, const OutputLossOptions& options) {
   const std::vector<double> t = table.column("t");
   const std::vector<double> available = table.column("y_available");
@@ -310,6 +329,8 @@ inline std::string gap_shading(const SeriesTable& table, const OutputLossOptions
       gp << ", outage [" << options.outage_begin << ", " << options.outage_end << "]";
     gp << "' at screen 0.01, screen 0.01\n";
   }
+  if (options.outage_begin <= options.outage_end)
+    gp << time_marker(options.outage_begin, "outage", "#404040") << time_marker(options.outage_end, "", "#404040");
   return gp.str();
 }
 
@@ -349,10 +370,12 @@ struct FigureData {
   std::string variable;
 };
 
-/// Writes DIR/<file>.csv for every run, then renders DIR/<name>.png from a
-/// gnuplot script that reads each CSV through its variable, when gnuplot is present.
+/// Writes DIR/<file>.csv for every run, then renders DIR/<name>.png (`size`:
+/// "width,height" in pixels) from a gnuplot script that reads each CSV through
+/// its variable, when gnuplot is present.
 inline void write_outputs(const std::vector<FigureData>& runs, const std::filesystem::path& dir,
-                          const std::string& name, const std::string& gnuplot_body) {
+                          const std::string& name, const std::string& gnuplot_body,
+                          const std::string& size = "1200,900") {
   std::ostringstream variables;
   for (const FigureData& run : runs) {
     const std::filesystem::path csv = dir / (run.file + ".csv");
@@ -371,7 +394,7 @@ inline void write_outputs(const std::vector<FigureData>& runs, const std::filesy
     gp << variables.str() << "png = '" << png.string() << "'\n"
        << "set datafile separator ','\n"
        << "set key autotitle columnhead\n"
-       << "set terminal pngcairo size 1200,900 font ',10'\n"
+       << "set terminal pngcairo size " << size << " font ',10'\n"
        << "set output png\n"
        << gnuplot_body << '\n'
        << "unset output\n";
@@ -384,8 +407,8 @@ inline void write_outputs(const std::vector<FigureData>& runs, const std::filesy
 /// Writes DIR/<name>.csv, then renders DIR/<name>.png from a gnuplot script
 /// (the script reads the CSV as `csv` and writes `png`) when gnuplot is present.
 inline void write_outputs(const SeriesTable& table, const std::filesystem::path& dir, const std::string& name,
-                          const std::string& gnuplot_body) {
-  write_outputs({{table, name, "csv"}}, dir, name, gnuplot_body);
+                          const std::string& gnuplot_body, const std::string& size = "1200,900") {
+  write_outputs({{table, name, "csv"}}, dir, name, gnuplot_body, size);
 }
 
 }  // namespace adaptobs::examples

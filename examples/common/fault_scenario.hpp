@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -153,20 +154,39 @@ void add_monitor_columns(SeriesTable& row, const FaultMonitor<double, NY, NP>& m
       .add("alarm_chi_square", watching && chi_square.alarm() ? 1.0 : 0.0);
 }
 
-/// Gnuplot panels of the CUSUM and χ² columns (after the example's own panels).
+/// Gnuplot commands of a fault example's figure, before its panels: the
+/// variable `monitor_start` (the monitor's first sample, in the x axis' unit)
+/// and dotted lines at it, at the fault's start and, for a ramp, at its end.
+inline std::string fault_markers(double monitor_start, double fault_time, double ramp) {
+  std::ostringstream gp;
+  gp.precision(10);
+  gp << "monitor_start = " << monitor_start << "\n"
+     << time_marker(monitor_start, "monitor starts", "#404040") << time_marker(fault_time, "fault");
+  if (ramp > 0) gp << time_marker(fault_time + ramp, "ramp ends");
+  return gp.str();
+}
+
+/// Gnuplot panels of the CUSUM and χ² columns, after the example's own panels,
+/// with `monitor_start` set by `fault_markers` and `floored` by
+/// `log_floor_function`. The statistics are 0 before the monitor starts, drawn
+/// as nothing, and at rest or after an alarm, while the CUSUM holds off: on the
+/// log axis these zeros show at its floor, 0.01.
 inline constexpr const char* monitor_panels = R"(
-set title 'CUSUM and windowed GLR on the normalized estimates: largest statistic, threshold and alarms'
+set offsets 0, 0, 0, 0
+set title 'CUSUM and windowed GLR on the normalized estimates: largest statistic, threshold, alarms (log scale: below 0.01, as at rest, drawn at 0.01)'
+set ylabel 'statistic (no unit)'
 set logscale y
-set yrange [0.01:*]
-plot csv using 't':(column('statistic_cusum') > 0 ? column('statistic_cusum') : NaN) with lines title 'CUSUM', \
+set yrange [0.005:*]
+plot csv using 't':(column('t') >= monitor_start ? floored(column('statistic_cusum'), 0.01) : NaN) with lines title 'CUSUM', \
      csv using 't':'threshold' with lines dt 2 lc 'red' title 'CUSUM threshold', \
      csv using 't':(column('alarm') > 0 ? column('statistic_cusum') : NaN) with points pt 7 ps 1.5 lc 'red' title 'CUSUM alarm', \
-     csv using 't':(column('statistic_glr') > 0 ? column('statistic_glr') : NaN) with lines title 'GLR', \
+     csv using 't':(column('t') >= monitor_start ? floored(column('statistic_glr'), 0.01) : NaN) with lines title 'GLR', \
      csv using 't':'threshold_glr' with lines dt 3 lc 'blue' title 'GLR threshold', \
      csv using 't':(column('alarm_glr') > 0 ? column('statistic_glr') : NaN) with points pt 9 ps 1.5 lc 'blue' title 'GLR alarm'
 unset logscale y
 set autoscale y
 set title 'chi-square test on the output errors: window sum and threshold'
+set ylabel 'sum of squared normalized errors (no unit)'
 plot csv using 't':'statistic_chi_square' with lines title 'statistic', \
      csv using 't':'threshold_chi_square' with lines dt 2 lc 'red' title 'threshold', \
      csv using 't':(column('alarm_chi_square') > 0 ? column('threshold_chi_square') : NaN) with points pt 7 ps 1.5 lc 'red' title 'alarm'
