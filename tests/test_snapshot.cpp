@@ -136,7 +136,8 @@ TEST(Snapshot, ASnapshotOfAnotherClassVersionOrConfigurationIsRefusedAndChangesN
             "restore: argument 'snapshot' is of a AugmentedKalmanFilter, not of a GuyaderZhangObserver");
   EXPECT_EQ(refusal([](auto& s) { s.version = 2; }),
             "restore: argument 'snapshot' is version 2 of GuyaderZhangObserver; this build reads version 1");
-  EXPECT_EQ(refusal([](auto& s) { s.integers.pop_back(); }), "restore: argument 'snapshot' has no field 'step'");
+  EXPECT_EQ(refusal([](auto& s) { s.integers.pop_back(); }),
+            "restore: argument 'snapshot' has no field 'health.consecutive_refusals'");
   EXPECT_EQ(refusal([](auto& s) {
               for (auto& i : s.integers)
                 if (i.name == "excitation_window") i.value = 10;
