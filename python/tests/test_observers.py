@@ -72,6 +72,11 @@ def test_a_rejected_sample_leaves_the_observer_bit_identical(satellite):
     huge = observer.update(data["U"][300], [1e300, 1e300], np.full((4, 2), 1e300))
     assert huge == UpdateStatus.nonfinite_result
     after = observer.snapshot()
+    # Only the health record notes the overflowing step (one refusal, not yet a divergence).
+    assert after["integers"].pop("health.consecutive_refusals") == 1
+    assert after["integers"].pop("health.streak_step") == 300
+    assert before["integers"].pop("health.consecutive_refusals") == 0
+    assert before["integers"].pop("health.streak_step") == -1
     assert before["integers"] == after["integers"]
     for name, value in before["matrices"].items():
         assert np.array_equal(value, after["matrices"][name]), name

@@ -9,7 +9,9 @@ namespace adaptobs {
 /// What became of one sample given to an observer's `update`.
 ///
 /// Anything but `accepted` means the observer is bit-for-bit as it was before
-/// the call: no estimate, filter or counter moved.
+/// the call: no estimate, filter or counter moved. Only its health record
+/// (core/health.hpp) notes a `nonfinite_result`, so that a run of them, an
+/// observer whose estimates ran away, is told apart from one bad sample.
 enum class UpdateStatus {
   accepted,               ///< the sample was used and the estimates advanced
   nonfinite_input,        ///< a NaN or Inf in the sample (u, y, a regressor or premise variable)
