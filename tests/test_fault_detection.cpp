@@ -734,9 +734,15 @@ adaptobs::FaultFreeRecord<double, 1, 2> ar1_record(const Eigen::Vector2d& theta,
     std::mt19937_64 rng(first_seed + static_cast<std::uint64_t>(r));
     std::normal_distribution<double> normal(0, 1);
     record.new_run();
-    Eigen::Array2d x(normal(rng), normal(rng));
+    // Each pair drawn in a fixed order: the order in which function arguments
+    // are evaluated is unspecified, and g++ and clang++ differ.
+    const auto pair = [&] {
+      const double second = normal(rng);
+      return Eigen::Array2d(normal(rng), second);
+    };
+    Eigen::Array2d x = pair();
     for (Index k = 0; k < length; ++k) {
-      x = phi * x + innovation * Eigen::Array2d(normal(rng), normal(rng));
+      x = phi * x + innovation * pair();
       record.parameters.back().push_back(theta + 0.01 * x.matrix());
       record.output_errors.back().push_back(Eigen::Matrix<double, 1, 1>(normal(rng)));
     }

@@ -131,7 +131,10 @@ struct Scenario {
       const double t = static_cast<double>(k) * ts;
       const Eigen::Vector2d theta = parameters_at(plant.motor, t);
       const Eigen::Matrix<double, 1, 1> u(voltage(t));
-      const Eigen::Vector2d y = x + Eigen::Vector2d(current_noise * gauss(rng), speed_noise * gauss(rng));
+      // The two draws in a fixed order (function arguments are evaluated in an
+      // unspecified order, which g++ and clang++ do not share).
+      const double speed_error = speed_noise * gauss(rng);
+      const Eigen::Vector2d y = x + Eigen::Vector2d(current_noise * gauss(rng), speed_error);
       run.samples.push_back({u, y, plant.regressor(y(1))});
       run.states.push_back(x);
       run.parameters.push_back(theta);
