@@ -111,12 +111,13 @@ if ((sanitize)); then
     -DADAPTOBS_BUILD_EXAMPLES=OFF -DADAPTOBS_VERIFY_HEADERS=ON -DADAPTOBS_UNITY_TESTS=ON
   cmake --build "$root/build/sanitize" -j "$jobs"
   # The Monte-Carlo statistics of the fault detectors (thousands of seeds of one
-  # scenario) are asserted in the g++ phase. Under the sanitizers they would run
-  # the same code paths again for a quarter of this phase's test time; the
-  # single-seed tests and examples of the same detectors cover those paths.
-  monte_carlo='^(SatelliteFaultDetection\.(FalseAlarmRatesMatchDesign|DefaultFaultDetectedAndIsolatedByTheCusumAndTheGlr|FiftySecondDriftDetected)|WwtpFaultDetection\.FalseAlarmRatesMatchDesign)$'
+  # scenario) and the soak runs of Dey & Bhasin (10⁵ and 10⁶ steps of one
+  # observer) are asserted in the g++ phase. Under the sanitizers they would run
+  # the same code paths again for a third of this phase's test time; the
+  # single-seed tests, the contract suite and the examples cover those paths.
+  repeated='^(SatelliteFaultDetection\.(FalseAlarmRatesMatchDesign|DefaultFaultDetectedAndIsolatedByTheCusumAndTheGlr|FiftySecondDriftDetected)|WwtpFaultDetection\.FalseAlarmRatesMatchDesign|DeyBhasinSiso\.CovarianceStaysSymmetricAndInsideKminK0For1e6Steps|DeyBhasin\.Theorem5BoundHoldsWithoutExcitationFor1e5Steps)$'
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    ctest --test-dir "$root/build/sanitize" --output-on-failure -j "$jobs" -E "$monte_carlo"
+    ctest --test-dir "$root/build/sanitize" --output-on-failure -j "$jobs" -E "$repeated"
 
   echo "== clang++ ThreadSanitizer: two threads sharing one observer's odeint_system"
   # A project of its own (tests/tsan): ThreadSanitizer excludes AddressSanitizer,
