@@ -6,7 +6,8 @@
 # (uninstrumented) and every public header compiled on its own, and runs the
 # suite there, the benchmark smoke run included, the example programs and the
 # detectors' Monte-Carlo statistics left to the g++ phase; last, under ThreadSanitizer,
-# two threads sharing one observer's odeint_system (tests/tsan).
+# two threads sharing one observer's odeint_system, and the detection evaluation
+# on two threads (tests/tsan).
 #
 # Between the two, the Python package is installed with `pip install .` into a
 # virtual environment of its own (build/venv, made on first use) and its pytest
@@ -119,12 +120,13 @@ if ((sanitize)); then
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$root/build/sanitize" --output-on-failure -j "$jobs" -E "$repeated"
 
-  echo "== clang++ ThreadSanitizer: two threads sharing one observer's odeint_system"
+  echo "== clang++ ThreadSanitizer: two threads sharing one observer's odeint_system, and evaluate_detection on two threads"
   # A project of its own (tests/tsan): ThreadSanitizer excludes AddressSanitizer,
   # and its one executable compiles in about half a minute of CPU.
   cmake -S "$root/tests/tsan" -B "$root/build/tsan" -G Ninja -DCMAKE_CXX_COMPILER=clang++ >/dev/null
   cmake --build "$root/build/tsan"
   TSAN_OPTIONS=halt_on_error=1 "$root/build/tsan/tsan_shared_system"
+  TSAN_OPTIONS=halt_on_error=1 "$root/build/tsan/tsan_evaluate_detection"
 fi
 
 echo "== all tests passed in $((SECONDS - start)) s"

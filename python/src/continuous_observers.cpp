@@ -267,19 +267,21 @@ template <class Observer>
 struct ContinuousBound {
   Observer observer;
   ContinuousSample<Dims> sample;
+  OutputMask<Dims> mask;
   UseFlag in_use;
 
   explicit ContinuousBound(Observer o) : observer(std::move(o)) {
     const Sizes s = observer.sizes();
     sample.u.setZero(s.nu);
     sample.y.setZero(s.ny);
+    mask.setConstant(s.ny, true);
   }
 };
 
 // One sample (t, u, y), with the midpoint signals when both are given.
 template <class Observer>
 UpdateStatus continuous_step(ContinuousBound<Observer>& self, double t, nb::handle u, nb::handle y, nb::handle u_mid,
-                             nb::handle y_mid) {
+                             nb::handle y_mid, nb::handle present) {
   const std::string who = std::string(Observer::name) + ".update";
   const InUse guard(self.in_use.flag, who);
   const Sizes s = self.observer.sizes();
@@ -303,16 +305,21 @@ UpdateStatus continuous_step(ContinuousBound<Observer>& self, double t, nb::hand
   // The output error of the new sample reads C(t_k) after the integration is
   // committed: with a Python function of the model, which may raise there, the
   // observer is kept as it was.
+  const bool masked = !present.is_none();
+  if (masked) read_mask(present, s.ny, who, self.mask);
+  const auto update = [&] {
+    return masked ? self.observer.update(self.sample, self.mask) : self.observer.update(self.sample);
+  };
   const PythonContinuousModel& model = self.observer.model();
-  if (model.is_time_invariant() && !model.regressor_function().callable) return self.observer.update(self.sample);
+  if (model.is_time_invariant() && !model.regressor_function().callable) return update();
   UpdateStatus status{};
-  all_or_nothing(self.observer, [&] { status = self.observer.update(self.sample); });
+  all_or_nothing(self.observer, [&] { status = update(); });
   return status;
 }
 
 template <class Observer>
 RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::handle u, nb::handle y,
-                         nb::handle u_mid, nb::handle y_mid) {
+                         nb::handle u_mid, nb::handle y_mid, nb::handle present) {
   const std::string who = std::string(Observer::name) + ".run";
   const InUse guard(self.in_use.flag, who);
   const Sizes s = self.observer.sizes();
@@ -331,6 +338,7 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
                             "the midpoint of every interval");
   const Rows mid_inputs = midpoints ? rows(u_mid, samples, s.nu, who, "U_mid") : Rows{};
   const Rows mid_outputs = midpoints ? rows(y_mid, samples, s.ny, who, "Y_mid") : Rows{};
+  const Masks mask = masks(present, samples, s.ny, who);
 
   const auto n = static_cast<std::size_t>(samples);
   OutputArray x({n, static_cast<std::size_t>(s.nx)});
@@ -355,7 +363,14 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
       } else {
         sample.midpoint.reset();
       }
-      status.data[k] = static_cast<std::int8_t>(self.observer.update(sample));
+      UpdateStatus result{};
+      if (mask.given) {
+        for (Index i = 0; i < s.ny; ++i) self.mask(i) = mask.present(k, i);
+        result = self.observer.update(sample, self.mask);
+      } else {
+        result = self.observer.update(sample);
+      }
+      status.data[k] = static_cast<std::int8_t>(result);
       Eigen::Map<Eigen::VectorXd>(x.data + k * s.nx, s.nx) = self.observer.state();
       Eigen::Map<Eigen::VectorXd>(theta.data + k * s.np, s.np) = self.observer.parameters();
       Eigen::Map<Eigen::VectorXd>(error.data + k * s.ny, s.ny) = self.observer.output_error();
@@ -378,17 +393,21 @@ void bind_continuous_observer(nb::class_<ContinuousBound<Observer>>& cls, Constr
   using B = ContinuousBound<Observer>;
   cls.def("update", &continuous_step<Observer>, nb::arg("t"), nb::arg("u"), nb::arg("y"),
           nb::arg("u_mid").none() = nb::none(), nb::arg("y_mid").none() = nb::none(),
+          nb::arg("present").none() = nb::none(),
           "The sample (u, y) measured at time t: integrates the observer from the previous sample with RK4,\n"
           "u and y rebuilt between samples as the `input` and `output` options say (u_mid, y_mid: the\n"
           "signals at the midpoint of the interval, which 'quadratic' needs). The first sample only sets\n"
-          "the time origin. A rejected sample changes nothing.")
+          "the time origin. A rejected sample changes nothing. `present` (ny booleans) marks the output\n"
+          "channels measured at t; the others are ignored, and over an interval in which a channel is not\n"
+          "measured the observer predicts it (none: the open-loop time update, theta constant).")
       .def("run", &continuous_run<Observer>, nb::arg("t"), nb::arg("U"), nb::arg("Y"),
            nb::arg("U_mid").none() = nb::none(), nb::arg("Y_mid").none() = nb::none(),
+           nb::arg("present").none() = nb::none(),
            "Every sample: t (N,), U (N x nu), Y (N x ny), and the midpoint signals of the interval ending\n"
            "at each sample (unused where no sample was accepted before, as row 0 of a new observer), in C++\n"
-           "with the GIL released (a callable regressor takes it back for its calls). Returns a RunResult;\n"
-           "diagnostics: excitation_level. An exception from a Python function of the model stops the run\n"
-           "and leaves the observer as it was before it.")
+           "with the GIL released (a callable regressor takes it back for its calls); `present` is N x ny\n"
+           "booleans, as in `update`. Returns a RunResult; diagnostics: excitation_level. An exception from\n"
+           "a Python function of the model stops the run and leaves the observer as it was before it.")
       .def(
           "reset",
           [](B& self, nb::handle eta0, nb::handle theta0) {

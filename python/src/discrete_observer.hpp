@@ -175,16 +175,20 @@ std::string update_name() {
   return std::string(Observer::snapshot_type) + ".update";
 }
 
+/// The ny booleans of `present` (one sample's measured output channels) into `mask`.
+template <class Mask>
+void read_mask(nb::handle present, Index ny, std::string_view who, Mask& mask) {
+  const auto m = as_array<BoolArray>(present, who, "present", "bool", "an array of booleans", "b");
+  if (m.ndim() != 1 || static_cast<Index>(m.shape(0)) != ny)
+    fail_dimensions(who, "present", "(" + std::to_string(ny) + ",)", shape_of(m));
+  for (Index i = 0; i < ny; ++i) mask(i) = m.data()[i * m.stride(0)];
+}
+
 /// One step with the sample in `self.sample` and, when given, the mask of `present`.
 template <class Observer>
 UpdateStatus step(Bound<Observer>& self, nb::handle present) {
   if (present.is_none()) return self.observer.update(self.sample);
-  const Index ny = self.observer.sizes().ny;
-  const auto who = update_name<Observer>();
-  const auto m = as_array<BoolArray>(present, who, "present", "bool", "an array of booleans", "b");
-  if (m.ndim() != 1 || static_cast<Index>(m.shape(0)) != ny)
-    fail_dimensions(who, "present", "(" + std::to_string(ny) + ",)", shape_of(m));
-  for (Index i = 0; i < ny; ++i) self.mask(i) = m.data()[i * m.stride(0)];
+  read_mask(present, self.observer.sizes().ny, update_name<Observer>(), self.mask);
   return self.observer.update(self.sample, self.mask);
 }
 

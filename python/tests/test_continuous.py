@@ -70,6 +70,35 @@ def test_run_equals_update_and_copies_continue_bit_for_bit(siso, make):
         assert stepped.excitation_level == batch.excitation_level > 0
 
 
+@pytest.mark.parametrize("make", [bastin_gevers, zhang, kalman_bucy])
+def test_an_output_outage_is_the_time_update(siso, make):
+    # 6 s without y (NaN, never read) in the 100-s run: theta-hat holds still over the outage
+    # and its error after it stays within a small factor of the error before it.
+    system, data = siso
+    n, start, stop = 8000, 5000, 5600
+    present = np.ones((n, 1), dtype=bool)
+    present[start:stop] = False
+    Y, Y_mid = data["Y"][:n].copy(), data["Y_mid"][:n].copy()
+    Y[start:stop] = np.nan
+    Y_mid[start:stop] = np.nan
+    observer = make(system)
+    result = observer.run(data["t"][:n], data["U"][:n], Y, data["U_mid"][:n], Y_mid, present)
+    assert np.all(result.status == UpdateStatus.accepted)
+    # The interval that ends the outage starts without y: theta-hat moves again one sample later.
+    held = result.parameters[start - 1:stop + 1]
+    assert np.array_equal(held, np.broadcast_to(result.parameters[start - 1], held.shape))
+    assert not np.array_equal(result.parameters[stop + 1], result.parameters[stop])
+    assert np.all(result.output_error[start:stop] == 0)
+    error = np.linalg.norm(result.parameters - system["theta"], axis=1)
+    assert error[stop + 10] < 5 * error[start - 1]
+    # Stepped with the same masks: the same estimates, bit for bit.
+    stepped = make(system)
+    for k in range(stop + 10):
+        mid = (None, None) if k == 0 else (data["U_mid"][k], Y_mid[k])
+        assert stepped.update(data["t"][k], data["U"][k], Y[k], *mid, present=present[k]) == UpdateStatus.accepted
+    assert np.array_equal(stepped.parameters, result.parameters[stop + 9])
+
+
 def test_a_rejected_sample_changes_nothing(siso):
     system, data = siso
     observer = bastin_gevers(system)

@@ -25,6 +25,7 @@
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/detail/segments.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
 #include <adaptobs/core/snapshot.hpp>
@@ -85,7 +86,7 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
   void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) const {
     Workspace w;
     w.resize(sizes_);
-    derivative(s, ds, t, u, y, w);
+    derivative(s, ds, t, u, y, nullptr, w);
   }
 
   /// Covariance P of \f$[\hat x; \hat\theta]\f$.
@@ -123,6 +124,12 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     AugmentedMatrix ae, factor;  // A_e (its last np rows stay 0); P's Cholesky factor in check_step
     Eigen::Matrix<Scalar, na, Dims::ny> pct, gain;
     Output epsilon;
+    // With unmeasured channels: C̄ = DC, and the factor of R̄ = DRD + (I − D) for the mask `factored`.
+    typename Dims::OutputMatrix c_masked;
+    typename Dims::OutputMatrixSquare r_masked;
+    detail::CholeskyFactor<typename Dims::OutputMatrixSquare> r_masked_factor;
+    OutputMask<Dims> factored;  // the mask of r_masked_factor, once `has_masked_factor`
+    bool has_masked_factor = false;
     void resize(const Sizes& s) {
       const Index n = s.nx + s.np;
       ae.setZero(n, n);
@@ -130,13 +137,22 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
       pct.setZero(n, s.ny);
       gain.setZero(n, s.ny);
       epsilon.setZero(s.ny);
+      c_masked.setZero(s.ny, s.nx);
+      r_masked.setZero(s.ny, s.ny);
+      r_masked_factor = detail::CholeskyFactor<typename Dims::OutputMatrixSquare>(s.ny);
+      factored.setConstant(s.ny, true);
     }
   };
 
-  // The right-hand side with the scratch `w` (the update's `work_`, or the
-  // public overload's own).
+  // The right-hand side with the output channels in `measured` measured (all
+  // for null) and the scratch `w` (the update's `work_`, or the public
+  // overload's own). An unmeasured channel has no measurement term
+  // (docs/readings/continuous_gaps.md): the gain is that of C̄ = DC and
+  // R̄ = DRD + (I − D), D = diag(measured), as in the discrete filter, so that
+  // its columns for those channels are 0 and P follows Ṗ = A_e P + P A_eᵀ + Q
+  // where no channel is measured.
   void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y,
-                  Workspace& w) const {
+                  const OutputMask<Dims>* measured, Workspace& w) const {
     const Index nx = sizes_.nx, np = sizes_.np, n = nx + np;
     const auto x = detail::segment<Dims::nx>(s, 0, nx);
     const auto theta = detail::segment<Dims::np>(s, nx, np);
@@ -147,12 +163,18 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     decltype(auto) sys = model_.at(t);
     w.ae.topLeftCorner(nx, nx) = sys.A;
     w.ae.topRightCorner(nx, np) = model_.regressor(t, u, y);
-    // L = P C_eᵀ R⁻¹ with C_e = [C 0].
-    detail::set_product(w.pct, P.leftCols(nx), sys.C.transpose());
+    // L = P C_eᵀ R⁻¹ with C_e = [C 0] (C̄ and R̄ for unmeasured channels).
+    if (measured) {
+      w.c_masked = sys.C;
+      detail::zero_absent_rows<Dims>(w.c_masked, measured);
+    }
+    const typename Dims::OutputMatrix& c = measured ? w.c_masked : sys.C;
+    detail::set_product(w.pct, P.leftCols(nx), c.transpose());
     w.gain = w.pct;
-    r_factor_.solve_on_the_right_in_place(w.gain);
+    masked_r_factor(measured, w).solve_on_the_right_in_place(w.gain);
     w.epsilon = y;
-    detail::subtract_product(w.epsilon, sys.C, x);
+    detail::subtract_product(w.epsilon, c, x);
+    detail::zero_absent_rows<Dims>(w.epsilon, measured);
     detail::set_product(dx, sys.A, x);
     detail::add_product(dx, sys.B, u);
     detail::add_product(dx, w.ae.topRightCorner(nx, np), theta);
@@ -191,9 +213,30 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
 
   // The output error \f$y_k - C_e\hat\chi(t_k)\f$ at the integrated estimate
   // (work_.epsilon holds the last RK4 stage's).
-  void finish_update(const Sample& sample, bool) {
+  void finish_update(const Sample& sample, const OutputMask<Dims>* present, bool) {
     output_error_ = sample.y;
     detail::subtract_product(output_error_, model_.at(sample.t).C, eta_);
+    detail::zero_absent_rows<Dims>(output_error_, present);
+  }
+
+  // The factor of R, or of R̄ = DRD + (I − D) for a mask, computed once per mask
+  // (R̄ is positive definite with R).
+  const detail::CholeskyFactor<typename Dims::OutputMatrixSquare>& masked_r_factor(const OutputMask<Dims>* measured,
+                                                                                   Workspace& w) const {
+    if (!measured) return r_factor_;
+    if (!w.has_masked_factor || !(w.factored == *measured).all()) {
+      w.r_masked = cov_.R;
+      for (Index i = 0; i < w.r_masked.rows(); ++i) {
+        if ((*measured)(i)) continue;
+        w.r_masked.row(i).setZero();
+        w.r_masked.col(i).setZero();
+        w.r_masked(i, i) = Scalar(1);
+      }
+      (void)w.r_masked_factor.compute(w.r_masked);
+      w.factored = *measured;
+      w.has_masked_factor = true;
+    }
+    return w.r_masked_factor;
   }
 
   void refresh_estimates() {

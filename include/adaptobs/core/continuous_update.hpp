@@ -5,6 +5,7 @@
 /// internal state come from.
 
 #include <adaptobs/core/continuous_model.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/health.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
@@ -24,14 +25,15 @@ namespace adaptobs {
 /// - `Observer::name` and `Observer::name_reset`, the names its errors give;
 /// - `work_`, the scratch of its right-hand side, kept and sized at
 ///   construction so that no update allocates;
-/// - `derivative(s, ds, t, u, y, work) const`, the right-hand side of
-///   `internal_`, which writes only `ds` and the scratch `work` it is handed:
-///   the update hands it `work_`. Its public `derivative(s, ds, t, u, y) const`
+/// - `derivative(s, ds, t, u, y, measured, work) const`, the right-hand side of
+///   `internal_` with the output channels in `measured` (null: all) measured
+///   and the others predicted, which writes only `ds` and the scratch `work` it
+///   is handed: the update hands it `work_`. Its public `derivative(s, ds, t, u, y) const`
 ///   (the one `odeint_system` calls) computes in a workspace of its own and
 ///   writes only `ds`, so that concurrent calls on one observer are safe;
 /// - `refresh_estimates()`, which reads `eta_` and `theta_` out of `internal_`;
-/// - `finish_update(sample, stepping)`, run after an accepted sample (the
-///   output error at the sample, per-step diagnostics);
+/// - `finish_update(sample, present, stepping)`, run after an accepted sample
+///   (the output error at the sample, 0 for an absent channel; per-step diagnostics);
 /// - `set_initial(eta0, theta0)`, which restarts `internal_` and its diagnostics;
 /// - `check_step(candidate)`, which may adjust an integrated state and returns
 ///   `accepted` or the reason to reject it;
@@ -48,20 +50,19 @@ class ContinuousUpdate : public Dims {
   /// the sample was rejected (non-finite, time not advancing, an interval too
   /// long, a non-finite step, or the observer's own check of the step); a
   /// rejected sample leaves the observer exactly as it was.
-  [[nodiscard]] UpdateStatus update(const Sample& sample) {
-    using InternalState = typename Observer::InternalState;
-    Observer& o = self();
-    const bool stepping = o.integrator_.started();
-    const auto rhs = [&o](const InternalState& s, InternalState& ds, Scalar t, const typename Dims::Input& u,
-                          const typename Dims::Output& y) { o.derivative(s, ds, t, u, y, o.work_); };
-    const auto check = [&o](InternalState& candidate) { return o.check_step(candidate); };
-    const UpdateStatus status = o.integrator_.advance(sample, o.internal_, rhs, Observer::name, check);
-    health_.note(status, samples_);
-    if (status != UpdateStatus::accepted) return status;
-    ++samples_;
-    o.refresh_estimates();
-    o.finish_update(sample, stepping);
-    return status;
+  [[nodiscard]] UpdateStatus update(const Sample& sample) { return checked_update(sample, nullptr); }
+
+  /// The same with only the output channels in `present` measured at
+  /// `sample.t`; the entries of `sample.y` of the others are ignored (they may
+  /// be NaN). Over an interval in which a channel is not measured (core/sampled_integration.hpp),
+  /// the observer runs its time update for it: the channel has no output
+  /// injection and no output error, so that it drives neither \f$\hat\eta\f$ nor
+  /// \f$\hat\theta\f$; with no channel measured that is the open-loop prediction
+  /// \f$\dot{\hat\eta} = A\hat\eta + Bu + \Phi\hat\theta\f$, \f$\dot{\hat\theta} = 0\f$
+  /// (docs/readings/continuous_gaps.md). All channels present is
+  /// `update(sample)`, bit for bit. The output error of an absent channel reads 0.
+  [[nodiscard]] UpdateStatus update(const Sample& sample, const OutputMask<Dims>& present) {
+    return checked_update(sample, detail::partial_mask<Dims>(present, sizes().ny, Observer::name));
   }
 
   /// Whether the run is sound (core/health.hpp): `diverged` from the sample at
@@ -144,6 +145,23 @@ class ContinuousUpdate : public Dims {
   }
 
  private:
+  UpdateStatus checked_update(const Sample& sample, const OutputMask<Dims>* present) {
+    using InternalState = typename Observer::InternalState;
+    Observer& o = self();
+    const bool stepping = o.integrator_.started();
+    const auto rhs = [&o](const InternalState& s, InternalState& ds, Scalar t, const typename Dims::Input& u,
+                          const typename Dims::Output& y,
+                          const OutputMask<Dims>* measured) { o.derivative(s, ds, t, u, y, measured, o.work_); };
+    const auto check = [&o](InternalState& candidate) { return o.check_step(candidate); };
+    const UpdateStatus status = o.integrator_.advance(sample, present, o.internal_, rhs, Observer::name, check);
+    health_.note(status, samples_);
+    if (status != UpdateStatus::accepted) return status;
+    ++samples_;
+    o.refresh_estimates();
+    o.finish_update(sample, present, stepping);
+    return status;
+  }
+
   Observer& self() noexcept { return static_cast<Observer&>(*this); }
   const Observer& self() const noexcept { return static_cast<const Observer&>(*this); }
 

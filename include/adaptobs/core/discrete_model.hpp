@@ -7,6 +7,7 @@
 /// (`DiscreteSample`), not with the model.
 
 #include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/time_invariance.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -73,15 +74,6 @@ template <StateSpace D>
 template <StateSpace D>
 [[nodiscard]] bool finite_sample(const InputOutputSample<D>& sample, const OutputMask<D>* present) {
   return finite_measured(sample.y, present, sample.u);
-}
-
-/// Zeroes the rows of `m` whose output channel is absent (nothing for a null mask).
-template <StateSpace D, class Derived>
-void zero_absent_rows(Eigen::MatrixBase<Derived>& m, const OutputMask<D>* present) {
-  if (!present) return;
-  for (Index i = 0; i < m.rows(); ++i)
-    if (!(*present)(i))
-      for (Index j = 0; j < m.cols(); ++j) m.coeffRef(i, j) = typename Derived::Scalar(0);
 }
 
 }  // namespace detail

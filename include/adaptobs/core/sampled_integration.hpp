@@ -40,9 +40,21 @@
 /// whatever its length, and a tiny one (a repeated time stamp) makes every
 /// later interval too long until `resynchronize()`. Where the first interval
 /// cannot be trusted, give `max_step`.
+///
+/// **Missing outputs.** A sample may come without some of its outputs (a mask
+/// `present`, as for the discrete observers). An output channel is *measured
+/// over an interval* when the reconstruction of y there needs only its present
+/// values: present at both ends (`linear`, `quadratic`, whose midpoint is then
+/// taken as present too) or at the start (`hold`). The observer is handed the
+/// interval's mask and integrates its time update for the other channels: they
+/// have no output injection and no output error, so that they drive neither
+/// the state nor the parameters (docs/readings/continuous_gaps.md). An absent value
+/// is kept as NaN in the previous sample (and in a snapshot of it): it is
+/// never read.
 
 #include <adaptobs/core/continuous_model.hpp>
 #include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/finite.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/runge_kutta.hpp>
 #include <adaptobs/core/status.hpp>
@@ -50,6 +62,7 @@
 
 #include <cmath>
 #include <concepts>
+#include <limits>
 #include <string_view>
 #include <utility>
 
@@ -100,6 +113,7 @@ class SampledIntegrator {
     previous_.y.setZero(sizes.ny);
     u_.setZero(sizes.nu);
     y_.setZero(sizes.ny);
+    measured_.setConstant(sizes.ny, true);
   }
 
   /// True once a first sample has fixed the time origin.
@@ -129,19 +143,25 @@ class SampledIntegrator {
     return options_.max_step > 0 ? Scalar(options_.max_step) : learned_step_;
   }
 
-  /// Integrates `state` with `rhs(x, dxdt, t, u, y)` from the previous sample
-  /// to `sample.t`. `validate(candidate)` may adjust the integrated state (for
-  /// example re-symmetrize a covariance) and returns `accepted`, or the reason
-  /// to reject it; nothing is committed unless it accepts.
+  /// Integrates `state` with `rhs(x, dxdt, t, u, y, measured)` from the
+  /// previous sample to `sample.t`, with only the output channels in `present`
+  /// (null: all of them) measured at `sample.t`; the entries of y of the others
+  /// are ignored. `measured` is the mask of the channels measured over the
+  /// interval (the file comment), null when all are: then the integration is
+  /// bit for bit that of a sample without a mask. `validate(candidate)` may
+  /// adjust the integrated state (for example re-symmetrize a covariance) and
+  /// returns `accepted`, or the reason to reject it; nothing is committed
+  /// unless it accepts.
   template <class Rhs, class Validate>
-  UpdateStatus advance(const Sample& sample, InternalState& state, Rhs&& rhs, std::string_view who,
-                       Validate&& validate) {
+  UpdateStatus advance(const Sample& sample, const OutputMask<D>* present, InternalState& state, Rhs&& rhs,
+                       std::string_view who, Validate&& validate) {
     if constexpr (!D::is_fixed) check_sizes(sample, who);
-    if (!std::isfinite(sample.t) || !detail::all_finite(sample.u, sample.y)) return UpdateStatus::nonfinite_input;
-    if (sample.midpoint && !detail::all_finite(sample.midpoint->u, sample.midpoint->y))
+    if (!std::isfinite(sample.t) || !detail::finite_measured(sample.y, present, sample.u))
+      return UpdateStatus::nonfinite_input;
+    if (sample.midpoint && !detail::finite_measured(sample.midpoint->y, present, sample.midpoint->u))
       return UpdateStatus::nonfinite_input;
     if (!started_) {
-      remember(sample);
+      remember(sample, present);
       started_ = true;
       return UpdateStatus::accepted;
     }
@@ -153,11 +173,12 @@ class SampledIntegrator {
     const Scalar interval = sample.t - t0;
     const int steps = steps_for(interval);
     if (steps == 0) return UpdateStatus::interval_too_long;
+    const OutputMask<D>* measured = measured_over_interval(present);
     const auto system = [&](const InternalState& x, InternalState& dxdt, Scalar t) {
       const Scalar s = (t - t0) / interval;
       reconstruct(options_.input, s, previous_.u, sample.midpoint ? &sample.midpoint->u : nullptr, sample.u, u_);
       reconstruct(options_.output, s, previous_.y, sample.midpoint ? &sample.midpoint->y : nullptr, sample.y, y_);
-      rhs(x, dxdt, t, u_, y_);
+      rhs(x, dxdt, t, u_, y_, measured);
     };
     candidate_ = state;
     const Scalar h = interval / Scalar(steps);
@@ -166,8 +187,17 @@ class SampledIntegrator {
     if (const UpdateStatus verdict = validate(candidate_); verdict != UpdateStatus::accepted) return verdict;
     if (!(learned_step_ > 0)) learned_step_ = Scalar(1.25) * h;
     detail::commit(state, candidate_);
-    remember(sample);
+    remember(sample, present);
     return UpdateStatus::accepted;
+  }
+
+  /// `advance` of a sample with every output present, with `rhs(x, dxdt, t, u, y)`.
+  template <class Rhs, class Validate>
+  UpdateStatus advance(const Sample& sample, InternalState& state, Rhs&& rhs, std::string_view who,
+                       Validate&& validate) {
+    const auto measured_rhs = [&rhs](const InternalState& x, InternalState& dxdt, Scalar t, const typename D::Input& u,
+                                     const typename D::Output& y, const OutputMask<D>*) { rhs(x, dxdt, t, u, y); };
+    return advance(sample, nullptr, state, measured_rhs, who, std::forward<Validate>(validate));
   }
 
   /// `advance` without a check of the step's result beyond finiteness.
@@ -224,10 +254,22 @@ class SampledIntegrator {
     }
   }
 
-  void remember(const Sample& sample) {
+  // The channels measured over the interval ending at a sample with `present`
+  // (file comment): null when all are.
+  const OutputMask<D>* measured_over_interval(const OutputMask<D>* present) {
+    measured_ = previous_.y.array().isFinite();
+    if (present && options_.output != SignalReconstruction::hold) measured_ = measured_ && *present;
+    return measured_.all() ? nullptr : &measured_;
+  }
+
+  // An absent output is remembered as NaN: it is not known.
+  void remember(const Sample& sample, const OutputMask<D>* present) {
     previous_.t = sample.t;
     previous_.u = sample.u;
     previous_.y = sample.y;
+    if (present)
+      for (Index i = 0; i < previous_.y.size(); ++i)
+        if (!(*present)(i)) previous_.y(i) = std::numeric_limits<Scalar>::quiet_NaN();
   }
 
   void check_sizes(const Sample& sample, std::string_view who) const {
@@ -254,6 +296,7 @@ class SampledIntegrator {
   bool started_ = false;
   typename D::Input u_;
   typename D::Output y_;
+  OutputMask<D> measured_;
 };
 
 /// An observer that integrates a right-hand side between its samples (the

@@ -57,7 +57,10 @@ template <typename Scalar, int N>
 struct CareSolution {
   Eigen::Matrix<Scalar, N, N> X;  ///< symmetric solution with A − GX Hurwitz
   int iterations = 0;             ///< sign-function iterations plus Newton steps
-  Scalar relative_residual = 0;   ///< relative residual, each term bounded by its factors' norms (see file comment)
+  /// Relative residual, each term bounded by its factors' norms (see file comment), of the
+  /// scaled and balanced equation the iteration solves, not of (A, B, Q, R) as given:
+  /// the error of X itself can exceed it by the condition number of the equation.
+  Scalar relative_residual = 0;
 };
 
 namespace detail {
@@ -309,7 +312,7 @@ template <typename Scalar, int N, int M>
 struct KalmanBucyGain {
   Eigen::Matrix<Scalar, N, M> K;
   Eigen::Matrix<Scalar, N, N> P;
-  Scalar relative_residual = 0;
+  Scalar relative_residual = 0;  ///< that of the dual CARE (`CareSolution::relative_residual`)
 };
 
 /// The steady-state Kalman–Bucy gain on dynamic-size matrices: P from the dual

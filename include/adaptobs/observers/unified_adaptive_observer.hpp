@@ -41,6 +41,7 @@
 #include <adaptobs/core/detail/commit.hpp>
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/detail/segments.hpp>
+#include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/dynamic_transform.hpp>
 #include <adaptobs/core/sampled_integration.hpp>
@@ -154,7 +155,7 @@ class UnifiedAdaptiveObserver
   void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y) const {
     Workspace w;
     w.resize(sizes_, r_);
-    derivative(s, ds, t, u, y, w);
+    derivative(s, ds, t, u, y, nullptr, w);
   }
 
   /// \f$\hat x\f$ in the coordinates of system (2).
@@ -236,21 +237,23 @@ class UnifiedAdaptiveObserver
 
  private:
   struct Workspace {
-    TransformedSystem<Dims> so;
+    TransformedSystem<Dims> so, so_measured;  // (2) at t; with the injection of measured channels only
     FilterMatrix F;
     RegressorMatrix Psi, Omega;
     State phi;
-    Output epsilon;
+    Output y, epsilon;  // y with its unmeasured channels predicted; ε
     typename Dims::OutputRegressor R;
     GainMatrix L;
     typename DynamicTransform<Scalar, Dims::nx, nr>::OutputMatrix AoH;  // A_o H of a projected F
     void resize(const Sizes& s, Index r) {
       so.resize(s);
+      so_measured.resize(s);
       F.setZero(r, r);
       AoH.setZero(s.nx, r);
       Psi.setZero(s.nx, s.np);
       Omega.setZero(s.nx, s.np);
       phi.setZero(s.nx);
+      y.setZero(s.ny);
       epsilon.setZero(s.ny);
       R.setZero(s.ny, s.np);
       L.setZero(s.nx, s.ny);
@@ -268,10 +271,14 @@ class UnifiedAdaptiveObserver
     return w.so;
   }
 
-  // The right-hand side with the scratch `w` (the update's `work_`, or the
-  // public overload's own).
-  void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y,
-                  Workspace& w) const {
+  // The right-hand side with the output channels in `measured` measured (all
+  // for null) and the scratch `w` (the update's `work_`, or the public
+  // overload's own). Unmeasured channels (docs/readings/continuous_gaps.md)
+  // lose their output injection, K̄ = KD with D = diag(measured), in A_o, φ and
+  // F, and their ε is 0; their y, where the regressor reads it, is the
+  // prediction C_o x̂.
+  void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& measured_y,
+                  const OutputMask<Dims>* measured, Workspace& w) const {
     const Index n = sizes_.nx, p = sizes_.np;
     const auto x = detail::segment<Dims::nx>(s, 0, n);
     const Eigen::Map<const FilterState> Xi(s.data() + n, r_, p);
@@ -283,18 +290,21 @@ class UnifiedAdaptiveObserver
     const auto& dt = algorithm_.dynamic_transform;
 
     /// (2): \f$A_o, C_o\f$ at t, \f$\Psi = T\Phi\f$, \f$\varphi = TBu + Ky\f$.
-    const TransformedSystem<Dims>& so = system_at(t, w);
+    const TransformedSystem<Dims>& so = measured ? injecting_measured(system_at(t, w), *measured, w) : system_at(t, w);
+    const Output& y = measured ? predict_unmeasured(so, x, measured_y, *measured, w) : measured_y;
     st.regressor(model_.regressor(t, u, y), w.Psi);
     st.drive(so, u, y, w.phi);
     /// (3b): \f$\Omega = H\Xi\f$; output error \f$\varepsilon = y - C_o\hat x\f$.
     dt.output(Xi, w.Omega);
     w.epsilon = y;
     detail::subtract_product(w.epsilon, so.Co, x);
+    detail::zero_absent_rows<Dims>(w.epsilon, measured);
     /// Update law: \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$ with the algorithm's R.
     algorithm_.regressor(so, Xi, w.Omega, w.Psi, w.R);
     law_.derivative(w.R, w.epsilon, theta, dtheta);
     /// (3a): \f$\dot\Xi = F\Xi + G\Psi\f$.
-    dt.derivative(is_time_invariant(model_) ? f_ : w.F, Xi, w.Psi, dXi);
+    if (measured) dt.filter_matrix(so.Ao, w.F, w.AoH);
+    dt.derivative(is_time_invariant(model_) && !measured ? f_ : w.F, Xi, w.Psi, dXi);
     /// \f$\dot{\hat x} = A_o\hat x + \varphi + \Psi\hat\theta + L\varepsilon + \Omega\dot{\hat\theta}\f$.
     algorithm_.injection_gain(so, t, w.L);
     detail::set_product(dx, so.Ao, x);
@@ -302,6 +312,28 @@ class UnifiedAdaptiveObserver
     detail::add_product(dx, w.Psi, theta);
     detail::add_product(dx, w.L, w.epsilon);
     detail::add_product(dx, w.Omega, dtheta);
+  }
+
+  // (2) with K̄ = KD: A_o + K(I − D)C_o and K̄, into w.so_measured.
+  static const TransformedSystem<Dims>& injecting_measured(const TransformedSystem<Dims>& so,
+                                                           const OutputMask<Dims>& measured, Workspace& w) {
+    w.so_measured = so;
+    for (Index i = 0; i < measured.size(); ++i) {
+      if (measured(i)) continue;
+      w.so_measured.Ao += so.K.col(i) * so.Co.row(i);
+      w.so_measured.K.col(i).setZero();
+    }
+    return w.so_measured;
+  }
+
+  // w.y: the measured channels of y, and C_o x̂ for the others.
+  template <class X>
+  static const Output& predict_unmeasured(const TransformedSystem<Dims>& so, const X& x, const Output& measured_y,
+                                          const OutputMask<Dims>& measured, Workspace& w) {
+    detail::set_product(w.y, so.Co, x);
+    for (Index i = 0; i < w.y.size(); ++i)
+      if (measured(i)) w.y(i) = measured_y(i);
+    return w.y;
   }
 
   // No check of its own: every finite integrated state is accepted.
@@ -319,10 +351,11 @@ class UnifiedAdaptiveObserver
   // After an accepted sample: the excitation of the step just integrated (once
   // there was one) and ε(t_k) at the integrated estimate (work_.epsilon holds
   // the last RK4 stage's).
-  void finish_update(const Sample& sample, bool stepping) {
+  void finish_update(const Sample& sample, const OutputMask<Dims>* present, bool stepping) {
     if (stepping && excitation_) excitation_->add(work_.R);
     output_error_ = sample.y;
     detail::subtract_product(output_error_, system_at(sample.t, work_).Co, transformed_state());
+    detail::zero_absent_rows<Dims>(output_error_, present);
   }
 
   // Ξ = 0, and the excitation monitor empty.

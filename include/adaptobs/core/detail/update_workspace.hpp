@@ -50,4 +50,13 @@ template <StateSpace D>
   return present.all() ? nullptr : &present;
 }
 
+/// Zeroes the rows of `m` whose output channel is absent (nothing for a null mask).
+template <StateSpace D, class Derived>
+void zero_absent_rows(Eigen::MatrixBase<Derived>& m, const OutputMask<D>* present) {
+  if (!present) return;
+  for (Index i = 0; i < m.rows(); ++i)
+    if (!(*present)(i))
+      for (Index j = 0; j < m.cols(); ++j) m.coeffRef(i, j) = typename Derived::Scalar(0);
+}
+
 }  // namespace adaptobs::detail
