@@ -139,16 +139,16 @@ def _layout(columns: Sequence[str], configs: Mapping, default: Optional[AssetCon
         if name not in present:
             raise ConfigurationError(f"fleet: argument '{role}' names column '{name}', which the telemetry does "
                                      f"not have (columns: {', '.join(columns)})")
-    every = ([("default", default)] if default is not None else []) + [(f"asset {a!r}", c) for a, c in configs.items()]
-    if not every:
+    named = ([("default", default)] if default is not None else []) + [(f"asset {a!r}", c) for a, c in configs.items()]
+    if not named:
         raise ConfigurationError("fleet: argument 'config' must give an AssetConfig (fleet-wide) or a dict of them")
-    first_name, first = every[0]
-    for name, config in every:
+    first_name, first = named[0]
+    for name, config in named:
         if not isinstance(config, AssetConfig):
             raise ConfigurationError(f"fleet: the configuration of {name} must be an AssetConfig")
     nx, nu, ny, np_ = first.observer.sizes
     regressor_columns = first.takes_regressor and first.regressor is None
-    for name, config in every[1:]:
+    for name, config in named[1:]:
         sizes = config.observer.sizes
         for what, prefix, mine, theirs in (("nu", "u", nu, sizes[1]), ("ny", "y", ny, sizes[2])):
             if mine != theirs:
@@ -333,18 +333,42 @@ def _concatenate(a: dict, b: dict) -> dict:
     return {key: np.concatenate([a[key], b[key]]) for key in ALARM_COLUMNS}
 
 
-def _asset_arrays(frame, layout: TelemetryLayout, asset) -> tuple:
-    t = frame[layout.time].to_numpy(dtype=np.float64)
-    if t.size > 1 and not np.all(np.diff(t) > 0):
-        raise ConfigurationError(f"fleet: column '{layout.time}' of asset {asset!r} is not strictly increasing: "
-                                 "sort each asset's samples by time, without repeats")
-    U = frame[list(layout.inputs)].to_numpy(dtype=np.float64) if layout.inputs else None
-    Y = frame[list(layout.outputs)].to_numpy(dtype=np.float64)
+def _arrays(frame, layout: TelemetryLayout) -> tuple:
+    """The partition's columns as float64 arrays, its rows ordered by asset (stable: each asset's rows
+    keep their order), and where each asset's rows begin: one conversion for all assets, which are
+    then slices."""
+    ids = frame[layout.asset].to_numpy()
+    order = None
+    if ids.size > 1 and not np.all(ids[1:] >= ids[:-1]):
+        order = np.argsort(ids, kind="stable")
+        ids = ids[order]
+
+    def columns(names):
+        values = frame[list(names)].to_numpy(dtype=np.float64)
+        return values if order is None else values[order]
+
+    t = columns([layout.time])[:, 0]
+    U = columns(layout.inputs) if layout.inputs else None
+    Y = columns(layout.outputs)
     Psi = None
     if layout.regressor:
         nx, _, _, np_ = layout.sizes
-        Psi = frame[list(layout.regressor)].to_numpy(dtype=np.float64).reshape(-1, nx, np_)
+        Psi = columns(layout.regressor).reshape(-1, nx, np_)
+    starts = np.concatenate([[0], np.flatnonzero(ids[1:] != ids[:-1]) + 1, [ids.size]]) if ids.size else np.zeros(1, int)
+    return ids, starts, t, U, Y, Psi
+
+
+def _asset_arrays(frame, layout: TelemetryLayout, asset) -> tuple:
+    """The time, inputs, outputs and regressors of the one asset of `frame`."""
+    _, _, t, U, Y, Psi = _arrays(frame, layout)
+    _require_increasing(t, layout, asset)
     return t, U, Y, Psi
+
+
+def _require_increasing(t, layout, asset) -> None:
+    if t.size > 1 and not np.all(t[1:] > t[:-1]):
+        raise ConfigurationError(f"fleet: column '{layout.time}' of asset {asset!r} is not strictly increasing: "
+                                 "sort each asset's samples by time, without repeats")
 
 
 def process_partition(frame, layout: TelemetryLayout, configs: Mapping, default: Optional[AssetConfig],
@@ -356,18 +380,24 @@ def process_partition(frame, layout: TelemetryLayout, configs: Mapping, default:
 
     if isinstance(frame, str):
         frame = pd.read_parquet(frame, columns=layout.columns)
+    if layout.asset not in frame.columns and frame.index.name == layout.asset:
+        frame = frame.reset_index()  # a Dask DataFrame indexed, and so partitioned, by asset
     fs = root = None
     if checkpoint_dir is not None:
         fs, root = _filesystem(checkpoint_dir)
     alarm_parts, finals = [], []
-    for asset, rows in frame.groupby(layout.asset, sort=True):
+    ids, starts, t_all, U_all, Y_all, Psi_all = _arrays(frame, layout)
+    for first, last in zip(starts[:-1], starts[1:]):
+        asset = ids[first]
         asset = asset.item() if isinstance(asset, np.generic) else asset
         config = configs.get(asset, default)
         if config is None:
             raise ConfigurationError(f"fleet: asset {asset!r} has no configuration and there is no fleet-wide one")
-        t, U, Y, Psi = _asset_arrays(rows, layout, asset)
-        if Psi is None and config.regressor is not None:
-            Psi = config.regressor
+        rows = slice(first, last)
+        t, Y = t_all[rows], Y_all[rows]
+        U = None if U_all is None else U_all[rows]
+        Psi = config.regressor if Psi_all is None else Psi_all[rows]
+        _require_increasing(t, layout, asset)
         observer = copy.deepcopy(config.observer)
         monitor = _core.FaultMonitor(config.design)
         position, alarms = 0, _empty_alarms()
@@ -381,9 +411,10 @@ def process_partition(frame, layout: TelemetryLayout, configs: Mapping, default:
                     raise CheckpointError(f"checkpoint of asset {asset!r} in file '{path}' refused: it is at sample "
                                           f"{position}, the telemetry has {t.size}")
         samples = t.size
-        step = every if fs is not None else max(samples, 1)
+        # Chunks of `every` samples with or without checkpoints: they bound the memory of run()'s
+        # per-sample results, and a run in chunks equals one run.
         while position < samples:
-            end = min(position + step, samples)
+            end = min(position + every, samples)
             piece = slice(position, end)
             psi = Psi[piece] if Psi is not None and Psi.ndim == 3 else Psi
             result = observer.run(None if U is None else U[piece], Y[piece], psi)
@@ -428,14 +459,19 @@ def _result(parts: list, layout: TelemetryLayout) -> FleetResult:
                                      f"telemetry by column '{layout.asset}'")
         seen[final["asset"]] = index
     order = sorted(range(len(finals)), key=lambda i: finals[i]["asset"])
-    frames = []
-    for asset, alarms in sorted(alarm_parts, key=lambda p: p[0]):
-        rank = np.lexsort((alarms["detector"], alarms["sample"]))
-        frame = pd.DataFrame({key: alarms[key][rank] for key in ALARM_COLUMNS})
-        frame.insert(0, layout.asset, asset)
-        frames.append(frame)
-    alarms = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=[layout.asset, *ALARM_COLUMNS])
-    alarms["detector"] = pd.Categorical.from_codes(alarms["detector"].astype(np.int8), DETECTORS)
+    # One table of all alarms, by asset, then sample, then detector: the order of the partitions and of
+    # the chunks does not show.
+    parts = sorted(alarm_parts, key=lambda p: p[0])
+    ranks = [np.lexsort((alarms["detector"], alarms["sample"])) for _, alarms in parts]
+    columns = {layout.asset: np.concatenate([np.array([asset] * a["sample"].size, dtype=object)
+                                             for asset, a in parts]) if parts else np.zeros(0, object)}
+    for key in ALARM_COLUMNS:
+        columns[key] = (np.concatenate([a[key][rank] for (_, a), rank in zip(parts, ranks)]) if parts
+                        else _empty_alarms()[key])
+    if all(isinstance(f["asset"], (int, np.integer)) and not isinstance(f["asset"], bool) for f in finals):
+        columns[layout.asset] = columns[layout.asset].astype(np.int64)
+    columns["detector"] = pd.Categorical.from_codes(columns["detector"].astype(np.int8), DETECTORS)
+    alarms = pd.DataFrame(columns)
     nx, _, _, np_ = layout.sizes
     table = {layout.asset: [finals[i]["asset"] for i in order]}
     for key in ("samples", "steps", "alarms", "health", "health_step"):
@@ -529,7 +565,8 @@ def _telemetry_kind(telemetry) -> tuple:
     if pd is not None and isinstance(telemetry, pd.DataFrame):
         return "pandas", list(telemetry.columns)
     if hasattr(telemetry, "to_delayed") and hasattr(telemetry, "columns"):
-        return "dask", list(telemetry.columns)
+        index = [telemetry.index.name] if getattr(telemetry.index, "name", None) else []
+        return "dask", index + list(telemetry.columns)
     if isinstance(telemetry, (str, os.PathLike)):
         raise ConfigurationError("fleet: argument 'telemetry' must be a list of Parquet files, not one path")
     if isinstance(telemetry, Sequence) and telemetry and all(isinstance(p, (str, os.PathLike)) for p in telemetry):
