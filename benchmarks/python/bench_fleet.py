@@ -184,7 +184,7 @@ def main():
                 for workers in (1, 2):
                     cluster = stack.enter_context(LocalCluster(
                         n_workers=workers, threads_per_worker=1, processes=True, host="127.0.0.1",
-                        dashboard_address=None, memory_limit=0, silence_logs=40))
+                        dashboard_address=":0", memory_limit=0, silence_logs=40))
                     client = stack.enter_context(Client(cluster))
                     client.wait_for_workers(workers, timeout=60)
                     fleet.process(files[:workers], config, client=client)  # warm: imports on the workers

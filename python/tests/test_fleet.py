@@ -126,7 +126,7 @@ def cluster():
     from distributed import Client, LocalCluster
 
     local = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                         dashboard_address=None, memory_limit=0, silence_logs=40)
+                         dashboard_address=":0", memory_limit=0, silence_logs=40)
     client = Client(local, timeout=30)
     try:
         client.wait_for_workers(2, timeout=30)
