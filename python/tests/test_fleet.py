@@ -172,8 +172,8 @@ def test_the_distributed_fleet_equals_the_serial_loop(fleet_data, config, refere
 
 
 def test_a_thousand_assets_on_two_workers_equal_the_serial_loop(config, cluster, tmp_path):
-    """The issue's fleet of 1000 assets with 10^3 samples each (a tenth of its 10^4, for the suite's time),
-    from 4 Parquet files on the two workers, monitored from sample 500."""
+    """A fleet of 1000 assets with 10^3 samples each (10^4 each would take the suite's time ten times
+    over), from 4 Parquet files on the two workers, monitored from sample 500."""
     assets, samples = 1000, 1000
     columns = {name: [] for name in ("asset_id", "t", "u_0", "u_1", "y_0", "y_1")}
     columns.update({f"psi_{i}_{j}": [] for i in range(4) for j in range(2)})
