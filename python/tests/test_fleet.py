@@ -208,6 +208,23 @@ def test_a_thousand_assets_on_two_workers_equal_the_serial_loop(config, cluster,
     assert len(alarmed) - 11 <= 60
 
 
+def test_a_regressor_given_once_serves_every_sample(fleet_data, config):
+    # Telemetry without psi columns, one regressor for all samples in the configuration: each asset's
+    # estimates are those of run() with that one nx x np regressor.
+    few = fleet_data[fleet_data["asset_id"] < 3].drop(columns=[c for c in fleet_data if c.startswith("psi_")])
+    Psi = adaptobs.examples.simulate_satellite(2)["Psi"][0] * 1.5
+    constant = fleet.AssetConfig(config.observer, config.design, monitor_from=MONITOR_FROM, regressor=Psi)
+    result = fleet.process(few, constant, every=700)
+    for asset in range(3):
+        rows = few[few["asset_id"] == asset]
+        expected = copy.deepcopy(config.observer).run(rows[["u_0", "u_1"]].to_numpy(), rows[["y_0", "y_1"]].to_numpy(),
+                                                      Psi)
+        assert np.array_equal(result.assets.loc[asset, ["theta_0", "theta_1"]].to_numpy(dtype=float),
+                              expected.parameters[-1])
+    with pytest.raises(adaptobs.ConfigurationError, match="no column 'psi_0_0'"):
+        fleet.process(few, config)
+
+
 def test_a_run_with_checkpoints_resumes_from_them(fleet_data, config, tmp_path):
     # Interrupted after the first 1700 samples of each asset, then given all of them: equal to one run.
     uninterrupted = fleet.process(fleet_data, config)
