@@ -90,7 +90,7 @@ if [[ ${ADAPTOBS_SKIP_PYTHON:-0} != 1 ]]; then
   venv=$(python_environment "$root/build/venv")
   # PyPI's build isolation: scikit-build-core and nanobind come from the registry,
   # and the CMake build tree (build/python) is kept between runs.
-  "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "$root" pytest
+  "$venv/bin/python" -m pip install --quiet --disable-pip-version-check "$root[fleet]" pytest
   (cd "$(mktemp -d)" && ADAPTOBS_EXAMPLES_DIR="$root/build/test/examples" \
     "$venv/bin/python" -m pytest -p no:cacheprovider "$root/python/tests")
   echo "-- Python package and tests: $((SECONDS - python_start)) s"

@@ -145,8 +145,10 @@ void bind_sequential(nb::class_<T>& cls) {
 
 // The per-sample figures of FaultMonitor.run.
 struct MonitorColumns {
-  static constexpr std::array<const char*, 6> statistics{"cusum_statistic", "glr_statistic",   "chi_square_statistic",
-                                                         "cusum_isolated",  "cusum_direction", "glr_isolated"};
+  static constexpr std::array<const char*, 9> statistics{
+      "cusum_statistic",       "glr_statistic",       "chi_square_statistic",
+      "cusum_isolated",        "cusum_direction",     "glr_isolated",
+      "cusum_alarm_statistic", "glr_alarm_statistic", "chi_square_decision_statistic"};
 };
 
 nb::dict run_monitor(MonitorBound& self, nb::handle parameters, nb::handle output_errors, nb::handle status) {
@@ -198,6 +200,10 @@ nb::dict run_monitor(MonitorBound& self, nb::handle parameters, nb::handle outpu
       f[3] = static_cast<double>(monitor.cusum().isolated());
       f[4] = static_cast<double>(monitor.cusum().direction());
       f[5] = static_cast<double>(monitor.glr().isolated());
+      // What an alarm is reported with: the statistics above are cleared by the alarm itself.
+      f[6] = monitor.cusum().alarm_statistic();
+      f[7] = monitor.glr().alarm_statistic();
+      f[8] = monitor.chi_square().decision_statistic();
     }
   }
   nb::dict out;
@@ -525,7 +531,9 @@ void bind_fault_detection(nb::module_& m) {
            "The three tests over N samples of an observer's run (parameters N x np, output_errors N x ny),\n"
            "with the GIL released; samples whose `status` is not accepted are passed over. Returns a dict of\n"
            "per-sample arrays: cusum_alarm, glr_alarm, chi_square_alarm, their statistics, the CUSUM's and\n"
-           "GLR's isolated component and the CUSUM's direction, and the status of each sample.")
+           "GLR's isolated component and the CUSUM's direction, the statistic of each test's last alarm\n"
+           "(cusum_alarm_statistic, glr_alarm_statistic) and of the chi-square test's last completed window\n"
+           "(chi_square_decision_statistic), and the status of each sample.")
       .def_prop_ro(
           "cusum", [](const MonitorBound& self) { return self.monitor.cusum(); }, "a copy of the CUSUM")
       .def_prop_ro(
