@@ -346,9 +346,46 @@ TEST(GlrDetector, FalseAlarmsAtTheDesignedRateOnIndependentDraws) {
 // The threshold search keeps its normal values when they fit, redraws them from
 // the seed for each candidate otherwise: the same values, so the same h to the bit.
 TEST(GlrDetector, ThresholdIsTheSameWhetherTheDrawsAreKeptOrRedrawn) {
-  const double kept = adaptobs::detail::glr_threshold_search(10, 200.0, 2, Index{1} << 22);
-  EXPECT_EQ(adaptobs::detail::glr_threshold_search(10, 200.0, 2, 0), kept);
+  const double kept = adaptobs::detail::glr_threshold_search(10, 200.0, 2, Index{1} << 22).threshold;
+  EXPECT_EQ(adaptobs::detail::glr_threshold_search(10, 200.0, 2, 0).threshold, kept);
   EXPECT_EQ(adaptobs::glr_threshold(10, 200.0, 2), kept);
+}
+
+// The budget once counted window × components × mean_evaluations, neither the
+// 20000 evaluations simulated at the least nor the values drawn anew for each
+// candidate beyond the 2^22 kept: (window 1, mean 2, 10000 components), "work
+// 2e4", simulated 2e8 values per candidate, redrawn, for half a minute, and
+// (1, 1e5, 100), at the old limit of 1e7, 5e8 for a minute and a half. The work
+// now counts each: L = max(20000, 50 mean) evaluations of every component,
+// window + 4 steps per value, 16 more for a value redrawn.
+TEST(GlrDetector, ThresholdSearchCountsEverySimulatedValueAndDraw) {
+  using adaptobs::glr_simulation_work;
+  EXPECT_EQ(glr_simulation_work(1, 2.0, 10000), 20000.0 * 10000 * (1 + 4 + 16));
+  EXPECT_EQ(glr_simulation_work(1, 1e5, 100), 5e6 * 100 * (1 + 4 + 16));
+  EXPECT_EQ(glr_simulation_work(10, 200.0, 2), 20000.0 * 2 * (10 + 4));  // 40000 values, kept
+  // Refused, naming what to lower and how far: 20000 · 1190 · 21 = 4.998e8 of
+  // the 5e8 allowed; 50 · 4761 · 100 · 21 = 4.9999e8.
+  const std::string many = configuration_error_of([] { (void)adaptobs::glr_threshold(1, 2.0, 10000); });
+  EXPECT_EQ(many.rfind("glr_threshold: argument 'components' must be at most 1190 here", 0), 0u) << many;
+  EXPECT_NE(many.find("20000 evaluations of 10000 components"), std::string::npos) << many;
+  const std::string hours = configuration_error_of([] { (void)adaptobs::glr_threshold(1, 2.0, 5'000'000); });
+  EXPECT_EQ(hours.rfind("glr_threshold: argument 'components' must be at most 1190 here", 0), 0u) << hours;
+  const std::string rare = configuration_error_of([] { (void)adaptobs::glr_threshold(1, 1e5, 100); });
+  EXPECT_EQ(rare.rfind("glr_threshold: argument 'mean_evaluations' must be at most 4761 here", 0), 0u) << rare;
+  EXPECT_LE(glr_simulation_work(1, 2.0, 1190), adaptobs::glr_max_simulation_work);
+  EXPECT_GT(glr_simulation_work(1, 2.0, 1191), adaptobs::glr_max_simulation_work);
+  const std::string wide = configuration_error_of([] { (void)adaptobs::glr_threshold(1000, 1e5); });
+  EXPECT_EQ(wide.rfind("glr_threshold: argument 'window' must be at most 80 here", 0), 0u) << wide;
+  // What the search itself drew and simulated: kept values are drawn once,
+  // others once per candidate; every candidate simulates L evaluations.
+  const auto kept = adaptobs::detail::glr_threshold_search(10, 200.0, 2, adaptobs::detail::glr_kept_values);
+  const auto redrawn = adaptobs::detail::glr_threshold_search(10, 200.0, 2, 0);
+  EXPECT_EQ(kept.values_drawn, 20000 * 2);
+  EXPECT_EQ(redrawn.candidates, kept.candidates);
+  EXPECT_EQ(redrawn.values_drawn, redrawn.candidates * 20000 * 2);
+  EXPECT_EQ(kept.evaluations, kept.candidates * 20000);
+  EXPECT_GE(kept.candidates, 2);
+  EXPECT_LE(kept.candidates, 10);
 }
 
 TEST(GlrDetector, StatisticIsTheBestWindowAndIsolates) {

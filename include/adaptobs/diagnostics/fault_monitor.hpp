@@ -207,6 +207,10 @@ std::string explain_design(const FaultMonitorDesign<Scalar, NY, NP>& design, std
 ///   CUSUM: a GLR designed for about 50 false alarms on the record must raise
 ///   between 25 and 100 there (refused otherwise, naming 'record').
 ///
+/// The GLR's threshold is simulated (`glr_threshold`): a simulation beyond
+/// `glr_max_simulation_work` is refused naming 'glr_window' or
+/// 'mean_samples_between_false_alarms', with the largest value allowed.
+///
 /// Each test is designed for the rate asked for: a caller that acts on any of
 /// the three alarms gets up to three times as many.
 template <typename Scalar, int NY, int NP>
@@ -225,10 +229,14 @@ template <typename Scalar, int NY, int NP>
   require(evaluations_between >= 2 && evaluations_between <= glr_max_mean_evaluations, who,
           "mean_samples_between_false_alarms",
           "must lie between 2 and 1e5 strides (the GLR's threshold is simulated over 50 times as many)");
-  // The GLR's threshold is simulated (glr_threshold), at a cost of window × parameters × evaluations.
-  require(detail::glr_simulation_affordable(glr_window, nominal.size(), evaluations_between), who, "glr_window",
-          "times the parameters times mean_samples_between_false_alarms / stride must be at most 1e7 "
-          "(glr_max_simulation_work: the GLR's threshold is simulated)");
+  require(glr_window <= glr_max_window, who, "glr_window",
+          "must be at most 2^20 (each evaluation costs O(glr_window))");
+  // The GLR's threshold is simulated (glr_threshold): its work, refused in this call's terms.
+  detail::require_glr_simulation_affordable(glr_window, evaluations_between, nominal.size(), who,
+                                            {.window = "glr_window",
+                                             .mean_evaluations = "mean_samples_between_false_alarms",
+                                             .components = {},
+                                             .mean_per_evaluation = static_cast<double>(stride)});
   FaultMonitorDesign<Scalar, NY, NP> design;
   design.nominal = nominal;
   design.cusum = calibrate_cusum(record.parameters, nominal, drift,
@@ -239,9 +247,11 @@ template <typename Scalar, int NY, int NP>
   {
     const double checked = static_cast<double>(design.cusum.evaluations) / 50;
     // The check simulates its own threshold, within glr_threshold's range.
-    require(detail::glr_simulation_affordable(glr_window, nominal.size(), checked), who, "record",
+    require(checked <= glr_max_mean_evaluations &&
+                glr_simulation_work(glr_window, checked, nominal.size()) <= glr_max_simulation_work,
+            who, "record",
             "is too long for the GLR's check, whose threshold is simulated for its estimates at the stride / 50 "
-            "(at most 1e5, and 1e7 / (glr_window x parameters)): give fewer runs");
+            "(at most 1e5, and a simulation within glr_max_simulation_work, glr_simulation_work): give fewer runs");
     GlrDetector<Scalar, NP> glr(nominal, design.cusum.scale, glr_window,
                                 static_cast<Scalar>(glr_threshold(glr_window, checked, nominal.size())),
                                 {.stride = stride});
