@@ -524,6 +524,56 @@ TEST(SampleCovariance, ScalesDataNearTheTopOfTheRange) {
   EXPECT_TRUE(names(configuration_error_of([&] { (void)adaptobs::sample_covariance(runs); }), "runs"));
 }
 
+// Independent standard normal pairs, 4 runs of 1000, scaled by 2^exponent
+// (exactly), in `Scalar`.
+template <typename Scalar>
+std::vector<std::vector<Eigen::Matrix<Scalar, 2, 1>>> normal_runs(int exponent) {
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> normal(0, 1);
+  std::vector<std::vector<Eigen::Matrix<Scalar, 2, 1>>> runs(4);
+  for (auto& run : runs)
+    for (int k = 0; k < 1000; ++k) {
+      const double first = normal(rng);
+      const double second = normal(rng);
+      run.push_back(Eigen::Matrix<Scalar, 2, 1>(std::ldexp(static_cast<Scalar>(first), exponent),
+                                                std::ldexp(static_cast<Scalar>(second), exponent)));
+    }
+  return runs;
+}
+
+// calibrate_cusum's sums of squares overflowed on finite values of 1e153 (in
+// float 1e20): the scales read ∞, refused as "CusumDetector: argument 'scale'".
+// Scaled by a power of two, exactly, the runs give the same design scaled by
+// it, bit for bit: the same correlations, the same alarms.
+template <typename Scalar>
+void expect_design_scales_with_the_runs(int exponent) {
+  using Vector = Eigen::Matrix<Scalar, 2, 1>;
+  const auto unit =
+      adaptobs::calibrate_cusum(normal_runs<Scalar>(0), Vector::Zero().eval(), Scalar(0.5), Scalar(1e4), 1);
+  const auto large =
+      adaptobs::calibrate_cusum(normal_runs<Scalar>(exponent), Vector::Zero().eval(), Scalar(0.5), Scalar(1e4), 1);
+  for (int i = 0; i < 2; ++i) EXPECT_EQ(large.scale(i), std::ldexp(unit.scale(i), exponent)) << i;
+  EXPECT_EQ(large.lag_correlation, unit.lag_correlation);
+  EXPECT_EQ(large.long_run_excess, unit.long_run_excess);
+  EXPECT_EQ(large.bias, unit.bias);
+  EXPECT_EQ(large.checked_alarms, unit.checked_alarms);
+  EXPECT_EQ(large.alarms, unit.alarms);
+  EXPECT_EQ(large.threshold, unit.threshold);
+  EXPECT_GE(unit.checked_alarms, 25);
+  EXPECT_LE(unit.checked_alarms, 100);
+}
+
+TEST(CusumCalibration, ValuesNearTheTopOfTheRangeGiveTheDesignScaled) {
+  expect_design_scales_with_the_runs<double>(510);  // 2^510 = 3.4e153
+  expect_design_scales_with_the_runs<float>(66);    // 2^66 = 7.4e19
+  // The stride statistics themselves: the mean square overflows, its root does not.
+  const auto statistics = adaptobs::stride_statistics(normal_runs<double>(600), Eigen::Vector2d::Zero().eval(), 1);
+  EXPECT_TRUE(std::isinf(statistics.square(0)));
+  const auto unit = adaptobs::stride_statistics(normal_runs<double>(0), Eigen::Vector2d::Zero().eval(), 1);
+  EXPECT_EQ(statistics.root_mean_square(0), std::ldexp(unit.root_mean_square(0), 600));
+  EXPECT_EQ(statistics.lag_correlation, unit.lag_correlation);
+}
+
 // design_fault_monitor names its own arguments: a bad glr_window was once
 // reported as 'window', another argument of the same call.
 TEST(FaultMonitorDesign, BadArgumentsAreRefusedUnderTheirOwnNames) {
