@@ -589,6 +589,85 @@ TEST(FaultMonitorDesign, BadArgumentsAreRefusedUnderTheirOwnNames) {
   EXPECT_EQ(design(-1.0, 10).rfind("design_fault_monitor:", 0), 0u);
 }
 
+// Fault-free runs of independent standard normal estimates and output errors,
+// 4 runs of 5000, each pair drawn in a fixed order.
+adaptobs::FaultFreeRecord<double, 2, 2> white_record() {
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> normal(0, 1);
+  const auto pair = [&] {
+    const double first = normal(rng);
+    return Eigen::Vector2d(first, normal(rng));
+  };
+  adaptobs::FaultFreeRecord<double, 2, 2> record;
+  for (int r = 0; r < 4; ++r) {
+    record.new_run();
+    for (int k = 0; k < 5000; ++k) {
+      record.parameters.back().push_back(pair());
+      record.output_errors.back().push_back(pair());
+    }
+  }
+  return record;
+}
+
+// design_fault_monitor refused one NaN output error as "sample_covariance:
+// argument 'runs'", output errors all zero as "ChiSquareTest: argument
+// 'covariance'", and, with a stride given, an infinite estimate as
+// calibrate_cusum's 'runs': arguments the caller never passed. It names the
+// record, and the entry.
+TEST(FaultMonitorDesign, RefusalsOfTheRecordNameTheRecordAndTheEntry) {
+  const auto record = white_record();
+  const auto given = [](const adaptobs::FaultFreeRecord<double, 2, 2>& r) {
+    return configuration_error_of(
+        [&] { (void)adaptobs::design_fault_monitor(r, Eigen::Vector2d::Zero().eval(), 0.5, 1e4, 1, 10); });
+  };
+  const auto searched = [](const adaptobs::FaultFreeRecord<double, 2, 2>& r) {
+    return configuration_error_of([&] { (void)adaptobs::design_fault_monitor(r, 0.5, 1e4, 10); });
+  };
+  EXPECT_EQ(given(record), "<no exception>");
+  auto nan_error = record;
+  nan_error.output_errors[2][3](0) = std::numeric_limits<double>::quiet_NaN();
+  const std::string not_finite =
+      "design_fault_monitor: argument 'record' holds an output error that is not finite: number 3 of run 2 (counted "
+      "from 0)";
+  EXPECT_EQ(given(nan_error), not_finite);
+  EXPECT_EQ(searched(nan_error), not_finite);
+  auto infinite_estimate = record;
+  infinite_estimate.parameters[1][7](1) = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(given(infinite_estimate),
+            "design_fault_monitor: argument 'record' holds a parameter estimate that is not finite: number 7 of run 1 "
+            "(counted from 0)");
+  auto zero = record;
+  for (auto& run : zero.output_errors)
+    for (auto& e : run) e.setZero();
+  const std::string singular =
+      "design_fault_monitor: argument 'record' has output errors whose sample covariance is "
+      "singular";
+  EXPECT_EQ(given(zero).rfind(singular, 0), 0u) << given(zero);
+  EXPECT_EQ(searched(zero).rfind("design_fault_monitor: argument 'record' was refused at the stride found", 0), 0u)
+      << searched(zero);
+  EXPECT_NE(searched(zero).find(singular), std::string::npos) << searched(zero);
+  // One output always equal to the other: a singular covariance too.
+  auto collinear = record;
+  for (auto& run : collinear.output_errors)
+    for (auto& e : run) e(1) = e(0);
+  EXPECT_EQ(given(collinear).rfind(singular, 0), 0u) << given(collinear);
+  // Runs of run-time size: an output error of another size than the first's.
+  adaptobs::FaultFreeRecord<double, Eigen::Dynamic, Eigen::Dynamic> dynamic;
+  for (std::size_t r = 0; r < record.parameters.size(); ++r) {
+    dynamic.new_run();
+    for (std::size_t k = 0; k < record.parameters[r].size(); ++k) {
+      dynamic.parameters.back().push_back(record.parameters[r][k]);
+      dynamic.output_errors.back().push_back(record.output_errors[r][k]);
+    }
+  }
+  dynamic.output_errors[0][9] = Eigen::VectorXd::Zero(3);
+  EXPECT_EQ(configuration_error_of([&] {
+              (void)adaptobs::design_fault_monitor(dynamic, Eigen::VectorXd::Zero(2).eval(), 0.5, 1e4, 1, 10);
+            }),
+            "design_fault_monitor: argument 'record' holds an output error of 3 entries where 2 were expected: number "
+            "9 of run 0 (counted from 0)");
+}
+
 // ---------------------------------------------------------------- χ² test
 
 TEST(ChiSquareTest, FalseAlarmsAtTheDesignedRateOnCorrelatedChannels) {

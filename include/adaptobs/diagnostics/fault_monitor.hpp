@@ -136,6 +136,58 @@ struct FaultMonitorDesignOptions {
 
 namespace detail {
 
+/// The refusal of one entry of a record: "holds <what> <problem>: number k of run r (counted from 0)".
+[[noreturn]] inline void fail_record_entry(std::string_view who, std::string_view argument, std::string_view what,
+                                           std::size_t run, std::size_t k, std::string_view problem) {
+  std::ostringstream os;
+  os << "holds " << what << " " << problem << ": number " << k << " of run " << run << " (counted from 0)";
+  fail_argument(who, argument, os.str());
+}
+
+/// Checks a record as the user passed it, before any design routine sees its
+/// runs (their refusals would name their own arguments, not the record): as
+/// many runs of output errors as of parameters, and every parameter estimate
+/// (of `parameters` entries, or of the first one's size when negative) and
+/// every output error (of the first one's size, at least one entry) finite.
+/// Returns the number of parameters (−1 for a record without estimates).
+template <typename Scalar, int NY, int NP>
+Index check_record(const FaultFreeRecord<Scalar, NY, NP>& record, Index parameters, std::string_view who,
+                   std::string_view argument) {
+  require(record.parameters.size() == record.output_errors.size(), who, argument,
+          "must hold as many runs of output errors as of parameters");
+  const auto check = [&](const auto& runs, Index& size, std::string_view what) {
+    for (std::size_t r = 0; r < runs.size(); ++r)
+      for (std::size_t k = 0; k < runs[r].size(); ++k) {
+        const auto& v = runs[r][k];
+        if (size < 0) size = v.size();
+        if (v.size() != size) {
+          std::ostringstream os;
+          os << "of " << v.size() << " entries where " << size << " were expected";
+          fail_record_entry(who, argument, what, r, k, os.str());
+        }
+        if (!detail::all_finite(v)) fail_record_entry(who, argument, what, r, k, "that is not finite");
+      }
+  };
+  check(record.parameters, parameters, "a parameter estimate");
+  Index outputs = -1;
+  check(record.output_errors, outputs, "an output error");
+  require(outputs != 0, who, argument, "must hold output errors of at least one entry");
+  return parameters;
+}
+
+/// Whether the χ² test can take `covariance`, the sample covariance of a
+/// record's output errors: positive definite, with a finite inverse (as its
+/// constructor requires).
+template <typename Scalar, int NY>
+[[nodiscard]] bool chi_square_covariance_usable(const Eigen::Matrix<Scalar, NY, NY>& covariance) {
+  detail::CholeskyFactor<Eigen::Matrix<Scalar, NY, NY>> factor;
+  if (covariance.rows() < 1 || !factor.compute(covariance)) return false;
+  Eigen::Matrix<Scalar, NY, NY> information =
+      Eigen::Matrix<Scalar, NY, NY>::Identity(covariance.rows(), covariance.rows());
+  factor.solve_in_place(information);
+  return information.allFinite();
+}
+
 /// The `explanation` of a design: its stride and the correlations behind it,
 /// its nominal value, and the tests' thresholds with their checks on the record.
 template <typename Scalar, int NY, int NP>
@@ -207,6 +259,10 @@ std::string explain_design(const FaultMonitorDesign<Scalar, NY, NP>& design, std
 ///   CUSUM: a GLR designed for about 50 false alarms on the record must raise
 ///   between 25 and 100 there (refused otherwise, naming 'record').
 ///
+/// The record itself is checked first, its refusals naming 'record' and the
+/// entry: as many runs of output errors as of parameters, every estimate and
+/// output error finite and of one size; and output errors whose sample
+/// covariance the χ² test can take (positive definite, with a finite inverse).
 /// The GLR's threshold is simulated (`glr_threshold`): a simulation beyond
 /// `glr_max_simulation_work` is refused naming 'glr_window' or
 /// 'mean_samples_between_false_alarms', with the largest value allowed.
@@ -237,6 +293,9 @@ template <typename Scalar, int NY, int NP>
                                              .mean_evaluations = "mean_samples_between_false_alarms",
                                              .components = {},
                                              .mean_per_evaluation = static_cast<double>(stride)});
+  // The record as passed, named as such: calibrate_cusum and sample_covariance
+  // would refuse its runs under their own names.
+  (void)detail::check_record(record, nominal.size(), who, "record");
   FaultMonitorDesign<Scalar, NY, NP> design;
   design.nominal = nominal;
   design.cusum = calibrate_cusum(record.parameters, nominal, drift,
@@ -267,7 +326,17 @@ template <typename Scalar, int NY, int NP>
       fail_argument(who, "record", os.str());
     }
   }
+  std::size_t output_errors = 0;
+  for (const auto& run : record.output_errors) output_errors += run.size();
+  // Necessary for the windows counted below (which do not span runs), and for a covariance.
+  require(static_cast<double>(output_errors) >= 200 * static_cast<double>(window), who, "record",
+          "must span at least 200 windows of the χ² test");
   design.output_error_covariance = sample_covariance(record.output_errors);
+  if (!detail::chi_square_covariance_usable(design.output_error_covariance))
+    fail_argument(who, "record",
+                  "has output errors whose sample covariance is singular, or has an inverse beyond the floating-point "
+                  "range (errors all zero, an output that never varies or is a fixed combination of others, or "
+                  "errors too small): the chi-square test cannot normalize them");
   design.window = window;
   design.false_alarm_probability = static_cast<Scalar>(window) / mean_samples_between_false_alarms;
 
@@ -399,19 +468,11 @@ FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor_searched(const FaultFree
   require(options.glr_window >= 1, who, "options.glr_window", "must be at least 1");
   require(options.stride_multiple >= 1, who, "options.stride_multiple", "must be at least 1");
   require(options.margin > 0 && options.margin <= 1, who, "options.margin", "must be in (0, 1]");
-  require(record.parameters.size() == record.output_errors.size(), who, argument,
-          "must hold as many runs of output errors as of parameters");
-  const auto& runs = record.parameters;
-  Index n = -1;
-  std::vector<std::size_t> lengths;
-  for (const auto& run : runs) {
-    lengths.push_back(run.size());
-    for (const auto& v : run) {
-      if (n < 0) n = v.size();
-      require_finite_shape(v, n, 1, who, argument);
-    }
-  }
+  const Index n = check_record(record, -1, who, argument);
   require(n >= 1, who, argument, "must hold parameter estimates of at least one component");
+  const auto& runs = record.parameters;
+  std::vector<std::size_t> lengths;
+  for (const auto& run : runs) lengths.push_back(run.size());
   const CusumCalibrationOptions limits;  // calibrate_cusum's defaults, which it checks again at the stride
   // Values and pairs five strides apart that the runs hold at a stride: these
   // decrease as the stride grows, which ends the search.
