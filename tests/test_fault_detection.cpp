@@ -574,6 +574,23 @@ TEST(CusumCalibration, ValuesNearTheTopOfTheRangeGiveTheDesignScaled) {
   EXPECT_EQ(statistics.lag_correlation, unit.lag_correlation);
 }
 
+// The stride search's rate check is calibrate_cusum's: the same count, from
+// cusum_rate_check.
+TEST(CusumCalibration, RateCheckIsTheCalibrationsCheck) {
+  const auto runs = normal_runs<double>(0);
+  const auto design = adaptobs::calibrate_cusum(runs, Eigen::Vector2d::Zero().eval(), 0.5, 1e4, 3);
+  EXPECT_EQ(adaptobs::cusum_rate_check(runs, Eigen::Vector2d::Zero().eval(), design.scale, 0.5, 3),
+            design.checked_alarms);
+  EXPECT_GE(design.checked_alarms, 25);
+  EXPECT_LE(design.checked_alarms, 100);
+  // Drift 4: a run length of 351 already at h = 0, beyond the 2 · 2 · 1336/50
+  // the check's four sums need for 50 alarms: refused by name.
+  EXPECT_EQ(configuration_error_of([&] {
+              (void)adaptobs::cusum_rate_check(runs, Eigen::Vector2d::Zero().eval(), design.scale, 4.0, 3);
+            }).rfind("cusum_rate_check: argument 'runs'", 0),
+            0u);
+}
+
 // design_fault_monitor names its own arguments: a bad glr_window was once
 // reported as 'window', another argument of the same call.
 TEST(FaultMonitorDesign, BadArgumentsAreRefusedUnderTheirOwnNames) {
@@ -666,6 +683,36 @@ TEST(FaultMonitorDesign, RefusalsOfTheRecordNameTheRecordAndTheEntry) {
             }),
             "design_fault_monitor: argument 'record' holds an output error of 3 entries where 2 were expected: number "
             "9 of run 0 (counted from 0)");
+}
+
+// The stride search passes over a stride whose correlations are within their
+// limits but whose values fail the rate check, counting its alarms by
+// cusum_rate_check (once parsed from calibrate_cusum's refusal). At stride 1
+// every other estimate is ±1 with equal odds, independent: correlations about
+// 0, but a CUSUM of drift 1 never climbs on them (z − 1 is 0 or −2), so it
+// raises far fewer alarms than designed; at stride 2 every value read is normal.
+TEST(FaultMonitorDesign, TheStrideSearchCountsTheRateCheckOfAStrideItPassesOver) {
+  auto record = white_record();
+  for (auto& run : record.parameters)
+    for (std::size_t k = 1; k < run.size(); k += 2) run[k] = run[k].cwiseSign();
+  const auto design = adaptobs::design_fault_monitor(record, 1.0, 1e4, Index{10});
+  std::cout << design.explanation << "\n";
+  ASSERT_EQ(design.cusum_options.stride, 2);
+  ASSERT_EQ(design.stride_correlations.size(), 2u);
+  const auto& passed_over = design.stride_correlations[0];
+  EXPECT_LT(passed_over.lag_correlation, 0.1);
+  // The search's nominal value at stride 1: the mean about its reference, the first estimate.
+  const Eigen::Vector2d reference = record.parameters[0][0];
+  const Eigen::Vector2d nominal = reference + adaptobs::stride_statistics(record.parameters, reference, 1).mean;
+  const auto about_nominal = adaptobs::stride_statistics(record.parameters, nominal, 1);
+  const Index alarms = adaptobs::cusum_rate_check(record.parameters, nominal, about_nominal.root_mean_square, 1.0, 1);
+  EXPECT_EQ(passed_over.checked_alarms, alarms);
+  EXPECT_LT(alarms, 25);
+  EXPECT_EQ(design.stride_correlations[1].checked_alarms, -1);
+  EXPECT_EQ(design.cusum.checked_alarms,
+            adaptobs::cusum_rate_check(record.parameters, design.nominal, design.cusum.scale, 1.0, 2));
+  EXPECT_NE(design.explanation.find("the rate check of calibrate_cusum refused 1 shorter stride(s)"),
+            std::string::npos);
 }
 
 // ---------------------------------------------------------------- χ² test

@@ -192,6 +192,59 @@ struct CusumCalibrationOptions {
   double rate_tolerance = 2;
 };
 
+namespace detail {
+/// The alarms of a CUSUM that replays every value of every run, re-armed on
+/// `nominal` at the start of each.
+template <typename Scalar, int N>
+[[nodiscard]] Index cusum_alarms_on_runs(const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs,
+                                         const Eigen::Matrix<Scalar, N, 1>& nominal,
+                                         const Eigen::Matrix<Scalar, N, 1>& scale, Scalar drift, Scalar threshold,
+                                         Index stride) {
+  CusumDetector<Scalar, N> detector(nominal, scale, drift, threshold, {.stride = stride});
+  for (const auto& run : runs) {
+    detector.rearm(nominal);
+    for (const auto& v : run) (void)detector.update(v);
+  }
+  return detector.alarm_count();
+}
+}  // namespace detail
+
+/// The rate check of `calibrate_cusum` (and of the stride search of
+/// `design_fault_monitor`): the false alarms that a CUSUM with these scales and
+/// drift, designed for 50 of them on the runs (a threshold for false alarms
+/// every evaluations / 50 evaluations, `cusum_threshold`), raises when it replays
+/// every value of every run, re-armed on `nominal` at the start of each, reading
+/// every `stride`-th. For independent normal values about 50; a count far from
+/// it says the values at the stride are not.
+///
+/// The values are taken as they are, as by `stride_statistics`. Refuses, naming
+/// 'runs', runs too short for such a design: with `evaluations` values at the
+/// stride, it needs `detail::cusum_threshold_exists(drift, evaluations / 50, n)`.
+template <typename Scalar, int N>
+[[nodiscard]] Index cusum_rate_check(const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs,
+                                     const Eigen::Matrix<Scalar, N, 1>& nominal,
+                                     const Eigen::Matrix<Scalar, N, 1>& scale, Scalar drift, Index stride) {
+  constexpr std::string_view who = "cusum_rate_check";
+  require(stride >= 1, who, "stride", "must be at least 1");
+  Index evaluations = 0;  // values at the stride: steps 0, stride, 2·stride, ... of each run
+  for (const auto& run : runs) evaluations += (static_cast<Index>(run.size()) + stride - 1) / stride;
+  const auto checked = static_cast<double>(static_cast<Scalar>(evaluations) / Scalar(50));
+  require(detail::cusum_threshold_exists(static_cast<double>(drift), checked, nominal.size()), who, "runs",
+          "hold too few values at the stride for a design expecting 50 false alarms on them (its threshold would be "
+          "below 0)");
+  const auto threshold = static_cast<Scalar>(cusum_threshold(static_cast<double>(drift), checked, nominal.size()));
+  return detail::cusum_alarms_on_runs(runs, nominal, scale, drift, threshold, stride);
+}
+
+namespace detail {
+/// Whether `alarms` false alarms where 50 were designed are within a factor
+/// `tolerance` of them (`CusumCalibrationOptions::rate_tolerance`).
+[[nodiscard]] inline bool rate_within(Index alarms, double tolerance) {
+  const double ratio = static_cast<double>(alarms) / 50.0;
+  return ratio <= tolerance && ratio >= 1 / tolerance;
+}
+}  // namespace detail
+
 /// Designs a `CusumDetector` that raises false alarms every `mean_evaluations`
 /// evaluations (values fed to its sums) on average, and checks the design's
 /// assumptions on the runs it was measured on.
@@ -267,15 +320,6 @@ template <typename Scalar, int N>
     fail_argument(who, "stride", os.str());
   }
 
-  // Replays a design on the runs and counts its alarms.
-  auto alarms_of = [&](Scalar threshold) {
-    CusumDetector<Scalar, N> detector(nominal, result.scale, drift, threshold, {.stride = stride});
-    for (const auto& run : runs) {
-      detector.rearm(nominal);
-      for (const auto& v : run) (void)detector.update(v);
-    }
-    return detector.alarm_count();
-  };
   result.checked_mean_evaluations = count / Scalar(50);
   if (!detail::cusum_threshold_exists(static_cast<double>(drift), static_cast<double>(result.checked_mean_evaluations),
                                       n)) {
@@ -284,11 +328,8 @@ template <typename Scalar, int N>
        << ": a check expecting 50 false alarms on them needs a threshold below 0; give longer runs or lower the drift";
     fail_argument(who, "runs", os.str());
   }
-  const double check_threshold =
-      cusum_threshold(static_cast<double>(drift), static_cast<double>(result.checked_mean_evaluations), n);
-  result.checked_alarms = alarms_of(static_cast<Scalar>(check_threshold));
-  const double ratio = static_cast<double>(result.checked_alarms) / 50.0;
-  if (!(ratio <= options.rate_tolerance && ratio >= 1 / options.rate_tolerance)) {
+  result.checked_alarms = cusum_rate_check(runs, nominal, result.scale, drift, stride);
+  if (!detail::rate_within(result.checked_alarms, options.rate_tolerance)) {
     std::ostringstream os;
     os << "give " << result.checked_alarms << " false alarms to a design that expects 50 on them: the normalized "
        << "values are too far from independent normal draws (raise the stride)";
@@ -297,7 +338,7 @@ template <typename Scalar, int N>
 
   result.threshold =
       static_cast<Scalar>(cusum_threshold(static_cast<double>(drift), static_cast<double>(mean_evaluations), n));
-  result.alarms = alarms_of(result.threshold);
+  result.alarms = detail::cusum_alarms_on_runs(runs, nominal, result.scale, drift, result.threshold, stride);
   return result;
 }
 

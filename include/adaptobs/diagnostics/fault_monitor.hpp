@@ -510,14 +510,24 @@ FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor_searched(const FaultFree
     nominal = reference + s.mean;
     // Correlations within their limits may still hide a dependence the rate
     // check sees (θ̂ read at drifting phases of a periodic excitation): then
-    // calibrate_cusum's refusal asks for a longer stride, and the search goes on.
-    try {
-      (void)calibrate_cusum(runs, nominal, drift, mean_samples_between_false_alarms / static_cast<Scalar>(stride),
-                            stride, limits);
-    } catch (const ConfigurationError& e) {
-      if (std::string_view(e.what()).find("(raise the stride)") == std::string_view::npos) throw;
-      const auto alarms = std::stod(std::string(e.what()).substr(std::string_view(e.what()).find("give ") + 5));
-      correlations.back().checked_alarms = static_cast<Index>(alarms);
+    // calibrate_cusum would refuse the stride, and the search goes on. Its
+    // check, on its scales: the RMS deviations from the nominal value.
+    const StrideStatistics<Scalar, NP> about_nominal = stride_statistics(runs, nominal, stride);
+    if (!(about_nominal.root_mean_square.array() > Scalar(0)).all())
+      fail_argument(who, argument,
+                    "has parameter estimates constant in some component at the stride: they must vary in every "
+                    "component (a zero scale cannot normalize)");
+    if (!cusum_threshold_exists(static_cast<double>(drift),
+                                static_cast<double>(static_cast<Scalar>(s.evaluations) / Scalar(50)), n)) {
+      std::ostringstream os;
+      os << "holds too few values at stride " << stride << " (" << s.evaluations << ") for drift " << drift
+         << ": a check expecting 50 false alarms on them needs a threshold below 0; give longer runs or lower the "
+            "drift";
+      fail_argument(who, argument, os.str());
+    }
+    const Index alarms = cusum_rate_check(runs, nominal, about_nominal.root_mean_square, drift, stride);
+    if (!rate_within(alarms, limits.rate_tolerance)) {
+      correlations.back().checked_alarms = alarms;
       continue;
     }
     found = true;
