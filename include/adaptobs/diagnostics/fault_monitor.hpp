@@ -90,8 +90,8 @@ struct StrideCorrelation {
   Scalar long_run_excess = 0;  ///< largest departure from 1 of a long-run variance ratio
   Index evaluations = 0;       ///< values read over all runs
   /// Where the correlations were within their limits but `calibrate_cusum`'s
-  /// rate check refused the stride: the false alarms of its check (designed
-  /// for 50); −1 elsewhere.
+  /// rate check (`cusum_rate_check`) refused the stride: the false alarms of
+  /// its check (designed for 50); −1 elsewhere.
   Index checked_alarms = -1;
 };
 
@@ -578,8 +578,9 @@ FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor_searched(const FaultFree
 ///   measured by `stride_statistics`; the search tries every stride up to the
 ///   largest the runs support (500 values at the stride in all, and runs of at
 ///   least six). A stride whose correlations pass but whose values fail
-///   `calibrate_cusum`'s check of the rate (its refusal asks for a longer
-///   stride: θ̂ read at drifting phases of a periodic excitation) is passed over;
+///   `calibrate_cusum`'s check of the rate (`cusum_rate_check`: θ̂ read at
+///   drifting phases of a periodic excitation) is passed over, its count kept
+///   in `StrideCorrelation::checked_alarms`;
 /// - the nominal value is the mean of \f$\hat\theta\f$ at that stride, over
 ///   every run: the healthy value the CUSUM's sums stay centred on;
 /// - then the tests as by the form with a given stride and nominal value.
