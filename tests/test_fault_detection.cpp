@@ -346,9 +346,46 @@ TEST(GlrDetector, FalseAlarmsAtTheDesignedRateOnIndependentDraws) {
 // The threshold search keeps its normal values when they fit, redraws them from
 // the seed for each candidate otherwise: the same values, so the same h to the bit.
 TEST(GlrDetector, ThresholdIsTheSameWhetherTheDrawsAreKeptOrRedrawn) {
-  const double kept = adaptobs::detail::glr_threshold_search(10, 200.0, 2, Index{1} << 22);
-  EXPECT_EQ(adaptobs::detail::glr_threshold_search(10, 200.0, 2, 0), kept);
+  const double kept = adaptobs::detail::glr_threshold_search(10, 200.0, 2, Index{1} << 22).threshold;
+  EXPECT_EQ(adaptobs::detail::glr_threshold_search(10, 200.0, 2, 0).threshold, kept);
   EXPECT_EQ(adaptobs::glr_threshold(10, 200.0, 2), kept);
+}
+
+// The budget once counted window × components × mean_evaluations, neither the
+// 20000 evaluations simulated at the least nor the values drawn anew for each
+// candidate beyond the 2^22 kept: (window 1, mean 2, 10000 components), "work
+// 2e4", simulated 2e8 values per candidate, redrawn, for half a minute, and
+// (1, 1e5, 100), at the old limit of 1e7, 5e8 for a minute and a half. The work
+// now counts each: L = max(20000, 50 mean) evaluations of every component,
+// window + 4 steps per value, 16 more for a value redrawn.
+TEST(GlrDetector, ThresholdSearchCountsEverySimulatedValueAndDraw) {
+  using adaptobs::glr_simulation_work;
+  EXPECT_EQ(glr_simulation_work(1, 2.0, 10000), 20000.0 * 10000 * (1 + 4 + 16));
+  EXPECT_EQ(glr_simulation_work(1, 1e5, 100), 5e6 * 100 * (1 + 4 + 16));
+  EXPECT_EQ(glr_simulation_work(10, 200.0, 2), 20000.0 * 2 * (10 + 4));  // 40000 values, kept
+  // Refused, naming what to lower and how far: 20000 · 1190 · 21 = 4.998e8 of
+  // the 5e8 allowed; 50 · 4761 · 100 · 21 = 4.9999e8.
+  const std::string many = configuration_error_of([] { (void)adaptobs::glr_threshold(1, 2.0, 10000); });
+  EXPECT_EQ(many.rfind("glr_threshold: argument 'components' must be at most 1190 here", 0), 0u) << many;
+  EXPECT_NE(many.find("20000 evaluations of 10000 components"), std::string::npos) << many;
+  const std::string hours = configuration_error_of([] { (void)adaptobs::glr_threshold(1, 2.0, 5'000'000); });
+  EXPECT_EQ(hours.rfind("glr_threshold: argument 'components' must be at most 1190 here", 0), 0u) << hours;
+  const std::string rare = configuration_error_of([] { (void)adaptobs::glr_threshold(1, 1e5, 100); });
+  EXPECT_EQ(rare.rfind("glr_threshold: argument 'mean_evaluations' must be at most 4761 here", 0), 0u) << rare;
+  EXPECT_LE(glr_simulation_work(1, 2.0, 1190), adaptobs::glr_max_simulation_work);
+  EXPECT_GT(glr_simulation_work(1, 2.0, 1191), adaptobs::glr_max_simulation_work);
+  const std::string wide = configuration_error_of([] { (void)adaptobs::glr_threshold(1000, 1e5); });
+  EXPECT_EQ(wide.rfind("glr_threshold: argument 'window' must be at most 80 here", 0), 0u) << wide;
+  // What the search itself drew and simulated: kept values are drawn once,
+  // others once per candidate; every candidate simulates L evaluations.
+  const auto kept = adaptobs::detail::glr_threshold_search(10, 200.0, 2, adaptobs::detail::glr_kept_values);
+  const auto redrawn = adaptobs::detail::glr_threshold_search(10, 200.0, 2, 0);
+  EXPECT_EQ(kept.values_drawn, 20000 * 2);
+  EXPECT_EQ(redrawn.candidates, kept.candidates);
+  EXPECT_EQ(redrawn.values_drawn, redrawn.candidates * 20000 * 2);
+  EXPECT_EQ(kept.evaluations, kept.candidates * 20000);
+  EXPECT_GE(kept.candidates, 2);
+  EXPECT_LE(kept.candidates, 10);
 }
 
 TEST(GlrDetector, StatisticIsTheBestWindowAndIsolates) {
@@ -487,6 +524,73 @@ TEST(SampleCovariance, ScalesDataNearTheTopOfTheRange) {
   EXPECT_TRUE(names(configuration_error_of([&] { (void)adaptobs::sample_covariance(runs); }), "runs"));
 }
 
+// Independent standard normal pairs, 4 runs of 1000, scaled by 2^exponent
+// (exactly), in `Scalar`.
+template <typename Scalar>
+std::vector<std::vector<Eigen::Matrix<Scalar, 2, 1>>> normal_runs(int exponent) {
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> normal(0, 1);
+  std::vector<std::vector<Eigen::Matrix<Scalar, 2, 1>>> runs(4);
+  for (auto& run : runs)
+    for (int k = 0; k < 1000; ++k) {
+      const double first = normal(rng);
+      const double second = normal(rng);
+      run.push_back(Eigen::Matrix<Scalar, 2, 1>(std::ldexp(static_cast<Scalar>(first), exponent),
+                                                std::ldexp(static_cast<Scalar>(second), exponent)));
+    }
+  return runs;
+}
+
+// calibrate_cusum's sums of squares overflowed on finite values of 1e153 (in
+// float 1e20): the scales read ∞, refused as "CusumDetector: argument 'scale'".
+// Scaled by a power of two, exactly, the runs give the same design scaled by
+// it, bit for bit: the same correlations, the same alarms.
+template <typename Scalar>
+void expect_design_scales_with_the_runs(int exponent) {
+  using Vector = Eigen::Matrix<Scalar, 2, 1>;
+  const auto unit =
+      adaptobs::calibrate_cusum(normal_runs<Scalar>(0), Vector::Zero().eval(), Scalar(0.5), Scalar(1e4), 1);
+  const auto large =
+      adaptobs::calibrate_cusum(normal_runs<Scalar>(exponent), Vector::Zero().eval(), Scalar(0.5), Scalar(1e4), 1);
+  for (int i = 0; i < 2; ++i) EXPECT_EQ(large.scale(i), std::ldexp(unit.scale(i), exponent)) << i;
+  EXPECT_EQ(large.lag_correlation, unit.lag_correlation);
+  EXPECT_EQ(large.long_run_excess, unit.long_run_excess);
+  EXPECT_EQ(large.bias, unit.bias);
+  EXPECT_EQ(large.checked_alarms, unit.checked_alarms);
+  EXPECT_EQ(large.alarms, unit.alarms);
+  EXPECT_EQ(large.threshold, unit.threshold);
+  EXPECT_GE(unit.checked_alarms, 25);
+  EXPECT_LE(unit.checked_alarms, 100);
+}
+
+TEST(CusumCalibration, ValuesNearTheTopOfTheRangeGiveTheDesignScaled) {
+  expect_design_scales_with_the_runs<double>(510);  // 2^510 = 3.4e153
+  expect_design_scales_with_the_runs<float>(66);    // 2^66 = 7.4e19
+  // The stride statistics themselves: the mean square overflows, its root does not.
+  const auto statistics = adaptobs::stride_statistics(normal_runs<double>(600), Eigen::Vector2d::Zero().eval(), 1);
+  EXPECT_TRUE(std::isinf(statistics.square(0)));
+  const auto unit = adaptobs::stride_statistics(normal_runs<double>(0), Eigen::Vector2d::Zero().eval(), 1);
+  EXPECT_EQ(statistics.root_mean_square(0), std::ldexp(unit.root_mean_square(0), 600));
+  EXPECT_EQ(statistics.lag_correlation, unit.lag_correlation);
+}
+
+// The stride search's rate check is calibrate_cusum's: the same count, from
+// cusum_rate_check.
+TEST(CusumCalibration, RateCheckIsTheCalibrationsCheck) {
+  const auto runs = normal_runs<double>(0);
+  const auto design = adaptobs::calibrate_cusum(runs, Eigen::Vector2d::Zero().eval(), 0.5, 1e4, 3);
+  EXPECT_EQ(adaptobs::cusum_rate_check(runs, Eigen::Vector2d::Zero().eval(), design.scale, 0.5, 3),
+            design.checked_alarms);
+  EXPECT_GE(design.checked_alarms, 25);
+  EXPECT_LE(design.checked_alarms, 100);
+  // Drift 4: a run length of 351 already at h = 0, beyond the 2 · 2 · 1336/50
+  // the check's four sums need for 50 alarms: refused by name.
+  EXPECT_EQ(configuration_error_of([&] {
+              (void)adaptobs::cusum_rate_check(runs, Eigen::Vector2d::Zero().eval(), design.scale, 4.0, 3);
+            }).rfind("cusum_rate_check: argument 'runs'", 0),
+            0u);
+}
+
 // design_fault_monitor names its own arguments: a bad glr_window was once
 // reported as 'window', another argument of the same call.
 TEST(FaultMonitorDesign, BadArgumentsAreRefusedUnderTheirOwnNames) {
@@ -500,6 +604,115 @@ TEST(FaultMonitorDesign, BadArgumentsAreRefusedUnderTheirOwnNames) {
   for (const Index glr_window : {Index{0}, Index{-3}}) EXPECT_TRUE(names(design(1.0, glr_window), "glr_window"));
   EXPECT_TRUE(names(design(-1.0, 10), "drift"));
   EXPECT_EQ(design(-1.0, 10).rfind("design_fault_monitor:", 0), 0u);
+}
+
+// Fault-free runs of independent standard normal estimates and output errors,
+// 4 runs of 5000, each pair drawn in a fixed order.
+adaptobs::FaultFreeRecord<double, 2, 2> white_record() {
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> normal(0, 1);
+  const auto pair = [&] {
+    const double first = normal(rng);
+    return Eigen::Vector2d(first, normal(rng));
+  };
+  adaptobs::FaultFreeRecord<double, 2, 2> record;
+  for (int r = 0; r < 4; ++r) {
+    record.new_run();
+    for (int k = 0; k < 5000; ++k) {
+      record.parameters.back().push_back(pair());
+      record.output_errors.back().push_back(pair());
+    }
+  }
+  return record;
+}
+
+// design_fault_monitor refused one NaN output error as "sample_covariance:
+// argument 'runs'", output errors all zero as "ChiSquareTest: argument
+// 'covariance'", and, with a stride given, an infinite estimate as
+// calibrate_cusum's 'runs': arguments the caller never passed. It names the
+// record, and the entry.
+TEST(FaultMonitorDesign, RefusalsOfTheRecordNameTheRecordAndTheEntry) {
+  const auto record = white_record();
+  const auto given = [](const adaptobs::FaultFreeRecord<double, 2, 2>& r) {
+    return configuration_error_of(
+        [&] { (void)adaptobs::design_fault_monitor(r, Eigen::Vector2d::Zero().eval(), 0.5, 1e4, 1, 10); });
+  };
+  const auto searched = [](const adaptobs::FaultFreeRecord<double, 2, 2>& r) {
+    return configuration_error_of([&] { (void)adaptobs::design_fault_monitor(r, 0.5, 1e4, 10); });
+  };
+  EXPECT_EQ(given(record), "<no exception>");
+  auto nan_error = record;
+  nan_error.output_errors[2][3](0) = std::numeric_limits<double>::quiet_NaN();
+  const std::string not_finite =
+      "design_fault_monitor: argument 'record' holds an output error that is not finite: number 3 of run 2 (counted "
+      "from 0)";
+  EXPECT_EQ(given(nan_error), not_finite);
+  EXPECT_EQ(searched(nan_error), not_finite);
+  auto infinite_estimate = record;
+  infinite_estimate.parameters[1][7](1) = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(given(infinite_estimate),
+            "design_fault_monitor: argument 'record' holds a parameter estimate that is not finite: number 7 of run 1 "
+            "(counted from 0)");
+  auto zero = record;
+  for (auto& run : zero.output_errors)
+    for (auto& e : run) e.setZero();
+  const std::string singular =
+      "design_fault_monitor: argument 'record' has output errors whose sample covariance is "
+      "singular";
+  EXPECT_EQ(given(zero).rfind(singular, 0), 0u) << given(zero);
+  EXPECT_EQ(searched(zero).rfind("design_fault_monitor: argument 'record' was refused at the stride found", 0), 0u)
+      << searched(zero);
+  EXPECT_NE(searched(zero).find(singular), std::string::npos) << searched(zero);
+  // One output always equal to the other: a singular covariance too.
+  auto collinear = record;
+  for (auto& run : collinear.output_errors)
+    for (auto& e : run) e(1) = e(0);
+  EXPECT_EQ(given(collinear).rfind(singular, 0), 0u) << given(collinear);
+  // Runs of run-time size: an output error of another size than the first's.
+  adaptobs::FaultFreeRecord<double, Eigen::Dynamic, Eigen::Dynamic> dynamic;
+  for (std::size_t r = 0; r < record.parameters.size(); ++r) {
+    dynamic.new_run();
+    for (std::size_t k = 0; k < record.parameters[r].size(); ++k) {
+      dynamic.parameters.back().push_back(record.parameters[r][k]);
+      dynamic.output_errors.back().push_back(record.output_errors[r][k]);
+    }
+  }
+  dynamic.output_errors[0][9] = Eigen::VectorXd::Zero(3);
+  EXPECT_EQ(configuration_error_of([&] {
+              (void)adaptobs::design_fault_monitor(dynamic, Eigen::VectorXd::Zero(2).eval(), 0.5, 1e4, 1, 10);
+            }),
+            "design_fault_monitor: argument 'record' holds an output error of 3 entries where 2 were expected: number "
+            "9 of run 0 (counted from 0)");
+}
+
+// The stride search passes over a stride whose correlations are within their
+// limits but whose values fail the rate check, counting its alarms by
+// cusum_rate_check (once parsed from calibrate_cusum's refusal). At stride 1
+// every other estimate is ±1 with equal odds, independent: correlations about
+// 0, but a CUSUM of drift 1 never climbs on them (z − 1 is 0 or −2), so it
+// raises far fewer alarms than designed; at stride 2 every value read is normal.
+TEST(FaultMonitorDesign, TheStrideSearchCountsTheRateCheckOfAStrideItPassesOver) {
+  auto record = white_record();
+  for (auto& run : record.parameters)
+    for (std::size_t k = 1; k < run.size(); k += 2) run[k] = run[k].cwiseSign();
+  const auto design = adaptobs::design_fault_monitor(record, 1.0, 1e4, Index{10});
+  std::cout << design.explanation << "\n";
+  ASSERT_EQ(design.cusum_options.stride, 2);
+  ASSERT_EQ(design.stride_correlations.size(), 2u);
+  const auto& passed_over = design.stride_correlations[0];
+  EXPECT_LT(passed_over.lag_correlation, 0.1);
+  // The search's nominal value at stride 1: the mean about its reference, the first estimate.
+  const Eigen::Vector2d reference = record.parameters[0][0];
+  const Eigen::Vector2d nominal = reference + adaptobs::stride_statistics(record.parameters, reference, 1).mean;
+  const auto about_nominal = adaptobs::stride_statistics(record.parameters, nominal, 1);
+  const Index alarms = adaptobs::cusum_rate_check(record.parameters, nominal, about_nominal.root_mean_square, 1.0, 1);
+  EXPECT_EQ(passed_over.checked_alarms, alarms);
+  EXPECT_LT(alarms, 25);
+  EXPECT_EQ(design.stride_correlations[1].checked_alarms, -1);
+  EXPECT_EQ(design.cusum.checked_alarms,
+            adaptobs::cusum_rate_check(record.parameters, design.nominal, design.cusum.scale, 1.0, 2));
+  EXPECT_NE(design.explanation.find("the rate check of calibrate_cusum refused 1 shorter stride(s)"),
+            std::string::npos);
 }
 
 // ---------------------------------------------------------------- χ² test

@@ -565,7 +565,20 @@ void bind_checks(nb::module_& m) {
       "The threshold h at which `components` windowed GLR statistics of window M, fed independent standard\n"
       "normal values, raise false alarms every mean_evaluations evaluations (all components together), by\n"
       "simulation from a fixed seed (about 50 alarms at the answer: a relative Monte-Carlo error of about\n"
-      "14 %); mean_evaluations in [2, 1e5], window x components x mean_evaluations at most 1e7.");
+      "14 %); mean_evaluations in [2, 1e5], and glr_simulation_work(window, mean_evaluations, components) at\n"
+      "most glr_max_simulation_work per candidate threshold (refused otherwise, naming what to lower).");
+  m.def(
+      "glr_simulation_work",
+      [](nb::handle window, nb::handle mean_evaluations, nb::handle components) {
+        constexpr std::string_view who = "glr_simulation_work";
+        const Index w = integer_argument(window, who, "window");
+        const double mean = real_scalar(mean_evaluations, who, "mean_evaluations");
+        const Index c = integer_argument(components, who, "components");
+        return glr_simulation_work(w, mean, c);
+      },
+      nb::arg("window"), nb::arg("mean_evaluations"), nb::arg("components") = 1,
+      "The work of one candidate threshold of glr_threshold, in window steps: every simulated value of every\n"
+      "component, its window and, beyond 2^22 values, its draw anew for each candidate.");
   m.def(
       "sample_covariance",
       [](nb::handle runs) {

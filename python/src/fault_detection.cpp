@@ -58,6 +58,17 @@ Eigen::VectorXd scale_of(const Snapshot<double>& s, const std::string& prefix) {
   return field(s, prefix + "inverse_scale").cwiseInverse();
 }
 
+// The record of fault-free runs of `design_fault_monitor`'s two forms, from the
+// arrays of its 'parameters' and 'output_errors' (one per run), refused naming them.
+FaultFreeRecord<double, X, X> record_of(nb::handle parameters, nb::handle output_errors, std::string_view who) {
+  FaultFreeRecord<double, X, X> record;
+  record.parameters = vector_runs(parameters, who, "parameters");
+  record.output_errors = vector_runs(output_errors, who, "output_errors");
+  adaptobs::require(record.parameters.size() == record.output_errors.size(), who, "output_errors",
+                    "must hold one array per run of 'parameters'");
+  return record;
+}
+
 /// The Python object of a FaultMonitor: the monitor and the flag of the calls
 /// that release the GIL.
 struct MonitorBound {
@@ -459,11 +470,7 @@ void bind_fault_detection(nb::module_& m) {
          nb::handle mean_samples_between_false_alarms, nb::handle window, nb::handle glr_window,
          nb::handle stride_multiple) {
         constexpr std::string_view who = "design_fault_monitor";
-        FaultFreeRecord<double, X, X> record;
-        record.parameters = vector_runs(parameters, who, "parameters");
-        record.output_errors = vector_runs(output_errors, who, "output_errors");
-        adaptobs::require(record.parameters.size() == record.output_errors.size(), who, "output_errors",
-                          "must hold one array per run of 'parameters'");
+        const FaultFreeRecord<double, X, X> record = record_of(parameters, output_errors, who);
         return design_fault_monitor(
             record, real_scalar(drift, who, "drift"),
             real_scalar(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms"),
@@ -484,11 +491,7 @@ void bind_fault_detection(nb::module_& m) {
       [](nb::handle parameters, nb::handle output_errors, nb::handle nominal, nb::handle drift,
          nb::handle mean_samples_between_false_alarms, nb::handle stride, nb::handle window, nb::handle glr_window) {
         constexpr std::string_view who = "design_fault_monitor";
-        FaultFreeRecord<double, X, X> record;
-        record.parameters = vector_runs(parameters, who, "parameters");
-        record.output_errors = vector_runs(output_errors, who, "output_errors");
-        adaptobs::require(record.parameters.size() == record.output_errors.size(), who, "output_errors",
-                          "must hold one array per run of 'parameters'");
+        const FaultFreeRecord<double, X, X> record = record_of(parameters, output_errors, who);
         return design_fault_monitor(
             record, Eigen::VectorXd(vector(nominal, who, "nominal")), real_scalar(drift, who, "drift"),
             real_scalar(mean_samples_between_false_alarms, who, "mean_samples_between_false_alarms"),

@@ -331,6 +331,11 @@ def test_the_glr_threshold_gives_its_false_alarm_rate_on_fresh_normal_values():
         adaptobs.glr_threshold(10, 1.0)
     with pytest.raises(ConfigurationError, match="glr_threshold: argument 'window'"):
         adaptobs.glr_threshold(adaptobs.glr_max_window, 1e5)
+    # The budget counts every simulated value and every draw: 20000 evaluations of 10000 components, drawn
+    # anew for each candidate, once passed as "work 2e4" and simulated for half a minute.
+    assert adaptobs.glr_simulation_work(1, 2.0, 10000) == 20000 * 10000 * 21 > adaptobs.glr_max_simulation_work
+    with pytest.raises(ConfigurationError, match="glr_threshold: argument 'components' must be at most 1190 here"):
+        adaptobs.glr_threshold(1, 2.0, 10000)
 
 
 def test_the_sample_covariance_is_the_mean_outer_product():

@@ -272,6 +272,26 @@ def test_the_design_chooses_the_stride_and_the_nominal_value():
     assert periodic.stride == 100 and [c[0] for c in periodic.stride_correlations] == [50, 100]
 
 
+def test_a_bad_record_is_refused_naming_the_record_and_the_entry():
+    """One NaN output error was refused as sample_covariance's 'runs', errors all zero as ChiSquareTest's
+    'covariance'."""
+    parameters, errors = ar1_runs([40, 10], 40, 25000, seed=3)
+    errors = [e.copy() for e in errors]
+    errors[2][3, 0] = np.nan
+    for design in (lambda: adaptobs.design_fault_monitor(parameters, errors, 1.0, 200.0 * 93, 100),
+                   lambda: adaptobs.design_fault_monitor(parameters, errors, [1.5, -0.3], 1.0, 200.0 * 100, 100, 100)):
+        with pytest.raises(ConfigurationError) as error:
+            design()
+        assert str(error.value) == ("design_fault_monitor: argument 'record' holds an output error that is not "
+                                    "finite: number 3 of run 2 (counted from 0)")
+    zero = [np.zeros_like(e) for e in errors]
+    with pytest.raises(ConfigurationError) as error:
+        adaptobs.design_fault_monitor(parameters, zero, 1.0, 200.0 * 93, 100)
+    message = str(error.value)
+    assert message.startswith("design_fault_monitor: argument 'record' was refused at the stride found"), message
+    assert "design_fault_monitor: argument 'record' has output errors whose sample covariance is singular" in message
+
+
 def test_runs_too_short_for_the_stride_are_refused_with_the_remedy():
     """Correlation time 400 samples, 100 runs of 1500: the largest stride they support is 299, the stride
     needed about 921, so runs of about 5 x 921 + 1 = 4606 samples."""

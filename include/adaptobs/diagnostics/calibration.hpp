@@ -28,10 +28,25 @@
 
 namespace adaptobs {
 
+namespace detail {
+/// The exponent e of the power of two \f$2^{-e}\f$ that values up to `largest`
+/// are scaled by before their squares are summed: 0 (no scaling) below
+/// \f$\sqrt{\text{max}}\,2^{-14}\f$ (about 8e149 in double, 1e15 in float), where
+/// up to \f$2^{28}\f$ squares sum without overflow; otherwise that of `largest`,
+/// which brings the values below 2. Scaling by a power of two is exact, so the
+/// sums are those of the values themselves, scaled.
+template <typename Scalar>
+[[nodiscard]] int sum_of_squares_exponent(Scalar largest) {
+  const Scalar limit = std::sqrt(std::numeric_limits<Scalar>::max()) * Scalar(0x1p-14);
+  return largest > limit ? std::ilogb(largest) : 0;
+}
+}  // namespace detail
+
 /// Sample covariance \f$\frac1n\sum_k v_kv_k^T\f$ of zero-mean vectors (e.g. the
 /// output errors of fault-free runs), over every vector of every run. Vectors
-/// with entries beyond 1e150 are summed scaled by a power of two (exactly), so
-/// that only a covariance itself beyond the doubles is refused.
+/// with entries near the top of the range (`detail::sum_of_squares_exponent`)
+/// are summed scaled by a power of two (exactly), so that only a covariance
+/// itself beyond the floating-point range is refused.
 template <typename Scalar, int N>
 [[nodiscard]] Eigen::Matrix<Scalar, N, N> sample_covariance(
     const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs) {
@@ -46,7 +61,7 @@ template <typename Scalar, int N>
       ++count;
     }
   require(count >= 2, who, "runs", "must hold at least two vectors");
-  const int exponent = largest > Scalar(1e150) ? std::ilogb(largest) : 0;
+  const int exponent = detail::sum_of_squares_exponent(largest);
   const Scalar down = std::ldexp(Scalar(1), -exponent);
   Eigen::Matrix<Scalar, N, N> sum = Eigen::Matrix<Scalar, N, N>::Zero(n, n);
   for (const auto& run : runs)
@@ -68,9 +83,12 @@ struct StrideStatistics {
   static constexpr int max_lag = 5;    ///< autocorrelations over 1 to 5 strides
   Index stride = 1;                    ///< samples between the values read
   Eigen::Matrix<Scalar, N, 1> mean;    ///< mean deviation of a component from the reference
-  Eigen::Matrix<Scalar, N, 1> square;  ///< mean square deviation of a component from the reference
-  Index evaluations = 0;               ///< values read over all runs
-  Index pairs = 0;                     ///< pairs of them five strides apart within a run
+  Eigen::Matrix<Scalar, N, 1> square;  ///< mean square deviation of a component from the reference (may overflow)
+  /// Root mean square deviation of a component from the reference: the square
+  /// root of `square`, computed scaled, so finite for every finite record.
+  Eigen::Matrix<Scalar, N, 1> root_mean_square;
+  Index evaluations = 0;  ///< values read over all runs
+  Index pairs = 0;        ///< pairs of them five strides apart within a run
   /// Largest |lag-one| (one stride) autocorrelation of a component, about its mean
   /// (NaN without pairs five strides apart).
   Scalar lag_correlation = std::numeric_limits<Scalar>::quiet_NaN();
@@ -85,6 +103,9 @@ struct StrideStatistics {
 /// about each component's mean and pooled over the runs, with pairs only within
 /// a run. The values are taken as they are: a caller checks their sizes and
 /// finiteness first (`calibrate_cusum` checks every value of every run).
+/// Deviations near the top of the range are summed scaled by a power of two
+/// (`detail::sum_of_squares_exponent`), as by `sample_covariance`: the means,
+/// root mean squares and correlations of finite values are finite.
 template <typename Scalar, int N>
 [[nodiscard]] StrideStatistics<Scalar, N> stride_statistics(
     const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs, const Eigen::Matrix<Scalar, N, 1>& reference,
@@ -96,18 +117,27 @@ template <typename Scalar, int N>
   const auto step = static_cast<std::size_t>(stride);
   StrideStatistics<Scalar, N> result;
   result.stride = stride;
+  Scalar largest = 0;
+  for (const auto& run : runs)
+    for (std::size_t k = 0; k < run.size(); k += step)
+      if (n > 0) largest = std::max(largest, (run[k] - reference).cwiseAbs().maxCoeff());
+  const int exponent = detail::sum_of_squares_exponent(largest);
+  const Scalar down = std::ldexp(Scalar(1), -exponent), up = std::ldexp(Scalar(1), exponent);
+  // Sums of the scaled deviations d = 2^{-e}(v - reference).
   Vector sum = Vector::Zero(n), squares = Vector::Zero(n);
   for (const auto& run : runs)
     for (std::size_t k = 0; k < run.size(); k += step) {
-      sum += run[k] - reference;
-      squares += (run[k] - reference).cwiseAbs2();
+      sum += down * (run[k] - reference);
+      squares += (down * (run[k] - reference)).cwiseAbs2();
       ++result.evaluations;
     }
   if (result.evaluations == 0) return result;
   const auto count = static_cast<Scalar>(result.evaluations);
-  result.mean = sum / count;
-  result.square = squares / count;
-  const Vector variance = (result.square - result.mean.cwiseAbs2()).cwiseMax(std::numeric_limits<Scalar>::min());
+  const Vector mean = sum / count, square = squares / count;
+  result.mean = up * mean;
+  result.square = up * (up * square);  // twice: 2^{2e} itself may be beyond the range
+  result.root_mean_square = up * square.cwiseSqrt();
+  const Vector variance = (square - mean.cwiseAbs2()).cwiseMax(std::numeric_limits<Scalar>::min());
 
   // Autocorrelations at 1 to 5 strides, about the mean, pooled over the runs.
   std::array<Vector, max_lag> products;
@@ -118,7 +148,7 @@ template <typename Scalar, int N>
       for (int l = 1; l <= max_lag && k >= static_cast<std::size_t>(l) * step; ++l) {
         const std::size_t j = k - static_cast<std::size_t>(l) * step;
         products[static_cast<std::size_t>(l - 1)] +=
-            (run[k] - reference - result.mean).cwiseProduct(run[j] - reference - result.mean);
+            (down * (run[k] - reference) - mean).cwiseProduct(down * (run[j] - reference) - mean);
         ++pairs[static_cast<std::size_t>(l - 1)];
       }
   result.pairs = pairs[max_lag - 1];
@@ -161,6 +191,59 @@ struct CusumCalibrationOptions {
   /// Refuse when the rate measured in the check is off its design by more than this factor.
   double rate_tolerance = 2;
 };
+
+namespace detail {
+/// The alarms of a CUSUM that replays every value of every run, re-armed on
+/// `nominal` at the start of each.
+template <typename Scalar, int N>
+[[nodiscard]] Index cusum_alarms_on_runs(const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs,
+                                         const Eigen::Matrix<Scalar, N, 1>& nominal,
+                                         const Eigen::Matrix<Scalar, N, 1>& scale, Scalar drift, Scalar threshold,
+                                         Index stride) {
+  CusumDetector<Scalar, N> detector(nominal, scale, drift, threshold, {.stride = stride});
+  for (const auto& run : runs) {
+    detector.rearm(nominal);
+    for (const auto& v : run) (void)detector.update(v);
+  }
+  return detector.alarm_count();
+}
+}  // namespace detail
+
+/// The rate check of `calibrate_cusum` (and of the stride search of
+/// `design_fault_monitor`): the false alarms that a CUSUM with these scales and
+/// drift, designed for 50 of them on the runs (a threshold for false alarms
+/// every evaluations / 50 evaluations, `cusum_threshold`), raises when it replays
+/// every value of every run, re-armed on `nominal` at the start of each, reading
+/// every `stride`-th. For independent normal values about 50; a count far from
+/// it says the values at the stride are not.
+///
+/// The values are taken as they are, as by `stride_statistics`. Refuses, naming
+/// 'runs', runs too short for such a design: with `evaluations` values at the
+/// stride, it needs `detail::cusum_threshold_exists(drift, evaluations / 50, n)`.
+template <typename Scalar, int N>
+[[nodiscard]] Index cusum_rate_check(const std::vector<std::vector<Eigen::Matrix<Scalar, N, 1>>>& runs,
+                                     const Eigen::Matrix<Scalar, N, 1>& nominal,
+                                     const Eigen::Matrix<Scalar, N, 1>& scale, Scalar drift, Index stride) {
+  constexpr std::string_view who = "cusum_rate_check";
+  require(stride >= 1, who, "stride", "must be at least 1");
+  Index evaluations = 0;  // values at the stride: steps 0, stride, 2·stride, ... of each run
+  for (const auto& run : runs) evaluations += (static_cast<Index>(run.size()) + stride - 1) / stride;
+  const auto checked = static_cast<double>(static_cast<Scalar>(evaluations) / Scalar(50));
+  require(detail::cusum_threshold_exists(static_cast<double>(drift), checked, nominal.size()), who, "runs",
+          "hold too few values at the stride for a design expecting 50 false alarms on them (its threshold would be "
+          "below 0)");
+  const auto threshold = static_cast<Scalar>(cusum_threshold(static_cast<double>(drift), checked, nominal.size()));
+  return detail::cusum_alarms_on_runs(runs, nominal, scale, drift, threshold, stride);
+}
+
+namespace detail {
+/// Whether `alarms` false alarms where 50 were designed are within a factor
+/// `tolerance` of them (`CusumCalibrationOptions::rate_tolerance`).
+[[nodiscard]] inline bool rate_within(Index alarms, double tolerance) {
+  const double ratio = static_cast<double>(alarms) / 50.0;
+  return ratio <= tolerance && ratio >= 1 / tolerance;
+}
+}  // namespace detail
 
 /// Designs a `CusumDetector` that raises false alarms every `mean_evaluations`
 /// evaluations (values fed to its sums) on average, and checks the design's
@@ -213,7 +296,7 @@ template <typename Scalar, int N>
   require(result.evaluations >= 500, who, "runs", "must hold at least 500 values at the stride");
   const auto count = static_cast<Scalar>(result.evaluations);
   // RMS deviation from nominal over the evaluated values.
-  result.scale = statistics.square.cwiseSqrt();
+  result.scale = statistics.root_mean_square;
   require((result.scale.array() > Scalar(0)).all(), who, "runs",
           "must vary in every component (a zero scale cannot normalize)");
   result.bias = (statistics.mean.array().abs() / result.scale.array()).maxCoeff();
@@ -237,15 +320,6 @@ template <typename Scalar, int N>
     fail_argument(who, "stride", os.str());
   }
 
-  // Replays a design on the runs and counts its alarms.
-  auto alarms_of = [&](Scalar threshold) {
-    CusumDetector<Scalar, N> detector(nominal, result.scale, drift, threshold, {.stride = stride});
-    for (const auto& run : runs) {
-      detector.rearm(nominal);
-      for (const auto& v : run) (void)detector.update(v);
-    }
-    return detector.alarm_count();
-  };
   result.checked_mean_evaluations = count / Scalar(50);
   if (!detail::cusum_threshold_exists(static_cast<double>(drift), static_cast<double>(result.checked_mean_evaluations),
                                       n)) {
@@ -254,11 +328,8 @@ template <typename Scalar, int N>
        << ": a check expecting 50 false alarms on them needs a threshold below 0; give longer runs or lower the drift";
     fail_argument(who, "runs", os.str());
   }
-  const double check_threshold =
-      cusum_threshold(static_cast<double>(drift), static_cast<double>(result.checked_mean_evaluations), n);
-  result.checked_alarms = alarms_of(static_cast<Scalar>(check_threshold));
-  const double ratio = static_cast<double>(result.checked_alarms) / 50.0;
-  if (!(ratio <= options.rate_tolerance && ratio >= 1 / options.rate_tolerance)) {
+  result.checked_alarms = cusum_rate_check(runs, nominal, result.scale, drift, stride);
+  if (!detail::rate_within(result.checked_alarms, options.rate_tolerance)) {
     std::ostringstream os;
     os << "give " << result.checked_alarms << " false alarms to a design that expects 50 on them: the normalized "
        << "values are too far from independent normal draws (raise the stride)";
@@ -267,7 +338,7 @@ template <typename Scalar, int N>
 
   result.threshold =
       static_cast<Scalar>(cusum_threshold(static_cast<double>(drift), static_cast<double>(mean_evaluations), n));
-  result.alarms = alarms_of(result.threshold);
+  result.alarms = detail::cusum_alarms_on_runs(runs, nominal, result.scale, drift, result.threshold, stride);
   return result;
 }
 

@@ -90,8 +90,8 @@ struct StrideCorrelation {
   Scalar long_run_excess = 0;  ///< largest departure from 1 of a long-run variance ratio
   Index evaluations = 0;       ///< values read over all runs
   /// Where the correlations were within their limits but `calibrate_cusum`'s
-  /// rate check refused the stride: the false alarms of its check (designed
-  /// for 50); −1 elsewhere.
+  /// rate check (`cusum_rate_check`) refused the stride: the false alarms of
+  /// its check (designed for 50); −1 elsewhere.
   Index checked_alarms = -1;
 };
 
@@ -135,6 +135,58 @@ struct FaultMonitorDesignOptions {
 };
 
 namespace detail {
+
+/// The refusal of one entry of a record: "holds <what> <problem>: number k of run r (counted from 0)".
+[[noreturn]] inline void fail_record_entry(std::string_view who, std::string_view argument, std::string_view what,
+                                           std::size_t run, std::size_t k, std::string_view problem) {
+  std::ostringstream os;
+  os << "holds " << what << " " << problem << ": number " << k << " of run " << run << " (counted from 0)";
+  fail_argument(who, argument, os.str());
+}
+
+/// Checks a record as the user passed it, before any design routine sees its
+/// runs (their refusals would name their own arguments, not the record): as
+/// many runs of output errors as of parameters, and every parameter estimate
+/// (of `parameters` entries, or of the first one's size when negative) and
+/// every output error (of the first one's size, at least one entry) finite.
+/// Returns the number of parameters (−1 for a record without estimates).
+template <typename Scalar, int NY, int NP>
+Index check_record(const FaultFreeRecord<Scalar, NY, NP>& record, Index parameters, std::string_view who,
+                   std::string_view argument) {
+  require(record.parameters.size() == record.output_errors.size(), who, argument,
+          "must hold as many runs of output errors as of parameters");
+  const auto check = [&](const auto& runs, Index& size, std::string_view what) {
+    for (std::size_t r = 0; r < runs.size(); ++r)
+      for (std::size_t k = 0; k < runs[r].size(); ++k) {
+        const auto& v = runs[r][k];
+        if (size < 0) size = v.size();
+        if (v.size() != size) {
+          std::ostringstream os;
+          os << "of " << v.size() << " entries where " << size << " were expected";
+          fail_record_entry(who, argument, what, r, k, os.str());
+        }
+        if (!detail::all_finite(v)) fail_record_entry(who, argument, what, r, k, "that is not finite");
+      }
+  };
+  check(record.parameters, parameters, "a parameter estimate");
+  Index outputs = -1;
+  check(record.output_errors, outputs, "an output error");
+  require(outputs != 0, who, argument, "must hold output errors of at least one entry");
+  return parameters;
+}
+
+/// Whether the χ² test can take `covariance`, the sample covariance of a
+/// record's output errors: positive definite, with a finite inverse (as its
+/// constructor requires).
+template <typename Scalar, int NY>
+[[nodiscard]] bool chi_square_covariance_usable(const Eigen::Matrix<Scalar, NY, NY>& covariance) {
+  detail::CholeskyFactor<Eigen::Matrix<Scalar, NY, NY>> factor;
+  if (covariance.rows() < 1 || !factor.compute(covariance)) return false;
+  Eigen::Matrix<Scalar, NY, NY> information =
+      Eigen::Matrix<Scalar, NY, NY>::Identity(covariance.rows(), covariance.rows());
+  factor.solve_in_place(information);
+  return information.allFinite();
+}
 
 /// The `explanation` of a design: its stride and the correlations behind it,
 /// its nominal value, and the tests' thresholds with their checks on the record.
@@ -207,6 +259,14 @@ std::string explain_design(const FaultMonitorDesign<Scalar, NY, NP>& design, std
 ///   CUSUM: a GLR designed for about 50 false alarms on the record must raise
 ///   between 25 and 100 there (refused otherwise, naming 'record').
 ///
+/// The record itself is checked first, its refusals naming 'record' and the
+/// entry: as many runs of output errors as of parameters, every estimate and
+/// output error finite and of one size; and output errors whose sample
+/// covariance the χ² test can take (positive definite, with a finite inverse).
+/// The GLR's threshold is simulated (`glr_threshold`): a simulation beyond
+/// `glr_max_simulation_work` is refused naming 'glr_window' or
+/// 'mean_samples_between_false_alarms', with the largest value allowed.
+///
 /// Each test is designed for the rate asked for: a caller that acts on any of
 /// the three alarms gets up to three times as many.
 template <typename Scalar, int NY, int NP>
@@ -225,10 +285,17 @@ template <typename Scalar, int NY, int NP>
   require(evaluations_between >= 2 && evaluations_between <= glr_max_mean_evaluations, who,
           "mean_samples_between_false_alarms",
           "must lie between 2 and 1e5 strides (the GLR's threshold is simulated over 50 times as many)");
-  // The GLR's threshold is simulated (glr_threshold), at a cost of window × parameters × evaluations.
-  require(detail::glr_simulation_affordable(glr_window, nominal.size(), evaluations_between), who, "glr_window",
-          "times the parameters times mean_samples_between_false_alarms / stride must be at most 1e7 "
-          "(glr_max_simulation_work: the GLR's threshold is simulated)");
+  require(glr_window <= glr_max_window, who, "glr_window",
+          "must be at most 2^20 (each evaluation costs O(glr_window))");
+  // The GLR's threshold is simulated (glr_threshold): its work, refused in this call's terms.
+  detail::require_glr_simulation_affordable(glr_window, evaluations_between, nominal.size(), who,
+                                            {.window = "glr_window",
+                                             .mean_evaluations = "mean_samples_between_false_alarms",
+                                             .components = {},
+                                             .mean_per_evaluation = static_cast<double>(stride)});
+  // The record as passed, named as such: calibrate_cusum and sample_covariance
+  // would refuse its runs under their own names.
+  (void)detail::check_record(record, nominal.size(), who, "record");
   FaultMonitorDesign<Scalar, NY, NP> design;
   design.nominal = nominal;
   design.cusum = calibrate_cusum(record.parameters, nominal, drift,
@@ -239,9 +306,11 @@ template <typename Scalar, int NY, int NP>
   {
     const double checked = static_cast<double>(design.cusum.evaluations) / 50;
     // The check simulates its own threshold, within glr_threshold's range.
-    require(detail::glr_simulation_affordable(glr_window, nominal.size(), checked), who, "record",
+    require(checked <= glr_max_mean_evaluations &&
+                glr_simulation_work(glr_window, checked, nominal.size()) <= glr_max_simulation_work,
+            who, "record",
             "is too long for the GLR's check, whose threshold is simulated for its estimates at the stride / 50 "
-            "(at most 1e5, and 1e7 / (glr_window x parameters)): give fewer runs");
+            "(at most 1e5, and a simulation within glr_max_simulation_work, glr_simulation_work): give fewer runs");
     GlrDetector<Scalar, NP> glr(nominal, design.cusum.scale, glr_window,
                                 static_cast<Scalar>(glr_threshold(glr_window, checked, nominal.size())),
                                 {.stride = stride});
@@ -257,7 +326,17 @@ template <typename Scalar, int NY, int NP>
       fail_argument(who, "record", os.str());
     }
   }
+  std::size_t output_errors = 0;
+  for (const auto& run : record.output_errors) output_errors += run.size();
+  // Necessary for the windows counted below (which do not span runs), and for a covariance.
+  require(static_cast<double>(output_errors) >= 200 * static_cast<double>(window), who, "record",
+          "must span at least 200 windows of the χ² test");
   design.output_error_covariance = sample_covariance(record.output_errors);
+  if (!detail::chi_square_covariance_usable(design.output_error_covariance))
+    fail_argument(who, "record",
+                  "has output errors whose sample covariance is singular, or has an inverse beyond the floating-point "
+                  "range (errors all zero, an output that never varies or is a fixed combination of others, or "
+                  "errors too small): the chi-square test cannot normalize them");
   design.window = window;
   design.false_alarm_probability = static_cast<Scalar>(window) / mean_samples_between_false_alarms;
 
@@ -389,19 +468,11 @@ FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor_searched(const FaultFree
   require(options.glr_window >= 1, who, "options.glr_window", "must be at least 1");
   require(options.stride_multiple >= 1, who, "options.stride_multiple", "must be at least 1");
   require(options.margin > 0 && options.margin <= 1, who, "options.margin", "must be in (0, 1]");
-  require(record.parameters.size() == record.output_errors.size(), who, argument,
-          "must hold as many runs of output errors as of parameters");
-  const auto& runs = record.parameters;
-  Index n = -1;
-  std::vector<std::size_t> lengths;
-  for (const auto& run : runs) {
-    lengths.push_back(run.size());
-    for (const auto& v : run) {
-      if (n < 0) n = v.size();
-      require_finite_shape(v, n, 1, who, argument);
-    }
-  }
+  const Index n = check_record(record, -1, who, argument);
   require(n >= 1, who, argument, "must hold parameter estimates of at least one component");
+  const auto& runs = record.parameters;
+  std::vector<std::size_t> lengths;
+  for (const auto& run : runs) lengths.push_back(run.size());
   const CusumCalibrationOptions limits;  // calibrate_cusum's defaults, which it checks again at the stride
   // Values and pairs five strides apart that the runs hold at a stride: these
   // decrease as the stride grows, which ends the search.
@@ -439,14 +510,24 @@ FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor_searched(const FaultFree
     nominal = reference + s.mean;
     // Correlations within their limits may still hide a dependence the rate
     // check sees (θ̂ read at drifting phases of a periodic excitation): then
-    // calibrate_cusum's refusal asks for a longer stride, and the search goes on.
-    try {
-      (void)calibrate_cusum(runs, nominal, drift, mean_samples_between_false_alarms / static_cast<Scalar>(stride),
-                            stride, limits);
-    } catch (const ConfigurationError& e) {
-      if (std::string_view(e.what()).find("(raise the stride)") == std::string_view::npos) throw;
-      const auto alarms = std::stod(std::string(e.what()).substr(std::string_view(e.what()).find("give ") + 5));
-      correlations.back().checked_alarms = static_cast<Index>(alarms);
+    // calibrate_cusum would refuse the stride, and the search goes on. Its
+    // check, on its scales: the RMS deviations from the nominal value.
+    const StrideStatistics<Scalar, NP> about_nominal = stride_statistics(runs, nominal, stride);
+    if (!(about_nominal.root_mean_square.array() > Scalar(0)).all())
+      fail_argument(who, argument,
+                    "has parameter estimates constant in some component at the stride: they must vary in every "
+                    "component (a zero scale cannot normalize)");
+    if (!cusum_threshold_exists(static_cast<double>(drift),
+                                static_cast<double>(static_cast<Scalar>(s.evaluations) / Scalar(50)), n)) {
+      std::ostringstream os;
+      os << "holds too few values at stride " << stride << " (" << s.evaluations << ") for drift " << drift
+         << ": a check expecting 50 false alarms on them needs a threshold below 0; give longer runs or lower the "
+            "drift";
+      fail_argument(who, argument, os.str());
+    }
+    const Index alarms = cusum_rate_check(runs, nominal, about_nominal.root_mean_square, drift, stride);
+    if (!rate_within(alarms, limits.rate_tolerance)) {
+      correlations.back().checked_alarms = alarms;
       continue;
     }
     found = true;
@@ -497,8 +578,9 @@ FaultMonitorDesign<Scalar, NY, NP> design_fault_monitor_searched(const FaultFree
 ///   measured by `stride_statistics`; the search tries every stride up to the
 ///   largest the runs support (500 values at the stride in all, and runs of at
 ///   least six). A stride whose correlations pass but whose values fail
-///   `calibrate_cusum`'s check of the rate (its refusal asks for a longer
-///   stride: θ̂ read at drifting phases of a periodic excitation) is passed over;
+///   `calibrate_cusum`'s check of the rate (`cusum_rate_check`: θ̂ read at
+///   drifting phases of a periodic excitation) is passed over, its count kept
+///   in `StrideCorrelation::checked_alarms`;
 /// - the nominal value is the mean of \f$\hat\theta\f$ at that stride, over
 ///   every run: the healthy value the CUSUM's sums stay centred on;
 /// - then the tests as by the form with a given stride and nominal value.

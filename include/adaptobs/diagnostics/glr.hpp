@@ -43,20 +43,123 @@ namespace adaptobs {
 
 /// Longest window a GLR searches: each evaluation costs O(window) per component.
 inline constexpr Index glr_max_window = Index{1} << 20;
-/// Most window × components × mean_evaluations products `glr_threshold`
-/// simulates per candidate threshold, which bounds the run time of the search.
-inline constexpr double glr_max_simulation_work = 1e7;
+/// Most work `glr_threshold` spends on one candidate threshold, in window steps
+/// (`glr_simulation_work`): about a second on a current core. The search
+/// simulates 4 to 10 candidates for the thresholds in the tests and examples
+/// (at most 40 after its bracketing doublings), so about ten seconds in all.
+inline constexpr double glr_max_simulation_work = 5e8;
 /// Longest mean run between false alarms `glr_threshold` simulates, in evaluations.
 inline constexpr double glr_max_mean_evaluations = 1e5;
 
 namespace detail {
-/// Whether `glr_threshold` can simulate this window over `components`
-/// components for `mean_evaluations`: window and run length in range, and the
-/// work within `glr_max_simulation_work`.
-[[nodiscard]] inline bool glr_simulation_affordable(Index window, Index components, double mean_evaluations) {
-  return window >= 1 && window <= glr_max_window && mean_evaluations <= glr_max_mean_evaluations &&
-         static_cast<double>(window) * static_cast<double>(components) * mean_evaluations <= glr_max_simulation_work;
+/// Normal values `glr_threshold` keeps between its candidates (32 MB); beyond,
+/// each candidate draws them anew from the seed.
+inline constexpr Index glr_kept_values = Index{1} << 22;
+/// What a simulated value costs beside its window steps, in window steps: the
+/// detector's own update of it (normalizing, the circular buffer, the largest
+/// statistic), and, for a value drawn anew for each candidate, the draw (a
+/// Mersenne twister and the polar method: for short windows most of the cost).
+inline constexpr double glr_value_overhead = 4;
+inline constexpr double glr_draw_cost = 16;
+
+/// Evaluations `glr_threshold` simulates for a target of `mean_evaluations`:
+/// 50 false alarms at the answer, and at least 20000 evaluations.
+[[nodiscard]] inline Index glr_simulated_length(double mean_evaluations) {
+  return static_cast<Index>(std::max(20000.0, 50 * mean_evaluations));
 }
+}  // namespace detail
+
+/// The work of one candidate threshold of `glr_threshold(window,
+/// mean_evaluations, components)`, in window steps (one addition to a window
+/// sum of one component): each of its
+/// \f$L = \max(20000, 50\,\text{mean\_evaluations})\f$ evaluations costs
+/// `window` steps per component, plus the value's own update and, for more than
+/// 2²² values (L × components), their draw from the seed, which is then repeated for
+/// every candidate. Values of 2²² or fewer are drawn once, for about
+/// 16 × 2²² ≈ 7·10⁷ steps, not counted here. `glr_threshold` refuses a call whose
+/// work exceeds `glr_max_simulation_work`. The arguments are taken as given
+/// (mean_evaluations at most 1e5).
+[[nodiscard]] inline double glr_simulation_work(Index window, double mean_evaluations, Index components = 1) {
+  const double values =
+      static_cast<double>(detail::glr_simulated_length(mean_evaluations)) * static_cast<double>(components);
+  const bool kept = values <= static_cast<double>(detail::glr_kept_values);
+  return values * (static_cast<double>(window) + detail::glr_value_overhead + (kept ? 0.0 : detail::glr_draw_cost));
+}
+
+namespace detail {
+
+/// The names under which a caller of `glr_threshold` takes its window, its
+/// mean run length (in units of `mean_per_evaluation` of its own: a design
+/// routine's samples per evaluation) and its component count; an empty name is
+/// an argument the caller cannot lower.
+struct GlrSimulationNames {
+  std::string_view window = "window";
+  std::string_view mean_evaluations = "mean_evaluations";
+  std::string_view components = "components";
+  double mean_per_evaluation = 1;
+};
+
+/// The largest x in [low, high] at which `fits(x)` holds, for `fits` true at
+/// `low` and monotone (true, then false).
+template <class Fits>
+[[nodiscard]] Index largest_fitting(Index low, Index high, Fits fits) {
+  while (low < high) {
+    const Index middle = low + (high - low + 1) / 2;
+    if (fits(middle))
+      low = middle;
+    else
+      high = middle - 1;
+  }
+  return low;
+}
+
+/// Refuses, under `who`, a `glr_threshold` simulation whose work exceeds
+/// `glr_max_simulation_work`, naming the first of the window, the mean run
+/// length and the component count (among those `names` names) whose lowering
+/// alone brings the work within it, and the largest value that does.
+inline void require_glr_simulation_affordable(Index window, double mean_evaluations, Index components,
+                                              std::string_view who, const GlrSimulationNames& names = {}) {
+  const double work = glr_simulation_work(window, mean_evaluations, components);
+  if (work <= glr_max_simulation_work) return;
+  const auto fits = [](double w) { return w <= glr_max_simulation_work; };
+  Message os;
+  const auto explain = [&] {
+    const double values = static_cast<double>(glr_simulated_length(mean_evaluations)) * static_cast<double>(components);
+    os << " (the GLR's threshold is simulated over " << glr_simulated_length(mean_evaluations) << " evaluations of "
+       << components << (components == 1 ? " component: " : " components: ") << values << " values";
+    if (values > static_cast<double>(glr_kept_values)) os << ", drawn anew for each candidate threshold,";
+    os << " of " << window << (window == 1 ? " window step" : " window steps") << " each plus overhead, " << work
+       << " steps per candidate where glr_max_simulation_work allows " << glr_max_simulation_work << ")";
+  };
+
+  if (!names.window.empty() && window > 1 && fits(glr_simulation_work(1, mean_evaluations, components))) {
+    const Index largest =
+        largest_fitting(1, window, [&](Index w) { return fits(glr_simulation_work(w, mean_evaluations, components)); });
+    os << "must be at most " << largest << " here";
+    explain();
+    fail_argument(who, names.window, os.str());
+  }
+  if (!names.mean_evaluations.empty() && fits(glr_simulation_work(window, 2, components))) {
+    // Whole evaluations: the length changes with the mean in steps of 50.
+    const Index largest = largest_fitting(2, static_cast<Index>(mean_evaluations), [&](Index m) {
+      return fits(glr_simulation_work(window, static_cast<double>(m), components));
+    });
+    os << "must be at most " << static_cast<double>(largest) * names.mean_per_evaluation << " here";
+    explain();
+    fail_argument(who, names.mean_evaluations, os.str());
+  }
+  if (!names.components.empty() && components > 1 && fits(glr_simulation_work(window, mean_evaluations, 1))) {
+    const Index largest =
+        largest_fitting(1, components, [&](Index c) { return fits(glr_simulation_work(window, mean_evaluations, c)); });
+    os << "must be at most " << largest << " here";
+    explain();
+    fail_argument(who, names.components, os.str());
+  }
+  os << "together with the others costs too much to simulate: lower them";
+  explain();
+  fail_argument(who, !names.window.empty() ? names.window : names.mean_evaluations, os.str());
+}
+
 }  // namespace detail
 
 template <typename Scalar, int N = Eigen::Dynamic>
@@ -149,19 +252,29 @@ class GlrDetector : public SequentialTest<GlrDetector<Scalar, N>, Scalar, N> {
 
 namespace detail {
 
-/// `glr_threshold`'s search, its arguments checked. The search tries a dozen
+/// What `glr_threshold`'s search found and what it cost.
+struct GlrThresholdSearch {
+  double threshold = 0;
+  Index candidates = 0;    ///< thresholds simulated
+  Index values_drawn = 0;  ///< normal values drawn, over all candidates
+  Index evaluations = 0;   ///< GLR updates, over all candidates
+};
+
+/// `glr_threshold`'s search, its arguments checked. The search tries 4 to 10
 /// candidates on the same values; drawing a normal value costs more than a GLR
 /// step, so the values are drawn once and kept when there are at most
-/// `kept_values` of them (`glr_threshold` keeps up to 32 MB), and drawn anew
+/// `kept_values` of them (`glr_threshold` keeps `glr_kept_values`), and drawn anew
 /// from the seed for each candidate otherwise: the same numbers either way,
 /// hence the same h.
-[[nodiscard]] inline double glr_threshold_search(Index window, double mean_evaluations, Index components,
-                                                 Index kept_values) {
-  const auto length = static_cast<Index>(std::max(20000.0, 50 * mean_evaluations));
+[[nodiscard]] inline GlrThresholdSearch glr_threshold_search(Index window, double mean_evaluations, Index components,
+                                                             Index kept_values) {
+  const Index length = glr_simulated_length(mean_evaluations);
   const double wanted = static_cast<double>(length) / mean_evaluations;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(components), one = Eigen::VectorXd::Ones(components);
   const bool kept = length * components <= kept_values;
+  GlrThresholdSearch search;
   auto draw = [&](auto&& use) {
+    search.values_drawn += length * components;
     std::mt19937_64 rng(20261125);
     std::normal_distribution<double> normal(0.0, 1.0);
     Eigen::VectorXd z(components);
@@ -176,6 +289,8 @@ namespace detail {
     draw([&](Index k, const Eigen::VectorXd& z) { values.col(k) = z; });
   }
   auto alarms_at = [&](double h) {
+    ++search.candidates;
+    search.evaluations += length;
     GlrDetector<double> glr(zero, one, window, h);
     if (kept) {
       Eigen::VectorXd z(components);
@@ -204,11 +319,15 @@ namespace detail {
     double h = low + (log_low - std::log(wanted)) / (log_low - log_high) * (high - low);
     h = std::clamp(h, low + 0.05 * (high - low), high - 0.05 * (high - low));
     const double count = alarms_at(h);
-    if (std::abs(count - wanted) <= 1) return h;
+    if (std::abs(count - wanted) <= 1) {
+      search.threshold = h;
+      return search;
+    }
     (count > wanted ? low : high) = h;
     (count > wanted ? count_low : count_high) = count;
   }
-  return 0.5 * (low + high);
+  search.threshold = 0.5 * (low + high);
+  return search;
 }
 
 }  // namespace detail
@@ -225,17 +344,18 @@ namespace detail {
 /// the rate it gives carries a relative Monte-Carlo error of about
 /// \f$1/\sqrt{50} \approx 14\,\%\f$ (which the tests' tolerances allow for).
 /// Refuses, naming 'mean_evaluations', a target outside [2, 10⁵] evaluations,
-/// and naming 'window' one whose simulation would cost more than
-/// `glr_max_simulation_work` (each evaluation costs O(window) per component).
+/// and a call whose simulation would cost more than `glr_max_simulation_work`
+/// per candidate (`glr_simulation_work`: every simulated value and every draw
+/// counted), naming the first of 'window', 'mean_evaluations' and 'components'
+/// whose lowering alone brings it within, with the largest value that does.
 [[nodiscard]] inline double glr_threshold(Index window, double mean_evaluations, Index components = 1) {
   constexpr std::string_view who = "glr_threshold";
   require(window >= 1 && window <= glr_max_window, who, "window", "must lie in [1, 2^20]");
   require(components >= 1, who, "components", "must be at least 1");
   require(mean_evaluations >= 2 && mean_evaluations <= glr_max_mean_evaluations, who, "mean_evaluations",
           "must lie in [2, 1e5] evaluations");
-  require(detail::glr_simulation_affordable(window, components, mean_evaluations), who, "window",
-          "times components times mean_evaluations must be at most 1e7 (glr_max_simulation_work)");
-  return detail::glr_threshold_search(window, mean_evaluations, components, Index{1} << 22);
+  detail::require_glr_simulation_affordable(window, mean_evaluations, components, who);
+  return detail::glr_threshold_search(window, mean_evaluations, components, detail::glr_kept_values).threshold;
 }
 
 }  // namespace adaptobs

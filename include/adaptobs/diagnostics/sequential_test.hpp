@@ -97,8 +97,10 @@ class SequentialTest : public ThresholdAlarm<Scalar> {
   /// the statistics, the stride and the hold-off; the alarm count and what the
   /// last alarm named are kept.
   void rearm(const Vector& nominal) {
-    const std::string who = std::string(name_) + "::rearm";
-    require_finite_shape(nominal, nominal_.size(), 1, who, "nominal");
+    // The refusal's name is built only on the way to the throw: it runs in the
+    // loop, after a confirmed change, and allocates nothing otherwise.
+    if (nominal.size() != nominal_.size() || !detail::all_finite(nominal))
+      require_finite_shape(nominal, nominal_.size(), 1, std::string(name_) + "::rearm", "nominal");
     nominal_ = nominal;
     restart();
   }
