@@ -519,6 +519,29 @@ TEST(ExcitationMonitor, AHugeContributionLeavingTheWindowTakesNoSmallOneWithIt) 
   }
 }
 
+// w·ΦᵀΦ for a tiny w and a huge Φ: ΦᵀΦ = 1e320 overflows, (wΦ)ᵀΦ does not.
+// With run-time sizes Eigen's product kernel took w out of (wΦ)ᵀΦ and applied it
+// after the overflowing sum: the dynamic monitor reported the level unavailable
+// where the fixed-size one reported it.
+TEST(ExcitationMonitor, FixedAndRunTimeSizesAgreeWhereThePlainProductWouldOverflow) {
+  const Eigen::Matrix2d phi = 1e160 * Eigen::Vector2d(1, 2).asDiagonal().toDenseMatrix();
+  for (const double weight : {1e-300, 1e-320}) {
+    SCOPED_TRACE(weight);
+    adaptobs::ExcitationMonitor<double, 2> fixed(1);
+    adaptobs::ExcitationMonitor<double, Eigen::Dynamic> dynamic(1, 2);
+    fixed.add(phi, weight);
+    dynamic.add(Eigen::MatrixXd(phi), weight);
+    ASSERT_TRUE(fixed.available());
+    ASSERT_TRUE(dynamic.available());
+    // The level is w·1e320; 1e-320 is subnormal, with a relative spacing of 1e-5.
+    const double level = weight * 1e160 * 1e160;
+    const double tolerance = (weight < 1e-310 ? 1e-4 : 1e-15) * level;
+    EXPECT_NEAR(fixed.level(), level, tolerance);
+    EXPECT_NEAR(dynamic.level(), level, tolerance);
+    EXPECT_NEAR(dynamic.average()(1, 1), 4 * level, 4 * tolerance);
+  }
+}
+
 TEST(ExcitationMonitor, RefusesWrongColumnsNonFiniteEntriesAndBadWeightsAddingNothing) {
   adaptobs::ExcitationMonitor<double, Eigen::Dynamic> monitor(3, 2);
   monitor.add(Eigen::RowVector2d(1, 0));

@@ -331,13 +331,117 @@ struct GuyaderZhangDynamicContract : GuyaderZhangContract<double> {
   }
 };
 
+// The twins on the overflow path of the normalized step: one regressor of 1e200
+// at k = 10, after which ‖C̄Υ‖²_F overflows for the rest of the run, μ_k underflows,
+// and the step is √μ_k C̄Υᵀ(√μ_k ε) with √μ_k C̄Υ fed to the excitation monitor.
+// Both measured states see it (C picks x₁ and x₃), so that C̄Υ has rank 2 and the
+// level of the monitor's window is not zero.
+constexpr Index huge_regressor_step = 10;
+
+struct GuyaderZhangNormalizedContract : GuyaderZhangContract<double> {
+  static constexpr adaptobs::GuyaderZhangOptions options{.excitation_window = 5, .normalized_step = true};
+  static Observer make() { return make_satellite_observer<double>(options); }
+  template <class Run>
+  static Run with_a_huge_regressor(Run run) {
+    auto& psi = run[huge_regressor_step].Psi;
+    psi.setZero();
+    psi(0, 0) = psi(2, 1) = 1e200;
+    return run;
+  }
+  static std::vector<Sample> samples() { return with_a_huge_regressor(GuyaderZhangContract<double>::samples()); }
+};
+
+struct GuyaderZhangNormalizedDynamicContract : GuyaderZhangDynamicContract {
+  static constexpr const char* name = "normalized_step";
+  using InFixed = GuyaderZhangNormalizedContract;
+  static Observer make() {
+    const auto fixed = satellite::model<double>();
+    const adaptobs::DiscreteLtiModel<Dims> model(fixed.system().A, fixed.system().B, fixed.system().C, 2);
+    return Observer(model, Eigen::MatrixXd(satellite::paper_gain<double>()), satellite::mu,
+                    Eigen::VectorXd(satellite::initial_state_estimate<double>()),
+                    Eigen::VectorXd(satellite::initial_parameter_estimate<double>()),
+                    GuyaderZhangNormalizedContract::options);
+  }
+  static std::vector<Sample> samples() {
+    return GuyaderZhangNormalizedContract::with_a_huge_regressor(GuyaderZhangDynamicContract::samples());
+  }
+};
+
 }  // namespace
 
 ADAPTOBS_OBSERVER_CONTRACT(GuyaderZhang, GuyaderZhangContract<float>, GuyaderZhangContract<double>);
 ADAPTOBS_TWIN_CONTRACT(GuyaderZhang, FloatFollowsDouble, GuyaderZhangContract<float>);
-ADAPTOBS_TWIN_CONTRACT(GuyaderZhang, DynamicFollowsFixed, GuyaderZhangDynamicContract);
+ADAPTOBS_TWIN_CONTRACT(GuyaderZhang, DynamicFollowsFixed, GuyaderZhangDynamicContract,
+                       GuyaderZhangNormalizedDynamicContract);
 
 namespace {
+
+// x_{k+1} = x_k/2 + Ψ_kθ, y = x (n = p = 2, K = 0, μ = 1, the normalized step), with
+// Ψ_0 = 1e200·I and Ψ_k = 0 after: Υ_k = 2^{1−k}·1e200·I for k ≥ 1, so ‖C̄Υ_k‖²_F
+// overflows for a hundred steps, and μ_k = 1/‖C̄Υ_k‖²_F underflows.
+template <bool fixed>
+auto halving_observer(const Eigen::Vector2d& theta0) {
+  using D = std::conditional_t<fixed, adaptobs::Dimensions<double, 2, 1, 2, 2>, adaptobs::DynamicDimensions<double>>;
+  using Matrix = std::conditional_t<fixed, Eigen::Matrix2d, Eigen::MatrixXd>;
+  using Vector = std::conditional_t<fixed, Eigen::Vector2d, Eigen::VectorXd>;
+  const Matrix identity = Eigen::Matrix2d::Identity();
+  const adaptobs::DiscreteLtiModel<D> model = [&] {
+    if constexpr (fixed) {
+      return adaptobs::DiscreteLtiModel<D>(0.5 * identity, Eigen::Vector2d::Zero(), identity);
+    } else {
+      return adaptobs::DiscreteLtiModel<D>(0.5 * identity, Eigen::MatrixXd::Zero(2, 1), identity, 2);
+    }
+  }();
+  return adaptobs::GuyaderZhangObserver(model, Matrix(Matrix::Zero(2, 2)), 1.0, Vector(Vector::Zero(2)), Vector(theta0),
+                                        {.excitation_window = 3, .normalized_step = true});
+}
+
+template <class Observer>
+UpdateStatus halving_step(Observer& observer, Index k) {
+  typename Observer::Sample s{Observer::Input::Zero(1), Observer::Output::Zero(2),
+                              Observer::RegressorMatrix::Zero(2, 2)};
+  if (k == 0) s.Psi.diagonal().setConstant(1e200);
+  return observer.update(s);
+}
+
+// At k = 1, x̂_1 = Ψ_0θ̂_0 = 1e200·θ̂_0 and ε_1 = −x̂_1: the normalized step
+// √μ_1 C̄Υ_1ᵀ(√μ_1 ε_1), with √μ_1 = 1/(√2·1e200), is −θ̂_0/2 whatever the size type.
+// The dynamic twin took √μ_1 out of the product, after C̄Υ_1ᵀε_1 = −1e400 had
+// overflowed, and refused every sample from k = 1 on.
+TEST(GuyaderZhang, TheNormalizedStepBeyondTheFloatingPointRangeIsTheSameWithRunTimeSizes) {
+  const Eigen::Vector2d theta0(1, 3);
+  auto fixed = halving_observer<true>(theta0);
+  auto dynamic = halving_observer<false>(theta0);
+  for (Index k = 0; k < 2; ++k) {
+    ASSERT_EQ(halving_step(fixed, k), UpdateStatus::accepted) << "k = " << k;
+    ASSERT_EQ(halving_step(dynamic, k), UpdateStatus::accepted) << "k = " << k;
+  }
+  EXPECT_MATRIX_NEAR(fixed.parameters(), Eigen::Vector2d(0.5, 1.5), 1e-15, 0);
+  EXPECT_MATRIX_NEAR(dynamic.parameters(), Eigen::Vector2d(0.5, 1.5), 1e-15, 0);
+  for (Index k = 2; k < 40; ++k) {
+    ASSERT_EQ(halving_step(fixed, k), UpdateStatus::accepted) << "k = " << k;
+    ASSERT_EQ(halving_step(dynamic, k), UpdateStatus::accepted) << "k = " << k;
+  }
+  EXPECT_MATRIX_NEAR(dynamic.parameters(), fixed.parameters(), 1e-15, 0);
+  EXPECT_MATRIX_NEAR(dynamic.state(), fixed.state(), 0, 1e-14);
+}
+
+// The excitation monitor is fed √μ_k C̄Υ_k = I/√2 at every step from k = 1 on, so
+// the level is exactly 1/2. For dynamic sizes it was fed the previous step's C̄Υ
+// scaled by this step's √μ_k, twice too large: a level of 2.
+TEST(GuyaderZhang, TheMonitorSeesThisStepsRegressorWhenTheStepSizeUnderflows) {
+  auto fixed = halving_observer<true>(Eigen::Vector2d::Zero());
+  auto dynamic = halving_observer<false>(Eigen::Vector2d::Zero());
+  for (Index k = 0; k < 20; ++k) {
+    ASSERT_EQ(halving_step(fixed, k), UpdateStatus::accepted) << "k = " << k;
+    ASSERT_EQ(halving_step(dynamic, k), UpdateStatus::accepted) << "k = " << k;
+    if (k < 3) continue;  // the window holds the steps 1 to k
+    ASSERT_TRUE(fixed.excitation_level().has_value() && dynamic.excitation_level().has_value()) << "k = " << k;
+    EXPECT_NEAR(*fixed.excitation_level(), 0.5, 1e-15) << "k = " << k;
+    EXPECT_NEAR(*dynamic.excitation_level(), 0.5, 1e-15) << "k = " << k;
+    EXPECT_NEAR(dynamic.assumption2_norm(), std::sqrt(0.5), 1e-15) << "k = " << k;
+  }
+}
 
 using adaptobs::testing::configuration_error_of;
 

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace {
 
@@ -133,6 +134,48 @@ TEST_F(SampledIntegration, ALimitLearnedFromATinyFirstIntervalIsLearnedAgainAfte
   EXPECT_NEAR(integrator.max_step(), 1.25 * 0.01, 1e-15);
 }
 
+// An observer that bounds its own step (the Kalman–Bucy filter): while no limit
+// is known, a first interval whose `substeps` steps would be longer than the
+// bound is crossed in steps of the bound and teaches nothing; the limit is
+// learned from the first interval that fits. Here the bound is 0.02 (λh = 1).
+TEST_F(SampledIntegration, AFirstIntervalLongerThanTheStableStepIsCutAndTeachesNothing) {
+  make({.substeps = 2});
+  int bound_calls = 0;
+  const auto stable_step = [&](const State&, double, const DecayDims::Input&, const DecayDims::Output&) {
+    ++bound_calls;
+    return 0.02;
+  };
+  const auto advance_with_bound = [&](double t) {
+    const State before = x;
+    const double t0 = integrator.time();
+    evaluations = 0;
+    const UpdateStatus status = integrator.advance(
+        at(t), x, Decay{&evaluations}, "test", [](State&) { return UpdateStatus::accepted; }, stable_step);
+    steps = evaluations / 4;
+    if (steps > 0) {
+      EXPECT_NEAR(x(0) / before(0), rk4_decay(t - t0, steps), 1e-12 * rk4_decay(t - t0, steps));
+    }
+    return status;
+  };
+  ASSERT_EQ(advance_with_bound(0.0), UpdateStatus::accepted);
+  EXPECT_EQ(bound_calls, 0);  // the time origin: nothing integrated
+  // A 3-s gap first: ⌈3 / 0.02⌉ = 150 steps, where two would multiply x by R(−75)² ≈ 1.6e12.
+  ASSERT_EQ(advance_with_bound(3.0), UpdateStatus::accepted);
+  EXPECT_EQ(steps, 150);
+  EXPECT_EQ(integrator.max_step(), 0.0);
+  EXPECT_LT(x(0), 1e-60);
+  x(0) = 1;
+  // The 10-ms interval after it is the first to fit: two steps, and the limit 1.25 × 0.005.
+  ASSERT_EQ(advance_with_bound(3.01), UpdateStatus::accepted);
+  EXPECT_EQ(steps, 2);
+  EXPECT_NEAR(integrator.max_step(), 1.25 * 0.005, 1e-15);
+  EXPECT_EQ(bound_calls, 2);
+  // From then on the learned limit bounds the steps, and the bound is not asked again.
+  ASSERT_EQ(advance_with_bound(3.1), UpdateStatus::accepted);  // ⌈0.09 / 0.00625⌉ steps
+  EXPECT_EQ(steps, 15);
+  EXPECT_EQ(bound_calls, 2);
+}
+
 TEST_F(SampledIntegration, AValidatorCanRejectTheStepAndNothingIsCommitted) {
   ASSERT_EQ(advance_to(0.0), UpdateStatus::accepted);
   const State before = x;
@@ -146,6 +189,37 @@ TEST_F(SampledIntegration, AValidatorCanRejectTheStepAndNothingIsCommitted) {
   EXPECT_EQ(x, before);
   EXPECT_EQ(integrator.time(), 0.0);
   EXPECT_EQ(integrator.max_step(), 0.0);  // a rejected first interval teaches nothing
+}
+
+// In float, max_substeps = INT_MAX rounds up to 2^31: an interval that needs
+// 2^31 steps passed the bound, and int(2^31) is undefined (on x86 INT_MIN: no
+// step at all, and the sample was accepted with the state where it was).
+TEST(SampledIntegrationInFloat, AStepCountBeyondIntIsRejectedAsTooLong) {
+  using Dims = adaptobs::Dimensions<float, 1, 1, 1, 1>;
+  using FloatState = Eigen::Matrix<float, 1, 1>;
+  const auto at_time = [](float t) {
+    return adaptobs::ContinuousSample<Dims>{t, Dims::Input::Zero(), Dims::Output::Zero()};
+  };
+  SampledIntegrator<Dims, FloatState> integrator(FloatState::Zero(), adaptobs::Sizes{1, 1, 1, 1},
+                                                 {.max_step = 1e-3, .max_substeps = std::numeric_limits<int>::max()},
+                                                 "test");
+  FloatState x = FloatState::Constant(1.0f);
+  int evaluations = 0;
+  const auto decay = [&](const FloatState& s, FloatState& ds, float, const Dims::Input&, const Dims::Output&) {
+    ++evaluations;
+    ds = -2.0f * s;
+  };
+  ASSERT_EQ(integrator.advance(at_time(0.0f), x, decay, "test"), UpdateStatus::accepted);
+  // ⌈2147483.648 / 0.001⌉ in float is 2^31 = INT_MAX + 1.
+  ASSERT_EQ(std::ceil(2147483.648f / float(1e-3)), 2147483648.0f);
+  EXPECT_EQ(integrator.advance(at_time(2147483.648f), x, decay, "test"), UpdateStatus::interval_too_long);
+  EXPECT_EQ(evaluations, 0);
+  EXPECT_EQ(x(0), 1.0f);
+  EXPECT_EQ(integrator.time(), 0.0f);
+  // An interval within the budget is integrated: ⌈0.01 / 0.001⌉ = 10 steps of RK4.
+  ASSERT_EQ(integrator.advance(at_time(0.01f), x, decay, "test"), UpdateStatus::accepted);
+  EXPECT_EQ(evaluations, 40);
+  EXPECT_NEAR(x(0), std::exp(-0.02f), 1e-6f);
 }
 
 TEST_F(SampledIntegration, BadStepOptionsNameTheArgument) {

@@ -100,6 +100,43 @@ TEST(SampledIntegration, KalmanBucyCrossesAGapWithItsCovariancePositiveDefinite)
   EXPECT_TRUE(adaptobs::detail::cholesky_succeeds(P));
 }
 
+// A first interval that is itself a gap: the filter crosses it in steps of its
+// stable step 1/‖A_e − LC_e‖_F (about 0.046 s here, baselines/kalman_bucy.hpp) and
+// learns its limit from the 10-ms intervals after it. One RK4 step across the
+// gap left P indefinite, and every later interval, longer still, was rejected
+// until resynchronize(). Against the filter stepped at 1.25 ms throughout: after
+// the gap 2.4e-4 (2 s) and 4.5e-5 (20 s) relative in θ̂, 1.2e-5 ten seconds later.
+TEST(SampledIntegration, KalmanBucyWhoseFirstIntervalIsAGapAcceptsItAndEverySampleAfter) {
+  for (const double gap : {2.0, 20.0}) {
+    SCOPED_TRACE(gap);
+    auto filter = kalman_bucy_filter<double>(1e-4, adaptobs::SamplingOptions{});
+    auto fine = kalman_bucy_filter<double>(1e-4, adaptobs::SamplingOptions{.max_step = 0.01 / 8});
+    auto plant = siso::make_plant<double>();
+    const auto next_sample = [&] {
+      auto sample = plant.sample();
+      sample.midpoint.reset();
+      return sample;
+    };
+    ASSERT_EQ(filter.update(next_sample()), UpdateStatus::accepted);
+    ASSERT_EQ(fine.update(next_sample()), UpdateStatus::accepted);
+    for (int k = 0; k < int(std::lround(gap / 0.01)); ++k) plant.advance();
+    const auto relative_error = [&](const auto& a, const auto& b) { return (a - b).norm() / b.norm(); };
+    for (int k = 0; k <= 1000; ++k, plant.advance()) {
+      const auto sample = next_sample();
+      ASSERT_EQ(filter.update(sample), UpdateStatus::accepted) << "k = " << k;
+      ASSERT_EQ(fine.update(sample), UpdateStatus::accepted) << "k = " << k;
+      if (k == 0) {
+        EXPECT_LT(relative_error(filter.parameters(), fine.parameters()), 1e-3);
+        EXPECT_LT(relative_error(filter.state(), fine.state()), 1e-3);
+      }
+    }
+    EXPECT_LT(relative_error(filter.parameters(), fine.parameters()), 1e-4);
+    EXPECT_LT(relative_error(filter.state(), fine.state()), 1e-4);
+    const Eigen::MatrixXd P = filter.covariance();
+    EXPECT_TRUE(adaptobs::detail::cholesky_succeeds(P));
+  }
+}
+
 // Irregular sample times: intervals drawn from {1, 2, 3, 4} plant steps of
 // 10 ms, i.e. [0.5, 2] times a nominal 20 ms, against the regular 20-ms grid.
 // Both reconstruct u and y linearly between samples (no midpoint), which sets

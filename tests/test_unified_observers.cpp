@@ -233,7 +233,8 @@ struct UnifiedContract {
     }
     return out;
   }
-  static Sample overflowing(Sample s) {
+  template <class S>  // a sample of this observer or of its dynamic-size twin
+  static S overflowing(S s) {
     s.y.setConstant(std::numeric_limits<Scalar>::max());
     s.midpoint->y.setConstant(-std::numeric_limits<Scalar>::max());
     return s;

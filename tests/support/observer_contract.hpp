@@ -46,7 +46,8 @@
 // its fixed-size twin (`using InFixed = ...;`) runs `DynamicFollowsFixed`
 // (ADAPTOBS_TWIN_CONTRACT): after the same run, every reading agrees with the
 // twin's, to 1e-4 and 1e-12 relative (`float_tolerance` and `dynamic_tolerance`
-// override them).
+// override them); the dynamic twin also gives the fixed one's verdict on the
+// factory's `overflowing` sample (its `overflowing` must take its own sample type).
 
 #include "support/allocation_counter.hpp"
 #include "support/eigen_testing.hpp"
@@ -477,7 +478,36 @@ TYPED_TEST_P(DynamicFollowsFixed, ReadingsAfterTheRunAgreeToRounding) {
   expect_readings_follow_the_twin<TypeParam, typename TypeParam::InFixed>(tolerance);
 }
 
-REGISTER_TYPED_TEST_SUITE_P(DynamicFollowsFixed, ReadingsAfterTheRunAgreeToRounding);
+// The overflow paths: a finite sample whose step overflows (the factory's
+// `overflowing`, as in `AnOverflowingStepIsRejectedAndChangesNothing`) gets the
+// same verdict from both twins, and the run after it ends at the same readings.
+// A step that guards against overflow by scaling (the normalized step of
+// Guyader–Zhang) is checked by a factory whose run takes that path, accepted.
+TYPED_TEST_P(DynamicFollowsFixed, AnOverflowingSampleGetsTheSameVerdict) {
+  using Fixed = typename TypeParam::InFixed;
+  double tolerance = 1e-12;
+  if constexpr (requires { TypeParam::dynamic_tolerance; }) tolerance = TypeParam::dynamic_tolerance;
+  const auto run = TypeParam::samples();
+  const auto fixed_run = Fixed::samples();
+  ASSERT_EQ(run.size(), fixed_run.size());
+  const std::size_t half = run.size() / 2;
+  auto observer = ObserverContract<TypeParam>::after(run, half);
+  auto twin = ObserverContract<Fixed>::after(fixed_run, half);
+  const auto before = ObserverContract<TypeParam>::readings(observer);
+  const UpdateStatus verdict = twin.update(ObserverContract<Fixed>::overflowing(fixed_run[half]));
+  EXPECT_EQ(verdict, UpdateStatus::nonfinite_result);
+  EXPECT_EQ(observer.update(ObserverContract<TypeParam>::overflowing(run[half])), verdict);
+  EXPECT_TRUE(same_bits(ObserverContract<TypeParam>::readings(observer), before));
+  for (std::size_t k = half; k < run.size(); ++k) {
+    ASSERT_EQ(twin.update(fixed_run[k]), UpdateStatus::accepted) << "k = " << k;
+    ASSERT_EQ(observer.update(run[k]), UpdateStatus::accepted) << "k = " << k;
+  }
+  EXPECT_TRUE(close_in_precision(ObserverContract<TypeParam>::readings(observer),
+                                 ObserverContract<Fixed>::readings(twin), tolerance));
+}
+
+REGISTER_TYPED_TEST_SUITE_P(DynamicFollowsFixed, ReadingsAfterTheRunAgreeToRounding,
+                            AnOverflowingSampleGetsTheSameVerdict);
 
 // A test executable whose observers have no such twin does not instantiate its suite.
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(FloatFollowsDouble);

@@ -17,6 +17,19 @@
 /// The filter works in the original coordinates and is stepped like them
 /// (`core/sampled_integration.hpp`); P is re-symmetrized after every sample,
 /// and a sample whose step would leave P not positive definite is rejected.
+///
+/// **The first interval.** Left to learn its step limit (`SamplingOptions::max_step`
+/// = 0), the filter bounds the step by its own dynamics until it has learned
+/// one: linearized at (t, χ̂, P), the right-hand side has the Jacobian
+/// \f$\delta\dot\chi = M\delta\chi\f$, \f$\delta\dot P = M\delta P + \delta PM^T\f$ with
+/// \f$M = A_e - LC_e\f$, whose eigenvalues \f$\lambda_i(M)\f$ and \f$\lambda_i(M) + \lambda_j(M)\f$
+/// are all within \f$2\|M\|_F\f$ of 0. RK4 is stable for hλ in the left half-disc
+/// of radius 2.6, so a step \f$h \le 1/\|M\|_F\f$ keeps every mode inside it with a
+/// margin of 1.3 for P's change over the interval. A first interval that is a
+/// gap is crossed in such steps and teaches nothing; the limit is learned
+/// (1.25 times the step) from the first interval that needs no more than
+/// `substeps` of them. Otherwise one RK4 step across a first gap would leave P
+/// indefinite, and every later interval, longer still, would be rejected.
 
 #include <adaptobs/baselines/augmented_kalman.hpp>
 #include <adaptobs/core/continuous_model.hpp>
@@ -121,9 +134,10 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
 
  private:
   struct Workspace {
-    AugmentedMatrix ae, factor;  // A_e (its last np rows stay 0); P's Cholesky factor in check_step
+    AugmentedMatrix ae, factor;   // A_e (its last np rows stay 0); P's Cholesky factor in check_step
+    AugmentedMatrix closed_loop;  // A_e − LC_e, in stable_step
     Eigen::Matrix<Scalar, na, Dims::ny> pct, gain;
-    Output epsilon;
+    Output y, epsilon;  // y with its unmeasured channels predicted; ε
     // With unmeasured channels: C̄ = DC, and the factor of R̄ = DRD + (I − D) for the mask `factored`.
     typename Dims::OutputMatrix c_masked;
     typename Dims::OutputMatrixSquare r_masked;
@@ -134,8 +148,10 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
       const Index n = s.nx + s.np;
       ae.setZero(n, n);
       factor.setZero(n, n);
+      closed_loop.setZero(n, n);
       pct.setZero(n, s.ny);
       gain.setZero(n, s.ny);
+      y.setZero(s.ny);
       epsilon.setZero(s.ny);
       c_masked.setZero(s.ny, s.nx);
       r_masked.setZero(s.ny, s.ny);
@@ -150,8 +166,9 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
   // (docs/readings/continuous_gaps.md): the gain is that of C̄ = DC and
   // R̄ = DRD + (I − D), D = diag(measured), as in the discrete filter, so that
   // its columns for those channels are 0 and P follows Ṗ = A_e P + P A_eᵀ + Q
-  // where no channel is measured.
-  void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& y,
+  // where no channel is measured. Where the regressor reads y, an unmeasured
+  // channel's y is the prediction C x̂.
+  void derivative(const InternalState& s, InternalState& ds, Scalar t, const Input& u, const Output& measured_y,
                   const OutputMask<Dims>* measured, Workspace& w) const {
     const Index nx = sizes_.nx, np = sizes_.np, n = nx + np;
     const auto x = detail::segment<Dims::nx>(s, 0, nx);
@@ -161,6 +178,12 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     auto dtheta = detail::segment<Dims::np>(ds, nx, np);
     Eigen::Map<AugmentedMatrix> dP(ds.data() + n, n, n);
     decltype(auto) sys = model_.at(t);
+    if (measured) {
+      detail::set_product(w.y, sys.C, x);
+      for (Index i = 0; i < w.y.size(); ++i)
+        if ((*measured)(i)) w.y(i) = measured_y(i);
+    }
+    const Output& y = measured ? w.y : measured_y;
     w.ae.topLeftCorner(nx, nx) = sys.A;
     w.ae.topRightCorner(nx, np) = model_.regressor(t, u, y);
     // L = P C_eᵀ R⁻¹ with C_e = [C 0] (C̄ and R̄ for unmeasured channels).
@@ -184,6 +207,23 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     detail::add_product(dP, w.ae, P);
     detail::add_product(dP, P, w.ae.transpose());
     detail::subtract_product(dP, w.gain, w.pct.transpose());
+  }
+
+  // The RK4 step the filter's dynamics at (t, χ̂, P) allow, 1/‖A_e − LC_e‖_F (file
+  // comment): the bound on the steps of an interval while no limit is known.
+  Scalar stable_step(const InternalState& s, Scalar t, const Input& u, const Output& y, Workspace& w) const {
+    const Index nx = sizes_.nx, np = sizes_.np, n = nx + np;
+    const Eigen::Map<const AugmentedMatrix> P(s.data() + n, n, n);
+    decltype(auto) sys = model_.at(t);
+    w.ae.topLeftCorner(nx, nx) = sys.A;
+    w.ae.topRightCorner(nx, np) = model_.regressor(t, u, y);
+    // L = P C_eᵀ R⁻¹, and A_e − LC_e with C_e = [C 0].
+    detail::set_product(w.pct, P.leftCols(nx), sys.C.transpose());
+    w.gain = w.pct;
+    r_factor_.solve_on_the_right_in_place(w.gain);
+    w.closed_loop = w.ae;
+    detail::subtract_product(w.closed_loop.leftCols(nx), w.gain, sys.C);
+    return Scalar(1) / w.closed_loop.norm();
   }
 
   // P of an integrated step made exactly symmetric, then tested by a Cholesky

@@ -35,11 +35,19 @@
 /// (`UpdateStatus::interval_too_long`), keeping the cost of one update bounded;
 /// `resynchronize()` then restarts the time origin at the next sample without
 /// touching the estimates, and a learned limit is learned again from the
-/// interval after it. A learned limit is only as good as the interval it comes
-/// from: a first interval that is itself a gap runs with `substeps` steps
-/// whatever its length, and a tiny one (a repeated time stamp) makes every
-/// later interval too long until `resynchronize()`. Where the first interval
-/// cannot be trusted, give `max_step`.
+/// interval after it.
+///
+/// **The first interval.** A learned limit is only as good as the interval it
+/// comes from. An observer that can bound the step its own dynamics allow (the
+/// Kalman–Bucy filter, from its model and covariances: `stable_step` below)
+/// makes the first interval safe: while no limit is known, an interval whose
+/// `substeps` steps would exceed that bound is crossed in steps of the bound
+/// and teaches nothing, and the limit is learned from the first interval that
+/// fits. Without such a bound (the adaptive observers), a first interval that
+/// is itself a gap runs with `substeps` steps whatever its length. For every
+/// observer, a tiny first interval (a repeated time stamp) makes every later
+/// interval too long until `resynchronize()`. Where the first interval cannot
+/// be trusted, give `max_step`.
 ///
 /// **Missing outputs.** A sample may come without some of its outputs (a mask
 /// `present`, as for the discrete observers). An output channel is *measured
@@ -151,10 +159,12 @@ class SampledIntegrator {
   /// bit for bit that of a sample without a mask. `validate(candidate)` may
   /// adjust the integrated state (for example re-symmetrize a covariance) and
   /// returns `accepted`, or the reason to reject it; nothing is committed
-  /// unless it accepts.
-  template <class Rhs, class Validate>
+  /// unless it accepts. While no step limit is known (none given, none learned
+  /// yet), `stable_step(state, t, u, y)` at the previous sample bounds the step
+  /// of the interval (0: no bound; see the file comment).
+  template <class Rhs, class Validate, class StableStep>
   UpdateStatus advance(const Sample& sample, const OutputMask<D>* present, InternalState& state, Rhs&& rhs,
-                       std::string_view who, Validate&& validate) {
+                       std::string_view who, Validate&& validate, StableStep&& stable_step) {
     if constexpr (!D::is_fixed) check_sizes(sample, who);
     if (!std::isfinite(sample.t) || !detail::finite_measured(sample.y, present, sample.u))
       return UpdateStatus::nonfinite_input;
@@ -171,7 +181,9 @@ class SampledIntegrator {
 
     const Scalar t0 = previous_.t;
     const Scalar interval = sample.t - t0;
-    const int steps = steps_for(interval);
+    const Scalar bound =
+        max_step() > 0 ? Scalar(0) : Scalar(stable_step(std::as_const(state), t0, previous_.u, previous_.y));
+    const int steps = steps_for(interval, bound);
     if (steps == 0) return UpdateStatus::interval_too_long;
     const OutputMask<D>* measured = measured_over_interval(present);
     const auto system = [&](const InternalState& x, InternalState& dxdt, Scalar t) {
@@ -185,19 +197,28 @@ class SampledIntegrator {
     for (int i = 0; i < steps; ++i) rk4_.step(system, candidate_, t0 + Scalar(i) * h, h, candidate_);
     if (!detail::all_finite(candidate_)) return UpdateStatus::nonfinite_result;
     if (const UpdateStatus verdict = validate(candidate_); verdict != UpdateStatus::accepted) return verdict;
-    if (!(learned_step_ > 0)) learned_step_ = Scalar(1.25) * h;
+    // An interval cut by the stable step is no sample of the observer's rate.
+    if (!(learned_step_ > 0) && steps == options_.substeps) learned_step_ = Scalar(1.25) * h;
     detail::commit(state, candidate_);
     remember(sample, present);
     return UpdateStatus::accepted;
   }
 
   /// `advance` of a sample with every output present, with `rhs(x, dxdt, t, u, y)`.
+  template <class Rhs, class Validate, class StableStep>
+  UpdateStatus advance(const Sample& sample, InternalState& state, Rhs&& rhs, std::string_view who, Validate&& validate,
+                       StableStep&& stable_step) {
+    const auto measured_rhs = [&rhs](const InternalState& x, InternalState& dxdt, Scalar t, const typename D::Input& u,
+                                     const typename D::Output& y, const OutputMask<D>*) { rhs(x, dxdt, t, u, y); };
+    return advance(sample, nullptr, state, measured_rhs, who, std::forward<Validate>(validate),
+                   std::forward<StableStep>(stable_step));
+  }
+
+  /// `advance` without a bound on the first interval's step.
   template <class Rhs, class Validate>
   UpdateStatus advance(const Sample& sample, InternalState& state, Rhs&& rhs, std::string_view who,
                        Validate&& validate) {
-    const auto measured_rhs = [&rhs](const InternalState& x, InternalState& dxdt, Scalar t, const typename D::Input& u,
-                                     const typename D::Output& y, const OutputMask<D>*) { rhs(x, dxdt, t, u, y); };
-    return advance(sample, nullptr, state, measured_rhs, who, std::forward<Validate>(validate));
+    return advance(sample, state, std::forward<Rhs>(rhs), who, std::forward<Validate>(validate), no_stable_step);
   }
 
   /// `advance` without a check of the step's result beyond finiteness.
@@ -205,6 +226,10 @@ class SampledIntegrator {
   UpdateStatus advance(const Sample& sample, InternalState& state, Rhs&& rhs, std::string_view who) {
     return advance(sample, state, std::forward<Rhs>(rhs), who, [](InternalState&) { return UpdateStatus::accepted; });
   }
+
+  /// The `stable_step` of an observer that has no bound.
+  static constexpr auto no_stable_step = [](const InternalState&, Scalar, const typename D::Input&,
+                                            const typename D::Output&) { return Scalar(0); };
 
   /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the previous
   /// sample, the learned step limit and whether integration has started; the
@@ -224,13 +249,17 @@ class SampledIntegrator {
   }
 
  private:
-  // RK4 steps for an interval (see the file comment); 0 when more than max_substeps.
-  [[nodiscard]] int steps_for(Scalar interval) const {
-    const Scalar limit = max_step();
+  // RK4 steps for an interval (see the file comment), with the step limit, or
+  // else `bound`; 0 when more than max_substeps.
+  // The count is compared in double, where every int is exact, before it is
+  // converted: in float a max_substeps near INT_MAX rounds up to 2^31, which
+  // let a count of 2^31 through to int(), undefined.
+  [[nodiscard]] int steps_for(Scalar interval, Scalar bound) const {
+    const Scalar limit = max_step() > 0 ? max_step() : bound;
     if (!(limit > 0)) return options_.substeps;
-    const Scalar needed = std::ceil(interval / limit);
-    if (needed <= Scalar(options_.substeps)) return options_.substeps;
-    return needed <= Scalar(options_.max_substeps) ? int(needed) : 0;
+    const double needed = double(std::ceil(interval / limit));
+    if (needed <= double(options_.substeps)) return options_.substeps;
+    return needed <= double(options_.max_substeps) ? int(needed) : 0;
   }
 
   // Signal at the normalized time s ∈ [0, 1] of the interval. Written entry by

@@ -20,7 +20,7 @@
 /// whenever the subtracted terms outweigh what remains, so that a large term
 /// leaving, or excitation dying out, cannot leave its rounding in the level.
 
-#include <adaptobs/core/detail/products.hpp>
+#include <adaptobs/core/detail/finite.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/core/validation.hpp>
@@ -51,13 +51,11 @@ class ExcitationMonitor {
   /// Adds the contribution \f$w\,\Phi^T\Phi\f$ of one sample (Φ is m × p).
   /// A Φ with other than p columns, a non-finite entry, or a weight that is
   /// negative or not finite throws a `ConfigurationError` and adds nothing.
-  /// Φ is read twice: an expression without storage (`Ones()`, a sum) is
+  /// Φ is read more than once: an expression without storage (`Ones()`, a sum) is
   /// evaluated once first, into a temporary that allocates when its size is
   /// dynamic; a matrix, a block or a map is used in place.
   template <class Derived>
   void add(const Eigen::MatrixBase<Derived>& phi, Scalar weight = Scalar(1)) {
-    // Besides the double read: Eigen's product kernel cannot take w·Φ for a
-    // constant Φ of dynamic size (the call does not compile).
     if constexpr (Derived::Flags & Eigen::DirectAccessBit) {
       add_stored(phi, weight);
     } else {
@@ -126,8 +124,11 @@ class ExcitationMonitor {
     removed_trace_ += slot.trace();
     const Scalar remaining = sum_.trace();
     const bool cancelled = removed_trace_ > Scalar(4) * remaining || !std::isfinite(remaining);
-    detail::set_product(slot, (weight * phi.derived()).transpose(),
-                        phi);  // (wΦ)ᵀΦ: w first, so that a tiny w keeps a huge Φ from overflowing
+    // (wΦ)ᵀΦ entry by entry, (wφ_i)ᵀφ_j: w first, so that a tiny w keeps a huge Φ
+    // from overflowing. Eigen's product kernels (dynamic sizes) would take w out
+    // of the product and apply it after the sum.
+    for (Index j = 0; j < slot.cols(); ++j)
+      for (Index i = 0; i < slot.rows(); ++i) slot(i, j) = (weight * phi.col(i)).dot(phi.col(j));
     if (detail::all_finite(slot)) {
       if (adds_since_overflow_ < window_) ++adds_since_overflow_;
     } else {

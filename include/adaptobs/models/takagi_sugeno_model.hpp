@@ -275,13 +275,24 @@ class TakagiSugenoModel : public D {
   /// premise function, before it is copied: with `Eigen::Dynamic` sizes nothing
   /// else would stop the weights from reading past its end.
   [[nodiscard]] PremiseVector premises(const State& x, const Input& u, const Parameters& theta) const {
-    decltype(auto) z = premises_(x, u, theta);
+    PremiseVector z(premise_count());
+    premises(x, u, theta, z);
+    return z;
+  }
+  /// The same, written into `z` of the right size, e.g. an observer's
+  /// workspace: with a run-time \f$n_z\f$ a returned vector would be allocated at
+  /// every call (a premise function returning a fixed-size vector allocates nothing).
+  void premises(const State& x, const Input& u, const Parameters& theta, PremiseVector& z) const {
+    decltype(auto) value = premises_(x, u, theta);
     if constexpr (requires {
-                    z.rows();
-                    z.cols();
-                  })
-      require_shape(z, premise_count(), 1, "TakagiSugenoModel", "premises(x, u, theta)");
-    return PremiseVector(z);
+                    value.rows();
+                    value.cols();
+                  }) {
+      require_shape(value, premise_count(), 1, "TakagiSugenoModel", "premises(x, u, theta)");
+      z = value;
+    } else {
+      z = PremiseVector(value);
+    }
   }
 
   /// Weights \f$h_i(z, \theta)\f$ of every vertex (clipped to the sectors; Remark 1).
@@ -374,6 +385,9 @@ class TakagiSugenoModel : public D {
 /// it: its sizes and number of vertices \f$r\f$, the matrices \f$A_i\f$, \f$B_i\f$ of
 /// vertex i and C, the premise variables \f$z(x, u, \theta)\f$, their weights
 /// \f$h_i(z, \theta)\f$ and the sectors of z and θ (`TakagiSugenoModel` is one).
+/// A model that also writes the premise variables into a given vector,
+/// `premises(x, u, theta, z)`, is called so by the observer, whose update then
+/// allocates nothing with a run-time \f$n_z\f$.
 template <class M>
 concept TakagiSugenoSystem =
     StateSpace<typename M::Dims> &&

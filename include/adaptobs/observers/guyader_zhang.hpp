@@ -198,6 +198,7 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
   // Intermediate results of one step, committed only when all are finite.
   struct Workspace {
     typename Dims::Output innovation;
+    typename Dims::Output scaled_innovation;  // ε, or √μ_k ε when μ_k underflowed
     typename Dims::OutputRegressor c_upsilon;
     Parameters theta_step;
     Parameters theta;
@@ -205,6 +206,7 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
     State x;
     void resize(const Sizes& s) {
       innovation.setZero(s.ny);
+      scaled_innovation.setZero(s.ny);
       c_upsilon.setZero(s.ny, s.np);
       theta_step.setZero(s.np);
       theta.setZero(s.np);
@@ -237,7 +239,11 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
       // would freeze θ̂: the step is then taken as √μ_k C̄Υᵀ(√μ_k ε).
       if (!(mu_k > Scalar(0))) mu_k = error_scale = inverse_frobenius_norm(w.c_upsilon);
     }
-    detail::set_product(w.theta_step, w.c_upsilon.transpose(), error_scale * w.innovation);
+    // √μ_k ε is stored before the product: Eigen's dynamic-size product kernels
+    // take a scalar factor out of their operands and apply it after the sum,
+    // where C̄Υᵀε itself has overflowed.
+    w.scaled_innovation = error_scale * w.innovation;
+    detail::set_product(w.theta_step, w.c_upsilon.transpose(), w.scaled_innovation);
     w.theta_step *= mu_k;
     w.theta = theta_ + w.theta_step;
 
@@ -274,7 +280,9 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
       if (last_mu_ > Scalar(0)) [[likely]] {
         excitation_->add(last_c_upsilon_, last_mu_);
       } else {
-        w.c_upsilon *= error_scale;  // √μ_k (committed above: the workspace is free)
+        // √μ_k C̄Υ, from the committed value: for dynamic sizes `commit` swapped,
+        // and the workspace holds the previous step's C̄Υ.
+        w.c_upsilon = error_scale * last_c_upsilon_;
         excitation_->add(w.c_upsilon);
       }
     }

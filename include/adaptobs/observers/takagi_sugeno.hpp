@@ -181,8 +181,13 @@ class TakagiSugenoObserver
   /// \f$\hat z_k\f$, `nonfinite_result` when the step would produce one; both
   /// change nothing.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
-    // Premise variables at the estimates, ẑ_k = z(x̂_k, u_k, θ̂_k) (they may use unmeasured states).
-    w.z = model_.premises(x_, sample.u, theta_);
+    // Premise variables at the estimates, ẑ_k = z(x̂_k, u_k, θ̂_k) (they may use unmeasured states),
+    // written into the workspace by a model that can (with run-time sizes, returning them allocates).
+    if constexpr (requires { model_.premises(x_, sample.u, theta_, w.z); }) {
+      model_.premises(x_, sample.u, theta_, w.z);
+    } else {
+      w.z = model_.premises(x_, sample.u, theta_);
+    }
     if (!detail::all_finite(w.z)) return UpdateStatus::nonfinite_input;
     /// Weights \f$\hat h_i = h_i(\hat z_k, \hat\theta_k)\f$ with \f$\hat z_k, \hat\theta_k\f$ clipped to their sectors (10), Remark 1.
     model_.weights(w.z, theta_, w.h);

@@ -339,6 +339,12 @@ class UnifiedAdaptiveObserver
   // No check of its own: every finite integrated state is accepted.
   UpdateStatus check_step(InternalState&) const noexcept { return UpdateStatus::accepted; }
 
+  // No bound on the RK4 step: the first interval's step is taken as it comes
+  // (core/sampled_integration.hpp; give SamplingOptions::max_step where it may be a gap).
+  Scalar stable_step(const InternalState&, Scalar, const Input&, const Output&, Workspace&) const noexcept {
+    return Scalar(0);
+  }
+
   void refresh_time_invariant_system() {
     if (is_time_invariant(model_)) {
       so_.resize(sizes_);
