@@ -162,9 +162,15 @@ template <typename Scalar>
   return e;
 }
 
-/// log₂ of the error constant (m!)² / ((2m)! (2m+1)!) of the [m/m] Padé approximant.
+/// log₂ of the error constant (m!)² / ((2m)! (2m+1)!) of the [m/m] Padé approximant,
+/// as the sum of log₂ of its factors: m!/(2m)! = 1/((m+1)(m+2)⋯(2m)) and
+/// m!/(2m+1)! = 1/((m+1)(m+2)⋯(2m+1)). Not through std::lgamma, which writes
+/// the global signgam and so may not run on several threads at once (models
+/// are built inside the concurrent scenarios of evaluate_detection).
 inline double log2_pade_error_constant(int m) {
-  return (2 * std::lgamma(m + 1.0) - std::lgamma(2 * m + 1.0) - std::lgamma(2 * m + 2.0)) / std::log(2.0);
+  double sum = 0;
+  for (int k = m + 1; k <= 2 * m; ++k) sum -= 2 * std::log2(double(k));
+  return sum - std::log2(double(2 * m + 1));
 }
 
 /// Diagonal similarity by powers of two that makes each row's and column's
