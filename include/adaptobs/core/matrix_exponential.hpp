@@ -7,7 +7,8 @@
 /// the matrix exponential", SIAM J. Matrix Anal. Appl. 31(3), 2009 (AMH),
 /// Algorithm 5.1, built on the Padé bounds θ_m of N. J. Higham, SIAM J. Matrix
 /// Anal. Appl. 26(4), 2005, Table 2.3 (single-precision bounds for `float`).
-/// Three of its ideas make the result accurate where bounding by ‖A‖ is not:
+/// Three of its ideas, and the Schur form, make the result accurate where
+/// bounding by ‖A‖ is not:
 ///
 /// - **Scaling from ‖Aᵏ‖^{1/k}.** The backward error of r_m(A) is h(A) with
 ///   h(x) = log(e^{−x} r_m(x)) odd, since r_m(x) r_m(−x) = 1; so h(x) = x g(x²)
@@ -25,6 +26,13 @@
 ///   diagonal is set to exp(2^{−j} a_ii) and the first superdiagonal to its
 ///   closed form, so neither suffers from the squarings. A lower-triangular A
 ///   goes through its transpose.
+/// - **The Schur form** (Higham, Functions of Matrices, SIAM 2008, §9.1; Moler
+///   and Van Loan, SIAM Rev. 45(1), 2003, §6): a dense A that needs squarings is
+///   reduced to A = Q T Qᴴ, and e^T goes through the triangular case above. The
+///   squarings of r_m(2^{−s}A) multiply rounding errors by the departure of A from
+///   normality; on T they reach only the entries above the superdiagonal, and the
+///   unitary Q carries only the Schur form's backward error O(u‖A‖): an error of
+///   order κ_exp(A)·u (docs/design_routines.md has the measured table).
 ///
 /// A nilpotent A (A^k = 0 exactly for some k ≤ 10) gets its finite series. An A
 /// that is block-diagonal up to a permutation is exponentiated block by block,
@@ -38,11 +46,13 @@
 #include <adaptobs/core/validation.hpp>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <sstream>
 #include <type_traits>
@@ -103,9 +113,13 @@ constexpr auto pade_coefficients() {
   }
 }
 
+/// The real type of a real or complex scalar.
 template <typename Scalar>
-[[nodiscard]] Scalar one_norm(const DynamicMatrix<Scalar>& a) {
-  return a.cols() == 0 ? Scalar(0) : a.cwiseAbs().colwise().sum().maxCoeff();
+using RealOf = typename Eigen::NumTraits<Scalar>::Real;
+
+template <typename Scalar>
+[[nodiscard]] RealOf<Scalar> one_norm(const DynamicMatrix<Scalar>& a) {
+  return a.cols() == 0 ? RealOf<Scalar>(0) : a.cwiseAbs().colwise().sum().maxCoeff();
 }
 
 /// r_m(A) = (V − U)⁻¹ (V + U), U the odd part and V the even part of p_m(A)
@@ -162,9 +176,15 @@ template <typename Scalar>
   return e;
 }
 
-/// log₂ of the error constant (m!)² / ((2m)! (2m+1)!) of the [m/m] Padé approximant.
+/// log₂ of the error constant (m!)² / ((2m)! (2m+1)!) of the [m/m] Padé approximant,
+/// as the sum of log₂ of its factors: m!/(2m)! = 1/((m+1)(m+2)⋯(2m)) and
+/// m!/(2m+1)! = 1/((m+1)(m+2)⋯(2m+1)). Not through std::lgamma, which writes
+/// the global signgam and so may not run on several threads at once (models
+/// are built inside the concurrent scenarios of evaluate_detection).
 inline double log2_pade_error_constant(int m) {
-  return (2 * std::lgamma(m + 1.0) - std::lgamma(2 * m + 1.0) - std::lgamma(2 * m + 2.0)) / std::log(2.0);
+  double sum = 0;
+  for (int k = m + 1; k <= 2 * m; ++k) sum -= 2 * std::log2(double(k));
+  return sum - std::log2(double(2 * m + 1));
 }
 
 /// Diagonal similarity by powers of two that makes each row's and column's
@@ -209,9 +229,10 @@ void balance(DynamicMatrix<Scalar>& a, Eigen::Matrix<Scalar, Eigen::Dynamic, 1>&
 template <typename Scalar>
 [[nodiscard]] std::array<double, 4> log2_power_roots(const DynamicMatrix<Scalar>& a) {
   using Matrix = DynamicMatrix<Scalar>;
+  using Real = RealOf<Scalar>;
   const auto log2_root = [](const Matrix& power, int k, double exponent) {
-    const Scalar norm = one_norm(power);
-    return norm > Scalar(0) ? (std::log2(double(norm)) + exponent) / k : -std::numeric_limits<double>::infinity();
+    const Real norm = one_norm(power);
+    return norm > Real(0) ? (std::log2(double(norm)) + exponent) / k : -std::numeric_limits<double>::infinity();
   };
   const auto roots = [&](const Matrix& base, double exponent) {
     const Matrix p2 = base * base;
@@ -229,7 +250,7 @@ template <typename Scalar>
   std::array<double, 4> plain = roots(a, 0);
   if (std::none_of(plain.begin(), plain.end(), [](double x) { return std::isnan(x); })) return plain;
   const int e = binary_exponent(one_norm(a));
-  const std::array<double, 4> normalized = roots(Matrix(a * std::ldexp(Scalar(1), -e)), e);
+  const std::array<double, 4> normalized = roots(Matrix(a * std::ldexp(Real(1), -e)), e);
   for (std::size_t i = 0; i < 4; ++i) {
     if (!std::isnan(plain[i])) continue;
     plain[i] = std::isfinite(normalized[i]) ? normalized[i] : log2_norm;
@@ -241,15 +262,16 @@ template <typename Scalar>
 /// by powers of two, and its largest entry is the 1-norm of the nonnegative |A|ᵏ.
 template <typename Scalar>
 [[nodiscard]] double log2_abs_power_norm(const DynamicMatrix<Scalar>& a, int k) {
-  const DynamicMatrix<Scalar> abs_a = a.cwiseAbs();
-  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> row = Eigen::Matrix<Scalar, 1, Eigen::Dynamic>::Ones(a.cols());
+  using Real = RealOf<Scalar>;
+  const DynamicMatrix<Real> abs_a = a.cwiseAbs();
+  Eigen::Matrix<Real, 1, Eigen::Dynamic> row = Eigen::Matrix<Real, 1, Eigen::Dynamic>::Ones(a.cols());
   double exponent = 0;
   for (int i = 0; i < k; ++i) {
     row = (row * abs_a).eval();
-    const Scalar top = row.maxCoeff();
-    if (!(top > Scalar(0))) return -std::numeric_limits<double>::infinity();
+    const Real top = row.maxCoeff();
+    if (!(top > Real(0))) return -std::numeric_limits<double>::infinity();
     const int e = binary_exponent(top);
-    row *= std::ldexp(Scalar(1), -e);
+    row *= std::ldexp(Real(1), -e);
     exponent += e;
   }
   return std::log2(double(row.maxCoeff())) + exponent;
@@ -258,13 +280,14 @@ template <typename Scalar>
 /// e^{(λ₁ + λ₂)/2} sinh((λ₁ − λ₂)/2) / ((λ₁ − λ₂)/2) = (e^{λ₁} − e^{λ₂}) / (λ₁ − λ₂): the
 /// (1, 2) entry of exp([[λ₁, 1], [0, λ₂]]) (Higham, Functions of Matrices, eq. (10.42)).
 /// The sinh form avoids cancellation for close λ; the difference quotient, free of
-/// cancellation once |λ₁ − λ₂| ≥ 2, avoids 0·∞ when they are far apart.
+/// cancellation once |λ₁ − λ₂| ≥ 2, avoids 0·∞ when they are far apart. Real or
+/// complex λ (the Schur route below has complex eigenvalues on its diagonal).
 template <typename Scalar>
 [[nodiscard]] Scalar exp_divided_difference(Scalar l1, Scalar l2) {
-  const Scalar half = (l1 - l2) / 2;
-  if (std::abs(half) >= Scalar(1)) return (std::exp(l1) - std::exp(l2)) / (l1 - l2);
+  const Scalar half = (l1 - l2) / Scalar(2);
+  if (std::abs(half) >= RealOf<Scalar>(1)) return (std::exp(l1) - std::exp(l2)) / (l1 - l2);
   const Scalar sinhc = half == Scalar(0) ? Scalar(1) : std::sinh(half) / half;
-  return std::exp((l1 + l2) / 2) * sinhc;
+  return std::exp((l1 + l2) / Scalar(2)) * sinhc;
 }
 
 /// Diagonal and first superdiagonal of e^{2^{−j}T} for upper-triangular T, in place in x
@@ -272,7 +295,7 @@ template <typename Scalar>
 template <typename Scalar>
 void set_exact_triangular_bands(DynamicMatrix<Scalar>& x, const DynamicMatrix<Scalar>& t, int j) {
   const Index n = t.rows();
-  const Scalar scale = std::ldexp(Scalar(1), -j);
+  const Scalar scale(std::ldexp(RealOf<Scalar>(1), -j));
   for (Index i = 0; i < n; ++i) x(i, i) = std::exp(scale * t(i, i));
   for (Index i = 0; i + 1 < n; ++i)
     x(i, i + 1) = scale * t(i, i + 1) * exp_divided_difference(scale * t(i, i), scale * t(i + 1, i + 1));
@@ -325,22 +348,17 @@ bool exponentiate_decoupled_blocks(const DynamicMatrix<Scalar>& a, DynamicMatrix
   return true;
 }
 
-/// r_m(2^{−s}A)^{2^s} with m and s chosen as in AMH Algorithm 5.1, and for an
-/// upper-triangular A the diagonal and superdiagonal set exactly at every step
-/// (AMH Code Fragment 2.1).
+/// The Padé degree m and the number s of squarings for r_m(2^{−s}A)^{2^s}.
+struct PadeChoice {
+  int degree;
+  int squarings;
+};
+
+/// m and s as in AMH Algorithm 5.1, for an A of finite ‖A‖₁.
 template <typename Scalar>
-[[nodiscard]] DynamicMatrix<Scalar> scaling_and_squaring(const DynamicMatrix<Scalar>& a, bool triangular) {
-  using Bounds = PadeBounds<Scalar>;
-  const Scalar norm = one_norm(a);
-  if (!std::isfinite(norm)) {
-    // Finite entries whose column sums overflow (‖A‖₁ ≤ n · the largest number):
-    // e^A = (e^{A/2})², halving until the norm is finite, at most log₂ n + 1 times.
-    // The choice of m and s below would otherwise run on infinities.
-    DynamicMatrix<Scalar> x = scaling_and_squaring(DynamicMatrix<Scalar>(a / Scalar(2)), triangular);
-    x = (x * x).eval();
-    if (triangular) set_exact_triangular_bands(x, a, 0);
-    return x;
-  }
+[[nodiscard]] PadeChoice choose_pade(const DynamicMatrix<Scalar>& a) {
+  using Real = RealOf<Scalar>;
+  using Bounds = PadeBounds<Real>;
   const std::array<double, 4> log_d = log2_power_roots(a);  // log₂ d_4, d_6, d_8, d_10
   // AMH Theorem 4.2 with p(p − 1) ≤ m: η for p = 2 serves m ≥ 2, p = 3 serves m ≥ 6, p = 4 serves m ≥ 12.
   const auto log2_eta = [&](int m) {
@@ -351,37 +369,113 @@ template <typename Scalar>
   };
   // ℓ(2^{−s}A, m) = max(⌈log₂(α/u) / (2m)⌉, 0), α = |c_{2m+1}| ‖|A|^{2m+1}‖₁ / ‖A‖₁ (AMH eq. (5.1)),
   // using α(2^{−s}A) = 2^{−2ms} α(A).
-  const double log2_u = std::log2(double(std::numeric_limits<Scalar>::epsilon()) / 2);
-  const double log2_norm = std::log2(double(norm));
+  const double log2_u = std::log2(double(std::numeric_limits<Real>::epsilon()) / 2);
+  const double log2_norm = std::log2(double(one_norm(a)));
   const auto extra_squarings = [&](int m, int s) {
     const double log2_alpha = log2_pade_error_constant(m) + log2_abs_power_norm(a, 2 * m + 1) - log2_norm - 2.0 * m * s;
     return std::max(0, static_cast<int>(std::ceil((log2_alpha - log2_u) / (2 * m))));
   };
 
-  int degree = Bounds::degrees.back();
-  int squarings = 0;
-  bool chosen = false;
-  for (std::size_t i = 0; i + 1 < Bounds::degrees.size() && !chosen; ++i) {
+  for (std::size_t i = 0; i + 1 < Bounds::degrees.size(); ++i) {
     const int m = Bounds::degrees[i];
-    if (log2_eta(m) <= std::log2(Bounds::theta[i]) && extra_squarings(m, 0) == 0) {
-      degree = m;
-      chosen = true;
-    }
+    if (log2_eta(m) <= std::log2(Bounds::theta[i]) && extra_squarings(m, 0) == 0) return {m, 0};
   }
-  if (!chosen) {
-    const double log2_excess = log2_eta(degree) - std::log2(Bounds::theta.back());
-    squarings = log2_excess > 0 ? static_cast<int>(std::ceil(log2_excess)) : 0;
-    squarings += extra_squarings(degree, squarings);
-  }
+  const int degree = Bounds::degrees.back();
+  const double log2_excess = log2_eta(degree) - std::log2(Bounds::theta.back());
+  const int squarings = log2_excess > 0 ? static_cast<int>(std::ceil(log2_excess)) : 0;
+  return {degree, squarings + extra_squarings(degree, squarings)};
+}
 
-  DynamicMatrix<Scalar> x = pade_approximant(degree, DynamicMatrix<Scalar>(a * std::ldexp(Scalar(1), -squarings)));
-  if (triangular) set_exact_triangular_bands(x, a, squarings);
-  for (int j = squarings - 1; j >= 0; --j) {
+/// r_m(2^{−s}A)^{2^s}, and for an upper-triangular A the diagonal and superdiagonal
+/// set exactly at every step (AMH Code Fragment 2.1).
+template <typename Scalar>
+[[nodiscard]] DynamicMatrix<Scalar> scaling_and_squaring(const DynamicMatrix<Scalar>& a, bool triangular,
+                                                         PadeChoice choice) {
+  using Real = RealOf<Scalar>;
+  DynamicMatrix<Scalar> x =
+      pade_approximant(choice.degree, DynamicMatrix<Scalar>(a * std::ldexp(Real(1), -choice.squarings)));
+  if (triangular) set_exact_triangular_bands(x, a, choice.squarings);
+  for (int j = choice.squarings - 1; j >= 0; --j) {
     x = (x * x).eval();
     if (triangular) set_exact_triangular_bands(x, a, j);
   }
-
   return x;
+}
+
+/// r_m(2^{−s}A)^{2^s} with m and s chosen as in AMH Algorithm 5.1.
+template <typename Scalar>
+[[nodiscard]] DynamicMatrix<Scalar> scaling_and_squaring(const DynamicMatrix<Scalar>& a, bool triangular) {
+  using Real = RealOf<Scalar>;
+  if (!std::isfinite(one_norm(a))) {
+    // Finite entries whose column sums overflow (‖A‖₁ ≤ n · the largest number):
+    // e^A = (e^{A/2})², halving until the norm is finite, at most log₂ n + 1 times.
+    // The choice of m and s would otherwise run on infinities.
+    DynamicMatrix<Scalar> x = scaling_and_squaring(DynamicMatrix<Scalar>(a / Real(2)), triangular);
+    x = (x * x).eval();
+    if (triangular) set_exact_triangular_bands(x, a, 0);
+    return x;
+  }
+  return scaling_and_squaring(a, triangular, choose_pade(a));
+}
+
+/// e^A = Q e^T Q* from the Schur form A = Q T Q*, Q unitary and T upper triangular
+/// (N. J. Higham, Functions of Matrices, SIAM 2008, §9.1 with Theorem 1.13(c);
+/// the Schur method of C. Moler and C. Van Loan, "Nineteen dubious ways to compute
+/// the exponential of a matrix, twenty-five years later", SIAM Rev. 45(1), 2003, §6),
+/// with e^T by scaling and squaring whose diagonal and first superdiagonal are set
+/// from their closed forms after every squaring (AMH Code Fragment 2.1).
+///
+/// Why: the s squarings of r_m(2^{−s}A) carry the rounding errors of every
+/// intermediate power into e^A, and for a nonnormal A the intermediate powers
+/// are far larger than e^A (A = S [[−1, b], [0, −2]] S⁻¹ loses all accuracy by
+/// b = 2²⁰ that way). On T the closed forms leave to the squarings only the entries
+/// above the first superdiagonal (none for n = 2), and Q, unitary, passes on only the
+/// backward error O(u‖A‖) of the Schur form: an error of order κ_exp(A)·u
+/// (Higham 2008, §3.1 and eq. (10.22)).
+///
+/// The real Schur form A = Q T Qᵀ is computed; when all eigenvalues are real, T is
+/// triangular. Otherwise each 2 × 2 block B of T, of eigenvalues λ and λ̄, is made
+/// triangular by the unitary G = [x, Jx̄] whose first column is the unit
+/// eigenvector x = (b₁₂, λ − b₁₁) of B (Gᴴ B G = [[λ, ·], [0, λ̄]]; Golub and
+/// Van Loan, Matrix Computations, 4th ed., §7.4.1), which gives the complex Schur
+/// form without a second QR iteration; e^A is then the real part of Q e^T Qᴴ.
+/// Returns false when the QR iteration does not converge.
+template <typename Scalar>
+bool schur_exponential(const DynamicMatrix<Scalar>& a, DynamicMatrix<Scalar>& out) {
+  using Matrix = DynamicMatrix<Scalar>;
+  const Index n = a.rows();
+  const Eigen::RealSchur<Matrix> real_schur(a);
+  if (real_schur.info() != Eigen::Success) return false;
+  const Matrix& t = real_schur.matrixT();
+  const Matrix& q = real_schur.matrixU();
+  bool triangular = true;
+  for (Index i = 0; i + 1 < n; ++i) triangular = triangular && t(i + 1, i) == Scalar(0);
+  if (triangular) {
+    out.noalias() = q * scaling_and_squaring(t, true) * q.transpose();
+    return true;
+  }
+  using Complex = std::complex<Scalar>;
+  using ComplexMatrix = DynamicMatrix<Complex>;
+  ComplexMatrix tc = t.template cast<Complex>();
+  ComplexMatrix qc = q.template cast<Complex>();
+  Eigen::Matrix<Complex, 2, 2> g;
+  for (Index k = 0; k + 1 < n; ++k) {
+    if (t(k + 1, k) == Scalar(0)) continue;
+    // λ = (b₁₁ + b₂₂)/2 + i √(−((b₁₁ − b₂₂)/2)² − b₁₂ b₂₁), the root of positive imaginary part.
+    const Scalar half_difference = (t(k, k) - t(k + 1, k + 1)) / 2;
+    const Scalar imaginary = std::sqrt(std::abs(half_difference * half_difference + t(k, k + 1) * t(k + 1, k)));
+    const Complex x1(t(k, k + 1), Scalar(0));
+    const Complex x2(-half_difference, imaginary);  // λ − b₁₁
+    const Scalar norm = std::hypot(std::abs(x1), std::abs(x2));
+    g << x1 / norm, -std::conj(x2) / norm, x2 / norm, std::conj(x1) / norm;
+    tc.middleRows(k, 2) = (g.adjoint() * tc.middleRows(k, 2)).eval();
+    tc.middleCols(k, 2) = (tc.middleCols(k, 2) * g).eval();
+    qc.middleCols(k, 2) = (qc.middleCols(k, 2) * g).eval();
+    tc(k + 1, k) = Complex(0);
+    ++k;  // the block's second row
+  }
+  out = (qc * scaling_and_squaring(tc, true) * qc.adjoint()).real();
+  return true;
 }
 
 /// pq, and whether a product of two nonzero entries fell below the normal
@@ -476,7 +570,16 @@ template <typename Scalar>
   }
 
   Matrix x;
-  if (!nilpotent_series(a, x)) x = scaling_and_squaring(a, triangular);
+  if (!nilpotent_series(a, x)) {
+    // A dense A that needs no squaring keeps r_m(A), a few products and one solve
+    // (AMH Algorithm 5.1); one that does goes through its Schur form, where the
+    // squarings cannot amplify its departure from normality.
+    if (triangular || !std::isfinite(one_norm(a))) {
+      x = scaling_and_squaring(a, triangular);
+    } else if (const PadeChoice choice = choose_pade(a); choice.squarings == 0 || !schur_exponential(a, x)) {
+      x = scaling_and_squaring(a, false, choice);
+    }
+  }
 
   // Undo the balancing: e^A = D e^B D⁻¹, exact with powers of two. By their
   // exponents: d(row)/d(col) itself may be out of range while the entry is not.
