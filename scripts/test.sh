@@ -4,8 +4,9 @@
 # and runs the CTest suite, then builds them again with clang++ under
 # AddressSanitizer and UndefinedBehaviorSanitizer, with the benchmarks
 # (uninstrumented) and every public header compiled on its own, and runs the
-# suite there, the benchmark smoke run included, the example programs and the
-# detectors' Monte-Carlo statistics left to the g++ phase; last, under ThreadSanitizer,
+# suite there, the benchmark smoke run included, the example programs, the
+# detectors' Monte-Carlo statistics, the Dey–Bhasin soak runs and the packaging
+# test left to the g++ phase; last, under ThreadSanitizer,
 # two threads sharing one observer's odeint_system, and the detection evaluation
 # on two threads (tests/tsan).
 #
@@ -122,7 +123,7 @@ if ((sanitize)); then
 
   echo "== clang++ ThreadSanitizer: two threads sharing one observer's odeint_system, and evaluate_detection on two threads"
   # A project of its own (tests/tsan): ThreadSanitizer excludes AddressSanitizer,
-  # and its one executable compiles in about half a minute of CPU.
+  # and its two executables compile in about a minute of CPU.
   cmake -S "$root/tests/tsan" -B "$root/build/tsan" -G Ninja -DCMAKE_CXX_COMPILER=clang++ >/dev/null
   cmake --build "$root/build/tsan"
   TSAN_OPTIONS=halt_on_error=1 "$root/build/tsan/tsan_shared_system"

@@ -310,8 +310,8 @@ TEST(MatrixExponential, NonnormalFamilyIsAccurateToItsConditioning) {
   for (const bool complex_eigenvalues : {false, true})
     for (int k = 4; k <= 52; ++k) {
       const NonnormalFamily family(std::ldexp(1.0L, k), complex_eigenvalues);
-      Eigen::Matrix2d e_double;
-      Eigen::Matrix2f e_float;
+      Eigen::Matrix2d e_double = Eigen::Matrix2d::Zero();
+      Eigen::Matrix2f e_float = Eigen::Matrix2f::Zero();
       ASSERT_NO_THROW(e_double = nonnormal_family_exponential<double>(family)) << "b = 2^" << k << complex_eigenvalues;
       ASSERT_NO_THROW(e_float = nonnormal_family_exponential<float>(family))
           << "float, b = 2^" << k << complex_eigenvalues;

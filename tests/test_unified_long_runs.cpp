@@ -184,7 +184,7 @@ TEST(SampledIntegration, IrregularSampleTimesConvergeAsTheRegularGrid) {
 // its time update, θ̂ stays where it was, and the errors after it are within a
 // small factor of those before. Integrated instead across one interval with y
 // on the straight line between the samples at its ends, Zhang's θ̂ error goes
-// from 0.006 to 1.86.
+// from 1.7e-4 to 1.33.
 struct OutageErrors {
   double theta_before, theta_after, theta_ten_later, state_before, state_after;
 };

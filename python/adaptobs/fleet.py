@@ -53,8 +53,9 @@ CHECKPOINT_FORMAT = 1
 
 
 class CheckpointError(RuntimeError):
-    """A checkpoint that cannot be trusted (truncated, corrupted, of another format or snapshot
-    version, or of another configuration): refused, naming the asset and the file."""
+    """A checkpoint that cannot be trusted (truncated, corrupted, of another asset, format or
+    snapshot version, or of observers or monitors of other sizes or settings): refused, naming
+    the asset and the file."""
 
 
 @dataclasses.dataclass

@@ -128,8 +128,10 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     archive("theta", self.theta_);
     archive("output_error", self.output_error_);
     AugmentedKalmanBucyFilter::visit_update_state(self, archive);
-    if constexpr (Archive::reading)
+    if constexpr (Archive::reading) {
       require(self.r_factor_.compute(self.cov_.R), "restore", "snapshot", "holds an R that is not positive definite");
+      self.work_.has_masked_factor = false;  // R̄ is factored again from the restored R
+    }
   }
 
  private:
@@ -178,23 +180,8 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     auto dtheta = detail::segment<Dims::np>(ds, nx, np);
     Eigen::Map<AugmentedMatrix> dP(ds.data() + n, n, n);
     decltype(auto) sys = model_.at(t);
-    if (measured) {
-      detail::set_product(w.y, sys.C, x);
-      for (Index i = 0; i < w.y.size(); ++i)
-        if ((*measured)(i)) w.y(i) = measured_y(i);
-    }
-    const Output& y = measured ? w.y : measured_y;
-    w.ae.topLeftCorner(nx, nx) = sys.A;
-    w.ae.topRightCorner(nx, np) = model_.regressor(t, u, y);
-    // L = P C_eᵀ R⁻¹ with C_e = [C 0] (C̄ and R̄ for unmeasured channels).
-    if (measured) {
-      w.c_masked = sys.C;
-      detail::zero_absent_rows<Dims>(w.c_masked, measured);
-    }
+    const Output& y = measurement(s, t, u, measured_y, measured, sys, w);
     const typename Dims::OutputMatrix& c = measured ? w.c_masked : sys.C;
-    detail::set_product(w.pct, P.leftCols(nx), c.transpose());
-    w.gain = w.pct;
-    masked_r_factor(measured, w).solve_on_the_right_in_place(w.gain);
     w.epsilon = y;
     detail::subtract_product(w.epsilon, c, x);
     detail::zero_absent_rows<Dims>(w.epsilon, measured);
@@ -209,20 +196,43 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     detail::subtract_product(dP, w.gain, w.pct.transpose());
   }
 
-  // The RK4 step the filter's dynamics at (t, χ̂, P) allow, 1/‖A_e − LC_e‖_F (file
-  // comment): the bound on the steps of an interval while no limit is known.
-  Scalar stable_step(const InternalState& s, Scalar t, const Input& u, const Output& y, Workspace& w) const {
+  // The measurement part of the right-hand side at t, into `w`: A_e = [A Φ; 0 0]
+  // (w.ae), C̄ (w.c_masked, with a mask), P C̄ᵀ (w.pct) and the gain
+  // L = P C̄ᵀ R̄⁻¹ (w.gain). Returns y with its unmeasured channels predicted
+  // (C x̂), the y the regressor reads.
+  template <class SystemAt>
+  const Output& measurement(const InternalState& s, Scalar t, const Input& u, const Output& measured_y,
+                            const OutputMask<Dims>* measured, const SystemAt& sys, Workspace& w) const {
     const Index nx = sizes_.nx, np = sizes_.np, n = nx + np;
+    const auto x = detail::segment<Dims::nx>(s, 0, nx);
     const Eigen::Map<const AugmentedMatrix> P(s.data() + n, n, n);
-    decltype(auto) sys = model_.at(t);
+    if (measured) {
+      detail::set_product(w.y, sys.C, x);
+      for (Index i = 0; i < w.y.size(); ++i)
+        if ((*measured)(i)) w.y(i) = measured_y(i);
+      w.c_masked = sys.C;
+      detail::zero_absent_rows<Dims>(w.c_masked, measured);
+    }
+    const Output& y = measured ? w.y : measured_y;
     w.ae.topLeftCorner(nx, nx) = sys.A;
     w.ae.topRightCorner(nx, np) = model_.regressor(t, u, y);
-    // L = P C_eᵀ R⁻¹, and A_e − LC_e with C_e = [C 0].
-    detail::set_product(w.pct, P.leftCols(nx), sys.C.transpose());
+    // L = P C_eᵀ R⁻¹ with C_e = [C 0] (C̄ and R̄ for unmeasured channels).
+    const typename Dims::OutputMatrix& c = measured ? w.c_masked : sys.C;
+    detail::set_product(w.pct, P.leftCols(nx), c.transpose());
     w.gain = w.pct;
-    r_factor_.solve_on_the_right_in_place(w.gain);
+    masked_r_factor(measured, w).solve_on_the_right_in_place(w.gain);
+    return y;
+  }
+
+  // The RK4 step the filter's dynamics at (t, χ̂, P) allow, 1/‖A_e − LC̄_e‖_F (file
+  // comment): the bound on the steps of an interval while no limit is known.
+  Scalar stable_step(const InternalState& s, Scalar t, const Input& u, const Output& y,
+                     const OutputMask<Dims>* measured, Workspace& w) const {
+    const Index nx = sizes_.nx;
+    decltype(auto) sys = model_.at(t);
+    (void)measurement(s, t, u, y, measured, sys, w);
     w.closed_loop = w.ae;
-    detail::subtract_product(w.closed_loop.leftCols(nx), w.gain, sys.C);
+    detail::subtract_product(w.closed_loop.leftCols(nx), w.gain, measured ? w.c_masked : sys.C);
     return Scalar(1) / w.closed_loop.norm();
   }
 

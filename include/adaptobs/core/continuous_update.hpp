@@ -37,8 +37,9 @@ namespace adaptobs {
 /// - `set_initial(eta0, theta0)`, which restarts `internal_` and its diagnostics;
 /// - `check_step(candidate)`, which may adjust an integrated state and returns
 ///   `accepted` or the reason to reject it;
-/// - `stable_step(s, t, u, y, work) const`, the longest RK4 step its dynamics at
-///   (t, s) allow, or 0 when it has no such bound: while no step limit is known,
+/// - `stable_step(s, t, u, y, measured, work) const`, the longest RK4 step its
+///   dynamics at (t, s) allow with the channels in `measured` measured, or 0 when
+///   it has no such bound: while no step limit is known,
 ///   it keeps a first interval that is a gap from leaving RK4's stability
 ///   region (core/sampled_integration.hpp);
 /// - a `visit_state` that calls `visit_update_state`, the base's own fields.
@@ -158,7 +159,9 @@ class ContinuousUpdate : public Dims {
                           const OutputMask<Dims>* measured) { o.derivative(s, ds, t, u, y, measured, o.work_); };
     const auto check = [&o](InternalState& candidate) { return o.check_step(candidate); };
     const auto stable_step = [&o](const InternalState& s, Scalar t, const typename Dims::Input& u,
-                                  const typename Dims::Output& y) { return o.stable_step(s, t, u, y, o.work_); };
+                                  const typename Dims::Output& y, const OutputMask<Dims>* measured) {
+      return o.stable_step(s, t, u, y, measured, o.work_);
+    };
     const UpdateStatus status =
         o.integrator_.advance(sample, present, o.internal_, rhs, Observer::name, check, stable_step);
     health_.note(status, samples_);

@@ -28,7 +28,8 @@
 /// one step, a 2-s gap drives a Kalman–Bucy covariance indefinite and a
 /// 20-s gap multiplies the errors by 10¹¹. The step is therefore bounded:
 /// an interval is cut into `substeps` steps, or more when those would be longer
-/// than `max_step`. Left at 0, `max_step` is learned from the first interval:
+/// than `max_step`. Left at 0, `max_step` is learned from the first interval
+/// (for the Kalman–Bucy filter, the first that fits its stable step, below):
 /// 1.25 times its step, so that sampling jitter below 25% never changes the cost
 /// of an update, and a gap runs with the step the observer was tuned with.
 /// An interval that would need more than `max_substeps` steps is rejected
@@ -87,7 +88,7 @@ enum class SignalReconstruction {
 struct SamplingOptions {
   int substeps = 1;  ///< RK4 steps per sampling interval (≥ 1)
   /// Longest RK4 step, in the time unit of the samples; 0 learns it from the
-  /// first interval (1.25 × its step; see the file comment).
+  /// first interval that teaches it (1.25 × its step; see the file comment).
   double max_step = 0;
   int max_substeps = 1'000'000;  ///< most RK4 steps in one interval; a longer interval is rejected
   SignalReconstruction input = SignalReconstruction::hold;     ///< reconstruction of u
@@ -115,7 +116,7 @@ class SampledIntegrator {
       : rk4_(like), candidate_(like), sizes_(sizes), options_(options) {
     require(options.substeps >= 1, who, "options.substeps", "must be at least 1");
     require(std::isfinite(options.max_step) && options.max_step >= 0, who, "options.max_step",
-            "must be finite and non-negative (0 learns it from the first interval)");
+            "must be finite and non-negative (0 learns it from the first intervals)");
     require(options.max_substeps >= options.substeps, who, "options.max_substeps", "must be at least options.substeps");
     previous_.u.setZero(sizes.nu);
     previous_.y.setZero(sizes.ny);
@@ -146,7 +147,7 @@ class SampledIntegrator {
     started_ = false;
     learned_step_ = 0;
   }
-  /// Longest RK4 step from now on: `options.max_step`, or the learned limit (0 until the first interval).
+  /// Longest RK4 step from now on: `options.max_step`, or the learned limit (0 until one is learned).
   [[nodiscard]] Scalar max_step() const noexcept {
     return options_.max_step > 0 ? Scalar(options_.max_step) : learned_step_;
   }
@@ -160,8 +161,8 @@ class SampledIntegrator {
   /// adjust the integrated state (for example re-symmetrize a covariance) and
   /// returns `accepted`, or the reason to reject it; nothing is committed
   /// unless it accepts. While no step limit is known (none given, none learned
-  /// yet), `stable_step(state, t, u, y)` at the previous sample bounds the step
-  /// of the interval (0: no bound; see the file comment).
+  /// yet), `stable_step(state, t, u, y, measured)` at the previous sample bounds
+  /// the step of the interval (0: no bound; see the file comment).
   template <class Rhs, class Validate, class StableStep>
   UpdateStatus advance(const Sample& sample, const OutputMask<D>* present, InternalState& state, Rhs&& rhs,
                        std::string_view who, Validate&& validate, StableStep&& stable_step) {
@@ -181,11 +182,11 @@ class SampledIntegrator {
 
     const Scalar t0 = previous_.t;
     const Scalar interval = sample.t - t0;
+    const OutputMask<D>* measured = measured_over_interval(present);
     const Scalar bound =
-        max_step() > 0 ? Scalar(0) : Scalar(stable_step(std::as_const(state), t0, previous_.u, previous_.y));
+        max_step() > 0 ? Scalar(0) : Scalar(stable_step(std::as_const(state), t0, previous_.u, previous_.y, measured));
     const int steps = steps_for(interval, bound);
     if (steps == 0) return UpdateStatus::interval_too_long;
-    const OutputMask<D>* measured = measured_over_interval(present);
     const auto system = [&](const InternalState& x, InternalState& dxdt, Scalar t) {
       const Scalar s = (t - t0) / interval;
       reconstruct(options_.input, s, previous_.u, sample.midpoint ? &sample.midpoint->u : nullptr, sample.u, u_);
@@ -210,8 +211,10 @@ class SampledIntegrator {
                        StableStep&& stable_step) {
     const auto measured_rhs = [&rhs](const InternalState& x, InternalState& dxdt, Scalar t, const typename D::Input& u,
                                      const typename D::Output& y, const OutputMask<D>*) { rhs(x, dxdt, t, u, y); };
-    return advance(sample, nullptr, state, measured_rhs, who, std::forward<Validate>(validate),
-                   std::forward<StableStep>(stable_step));
+    const auto measured_stable_step = [&stable_step](const InternalState& x, Scalar t, const typename D::Input& u,
+                                                     const typename D::Output& y,
+                                                     const OutputMask<D>*) { return stable_step(x, t, u, y); };
+    return advance(sample, nullptr, state, measured_rhs, who, std::forward<Validate>(validate), measured_stable_step);
   }
 
   /// `advance` without a bound on the first interval's step.

@@ -301,6 +301,7 @@ class UnifiedAdaptiveObserver
     detail::zero_absent_rows<Dims>(w.epsilon, measured);
     /// Update law: \f$\dot{\hat\theta} = \Gamma R^T\varepsilon\f$ with the algorithm's R.
     algorithm_.regressor(so, Xi, w.Omega, w.Psi, w.R);
+    detail::zero_absent_rows<Dims>(w.R, measured);  // the excitation of the measured channels only
     law_.derivative(w.R, w.epsilon, theta, dtheta);
     /// (3a): \f$\dot\Xi = F\Xi + G\Psi\f$.
     if (measured) dt.filter_matrix(so.Ao, w.F, w.AoH);
@@ -341,7 +342,8 @@ class UnifiedAdaptiveObserver
 
   // No bound on the RK4 step: the first interval's step is taken as it comes
   // (core/sampled_integration.hpp; give SamplingOptions::max_step where it may be a gap).
-  Scalar stable_step(const InternalState&, Scalar, const Input&, const Output&, Workspace&) const noexcept {
+  Scalar stable_step(const InternalState&, Scalar, const Input&, const Output&, const OutputMask<Dims>*,
+                     Workspace&) const noexcept {
     return Scalar(0);
   }
 
