@@ -27,6 +27,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -258,6 +259,13 @@ DetectionSummary evaluate(nb::handle scenario, nb::handle fault_obj, nb::handle 
 /// A vector of doubles as a NumPy array.
 Eigen::VectorXd array_of(const std::vector<double>& values) {
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Index>(values.size()));
+}
+
+// The window, mean_evaluations and components of the GLR threshold functions, checked and named.
+std::tuple<Index, double, Index> glr_arguments(nb::handle window, nb::handle mean_evaluations, nb::handle components,
+                                               std::string_view who) {
+  return {integer_argument(window, who, "window"), real_scalar(mean_evaluations, who, "mean_evaluations"),
+          integer_argument(components, who, "components")};
 }
 
 }  // namespace
@@ -554,10 +562,7 @@ void bind_checks(nb::module_& m) {
   m.def(
       "glr_threshold",
       [](nb::handle window, nb::handle mean_evaluations, nb::handle components) {
-        constexpr std::string_view who = "glr_threshold";
-        const Index w = integer_argument(window, who, "window");
-        const double mean = real_scalar(mean_evaluations, who, "mean_evaluations");
-        const Index c = integer_argument(components, who, "components");
+        const auto [w, mean, c] = glr_arguments(window, mean_evaluations, components, "glr_threshold");
         nb::gil_scoped_release release;  // a simulation: up to seconds
         return glr_threshold(w, mean, c);
       },
@@ -570,10 +575,7 @@ void bind_checks(nb::module_& m) {
   m.def(
       "glr_simulation_work",
       [](nb::handle window, nb::handle mean_evaluations, nb::handle components) {
-        constexpr std::string_view who = "glr_simulation_work";
-        const Index w = integer_argument(window, who, "window");
-        const double mean = real_scalar(mean_evaluations, who, "mean_evaluations");
-        const Index c = integer_argument(components, who, "components");
+        const auto [w, mean, c] = glr_arguments(window, mean_evaluations, components, "glr_simulation_work");
         return glr_simulation_work(w, mean, c);
       },
       nb::arg("window"), nb::arg("mean_evaluations"), nb::arg("components") = 1,

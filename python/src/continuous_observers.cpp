@@ -363,14 +363,7 @@ RunResult continuous_run(ContinuousBound<Observer>& self, nb::handle times, nb::
       } else {
         sample.midpoint.reset();
       }
-      UpdateStatus result{};
-      if (mask.given) {
-        for (Index i = 0; i < s.ny; ++i) self.mask(i) = mask.present(k, i);
-        result = self.observer.update(sample, self.mask);
-      } else {
-        result = self.observer.update(sample);
-      }
-      status.data[k] = static_cast<std::int8_t>(result);
+      status.data[k] = static_cast<std::int8_t>(mask.update(self.observer, sample, k, self.mask));
       Eigen::Map<Eigen::VectorXd>(x.data + k * s.nx, s.nx) = self.observer.state();
       Eigen::Map<Eigen::VectorXd>(theta.data + k * s.np, s.np) = self.observer.parameters();
       Eigen::Map<Eigen::VectorXd>(error.data + k * s.ny, s.ny) = self.observer.output_error();

@@ -148,6 +148,14 @@ struct Masks {
   bool given = false;
 
   [[nodiscard]] bool present(Index k, Index i) const { return keep.data()[k * keep.stride(0) + i * keep.stride(1)]; }
+
+  /// `observer.update(sample)`, or with the mask of sample k (copied into `scratch`) when masks were given.
+  template <class Observer, class Sample, class Mask>
+  UpdateStatus update(Observer& observer, const Sample& sample, Index k, Mask& scratch) const {
+    if (!given) return observer.update(sample);
+    for (Index i = 0; i < scratch.size(); ++i) scratch(i) = present(k, i);
+    return observer.update(sample, scratch);
+  }
 };
 
 inline Masks masks(nb::handle obj, Index samples, Index ny, std::string_view who) {
@@ -233,13 +241,7 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
       sample.y = outputs.row(k);
       if constexpr (takes_regressor<Observer>)
         if (regressor.data) sample.Psi = regressor.at(k);
-      UpdateStatus result;
-      if (mask.given) {
-        for (Index i = 0; i < s.ny; ++i) b.mask(i) = mask.present(k, i);
-        result = b.observer.update(sample, b.mask);
-      } else {
-        result = b.observer.update(sample);
-      }
+      const UpdateStatus result = mask.update(b.observer, sample, k, b.mask);
       status.data[k] = static_cast<std::int8_t>(result);
       Eigen::Map<Eigen::VectorXd>(x.data + k * s.nx, s.nx) = b.observer.state();
       Eigen::Map<Eigen::VectorXd>(theta.data + k * s.np, s.np) = b.observer.parameters();

@@ -163,13 +163,7 @@ class AugmentedKalmanFilter
     if (present) {
       w.c_masked = system.C;
       detail::zero_absent_rows<Dims>(w.c_masked, present);
-      w.r_masked = cov_.R;
-      for (Index i = 0; i < w.r_masked.rows(); ++i) {
-        if ((*present)(i)) continue;
-        w.r_masked.row(i).setZero();
-        w.r_masked.col(i).setZero();
-        w.r_masked(i, i) = Scalar(1);
-      }
+      detail::masked_covariance<Dims>(cov_.R, *present, w.r_masked);
     }
     const typename Dims::OutputMatrix& c = present ? w.c_masked : system.C;
     const typename Dims::OutputMatrixSquare& r = present ? w.r_masked : cov_.R;

@@ -207,9 +207,7 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
     const auto x = detail::segment<Dims::nx>(s, 0, nx);
     const Eigen::Map<const AugmentedMatrix> P(s.data() + n, n, n);
     if (measured) {
-      detail::set_product(w.y, sys.C, x);
-      for (Index i = 0; i < w.y.size(); ++i)
-        if ((*measured)(i)) w.y(i) = measured_y(i);
+      detail::predict_unmeasured<Dims>(sys.C, x, measured_y, *measured, w.y);
       w.c_masked = sys.C;
       detail::zero_absent_rows<Dims>(w.c_masked, measured);
     }
@@ -275,13 +273,7 @@ class AugmentedKalmanBucyFilter : public ContinuousUpdate<AugmentedKalmanBucyFil
                                                                                    Workspace& w) const {
     if (!measured) return r_factor_;
     if (!w.has_masked_factor || !(w.factored == *measured).all()) {
-      w.r_masked = cov_.R;
-      for (Index i = 0; i < w.r_masked.rows(); ++i) {
-        if ((*measured)(i)) continue;
-        w.r_masked.row(i).setZero();
-        w.r_masked.col(i).setZero();
-        w.r_masked(i, i) = Scalar(1);
-      }
+      detail::masked_covariance<Dims>(cov_.R, *measured, w.r_masked);
       (void)w.r_masked_factor.compute(w.r_masked);
       w.factored = *measured;
       w.has_masked_factor = true;

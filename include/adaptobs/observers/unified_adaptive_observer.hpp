@@ -291,7 +291,7 @@ class UnifiedAdaptiveObserver
 
     /// (2): \f$A_o, C_o\f$ at t, \f$\Psi = T\Phi\f$, \f$\varphi = TBu + Ky\f$.
     const TransformedSystem<Dims>& so = measured ? injecting_measured(system_at(t, w), *measured, w) : system_at(t, w);
-    const Output& y = measured ? predict_unmeasured(so, x, measured_y, *measured, w) : measured_y;
+    const Output& y = measured ? detail::predict_unmeasured<Dims>(so.Co, x, measured_y, *measured, w.y) : measured_y;
     st.regressor(model_.regressor(t, u, y), w.Psi);
     st.drive(so, u, y, w.phi);
     /// (3b): \f$\Omega = H\Xi\f$; output error \f$\varepsilon = y - C_o\hat x\f$.
@@ -325,16 +325,6 @@ class UnifiedAdaptiveObserver
       w.so_measured.K.col(i).setZero();
     }
     return w.so_measured;
-  }
-
-  // w.y: the measured channels of y, and C_o x̂ for the others.
-  template <class X>
-  static const Output& predict_unmeasured(const TransformedSystem<Dims>& so, const X& x, const Output& measured_y,
-                                          const OutputMask<Dims>& measured, Workspace& w) {
-    detail::set_product(w.y, so.Co, x);
-    for (Index i = 0; i < w.y.size(); ++i)
-      if (measured(i)) w.y(i) = measured_y(i);
-    return w.y;
   }
 
   // No check of its own: every finite integrated state is accepted.

@@ -3,6 +3,7 @@
 /// The scratch of one observer update, and the dispatch of an update with an
 /// output mask: written once for every observer that has them.
 
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/validation.hpp>
 
@@ -57,6 +58,32 @@ void zero_absent_rows(Eigen::MatrixBase<Derived>& m, const OutputMask<D>* presen
   for (Index i = 0; i < m.rows(); ++i)
     if (!(*present)(i))
       for (Index j = 0; j < m.cols(); ++j) m.coeffRef(i, j) = typename Derived::Scalar(0);
+}
+
+/// \f$\bar R = DRD + (I - D)\f$, D = diag(present), into `out`: the measurement
+/// covariance of the present channels, decoupled from unit noise on the absent
+/// ones, so that a gain \f$P\bar C^T\bar R^{-1}\f$ with \f$\bar C = DC\f$ has zero
+/// columns for them. Positive definite with R.
+template <StateSpace D, class Square>
+void masked_covariance(const Square& r, const OutputMask<D>& present, Square& out) {
+  out = r;
+  for (Index i = 0; i < out.rows(); ++i) {
+    if (present(i)) continue;
+    out.row(i).setZero();
+    out.col(i).setZero();
+    out(i, i) = typename Square::Scalar(1);
+  }
+}
+
+/// The output `y` over an interval in which only the channels in `measured` are
+/// measured: their measured values, and the prediction \f$(C\hat x)_i\f$ of the others.
+template <StateSpace D, class OutputMatrix, class X>
+const typename D::Output& predict_unmeasured(const OutputMatrix& c, const X& x, const typename D::Output& measured_y,
+                                             const OutputMask<D>& measured, typename D::Output& y) {
+  set_product(y, c, x);
+  for (Index i = 0; i < y.size(); ++i)
+    if (measured(i)) y(i) = measured_y(i);
+  return y;
 }
 
 }  // namespace adaptobs::detail
