@@ -40,6 +40,6 @@ add_library(adaptobs_precompiled_base STATIC ${ADAPTOBS_PRECOMPILED_BASE_SOURCES
 add_library(adaptobs::precompiled_base ALIAS adaptobs_precompiled_base)
 target_compile_definitions(adaptobs_precompiled_base PUBLIC ADAPTOBS_PRECOMPILED)
 target_link_libraries(adaptobs_precompiled_base PRIVATE adaptobs_developer_options PUBLIC adaptobs::adaptobs)
-add_library(adaptobs_precompiled STATIC ${ADAPTOBS_PRECOMPILED_DESIGN_SOURCES})
+add_library(adaptobs_precompiled STATIC ${ADAPTOBS_PRECOMPILED_DESIGN_SOURCES} ${ADAPTOBS_PRECOMPILED_FLOAT_SOURCES})
 add_library(adaptobs::precompiled ALIAS adaptobs_precompiled)
 target_link_libraries(adaptobs_precompiled PRIVATE adaptobs_developer_options PUBLIC adaptobs::precompiled_base)

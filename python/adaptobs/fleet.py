@@ -418,10 +418,18 @@ def process_partition(frame, layout: TelemetryLayout, configs: Mapping, default:
             end = min(position + every, samples)
             piece = slice(position, end)
             psi = Psi[piece] if Psi is not None and Psi.ndim == 3 else Psi
-            result = observer.run(None if U is None else U[piece], Y[piece], psi)
+            y, absent = Y[piece], np.isnan(Y[piece])
+            if absent.any():
+                # A NaN output is a channel not measured: a masked update (an empty row is the time
+                # update), and a sample the monitor passes over, its output error being incomplete.
+                result = observer.run(None if U is None else U[piece], np.where(absent, 0.0, y), psi,
+                                      present=~absent)
+            else:
+                result = observer.run(None if U is None else U[piece], y, psi)
             status = result.status.astype(np.int64)
             watched = max(0, min(config.monitor_from, end) - position)
             status[:watched] = int(_core.UpdateStatus.nonfinite_input)  # not monitored before convergence
+            status[absent.any(axis=1)] = int(_core.UpdateStatus.nonfinite_input)
             out = monitor.run(result.parameters, result.output_error, status=status)
             alarms = _concatenate(alarms, _chunk_alarms(out, position, t[piece]))
             position = end

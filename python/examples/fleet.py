@@ -180,7 +180,7 @@ def main():
     ax.set_xlim(0, args.samples * s["Ts"])
     ax.set_xlabel("t (s)")
     ax.set_ylabel("satellite")
-    ax.set_title(f"Alarms of {args.assets} satellites on {args.workers} Dask workers"
+    ax.set_title(f"Alarms of {args.assets} satellites on {args.workers} Dask worker{'s' if args.workers > 1 else ''}"
                  + (" (one killed mid-run)" if killed else ""))
     ax.legend(loc="upper left", fontsize=8)
     fig.tight_layout()
