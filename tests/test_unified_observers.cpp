@@ -14,6 +14,7 @@
 #include <adaptobs/observers/marino_tomei.hpp>
 #include <adaptobs/observers/zhang_continuous.hpp>
 #include <adaptobs/simulation/continuous_plant.hpp>
+#include <adaptobs/simulation/plant.hpp>
 
 #include "models/periodic_mimo.hpp"
 #include "models/siso_third_order.hpp"
@@ -435,5 +436,53 @@ static_assert(adaptobs::Observer<decltype(besancon_observer<double>())>);
 static_assert(adaptobs::Observer<decltype(zhang_observer<double>(1.0))>);
 static_assert(adaptobs::Observer<decltype(zhang_observer<float>(1.0f))>);
 static_assert(adaptobs::Observer<decltype(kalman_bucy_filter<double>(1.0))>);
+
+}  // namespace
+
+namespace {
+
+// Ψ = TΦ(t, u, y) is computed once per distinct (t, u, y) of the RK4 stages. With
+// the input held over each interval, the last stage of an interval and the first
+// of the next share their time but not their u: a Φ that reads u must be
+// evaluated at both. update() against the RK4 step written here on the public
+// derivative(), which keeps nothing from one call to the next.
+TEST(UnifiedFormulation, EachStageEvaluatesTheRegressorAtItsOwnSignals) {
+  using D = periodic::Dims<double>;
+  const auto model = adaptobs::make_continuous_ltv_model<D>(
+      [](double t) { return periodic::system<double>(t); },
+      [](double t, const D::Input& u, const D::Output& y) {
+        return D::RegressorMatrix((1.0 + 0.5 * u(0) + 0.2 * y(0)) * periodic::Regressor{}.operator()<double>(t));
+      });
+  const adaptobs::SamplingOptions hold_and_line;  // u held, y a straight line, one RK4 step per interval
+  auto observer = adaptobs::make_zhang_continuous_observer(
+      model, periodic::zhang_gain<double>(), D::ParameterMatrix(50.0 * Eigen::Matrix2d::Identity()), D::State::Zero(),
+      D::Parameters::Zero(), {.sampling = hold_and_line});
+  const auto rhs = observer;  // for derivative() alone
+  using State = decltype(observer)::InternalState;
+  const auto samples = adaptobs::record_samples(periodic::make_plant<double>(), 300);
+  ASSERT_EQ(observer.update(samples[0]), UpdateStatus::accepted);
+  State x = observer.internal_state();
+  double worst = 0;
+  for (std::size_t k = 1; k < samples.size(); ++k) {
+    const auto& a = samples[k - 1];
+    const auto& b = samples[k];
+    ASSERT_EQ(observer.update(b), UpdateStatus::accepted);
+    const double h = b.t - a.t;
+    const auto f = [&](const State& s, double sigma) {
+      const D::Output y = (1 - sigma) * a.y + sigma * b.y;
+      State ds;
+      rhs.derivative(s, ds, a.t + sigma * h, a.u, y);
+      return ds;
+    };
+    const State k1 = f(x, 0.0), k2 = f(x + h / 2 * k1, 0.5), k3 = f(x + h / 2 * k2, 0.5), k4 = f(x + h * k3, 1.0);
+    x += h / 6 * (k1 + 2 * (k2 + k3) + k4);
+    worst =
+        std::max(worst, (observer.internal_state() - x).cwiseAbs().maxCoeff() / std::max(1.0, x.cwiseAbs().maxCoeff()));
+    x = observer.internal_state();
+  }
+  EXPECT_LT(worst, 1e-13);
+  // θ̂ has moved from 0: the comparison is of an observer at work.
+  EXPECT_GT(observer.parameters().norm(), 0.1);
+}
 
 }  // namespace

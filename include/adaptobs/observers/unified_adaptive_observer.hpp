@@ -53,6 +53,7 @@
 #include <Eigen/Core>
 
 #include <concepts>
+#include <limits>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -238,17 +239,24 @@ class UnifiedAdaptiveObserver
  private:
   struct Workspace {
     TransformedSystem<Dims> so, so_measured;  // (2) at t; with the injection of measured channels only
-    FilterMatrix F;
+    FilterMatrix F, F_measured;               // F(t), of so and of so_measured
     RegressorMatrix Psi, Omega;
     State phi;
     Output y, epsilon;  // y with its unmeasured channels predicted; ε
     typename Dims::OutputRegressor R;
     GainMatrix L;
     typename DynamicTransform<Scalar, Dims::nx, nr>::OutputMatrix AoH;  // A_o H of a projected F
+    // The t at which so and F were computed, and the (t, u, y) at which Psi
+    // was; NaN for none.
+    Scalar so_t = std::numeric_limits<Scalar>::quiet_NaN();
+    Scalar psi_t = std::numeric_limits<Scalar>::quiet_NaN();
+    Input psi_u;
+    Output psi_y;
     void resize(const Sizes& s, Index r) {
       so.resize(s);
       so_measured.resize(s);
       F.setZero(r, r);
+      F_measured.setZero(r, r);
       AoH.setZero(s.nx, r);
       Psi.setZero(s.nx, s.np);
       Omega.setZero(s.nx, s.np);
@@ -257,17 +265,23 @@ class UnifiedAdaptiveObserver
       epsilon.setZero(s.ny);
       R.setZero(s.ny, s.np);
       L.setZero(s.nx, s.ny);
+      so_t = psi_t = std::numeric_limits<Scalar>::quiet_NaN();
+      psi_u.setZero(s.nu);
+      psi_y.setZero(s.ny);
     }
   };
 
   static InternalState make_internal(const Sizes& s, Index r) { return InternalState::Zero(s.nx + r * s.np + s.np); }
 
   // The matrices of (2) at t: the cached ones of a time-invariant model, else
-  // computed into `w` (and F(t) with them).
+  // computed into `w` (and F(t) with them), unless `w` holds them at this t
+  // already (RK4's two midpoint stages share their time).
   const TransformedSystem<Dims>& system_at(Scalar t, Workspace& w) const {
     if (is_time_invariant(model_)) return so_;
+    if (t == w.so_t) return w.so;
     algorithm_.static_transform.apply(model_.at(t), w.so);
     algorithm_.dynamic_transform.filter_matrix(w.so.Ao, w.F, w.AoH);
+    w.so_t = t;
     return w.so;
   }
 
@@ -292,7 +306,7 @@ class UnifiedAdaptiveObserver
     /// (2): \f$A_o, C_o\f$ at t, \f$\Psi = T\Phi\f$, \f$\varphi = TBu + Ky\f$.
     const TransformedSystem<Dims>& so = measured ? injecting_measured(system_at(t, w), *measured, w) : system_at(t, w);
     const Output& y = measured ? detail::predict_unmeasured<Dims>(so.Co, x, measured_y, *measured, w.y) : measured_y;
-    st.regressor(model_.regressor(t, u, y), w.Psi);
+    transformed_regressor(t, u, y, w);
     st.drive(so, u, y, w.phi);
     /// (3b): \f$\Omega = H\Xi\f$; output error \f$\varepsilon = y - C_o\hat x\f$.
     dt.output(Xi, w.Omega);
@@ -304,8 +318,8 @@ class UnifiedAdaptiveObserver
     detail::zero_absent_rows<Dims>(w.R, measured);  // the excitation of the measured channels only
     law_.derivative(w.R, w.epsilon, theta, dtheta);
     /// (3a): \f$\dot\Xi = F\Xi + G\Psi\f$.
-    if (measured) dt.filter_matrix(so.Ao, w.F, w.AoH);
-    dt.derivative(is_time_invariant(model_) && !measured ? f_ : w.F, Xi, w.Psi, dXi);
+    if (measured) dt.filter_matrix(so.Ao, w.F_measured, w.AoH);
+    dt.derivative(measured ? w.F_measured : is_time_invariant(model_) ? f_ : w.F, Xi, w.Psi, dXi);
     /// \f$\dot{\hat x} = A_o\hat x + \varphi + \Psi\hat\theta + L\varepsilon + \Omega\dot{\hat\theta}\f$.
     algorithm_.injection_gain(so, t, w.L);
     detail::set_product(dx, so.Ao, x);
@@ -313,6 +327,18 @@ class UnifiedAdaptiveObserver
     detail::add_product(dx, w.Psi, theta);
     detail::add_product(dx, w.L, w.epsilon);
     detail::add_product(dx, w.Omega, dtheta);
+  }
+
+  // Ψ = TΦ(t, u, y) into w.Psi, unless it holds Ψ at this (t, u, y) already:
+  // RK4's two midpoint stages share their time and signals, and Φ (sines and
+  // cosines on the papers' plants) is the largest cost of a stage. The model's Φ
+  // is a function of (t, u, y) (ContinuousModel).
+  void transformed_regressor(Scalar t, const Input& u, const Output& y, Workspace& w) const {
+    if (t == w.psi_t && u == w.psi_u && y == w.psi_y) return;
+    algorithm_.static_transform.regressor(model_.regressor(t, u, y), w.Psi);
+    w.psi_t = t;
+    w.psi_u = u;
+    w.psi_y = y;
   }
 
   // (2) with K̄ = KD: A_o + K(I − D)C_o and K̄, into w.so_measured.
@@ -338,6 +364,7 @@ class UnifiedAdaptiveObserver
   }
 
   void refresh_time_invariant_system() {
+    work_.so_t = work_.psi_t = std::numeric_limits<Scalar>::quiet_NaN();  // T or the model may have changed
     if (is_time_invariant(model_)) {
       so_.resize(sizes_);
       algorithm_.static_transform.apply(model_.at(Scalar(0)), so_);
