@@ -486,3 +486,40 @@ TEST(UnifiedFormulation, EachStageEvaluatesTheRegressorAtItsOwnSignals) {
 }
 
 }  // namespace
+
+namespace {
+
+// A time-varying model's matrices of (2) and F(t) are kept from one RK4 stage to
+// the next at the same t; over an outage, F is that of the measured channels'
+// system. A model given as time-varying whose matrices are constant follows the
+// time-invariant one, whose matrices are computed once, through an outage of
+// the second output and after it.
+TEST(UnifiedFormulation, AConstantTimeVaryingModelFollowsTheTimeInvariantOneThroughAnOutage) {
+  using D = periodic::Dims<double>;
+  const auto frozen = periodic::system<double>(0.0);
+  const auto regressor = [](double t) { return periodic::Regressor{}.operator()<double>(t); };
+  const auto lti = adaptobs::make_continuous_lti_model<D>(frozen.A, frozen.B, frozen.C, regressor);
+  const auto ltv = adaptobs::make_continuous_ltv_model<D>([frozen](double) { return frozen; }, regressor);
+  const auto observer_of = [](const auto& model) {
+    return adaptobs::make_zhang_continuous_observer(model, periodic::zhang_gain<double>(),
+                                                    D::ParameterMatrix(50.0 * Eigen::Matrix2d::Identity()),
+                                                    D::State::Zero(), D::Parameters::Zero(), {.sampling = quadratic()});
+  };
+  auto constant = observer_of(lti);
+  auto varying = observer_of(ltv);
+  const auto samples = adaptobs::record_samples(periodic::make_plant<double>(), 400);
+  adaptobs::OutputMask<D> first_only;
+  first_only << true, false;
+  double worst = 0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const bool outage = k >= 150 && k < 200;
+    const auto update = [&](auto& o) { return outage ? o.update(samples[k], first_only) : o.update(samples[k]); };
+    ASSERT_EQ(update(constant), UpdateStatus::accepted);
+    ASSERT_EQ(update(varying), UpdateStatus::accepted);
+    worst = std::max(worst, (constant.internal_state() - varying.internal_state()).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 1e-13);
+  EXPECT_GT(constant.parameters().norm(), 0.1);
+}
+
+}  // namespace
