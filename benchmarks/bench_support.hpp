@@ -3,6 +3,7 @@
 // timed iteration is one observer update and nothing else.
 
 #include <adaptobs/core/dimensions.hpp>
+#include <adaptobs/core/status.hpp>
 
 #include <benchmark/benchmark.h>
 
@@ -26,6 +27,21 @@ class SampleRing {
   std::vector<Sample> samples_;
   std::size_t i_ = 0;
 };
+
+/// Whether a copy of `observer` accepts every sample over `passes` passes of
+/// `samples` (as the ring replays them); if not, the benchmark is skipped with an
+/// error: timing rejected samples would time the checks alone.
+template <class Observer, class Sample>
+[[nodiscard]] bool accepts_every_sample(benchmark::State& state, Observer observer, const std::vector<Sample>& samples,
+                                        int passes) {
+  for (int pass = 0; pass < passes; ++pass)
+    for (const Sample& s : samples)
+      if (observer.update(s) != UpdateStatus::accepted) {
+        state.SkipWithError("the observer rejects samples of the ring");
+        return false;
+      }
+  return true;
+}
 
 /// Times `observer.update(ring.next())`, one update per iteration.
 template <class Observer, class Sample>
