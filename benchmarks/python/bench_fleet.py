@@ -11,8 +11,8 @@ checkpoints.
   submission to the gathered result, reading the files included, the cluster's start excluded;
 - checkpoints every K samples: fleet serial writing each asset's checkpoint to a local directory.
 Each figure is the best of a few repetitions, the cases of one system measured round-robin; the
-in-process cases in CPU time of this process, the cluster cases and the C++ loop (the best of its
-five passes) in wall time. The machine's other load moves the figures; compare the ratios of one run.
+in-process cases and the C++ loop (the best of its five passes) in CPU time of their process, the
+cluster cases in wall time. The machine's other load moves the figures; compare the ratios of one run.
 
     python benchmarks/python/bench_fleet.py [--assets 64] [--samples 10000]
 """
