@@ -60,6 +60,40 @@ TEST(NoAllocation, DeyBhasinDynamicSizeUpdates) {
   EXPECT_EQ(allocations_during_updates(observer, samples), 0);
 }
 
+// The excitation diagnostics (information and window), with masked samples too.
+template <class Observer, class Sample>
+long allocations_during_masked_updates(Observer& observer, const std::vector<Sample>& samples) {
+  using Mask = adaptobs::OutputMask<typename Observer::Dims>;
+  Mask partial = Mask::Constant(observer.sizes().ny, true);  // built before counting
+  partial(1) = false;
+  int rejected = 0;
+  const long count = allocations_during([&] {
+    for (std::size_t k = 0; k < samples.size(); ++k)
+      rejected += (k % 3 == 0 ? observer.update(samples[k], partial) : observer.update(samples[k])) !=
+                  adaptobs::UpdateStatus::accepted;
+  });
+  EXPECT_EQ(rejected, 0);
+  return count;
+}
+
+TEST(NoAllocation, DeyBhasinUpdatesWithTheExcitationDiagnostics) {
+  const auto samples = mimo_samples(1000);
+  auto observer = db::mimo::Observer<double>(db::mimo::f(), db::mimo::x_hat0(), db::mimo::a_hat0(), db::mimo::B_hat0(),
+                                             db::mimo::law_options(), {.information = true, .excitation_window = 50});
+  EXPECT_EQ(allocations_during_masked_updates(observer, samples), 0);
+  EXPECT_TRUE(observer.excitation_level().has_value());
+
+  using Dynamic = adaptobs::DeyBhasinObserver<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>;
+  std::vector<Dynamic::Sample> dynamic_samples;
+  for (const auto& s : samples) dynamic_samples.push_back({s.u, s.y});
+  Dynamic dynamic(Eigen::VectorXd(db::mimo::f()), Eigen::VectorXd(db::mimo::x_hat0()),
+                  Eigen::VectorXd(db::mimo::a_hat0()), Eigen::MatrixXd(db::mimo::B_hat0()),
+                  {.k0 = db::mimo::k0, .kmin = db::mimo::kmin, .R = Eigen::MatrixXd::Identity(2, 2)},
+                  {.information = true, .excitation_window = 50});
+  EXPECT_EQ(allocations_during_masked_updates(dynamic, dynamic_samples), 0);
+  EXPECT_TRUE(dynamic.information_level().has_value());
+}
+
 template <class Law>
 long allocations_of_law(Law& law, Index steps) {
   typename Law::Regressor phi = Law::Regressor::Zero(law.parameter_count(), law.measurement_count());

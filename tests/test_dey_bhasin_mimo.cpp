@@ -2,11 +2,13 @@
 // dimensions: the reading of the example, eq. (7) and (12), the structured
 // filters against the literal (8)–(11), convergence with a sufficiently rich
 // input (theorem 6), the proof step of theorem 5, batch least squares (18),
-// missing and partial outputs, bad input and configuration. The bounds of
+// missing and partial outputs, the excitation diagnostics of definition 1 (15),
+// bad input and configuration. The bounds of
 // theorem 5 over 10⁵ steps are in test_dey_bhasin_long_runs.cpp.
 
 #include <adaptobs/adaptation/recursive_least_squares.hpp>
 #include <adaptobs/core/observer.hpp>
+#include <adaptobs/core/snapshot.hpp>
 #include <adaptobs/core/spectral_norm.hpp>
 #include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/design/stability.hpp>
@@ -536,6 +538,166 @@ TEST(DeyBhasin, WithoutResettingEqualsBatchLeastSquares18) {
   EXPECT_MATRIX_NEAR(observer.parameters(), batch, 1e-9 * batch.norm(), 0.0);
   const Matrix15 inverse = adaptobs::testing::solve_by_llt(information, Eigen::MatrixXd::Identity(15, 15));
   EXPECT_MATRIX_NEAR(observer.law().covariance(), inverse, 1e-9 * observer.law().covariance().norm(), 0.0);
+}
+
+// --- Persistent excitation, definition 1 (15) -------------------------------------
+
+using Information = Eigen::Matrix<double, 15, 15>;
+
+Observer make_monitored_observer(const Eigen::Matrix2d& R = Eigen::Matrix2d::Identity()) {
+  return Observer(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(),
+                  {.k0 = mimo::k0, .kmin = mimo::kmin, .R = R}, {.information = true, .excitation_window = 100});
+}
+
+// φ_P R_PP⁻¹ φ_Pᵀ of the present channels P, from dense matrices.
+Eigen::MatrixXd present_information(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& R, const Mask& present) {
+  std::vector<Index> rows;
+  for (Index i = 0; i < present.size(); ++i)
+    if (present(i)) rows.push_back(i);
+  const Index n = Index(rows.size());
+  if (n == 0) return Eigen::MatrixXd::Zero(phi.rows(), phi.rows());
+  Eigen::MatrixXd phi_p(phi.rows(), n), r_pp(n, n);
+  for (Index j = 0; j < n; ++j) {
+    phi_p.col(j) = phi.col(rows[std::size_t(j)]);
+    for (Index i = 0; i < n; ++i) r_pp(i, j) = R(rows[std::size_t(i)], rows[std::size_t(j)]);
+  }
+  return phi_p * adaptobs::testing::solve_by_llt(r_pp, phi_p.transpose());
+}
+
+// The §5 example with the rich input, R = I: I_t = Σ_{i≤t} φ_iφ_iᵀ (t the sample
+// index, φ_0 = 0) grows linearly, λ_min(I_t) = 1.0316, 1.9663, 3.3983, 6.1682 at
+// t = 100, 250, 500, 1000; the window of the last 100 samples (t = 901…1000) has
+// λ_min = 5.662e-3 and full rank 15. Until the first covariance reset (23) I_t is
+// Γ_t⁻¹ − Γ_0⁻¹ of RLS (20).
+TEST(DeyBhasinExcitation, RichInputInformationGrowsLinearlyAndTheWindowHasFullRank) {
+  auto observer = make_monitored_observer();
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  const std::array<Index, 4> at = {100, 250, 500, 1000};
+  const std::array<double, 4> printed = {1.032, 1.966, 3.398, 6.168};
+  const std::array<double, 4> measured = {1.0316, 1.9663, 3.3983, 6.1682};
+  std::array<double, 4> level{};
+  std::size_t next = 0;
+  bool identity_checked = false;
+  for (Index t = 0; t <= 1000; ++t) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    if (t == 98 || t == 99) {
+      EXPECT_EQ(observer.excitation_level().has_value(), t == 99);  // the 100th sample fills the window
+    }
+    if (observer.law().reset_count() == 0 && t > 0) {
+      const Eigen::MatrixXd inverse = adaptobs::testing::solve_by_llt(Eigen::MatrixXd(observer.law().covariance()),
+                                                                      Eigen::MatrixXd::Identity(15, 15));
+      const Information expected = inverse - Information::Identity() / mimo::k0;
+      EXPECT_MATRIX_NEAR(observer.information(), expected, 1e-10 * expected.norm(), 0.0) << "step " << t;
+      identity_checked = true;
+    }
+    if (next < at.size() && t == at[next]) level[next++] = observer.information_level().value();
+    plant.advance();
+  }
+  EXPECT_TRUE(identity_checked);
+  EXPECT_GT(observer.law().reset_count(), 0);  // I_t is kept through the resets
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    EXPECT_GE(level[i], 0.9 * printed[i]) << "t = " << at[i];
+    EXPECT_NEAR(level[i], measured[i], 1e-4) << "t = " << at[i];
+  }
+  EXPECT_GE(level[3] / level[2], 1.6);
+  EXPECT_LE(level[3] / level[2], 2.0);
+  EXPECT_NEAR(observer.excitation_level().value(), 5.662e-3, 1e-6);
+  EXPECT_EQ(observer.excitation_rank(), 15);
+}
+
+// One sinusoid per input channel: the regressor spans 8 of the 15 directions.
+// The window's λ_min is rounding (below 1e-10 λ_max), its rank 8, and λ_min(I_t)
+// stays at rounding level however long the run: φ is not PE.
+TEST(DeyBhasinExcitation, NotRichInputLeavesSevenDirectionsUnexcited) {
+  auto observer = make_monitored_observer();
+  auto plant = mimo::make_plant(mimo::NotRichInput{});
+  double largest_level = 0;
+  for (Index t = 0; t <= 1000; ++t) {
+    ASSERT_EQ(observer.update(plant.sample()), UpdateStatus::accepted);
+    if (t % 100 == 0) largest_level = std::max(largest_level, observer.information_level().value());
+    plant.advance();
+  }
+  const Eigen::VectorXd lambda =
+      adaptobs::symmetric_eigenvalues(Eigen::MatrixXd(observer.excitation_monitor()->average()));
+  EXPECT_LT(observer.excitation_level().value(), 1e-10 * lambda(14));
+  EXPECT_GT(lambda(7), 1e-5 * lambda(14));  // the eighth direction: excited (1.97e-4 λ_max)
+  EXPECT_EQ(observer.excitation_rank(), 8);
+  EXPECT_LT(largest_level, 1e-8);
+  EXPECT_GT(adaptobs::symmetric_eigenvalues(observer.information())(14), 1e6);  // while λ_max grows
+}
+
+// Under a mask a sample adds φ_P R_PP⁻¹ φ_Pᵀ of its present channels P (here with
+// an R that couples them), and a fully masked sample adds 0; a channel masked for
+// the whole run leaves the B-rows it alone measures unexcited: rank 8, not 15.
+TEST(DeyBhasinExcitation, AMaskedSampleContributesItsPresentRowsOnly) {
+  Eigen::Matrix2d R;
+  R << 2.0, 0.6, 0.6, 0.5;
+  auto observer = make_monitored_observer(R);
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  std::mt19937_64 generator(50);
+  std::uniform_int_distribution<int> pattern(0, 3);
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(15, 15);
+  for (Index t = 0; t < 300; ++t) {
+    const int bits = pattern(generator);
+    const Mask present((bits & 1) != 0, (bits & 2) != 0);
+    ASSERT_EQ(present.all() ? observer.update(plant.sample()) : observer.update(plant.sample(), present),
+              UpdateStatus::accepted);
+    expected += present_information(observer.regressor(), R, present);
+    plant.advance();
+  }
+  EXPECT_MATRIX_NEAR(observer.information(), expected, 1e-12 * expected.norm(), 0.0);
+
+  auto single = make_monitored_observer();
+  auto replay = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t <= 1000; ++t) {
+    ASSERT_EQ(single.update(replay.sample(), Mask(true, false)), UpdateStatus::accepted);
+    replay.advance();
+  }
+  EXPECT_EQ(single.excitation_rank(), 8);
+  EXPECT_LT(single.information_level().value(), 1e-8);
+}
+
+// The diagnostics cost nothing unless asked for, are emptied by reset, survive a
+// snapshot, and an observer without them keeps the field list of version 1.
+TEST(DeyBhasinExcitation, OffByDefaultClearedByResetAndCarriedBySnapshots) {
+  auto plain = mimo::make_observer();
+  auto monitored = make_monitored_observer();
+  auto plant = mimo::make_plant(mimo::RichInput{});
+  for (Index t = 0; t < 150; ++t) {
+    ASSERT_EQ(plain.update(plant.sample()), UpdateStatus::accepted);
+    ASSERT_EQ(monitored.update(plant.sample()), UpdateStatus::accepted);
+    plant.advance();
+  }
+  EXPECT_FALSE(plain.information_level() || plain.excitation_level() || plain.excitation_rank());
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(plain.parameters(), monitored.parameters()));
+  const auto plain_state = adaptobs::snapshot(plain);
+  EXPECT_EQ(plain_state.find_integer("information"), nullptr);
+  EXPECT_EQ(plain_state.find_matrix("information_sum"), nullptr);
+
+  auto restored = make_monitored_observer();
+  adaptobs::restore(restored, adaptobs::snapshot(monitored));
+  auto plant_copy = plant;
+  for (Index t = 0; t < 60; ++t) {
+    ASSERT_EQ(monitored.update(plant.sample()), UpdateStatus::accepted);
+    ASSERT_EQ(restored.update(plant_copy.sample()), UpdateStatus::accepted);
+    plant.advance();
+    plant_copy.advance();
+  }
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(restored.information(), monitored.information()));
+  EXPECT_EQ(restored.excitation_level(), monitored.excitation_level());
+  // With and without the diagnostics, neither restores the other's snapshot.
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::restore(restored, plain_state), "snapshot");
+  auto other = mimo::make_observer();
+  EXPECT_CONFIGURATION_ERROR_NAMES(adaptobs::restore(other, adaptobs::snapshot(monitored)), "snapshot");
+  adaptobs::restore(other, plain_state);  // a version-1 field list restores as before
+  EXPECT_TRUE(adaptobs::testing::bitwise_equal(other.parameters(), plain.parameters()));
+
+  monitored.reset(mimo::x_hat0(), monitored.parameters());
+  EXPECT_EQ(monitored.information_level(), 0.0);
+  EXPECT_FALSE(monitored.excitation_level());
+  EXPECT_CONFIGURATION_ERROR_NAMES(Observer(mimo::f(), mimo::x_hat0(), mimo::a_hat0(), mimo::B_hat0(),
+                                            mimo::law_options(), {.excitation_window = -1}),
+                                   "diagnostics.excitation_window");
 }
 
 // --- Implementation properties ------------------------------------------------------

@@ -8,6 +8,8 @@
 
 #include <adaptobs/observers/dey_bhasin.hpp>
 
+#include <nanobind/stl/optional.h>
+
 namespace adaptobs::python {
 
 namespace {
@@ -66,29 +68,55 @@ void bind_filter_observers(nb::module_& m) {
   dey_bhasin.def(
       "__init__",
       [](Bound<DeyBhasin>* self, nb::handle f, nb::handle x0, nb::handle a0, nb::handle B0, nb::handle k0,
-         nb::handle kmin, nb::handle R, nb::handle screen_reset_test) {
+         nb::handle kmin, nb::handle R, nb::handle screen_reset_test, nb::handle information,
+         nb::handle excitation_window) {
         constexpr std::string_view who = "DeyBhasinObserver";
         new (self) Bound<DeyBhasin>(
             DeyBhasin(vector(f, who, "f"), vector(x0, who, "x0"), vector(a0, who, "a0"), matrix(B0, who, "B0"),
                       {.k0 = real_scalar(k0, who, "k0"),
                        .kmin = real_scalar(kmin, who, "kmin"),
                        .R = matrix(R, who, "R"),
-                       .screen_reset_test = flag_argument(screen_reset_test, who, "screen_reset_test")}));
+                       .screen_reset_test = flag_argument(screen_reset_test, who, "screen_reset_test")},
+                      {.information = flag_argument(information, who, "information"),
+                       .excitation_window = integer_argument(excitation_window, who, "excitation_window")}));
       },
       nb::arg("f"), nb::arg("x0"), nb::arg("a0"), nb::arg("B0"), nb::kw_only(), nb::arg("k0"), nb::arg("kmin"),
-      nb::arg("R"), nb::arg("screen_reset_test") = true);
+      nb::arg("R"), nb::arg("screen_reset_test") = true, nb::arg("information") = false,
+      nb::arg("excitation_window") = 0);
   bind_canonical_form_properties(dey_bhasin);
   dey_bhasin.def_prop_ro("reset_count", [](const Bound<DeyBhasin>& b) { return b.observer.law().reset_count(); })
       .def_prop_ro("reset_at_last_step",
-                   [](const Bound<DeyBhasin>& b) { return b.observer.law().reset_at_last_step(); });
+                   [](const Bound<DeyBhasin>& b) { return b.observer.law().reset_at_last_step(); })
+      .def_prop_ro(
+          "information",
+          [](const Bound<DeyBhasin>& b) -> std::optional<Eigen::MatrixXd> {
+            if (!b.observer.information_level()) return std::nullopt;
+            return Eigen::MatrixXd(b.observer.information());
+          },
+          "I_t = sum phi_i R^-1 phi_i^T (definition 1, (15)); None unless information=True")
+      .def_prop_ro(
+          "information_level", [](const Bound<DeyBhasin>& b) { return b.observer.information_level(); },
+          "lambda_min(I_t), growing without bound under persistent excitation; None unless information=True")
+      .def_prop_ro(
+          "excitation_level", [](const Bound<DeyBhasin>& b) { return b.observer.excitation_level(); },
+          "lambda_min of the average of phi_i R^-1 phi_i^T over the last excitation_window samples; None until "
+          "the window is full")
+      .def_prop_ro(
+          "excitation_rank", [](const Bound<DeyBhasin>& b) { return b.observer.excitation_rank(); },
+          "numerical rank of that average (eigenvalues above 1e3 n_p eps lambda_max); None until the window is "
+          "full");
   bind_discrete_observer(dey_bhasin, [](const Snapshot<double>& s) {
     const Eigen::VectorXd f = field(s, "filters.f");
     const Eigen::VectorXd x0 = field(s, "x0");
+    // The diagnostics' settings are in a snapshot only when they were on.
+    const bool diagnostics = s.find_integer("information") != nullptr;
     return DeyBhasin(f, x0, f, Eigen::MatrixXd::Zero(x0.size(), integer(s, "filters.m")),
                      {.k0 = scalar(s, "law.k0"),
                       .kmin = scalar(s, "law.kmin"),
                       .R = field(s, "law.R"),
-                      .screen_reset_test = integer(s, "law.screen_reset_test") != 0});
+                      .screen_reset_test = integer(s, "law.screen_reset_test") != 0},
+                     {.information = diagnostics && integer(s, "information") != 0,
+                      .excitation_window = diagnostics ? integer(s, "excitation_window") : 0});
   });
 
   auto suzuki = nb::class_<Bound<Suzuki>>(

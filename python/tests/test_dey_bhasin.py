@@ -121,3 +121,30 @@ def test_on_the_siso_comparison_forgetting_overflows_and_resetting_does_not():
     assert 1900 < rejected[0] < 2200
     assert np.all(forgot.status[rejected[0]:] == UpdateStatus.nonfinite_result)
     assert np.array_equal(forgot.parameters[-1], forgot.parameters[rejected[0] - 1])
+
+
+def test_the_excitation_diagnostics_of_definition_1(mimo):
+    # I_t = sum phi_i R^-1 phi_i^T and the window of the last 100 samples, t = 0..1000
+    # (figures of tests/test_dey_bhasin_mimo.cpp and docs/readings/dey_bhasin.md).
+    import pickle
+
+    system, _ = mimo
+    data = adaptobs.examples.simulate_dey_bhasin_mimo(1001)
+    observer = adaptobs.DeyBhasinObserver(system["f"], system["x0_estimate"], system["a0_estimate"],
+                                          system["B0_estimate"], k0=system["k0"], kmin=system["kmin"],
+                                          R=system["R"], information=True, excitation_window=100)
+    assert observer.excitation_level is None and observer.excitation_rank is None
+    observer.run(data["U"], data["Y"])
+    assert observer.information_level == pytest.approx(6.1682, abs=1e-4)
+    assert observer.information.shape == (15, 15)
+    assert observer.excitation_level == pytest.approx(5.662e-3, abs=1e-6)
+    assert observer.excitation_rank == 15
+    copy = pickle.loads(pickle.dumps(observer))
+    assert copy.information_level == observer.information_level
+    assert copy.excitation_rank == 15
+    plain = make_dey_bhasin(system)
+    plain.run(data["U"][:10], data["Y"][:10])
+    assert plain.information is None and plain.information_level is None and plain.excitation_level is None
+    with pytest.raises(ConfigurationError, match="excitation_window"):
+        adaptobs.DeyBhasinObserver(system["f"], system["x0_estimate"], system["a0_estimate"], system["B0_estimate"],
+                                   k0=system["k0"], kmin=system["kmin"], R=system["R"], excitation_window=-1)

@@ -224,6 +224,13 @@ class SnapshotReader : public detail::SnapshotArchiveBase {
   /// Configuration, which must agree with the snapshot's.
   void setting(std::string_view name, std::int64_t value) { check_setting(full_name(name), value); }
 
+  /// Whether the snapshot holds the field `name`: for fields that a later
+  /// version writes only when an option is on, so that earlier snapshots still restore.
+  [[nodiscard]] bool contains(std::string_view name) const {
+    const std::string full = full_name(name);
+    return in_.find_matrix(full) != nullptr || in_.find_integer(full) != nullptr;
+  }
+
   /// The archive for the fields of a member object, named "name.field".
   [[nodiscard]] SnapshotReader nested(std::string_view name) const { return SnapshotReader(in_, nested_prefix(name)); }
 

@@ -33,27 +33,58 @@
 ///
 /// **Missing and partial outputs.** The regression (16) keeps its present rows;
 /// the filters run on \f$C\hat x_t\f$ in absent entries, a vanishing perturbation
-/// after finitely many gaps (derivation: docs/readings/dey_bhasin.md). With no
+/// after finitely many gaps (derivation: docs/readings/dey_bhasin.md). That keeps the
+/// true parameters a fixed point, not the least-squares solution unbiased; across
+/// recurring gaps the perturbation decays for every gap pattern when the companion
+/// matrices of f and a have joint spectral radius below 1. With no
 /// channel present the law is not called: \f$\hat p_t = \hat p_{t-1}\f$.
+///
+/// **Persistent excitation** (definition 1, (15): \f$\varphi_t\f$ is PE when
+/// \f$\lambda_{\min}(\sum_{i\le t}\varphi_i\varphi_i^T) \to \infty\f$), watched on demand
+/// (`DeyBhasinOptions`): the cumulative information
+/// \f$I_t = \sum_{i\le t}\varphi_iR^{-1}\varphi_i^T\f$, which is \f$\Gamma_t^{-1} - \Gamma_0^{-1}\f$
+/// of RLS (20) until the first reset (23), and the average of its last L terms,
+/// whose smallest eigenvalue and numerical rank tell which directions of p the
+/// recent data excite. A sample under a mask contributes its present rows only,
+/// \f$\varphi_{P}R_{PP}^{-1}\varphi_{P}^T\f$ (the information of the sub-regression the law
+/// is given); one with no channel present contributes 0.
 
 #include <adaptobs/adaptation/adaptation_law.hpp>
 #include <adaptobs/adaptation/covariance_resetting.hpp>
 #include <adaptobs/adaptation/exponential_forgetting.hpp>
+#include <adaptobs/core/detail/cholesky.hpp>
 #include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/health.hpp>
 #include <adaptobs/core/status.hpp>
+#include <adaptobs/core/symmetric_eigenvalues.hpp>
 #include <adaptobs/core/validation.hpp>
+#include <adaptobs/diagnostics/excitation_monitor.hpp>
 #include <adaptobs/observers/canonical_form_filters.hpp>
 
 #include <Eigen/Core>
 
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <string_view>
 #include <type_traits>
 #include <utility>
 
 namespace adaptobs {
+
+/// The excitation diagnostics of `DeyBhasinObserver` (file comment, "Persistent
+/// excitation"); both off by default, at no cost to the update.
+struct DeyBhasinOptions {
+  /// Accumulate \f$I_t = \sum\varphi_iR^{-1}\varphi_i^T\f$ (`information`,
+  /// `information_level`): one \f$n_p \times n_p\f$ rank-q update per sample.
+  bool information = false;
+  /// Window L of the monitor of \f$\frac1L\sum\varphi_iR^{-1}\varphi_i^T\f$ over the last L
+  /// samples (`excitation_level`, `excitation_rank`); 0 turns it off.
+  Index excitation_window = 0;
+};
 
 /// Dey–Bhasin adaptive observer of order `R` with `Q` outputs and `M` inputs
 /// (`Eigen::Dynamic` allowed), adapting with `Law` (default: covariance
@@ -73,6 +104,8 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   using Bank = typename Filters::Bank;
   using AdaptationLawType = Law<S, Dims::np, Dims::ny>;
   using LawOptions = typename AdaptationLawType::Options;
+  using Information = Eigen::Matrix<S, Dims::np, Dims::np>;
+  using Weight = Eigen::Matrix<S, Dims::ny, Dims::ny>;
   static_assert(DiscreteAdaptationLaw<AdaptationLawType>,
                 "DeyBhasinObserver: Law must model adaptobs::DiscreteAdaptationLaw");
 
@@ -86,15 +119,23 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   /// \param x0 initial state estimate \f$\hat x_0\f$ (n = rq entries, fixing q);
   /// \param a0 first-column entries of \f$\hat A_0\f$ (the paper's \f$\hat a_0\f$);
   /// \param B0 initial estimate \f$\hat B_0\f$ (n × m);
-  /// \param options the adaptation law's options, e.g. `{.k0 = 1000, .kmin = 1e-4, .R = I}`.
-  DeyBhasinObserver(const Coefficients& f, State x0, const Coefficients& a0, const InputMatrix& B0, LawOptions options)
+  /// \param options the adaptation law's options, e.g. `{.k0 = 1000, .kmin = 1e-4, .R = I}`;
+  /// \param diagnostics the excitation diagnostics kept (none by default).
+  DeyBhasinObserver(const Coefficients& f, State x0, const Coefficients& a0, const InputMatrix& B0, LawOptions options,
+                    DeyBhasinOptions diagnostics = {})
       : filters_(f, outputs_of(f, x0), B0.cols()),
         law_(initial_parameters(filters_, a0, B0), std::move(options), filters_.outputs()),
-        x0_(std::move(x0)) {
+        x0_(std::move(x0)),
+        track_information_(diagnostics.information) {
     constexpr std::string_view who = "DeyBhasinObserver";
     // n = rq with the filters' q: a compile-time Q is not the q of x0's length.
     require_finite_shape(x0_, filters_.states(), 1, who, "x0");
     const Sizes s = filters_.sizes();
+    require(diagnostics.excitation_window >= 0, who, "diagnostics.excitation_window", "must be non-negative");
+    if (diagnostics.excitation_window > 0) excitation_.emplace(diagnostics.excitation_window, s.np);
+    information_.setZero(s.np, s.np);
+    weight_factor_ = detail::CholeskyFactor<Weight>(s.ny);
+    factor_weight(who, "options.R");
     bank_.setZero(s.ny + s.nu, filters_.order());
     last_.setZero(s.ny + s.nu);
     phi_.setZero(s.np, s.ny);
@@ -180,6 +221,44 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   /// which consecutive steps began to overflow, with a message naming the
   /// remedy. No condition of the theorem is checked per sample.
   [[nodiscard]] HealthReport health() const { return health_.report({}, {}); }
+
+  /// \f$I_t = \sum_{i\le t}\varphi_iR^{-1}\varphi_i^T\f$ over the samples since construction or
+  /// `reset` (file comment, "Persistent excitation"); kept through covariance resets and
+  /// `restart_adaptation`. Zero unless `DeyBhasinOptions::information`.
+  [[nodiscard]] const Information& information() const noexcept { return information_; }
+  /// \f$\lambda_{\min}(I_t)\f$: growing without bound under persistent excitation (15).
+  /// Empty unless `DeyBhasinOptions::information`, or once a sum beyond the
+  /// floating-point range has made \f$I_t\f$ non-finite (until `reset`).
+  [[nodiscard]] std::optional<Scalar> information_level() const {
+    if (!track_information_ || !detail::all_finite(information_)) return std::nullopt;
+    return symmetric_eigenvalues(information_)(0);
+  }
+  /// \f$\lambda_{\min}\f$ of \f$\frac1L\sum_{i=t-L+1}^{t}\varphi_iR^{-1}\varphi_i^T\f$, the last L samples.
+  /// Empty while the monitor is off, its window has not filled, or a contribution
+  /// in the window overflowed (`ExcitationMonitor::available`).
+  [[nodiscard]] std::optional<Scalar> excitation_level() const {
+    if (!excitation_ready()) return std::nullopt;
+    return excitation_->level();
+  }
+  /// Numerical rank of that average: the number of its eigenvalues above
+  /// `relative_tolerance` times the largest, i.e. of the directions of p the last L
+  /// samples excite. Empty when `excitation_level` is.
+  [[nodiscard]] std::optional<Index> excitation_rank(Scalar relative_tolerance) const {
+    if (!excitation_ready()) return std::nullopt;
+    const auto lambda = symmetric_eigenvalues(excitation_->average());
+    const Scalar largest = lambda(lambda.size() - 1);
+    if (!(largest > Scalar(0))) return Index(0);
+    return Index((lambda.array() > relative_tolerance * largest).count());
+  }
+  /// The same at the tolerance \f$10^3n_p\varepsilon\f$, well above the rounding of the
+  /// running sum and of its eigenvalues (about \f$n_p\varepsilon\lambda_{\max}\f$).
+  [[nodiscard]] std::optional<Index> excitation_rank() const {
+    return excitation_rank(Scalar(1000) * Scalar(filters_.parameters()) * std::numeric_limits<Scalar>::epsilon());
+  }
+  /// The window's monitor, when on.
+  [[nodiscard]] const std::optional<ExcitationMonitor<Scalar, Dims::np>>& excitation_monitor() const noexcept {
+    return excitation_;
+  }
   [[nodiscard]] Sizes sizes() const noexcept { return filters_.sizes(); }
   [[nodiscard]] const State& initial_state() const noexcept { return x0_; }
 
@@ -202,6 +281,8 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
     x0_ = x0;
     restart_filters();
     health_.clear();
+    information_.setZero();
+    if (excitation_) excitation_->reset();
   }
 
   /// \f$[(a - f)^T\ \mathrm{vec}(B)^T]^T\f$ for first-column entries a and input matrix B.
@@ -211,8 +292,12 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
 
   /// Its fields for `snapshot` and `restore` (core/snapshot.hpp): the filters'
   /// coefficients, the law's estimate and counters, the filter bank and the
-  /// estimates. The law names the class: a Suzuki observer's snapshot is not a
-  /// Dey–Bhasin one's.
+  /// estimates, and the excitation diagnostics when they are on. The law names the
+  /// class: a Suzuki observer's snapshot is not a Dey–Bhasin one's. Without the
+  /// diagnostics the field list is the one version 1 always had, so a snapshot
+  /// of an earlier build restores into an observer built without them; with them
+  /// their settings must agree (an observer with and one without refuse each
+  /// other's snapshots, naming the first field that differs).
   static constexpr std::string_view snapshot_type =
       std::is_same_v<AdaptationLawType, ExponentialForgettingRls<S, Dims::np, Dims::ny>> ? "SuzukiObserver"
                                                                                          : "DeyBhasinObserver";
@@ -221,6 +306,7 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   static void visit_state(Self& self, Archive& archive) {
     archive.object("filters", self.filters_);
     archive.object("law", self.law_);
+    if constexpr (Archive::reading) self.factor_weight("restore", "snapshot");
     archive("x0", self.x0_);
     archive("bank", self.bank_);
     archive("last", self.last_);
@@ -232,6 +318,14 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
     archive("next_state", self.next_state_);
     archive("step", self.step_);
     archive.object("health", self.health_);
+    bool diagnostics = self.track_information_ || self.excitation_;
+    if constexpr (Archive::reading) diagnostics = diagnostics || archive.contains("information");
+    if (diagnostics) {
+      archive.setting("information", self.track_information_);
+      archive.setting("excitation_window", self.excitation_ ? self.excitation_->window() : 0);
+      if (self.track_information_) archive("information_sum", self.information_);
+      if (self.excitation_) archive.object("excitation", *self.excitation_);
+    }
   }
 
  private:
@@ -244,6 +338,9 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
     Output y;      // ȳ_t: y_t with its absent entries predicted
     State x;
     State next;
+    Regressor weighted;    // φ̄_t L̄⁻ᵀ, R̄ = L̄L̄ᵀ: the sample's information is its Gram matrix
+    Weight masked_weight;  // R̄ = DRD + (I − D)
+    detail::CholeskyFactor<Weight> masked_factor;
     void resize(const Filters& filters) {
       const Sizes s = filters.sizes();
       bank.setZero(s.ny + s.nu, filters.order());
@@ -254,8 +351,22 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
       y.setZero(s.ny);
       x.setZero(s.nx);
       next.setZero(s.nx);
+      weighted.setZero(s.np, s.ny);
+      masked_weight.setZero(s.ny, s.ny);
+      masked_factor = detail::CholeskyFactor<Weight>(s.ny);
     }
   };
+
+  // R = LLᵀ of the law (the identity for an unweighted law), positive definite by the
+  // law's own check; again after a restore, which may bring another R.
+  void factor_weight(std::string_view who, std::string_view argument) {
+    if constexpr (requires { law_.options().R; }) {
+      weight_ = law_.options().R;
+    } else {
+      weight_.setIdentity(filters_.outputs(), filters_.outputs());
+    }
+    if (!weight_factor_.compute(weight_)) fail_argument(who, argument, "must be positive definite");
+  }
 
   static Index outputs_of(const Coefficients& f, const State& x0) {
     require(f.size() >= 1, "DeyBhasinObserver", "f", "must have at least one entry (the order r)");
@@ -354,8 +465,38 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
     last_.head(q) = w.y;
     last_.tail(filters_.inputs()) = u;
     ++step_;
+    if (track_information_ || excitation_) add_information(present, w);
     return UpdateStatus::accepted;
   }
+
+  /// Definition 1 (15), weighted as the regression (16) is: the committed sample adds
+  /// \f$\bar\varphi_t\bar R^{-1}\bar\varphi_t^T = \Phi^T\Phi\f$, \f$\Phi = \bar L^{-1}\bar\varphi_t^T\f$, with
+  /// \f$\bar\varphi_t = \varphi_tD\f$ and \f$\bar R = DRD + (I - D) = \bar L\bar L^T\f$ (D = I without a mask),
+  /// i.e. \f$\varphi_PR_{PP}^{-1}\varphi_P^T\f$ of the present channels P.
+  void add_information(const OutputMask<Dims>* present, Workspace& w) {
+    const detail::CholeskyFactor<Weight>* factor = &weight_factor_;
+    w.weighted = phi_;  // the committed φ_t: for dynamic sizes `commit` swapped w.phi
+    if (present) {
+      for (Index j = 0; j < w.weighted.cols(); ++j)
+        if (!(*present)(j)) w.weighted.col(j).setZero();
+      detail::masked_covariance<Dims>(weight_, *present, w.masked_weight);
+      // R̄ is positive definite with R (a principal block beside the identity).
+      if (!w.masked_factor.compute(w.masked_weight)) return;
+      factor = &w.masked_factor;
+    }
+    factor->solve_lower_transposed_on_the_right(w.weighted);
+    // An entry beyond the range (φ near overflow against a small R) enters as the
+    // largest finite number: the monitor then reports the overflow for L samples,
+    // and I_t becomes non-finite, as its sum would.
+    if (!detail::all_finite(w.weighted))
+      w.weighted =
+          w.weighted.unaryExpr([](Scalar v) { return std::isfinite(v) ? v : std::numeric_limits<Scalar>::max(); });
+    /// (15) \f$I_t = I_{t-1} + \Phi^T\Phi\f$
+    if (track_information_) detail::add_product(information_, w.weighted, w.weighted.transpose());
+    if (excitation_) excitation_->add(w.weighted.transpose());
+  }
+
+  bool excitation_ready() const { return excitation_ && excitation_->full() && excitation_->available(); }
 
   Filters filters_;
   AdaptationLawType law_;
@@ -370,6 +511,11 @@ class DeyBhasinObserver : public CanonicalFormFilters<S, R, Q, M>::Dims {
   State next_state_;                 // x̂_{t+1|t}
   Index step_ = 0;
   HealthRecord<S> health_;
+  bool track_information_;
+  Information information_;  // I_t (15), 0 while off
+  std::optional<ExcitationMonitor<Scalar, Dims::np>> excitation_;
+  Weight weight_;  // the law's R (the identity for an unweighted law)
+  detail::CholeskyFactor<Weight> weight_factor_;
   // Dynamic sizes keep their workspace allocated from construction on; fixed sizes use the stack.
   detail::UpdateWorkspace<Workspace, Dims::is_fixed> work_;
 };
