@@ -256,6 +256,7 @@ nb::dict design_state(const MonitorDesign& d) {
   state["false_alarm_probability"] = d.false_alarm_probability;
   state["chi_square_scale"] = d.chi_square_options.scale;
   state["chi_square_degrees_of_freedom"] = d.chi_square_options.degrees_of_freedom;
+  state["chi_square_weights"] = d.chi_square_options.weights;
   state["chi_square_windows"] = d.chi_square_windows;
   state["explanation"] = d.explanation;
   nb::list correlations;
@@ -295,6 +296,9 @@ MonitorDesign design_of(const nb::dict& state) {
   get("chi_square_scale", d.chi_square_options.scale);
   get("chi_square_degrees_of_freedom", d.chi_square_options.degrees_of_freedom);
   get("chi_square_windows", d.chi_square_windows);
+  // Absent from the states of designs pickled before the exact tail (their
+  // threshold is then the two-moment match's, as it was).
+  if (state.contains("chi_square_weights")) get("chi_square_weights", d.chi_square_options.weights);
   // Absent from the states of designs pickled before the stride search.
   if (state.contains("explanation")) get("explanation", d.explanation);
   if (state.contains("stride_correlations")) {
@@ -432,6 +436,9 @@ void bind_fault_detection(nb::module_& m) {
       .def_prop_ro("chi_square_scale", [](const MonitorDesign& d) { return d.chi_square_options.scale; })
       .def_prop_ro("chi_square_degrees_of_freedom",
                    [](const MonitorDesign& d) { return d.chi_square_options.degrees_of_freedom; })
+      .def_prop_ro(
+          "chi_square_weights", [](const MonitorDesign& d) { return d.chi_square_options.weights; },
+          "the weights of T as a sum of weighted chi-square(1) terms, whose exact tail sets the threshold")
       .def_ro("chi_square_windows", &MonitorDesign::chi_square_windows)
       .def_ro("explanation", &MonitorDesign::explanation, "what the design chose and why")
       .def_prop_ro(

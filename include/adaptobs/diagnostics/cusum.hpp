@@ -29,7 +29,8 @@
 /// over which the estimate decorrelates (for a periodic excitation, one period)
 /// and check by `calibrate_cusum` (diagnostics/calibration.hpp), which measures
 /// the scales s and that correlation on fault-free runs and refuses a stride
-/// too short for the approximation.
+/// too short for the approximation, and normalizes by the values' long-run
+/// standard deviation, which the sums far in their tail vary with.
 ///
 /// Fixed sizes allocate nothing; every method is real-time safe.
 
@@ -57,6 +58,14 @@ inline constexpr double siegmund_overshoot = 1.166;
 /// 1985; Basseville & Nikiforov 1993, ch. 5): with \f$\Delta = \mu - \nu\f$ and \f$b = h + 1.166\f$,
 /// \f[ \bar L = \frac{e^{-2\Delta b} + 2\Delta b - 1}{2\Delta^2},\qquad \bar L = b^2 \text{ for } \Delta = 0. \f]
 /// μ = 0 gives the mean run length to a false alarm, μ > ν the mean detection delay.
+///
+/// **Range.** The correction is exact as h → ∞ with Δb fixed; at finite drift
+/// its error grows with ν. Against simulated two-sided CUSUMs on independent
+/// N(0, 1) draws (4·10⁷ evaluations each, 10² to 10⁴ evaluations between false
+/// alarms, 2·10⁴ to 4·10⁵ alarms), the rate it designs is within 1 % for
+/// ν = 0.5 and 4 to 7 % too low for ν = 1, the error shrinking as h grows
+/// (docs/fault_detection.md, "False-alarm rates in the tail"). Beyond ν = 1 it
+/// is not checked.
 [[nodiscard]] inline double cusum_mean_run_length(double drift, double threshold, double mean = 0.0) {
   const double delta = mean - drift;
   const double b = threshold + siegmund_overshoot;
