@@ -284,9 +284,9 @@ std::string explain_design(const FaultMonitorDesign<Scalar, NY, NP>& design, std
      << "probability " << design.false_alarm_probability << " per window";
   const std::vector<double>& weights = design.chi_square_options.weights;
   if (!weights.empty())
-    os << ", threshold from the exact tail of T as a sum of " << weights.size()
+    os << ", threshold the larger of the exact tail of T as a sum of " << weights.size()
        << " weighted chi-square(1) terms (largest weight " << *std::max_element(weights.begin(), weights.end())
-       << ", from the errors' autocovariances); its two-moment match";
+       << ", from the errors' autocovariances) and of its two-moment match, which";
   os << " is " << design.chi_square_options.scale << " chi-square with " << design.chi_square_options.degrees_of_freedom
      << " degrees of freedom over " << design.chi_square_windows << " windows.";
   return os.str();
@@ -300,13 +300,13 @@ std::string explain_design(const FaultMonitorDesign<Scalar, NY, NP>& design, std
 ///   and `stride`, whose refusals it passes on;
 /// - the χ² test on windows of `window` samples, with S the sample covariance
 ///   of the recorded output errors, α = window / mean_samples_between_false_alarms,
-///   and the threshold from the exact tail of T as a weighted sum of \f$\chi^2_1\f$
-///   terms (chi_square_test.hpp, "Correlated errors"), its weights from the
-///   errors' autocovariances over the window (`detail::window_sum_weights`);
-///   the two-moment match from the mean and variance of T over the disjoint
-///   windows of the runs describes T beside them (refused with fewer than 200
-///   windows, naming 'record': the variance of T, hence ν, would carry more
-///   than about 10 % of error);
+///   and the threshold the larger of two (`ChiSquareOptions`): the exact tail
+///   of T as a weighted sum of \f$\chi^2_1\f$ terms (chi_square_test.hpp,
+///   "Correlated errors"), its weights from the errors' autocovariances over the
+///   window (`detail::window_sum_weights`), and the two-moment match from the
+///   mean and variance of T over the disjoint windows of the runs (refused with
+///   fewer than 200 windows, naming 'record': the variance of T, hence ν, would
+///   carry more than about 10 % of error);
 /// - the GLR on \f$\hat\theta\f$ with the CUSUM's scales and stride, window
 ///   `glr_window` evaluations, threshold from `glr_threshold`, checked like the
 ///   CUSUM: a GLR designed for about 50 false alarms on the record must raise
@@ -422,8 +422,8 @@ template <typename Scalar, int NY, int NP>
        << ", " << chi_square_max_degrees_of_freedom << "]";
     fail_argument(who, "record", os.str());
   }
-  // The threshold: the exact tail of T's weighted sum (the two-moment match
-  // above describes T, and is kept for its explanation).
+  // The threshold: the larger of the exact tail of T's weighted sum and of the
+  // two-moment match above (ChiSquareOptions).
   design.chi_square_options.weights =
       detail::window_sum_weights(record.output_errors, design.output_error_covariance, window);
   design.chi_square_windows = windows;
