@@ -32,6 +32,11 @@ namespace adaptobs::python {
 template <class Observer>
 constexpr bool takes_regressor = requires(typename Observer::Sample& sample) { sample.Psi; };
 
+/// An observer whose samples may carry a known input term f_k (Guyader & Zhang
+/// 2003, Remark 1: `DiscreteSample::f`).
+template <class Observer>
+constexpr bool takes_known_input = requires(typename Observer::Sample& sample) { sample.f; };
+
 /// The Python object of an observer: the C++ observer and a sample sized once,
 /// into which `update` copies its arguments (no allocation per call).
 template <class Observer>
@@ -200,8 +205,13 @@ UpdateStatus step(Bound<Observer>& self, nb::handle present) {
   return self.observer.update(self.sample, self.mask);
 }
 
+[[noreturn]] inline void fail_no_known_input(std::string_view who) {
+  adaptobs::fail_argument(who, "known_input", "must be None: this observer's samples have no known input term");
+}
+
 template <class Observer>
-RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi, nb::handle present) {
+RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi, nb::handle present,
+              nb::handle known_input) {
   const auto who = std::string(Observer::snapshot_type) + ".run";
   const InUse guard(self.in_use.flag, who);
   const Sizes s = self.observer.sizes();
@@ -215,6 +225,12 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
     regressor = regressors(psi, samples, s.nx, s.np, who);
   else if (!psi.is_none())
     fail_no_regressor(who);
+  Rows known;
+  if constexpr (takes_known_input<Observer>) {
+    if (!known_input.is_none()) known = rows(known_input, samples, s.nx, who, "known_input");
+  } else if (!known_input.is_none()) {
+    fail_no_known_input(who);
+  }
   const Masks mask = masks(present, samples, s.ny, who);
   if constexpr (requires {
                   { self.observer.model() } -> std::convertible_to<const SharedDiscreteModel&>;
@@ -235,12 +251,16 @@ RunResult run(Bound<Observer>& self, nb::handle u, nb::handle y, nb::handle psi,
     Bound<Observer>& b = self;
     auto& sample = b.sample;
     if constexpr (takes_regressor<Observer>) sample.Psi.setZero();
+    // Sized once: the rows of `known_input` are copied into it, or it stays empty (f_k = 0).
+    if constexpr (takes_known_input<Observer>) sample.f.setZero(known.data ? s.nx : 0);
     std::array<double, D::names.size() + 1> values{};
     for (Index k = 0; k < samples; ++k) {
       sample.u = inputs.row(k);
       sample.y = outputs.row(k);
       if constexpr (takes_regressor<Observer>)
         if (regressor.data) sample.Psi = regressor.at(k);
+      if constexpr (takes_known_input<Observer>)
+        if (known.data) sample.f = known.row(k);
       const UpdateStatus result = mask.update(b.observer, sample, k, b.mask);
       status.data[k] = static_cast<std::int8_t>(result);
       Eigen::Map<Eigen::VectorXd>(x.data + k * s.nx, s.nx) = b.observer.state();
@@ -278,7 +298,7 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
   using B = Bound<Observer>;
   cls.def(
          "update",
-         [](B& self, nb::handle u, nb::handle y, nb::handle psi, nb::handle present) {
+         [](B& self, nb::handle u, nb::handle y, nb::handle psi, nb::handle present, nb::handle known_input) {
            const auto who = update_name<Observer>();
            const InUse guard(self.in_use.flag, who);
            const Sizes s = self.observer.sizes();
@@ -296,17 +316,28 @@ void bind_discrete_observer(nb::class_<Bound<Observer>>& cls, Construct construc
            } else if (!psi.is_none()) {
              fail_no_regressor(who);
            }
+           if constexpr (takes_known_input<Observer>) {
+             if (known_input.is_none())
+               self.sample.f.resize(0);
+             else
+               read_vector(known_input, s.nx, who, "known_input", self.sample.f);
+           } else if (!known_input.is_none()) {
+             fail_no_known_input(who);
+           }
            return step(self, present);
          },
          nb::arg("u").none(), nb::arg("y"), nb::arg("Psi").none() = nb::none(), nb::arg("present").none() = nb::none(),
+         nb::arg("known_input").none() = nb::none(),
          "One sample (u_k, y_k, Psi_k): advances the estimates to step k + 1 and returns the UpdateStatus.\n"
          "A rejected sample (NaN or Inf in it, or a step that would produce one) leaves the observer exactly\n"
          "as it was. `present` (ny booleans) marks the output channels that were measured; the others are\n"
-         "ignored, and none present is the time update.")
+         "ignored, and none present is the time update. `known_input` (nx values, None for zero) is a known\n"
+         "term f_k of measured data added to the state's step (Guyader & Zhang 2003, Remark 1).")
       .def("run", &run<Observer>, nb::arg("U").none(), nb::arg("Y"), nb::arg("Psi").none() = nb::none(),
-           nb::arg("present").none() = nb::none(),
+           nb::arg("present").none() = nb::none(), nb::arg("known_input").none() = nb::none(),
            "Every sample of U (N x nu), Y (N x ny) and Psi (N x nx x np, or one nx x np for all), in C++\n"
-           "with the GIL released; `present` is N x ny booleans. Returns a RunResult: the estimates after\n"
+           "with the GIL released; `present` is N x ny booleans, `known_input` N x nx (the known term f_k\n"
+           "of each sample; None for none). Returns a RunResult: the estimates after\n"
            "each sample (state N x nx, parameters N x np), the output errors (N x ny), the status of each\n"
            "sample (int8, UpdateStatus values) and the diagnostics. Equal, bit for bit, to a loop of update().")
       .def(

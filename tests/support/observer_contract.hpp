@@ -25,8 +25,11 @@
 // The promises checked (core/observer.hpp and core/status.hpp state them):
 // - the `Observer` and `DiagnosableObserver` concepts;
 // - a NaN, +Inf or −Inf in any entry of any field listed in `poisonable` (or in
-//   `more_poisoned`) is rejected with `nonfinite_input`, and every reading stays
-//   the same bit for bit; so is a continuous-time sample not after the last
+//   `more_poisoned`), or of a known input term `f` of nx entries when the sample
+//   has one, is rejected with `nonfinite_input`, and every reading stays the same
+//   bit for bit; a known input term of neither nx entries nor none throws
+//   `ConfigurationError` naming `sample.f`, and changes nothing; one of nx zeros
+//   is no term; so is a continuous-time sample not after the last
 //   accepted one, with `nonincreasing_time`; with a mask, a NaN in an absent
 //   channel is never read (`update_finite_outputs` finds that mask);
 // - a finite sample whose step would overflow is rejected with
@@ -38,7 +41,8 @@
 //   changes nothing;
 // - `output_error()` is zero before the first update and after a reset, is the
 //   factory's formula after each accepted update, and is zero in an absent channel;
-// - with fixed sizes, neither the updates of the run nor the readings allocate
+// - with fixed sizes, neither the updates of the run (also with a known input
+//   term of nx entries, when the sample has one) nor the readings allocate
 //   (support/allocation_counter.hpp counts operator new and malloc and its kin).
 //
 // A float factory that names its double twin (`using InDouble = ...;`) also
@@ -221,9 +225,23 @@ class ObserverContract : public ::testing::Test {
               ...);
         },
         poisonable());
+    if constexpr (requires { valid.f; }) {
+      Sample with_term = with_zero_known_input(valid);
+      for (Index i = 0; i < with_term.f.size(); ++i)
+        for (const Scalar b : bad) {
+          out.push_back(with_term);
+          out.back().f(i) = b;
+        }
+    }
     if constexpr (requires { Factory::more_poisoned(valid); })
       for (auto& sample : Factory::more_poisoned(valid)) out.push_back(std::move(sample));
     return out;
+  }
+
+  /// `s` with a known input term of nx zeros (a sample that has the field `f`).
+  static Sample with_zero_known_input(Sample s) {
+    s.f.setZero(Factory::make().sizes().nx);
+    return s;
   }
 };
 
@@ -277,6 +295,24 @@ TYPED_TEST_P(ObserverContract, NonFiniteSamplesAreRejectedAndChangeNothing) {
     EXPECT_EQ(update_finite_outputs(finite, glitch), UpdateStatus::accepted);
     EXPECT_TRUE(same_bits(TestFixture::readings(masked), TestFixture::readings(clean)));
     EXPECT_TRUE(same_bits(TestFixture::readings(finite), TestFixture::readings(clean)));
+  }
+  // A known input term of neither nx entries nor none is refused by name; one of
+  // nx zeros is no term (equal values: x + 0 may turn a −0 into +0).
+  if constexpr (requires { run[half].f; }) {
+    const Index nx = observer.sizes().nx;
+    auto short_term = run[half];
+    short_term.f.setOnes(nx - 1);
+    EXPECT_CONFIGURATION_ERROR_NAMES((void)observer.update(short_term), "sample.f");
+    if constexpr (decltype(short_term.f)::MaxRowsAtCompileTime == Eigen::Dynamic) {
+      auto long_term = run[half];
+      long_term.f.setOnes(nx + 1);
+      EXPECT_CONFIGURATION_ERROR_NAMES((void)observer.update(long_term), "sample.f");
+    }
+    ASSERT_TRUE(same_bits(TestFixture::readings(observer), before));
+    auto zeros = observer, none = observer;
+    EXPECT_EQ(zeros.update(TestFixture::with_zero_known_input(run[half])), UpdateStatus::accepted);
+    EXPECT_EQ(none.update(run[half]), UpdateStatus::accepted);
+    EXPECT_TRUE(close_in_precision(TestFixture::readings(zeros), TestFixture::readings(none), 0.0));
   }
   // The run carries on as if the bad samples had never come.
   auto reference = TestFixture::after(run, half);
@@ -409,6 +445,16 @@ TYPED_TEST_P(ObserverContract, FixedSizeUpdatesAndReadingsDoNotAllocate) {
               }),
               0);
     EXPECT_EQ(rejected, 0);
+    // A known input term is stored in the sample, in place: its updates do not allocate either.
+    if constexpr (requires { run[0].f; }) {
+      std::vector<typename TestFixture::Sample> with_term;
+      for (const auto& sample : run) with_term.push_back(TestFixture::with_zero_known_input(sample));
+      EXPECT_EQ(allocations_during([&] {
+                  for (const auto& sample : with_term) rejected += observer.update(sample) != UpdateStatus::accepted;
+                }),
+                0);
+      EXPECT_EQ(rejected, 0);
+    }
   }
 }
 

@@ -3,12 +3,14 @@
 /// Kalman filter on the state augmented with the unknown parameters — the
 /// classical alternative to an adaptive observer (Guyader & Zhang 2003, §1; Zhang 2005, appendix).
 ///
-/// The extended system of the discrete model \f$x_{k+1} = A_kx_k + B_ku_k + \Psi_k\theta_k\f$,
-/// \f$\theta_{k+1} = \theta_k\f$, \f$y_k = C_kx_k\f$ is
+/// The extended system of the discrete model \f$x_{k+1} = A_kx_k + B_ku_k + f_k + \Psi_k\theta_k\f$,
+/// \f$\theta_{k+1} = \theta_k\f$, \f$y_k = C_kx_k\f$ (\f$f_k\f$ the known input term of
+/// `DiscreteSample::f`, zero when empty) is
 /// \f[ \xi_{k+1} = \underbrace{\begin{bmatrix} A_k & \Psi_k \\ 0 & I\end{bmatrix}}_{F_k}\xi_k
-///     + \begin{bmatrix} B_ku_k \\ 0\end{bmatrix},\qquad
+///     + \begin{bmatrix} B_ku_k + f_k \\ 0\end{bmatrix},\qquad
 ///     y_k = \underbrace{\begin{bmatrix} C_k & 0\end{bmatrix}}_{H_k}\xi_k, \f]
-/// time varying through \f$\Psi_k\f$ even for constant \f$(A, B, C)\f$. Each update
+/// time varying through \f$\Psi_k\f$ even for constant \f$(A, B, C)\f$. The known terms
+/// \f$B_ku_k + f_k\f$ move the mean only, not the covariance. Each update
 /// corrects with \f$y_k\f$ (covariance in Joseph form
 /// \f$(I - LH)P(I - LH)^T + LRL^T\f$) and predicts to step k + 1.
 ///
@@ -151,7 +153,7 @@ class AugmentedKalmanFilter
   };
 
   /// Correction with \f$y_k\f$, then prediction to step k + 1 with
-  /// \f$(A_k, B_k, \Psi_k, u_k)\f$; `present` is null when every channel is. A step
+  /// \f$(A_k, B_k, \Psi_k, u_k, f_k)\f$; `present` is null when every channel is. A step
   /// whose covariance would not be positive definite is rejected
   /// (`UpdateStatus::indefinite_covariance`) and changes nothing.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
@@ -189,12 +191,13 @@ class AugmentedKalmanFilter
     detail::set_product(w.pht, w.gain, r);  // reuse as L R
     detail::add_product(w.p, w.pht, w.gain.transpose());
 
-    // Prediction with F_k = [A Ψ; 0 I].
+    // Prediction with F_k = [A Ψ; 0 I]: x̂_{k+1|k} = A x̂_{k|k} + Ψ θ̂_{k|k} + B u_k + f_k.
     w.f.topLeftCorner(nx, nx) = system.A;
     w.f.topRightCorner(nx, theta_.rows()) = sample.Psi;
     detail::set_product(w.x, system.A, w.xi.head(nx));
     detail::add_product(w.x, sample.Psi, w.xi.tail(theta_.rows()));
     detail::add_product(w.x, system.B, sample.u);
+    detail::add_known_input(w.x, sample.f);
     w.theta = w.xi.tail(theta_.rows());
     detail::set_product(w.scratch, w.f, w.p);
     detail::set_product(w.p, w.scratch, w.f.transpose());

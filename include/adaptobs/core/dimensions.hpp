@@ -37,7 +37,7 @@ namespace detail {
 }  // namespace detail
 
 /// Scalar and sizes of a state-space system
-/// \f$x^+ = A x + B u + \Psi\theta,\; y = C x\f$, with the Eigen types that follow.
+/// \f$x^+ = A x + B u + f + \Psi\theta,\; y = C x\f$, with the Eigen types that follow.
 template <typename S, int NX, int NU, int NY, int NP>
 struct Dimensions {
   static_assert(std::is_floating_point_v<S>, "adaptobs: the scalar must be a floating-point type");
@@ -77,6 +77,9 @@ struct Dimensions {
   using OutputMatrixSquare = Matrix<NY, NY>;  ///< output covariances, innovation weights
   using OutputRegressor = Matrix<NY, NP>;     ///< C Υ
   using ParameterMatrix = Matrix<NP, NP>;     ///< parameter gains, excitation Gramians
+  /// A known input term f_k: nx entries, or none for no such term. At most nx
+  /// entries, stored in place for a fixed nx: an empty one costs no allocation.
+  using KnownInput = Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, NX, 1>;
 };
 
 /// Sizes known only at run time (all of them `Eigen::Dynamic` at compile time).

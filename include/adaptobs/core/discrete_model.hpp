@@ -1,12 +1,13 @@
 #pragma once
 /// \file
-/// Discrete-time linear models \f$x_{k+1} = A_k x_k + B_k u_k + \Psi_k\theta,\; y_k = C_k x_k\f$.
+/// Discrete-time linear models \f$x_{k+1} = A_k x_k + B_k u_k + f_k + \Psi_k\theta,\; y_k = C_k x_k\f$.
 ///
 /// A model supplies the known matrices \f$(A_k, B_k, C_k)\f$ of step k. The
-/// regressor \f$\Psi_k\f$ is a measured signal and travels with the sample
-/// (`DiscreteSample`), not with the model.
+/// regressor \f$\Psi_k\f$ and the known input term \f$f_k\f$ are measured
+/// signals and travel with the sample (`DiscreteSample`), not with the model.
 
 #include <adaptobs/core/detail/commit.hpp>
+#include <adaptobs/core/detail/message.hpp>
 #include <adaptobs/core/detail/update_workspace.hpp>
 #include <adaptobs/core/dimensions.hpp>
 #include <adaptobs/core/time_invariance.hpp>
@@ -28,12 +29,24 @@ struct DiscreteSystem {
 };
 
 /// One measured sample of a discrete-time system with unknown parameters:
-/// input \f$u_k\f$, output \f$y_k\f$ and known regressor \f$\Psi_k\f$.
+/// input \f$u_k\f$, output \f$y_k\f$, known regressor \f$\Psi_k\f$ and, optionally,
+/// a known input term \f$f_k\f$.
+///
+/// `f` is Remark 1 of Guyader & Zhang (2003): in eq. (1b), \f$B_ku_k\f$ may be
+/// joined by any known function of measured data, \f$x_{k+1} = A_kx_k + B_ku_k +
+/// f_k + \Psi_k\theta\f$, with \f$f_k\f$ computed at step k from \f$u_k\f$, \f$y_k\f$ or
+/// other measured signals, never from the unmeasured state. It is known, so it
+/// enters the estimate as it enters the state and cancels in the state error:
+/// the observers' error recursions hold unchanged (docs/readings/guyader_zhang.md).
+/// Empty (the default) means \f$f_k = 0\f$, and the step is then the one
+/// without the term, bit for bit; otherwise it has nx entries. It is stored in
+/// place for a fixed nx (`Dims::KnownInput`), so an empty term costs no allocation.
 template <StateSpace D>
 struct DiscreteSample {
   typename D::Input u;
   typename D::Output y;
   typename D::RegressorMatrix Psi;
+  typename D::KnownInput f{};  ///< \f$f_k\f$: nx entries, or none for \f$f_k = 0\f$
 };
 
 /// One measured sample of a system with no separately measured regressor:
@@ -63,11 +76,35 @@ void require_sample_sizes(const DiscreteSample<D>& sample, const Sizes& s, std::
   require_shape(sample.Psi, s.nx, s.np, who, "sample.Psi");
 }
 
-/// True when u, Ψ and the entries of y whose channel is present (all of them
-/// for a null mask) are finite.
+[[noreturn]] inline void fail_known_input_size(Index nx, Index got, std::string_view who) {
+  Message os;
+  os << "must have nx = " << nx << " entries, or none for no known input term (got " << got << ")";
+  fail_argument(who, "sample.f", os.str());
+}
+
+/// Throws `ConfigurationError` naming `sample.f` when the known input term of a
+/// sample has neither nx entries nor none. Its size is a run-time one even for
+/// a fixed nx, so it is checked whatever the sizes; a sample without the term
+/// has nothing to check.
+template <StateSpace D>
+void require_known_input_size(const DiscreteSample<D>& sample, Index nx, std::string_view who) {
+  if (sample.f.size() != 0 && sample.f.size() != nx) fail_known_input_size(nx, sample.f.size(), who);
+}
+template <StateSpace D>
+void require_known_input_size(const InputOutputSample<D>& /*sample*/, Index /*nx*/, std::string_view /*who*/) {}
+
+/// `x += f` for a known input term f of nx entries; nothing for an empty one (\f$f = 0\f$).
+template <class X, class F>
+void add_known_input(X& x, const F& f) {
+  if (f.size() != 0) x += f;
+}
+
+/// True when u, Ψ, f and the entries of y whose channel is present (all of them
+/// for a null mask) are finite. An empty f is not looked at: a sample without
+/// the term is checked as it is without the field.
 template <StateSpace D>
 [[nodiscard]] bool finite_sample(const DiscreteSample<D>& sample, const OutputMask<D>* present) {
-  return finite_measured(sample.y, present, sample.u, sample.Psi);
+  return finite_measured(sample.y, present, sample.u, sample.Psi) && (sample.f.size() == 0 || all_finite(sample.f));
 }
 
 /// True when u and the entries of y whose channel is present are finite.

@@ -80,7 +80,9 @@ class DiscreteUpdate : public Dims {
   /// reason the sample was rejected (`nonfinite_input` for a NaN/Inf in it,
   /// `nonfinite_result` when the step would produce one, ...); a rejected step
   /// leaves the observer exactly as it was. With run-time sizes, a sample of
-  /// the wrong shape throws `ConfigurationError` naming it, before anything is read.
+  /// the wrong shape throws `ConfigurationError` naming it, before anything is
+  /// read; so does, whatever the sizes, a known input term `sample.f` with
+  /// neither nx entries nor none.
   [[nodiscard]] UpdateStatus update(const Sample& sample) { return checked_step(sample, nullptr); }
 
   /// The same with only the output channels in `present` measured (the
@@ -159,6 +161,7 @@ class DiscreteUpdate : public Dims {
  private:
   UpdateStatus checked_step(const Sample& sample, const OutputMask<Dims>* present) {
     if constexpr (!Dims::is_fixed) detail::require_sample_sizes(sample, sizes(), Observer::name_update);
+    detail::require_known_input_size(sample, sizes().nx, Observer::name_update);
     if (!detail::finite_sample(sample, present)) return UpdateStatus::nonfinite_input;
     const UpdateStatus status = self().work_.run([&](auto& w) { return self().advance(sample, present, w); });
     health_.note(status, step_);

@@ -4,17 +4,22 @@
 /// (2008, docs/references.md), eq. (2), generalized to p parameters,
 /// m outputs, a sampling period T and known inputs.
 ///
-/// System (Guiro et al. 2008, eq. (1)): \f$\dot x = Ax + Bu(t) + \varphi(t)\theta\f$,
-/// \f$y_k = Cx(kT)\f$, with \f$\theta\in\mathbb{R}^p\f$ and \f$\varphi(t)\in\mathbb{R}^{n\times p}\f$.
-/// Between samples the observer integrates \f$\dot z = Az + Bu + \varphi(t)\hat\theta_k\f$;
+/// System (Guiro et al. 2008, eq. (1)): \f$\dot x = Ax + Bu(t) + g(t) + \varphi(t)\theta\f$,
+/// \f$y_k = Cx(kT)\f$, with \f$\theta\in\mathbb{R}^p\f$ and \f$\varphi(t)\in\mathbb{R}^{n\times p}\f$,
+/// and \f$g(t)\f$ an optional known input term (zero in the paper).
+/// Between samples the observer integrates \f$\dot z = Az + Bu + g(t) + \varphi(t)\hat\theta_k\f$;
 /// at the samples it corrects z with the output and θ̂ with the previous
 /// a-posteriori output error:
-/// \f[ z^-_{k+1} = E z_k + \Psi_k\hat\theta_k + B_du_k,\qquad
+/// \f[ z^-_{k+1} = E z_k + \Psi_k\hat\theta_k + B_du_k + f_k,\qquad
 ///     z_{k+1} = z^-_{k+1} - K(Cz^-_{k+1} - y_{k+1}),\qquad
 ///     \hat\theta_{k+1} = \hat\theta_k - \Gamma(Cz_k - y_k), \f]
 /// with \f$E = e^{AT}\f$, \f$\Psi_k = EH_k\f$, \f$H_k = \int_{kT}^{(k+1)T}e^{(kT-s)A}\varphi(s)ds\f$
-/// (`RegressorIntegral`) and \f$B_du_k\f$ the input's contribution over the
-/// period (`sampled_lti_model`). The errors obey \f$v_{k+1} = (U + W(k))v_k\f$
+/// (`RegressorIntegral`), \f$B_du_k\f$ the input's contribution over the
+/// period (`sampled_lti_model`) and \f$f_k = \int_{kT}^{(k+1)T}e^{((k+1)T-s)A}g(s)ds\f$ the known
+/// term's (`DiscreteSample::f`, empty for none; e.g. the `Psi` of a one-column
+/// `RegressorIntegral` of g, or \f$\int_0^Te^{As}ds\,g_k\f$ for a term \f$g_k\f$ of the
+/// sampled measurements held over the period: docs/readings/guiro.md). It is
+/// known and cancels in the errors, which obey \f$v_{k+1} = (U + W(k))v_k\f$
 /// (eq. (4)–(5)); gains come from `design_guiro_gains`, and
 /// `check_guiro_convergence` checks proposition 2.2.
 ///
@@ -24,7 +29,7 @@
 /// **Sample convention.** Like the library's other observers, `update`
 /// consumes the sample of step k, \f$(u_k, y_k, \Psi_k)\f$ (a `DiscreteSample`
 /// whose `Psi` is \f$\Psi_k = EH_k\f$, the regressor of the period that starts
-/// at \f$t_k\f$), and moves from step k to k + 1: it corrects the prediction
+/// at \f$t_k\f$, and whose `f`, when given, is \f$f_k\f$ of that same period), and moves from step k to k + 1: it corrects the prediction
 /// \f$z^-_k\f$ with \f$y_k\f$ into the paper's \f$z_k\f$, updates θ̂ and
 /// predicts \f$z^-_{k+1}\f$. `state()` is the prediction \f$z^-_k\f$ of the
 /// current step (before its output is seen) and `corrected_state()` the
@@ -163,7 +168,7 @@ class GuiroObserver : public DiscreteUpdate<GuiroObserver<Model>, typename Model
   };
 
   /// One sample: correction of \f$z^-_k\f$ with \f$y_k\f$, θ̂ update, prediction
-  /// over the period with \f$\Psi_k\f$ and \f$u_k\f$ (eq. (2)); `nonfinite_result`,
+  /// over the period with \f$\Psi_k\f$, \f$u_k\f$ and \f$f_k\f$ (eq. (2)); `nonfinite_result`,
   /// changing nothing, when the step would produce a NaN/Inf.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
     const auto& system = model_.at(this->step());
@@ -186,12 +191,13 @@ class GuiroObserver : public DiscreteUpdate<GuiroObserver<Model>, typename Model
     w.theta.noalias() -= parameter_gain_ * w.residual;
 
     /// Eq. (2), first line integrated over the period with \f$\hat\theta_k\f$:
-    /// \f$z^-_{k+1} = Ez_k + \Psi_k\hat\theta_k + B_du_k\f$, \f$\Psi_k = EH_k\f$.
+    /// \f$z^-_{k+1} = Ez_k + \Psi_k\hat\theta_k + B_du_k + f_k\f$, \f$\Psi_k = EH_k\f$.
     w.predicted.noalias() = system.A * w.corrected;
     w.predicted.noalias() += sample.Psi * theta_;
     // Without an input (B is n × 0) there is no term: Eigen's coefficient product
     // would offset the empty B's null data pointer.
     if (sample.u.size() > 0) w.predicted.noalias() += system.B * sample.u;
+    detail::add_known_input(w.predicted, sample.f);
 
     if (!detail::all_finite(w.predicted, w.corrected, w.theta)) return UpdateStatus::nonfinite_result;
     detail::commit(z_, w.predicted);

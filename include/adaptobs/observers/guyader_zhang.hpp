@@ -3,13 +3,15 @@
 /// Discrete-time MIMO LTV adaptive observer of Guyader & Zhang
 /// (Guyader & Zhang 2003, eq. (2a)–(2c); docs/references.md).
 ///
-/// System (Guyader & Zhang 2003, eq. (1), noise free):
-/// \f[ x_{k+1} = A_k x_k + B_k u_k + \Psi_k\theta,\qquad y_k = C_k x_k. \f]
+/// System (Guyader & Zhang 2003, eq. (1), noise free, with the known input term
+/// \f$f_k\f$ of Remark 1, `DiscreteSample::f`, zero when empty):
+/// \f[ x_{k+1} = A_k x_k + B_k u_k + f_k + \Psi_k\theta,\qquad y_k = C_k x_k. \f]
 /// The observer filters the regressor through the stable error dynamics
 /// \f$A_k - K_kC_k\f$ (eq. (2a)), corrects θ̂ along \f$\Upsilon_k^TC_k^T\f$ times
 /// the output error (eq. (2b)), and moves x̂ with θ̂ through \f$\Upsilon_{k+1}\f$
-/// (eq. (2c)). With \f$\eta_k = \tilde x_k - \Upsilon_k\tilde\theta_k\f$ the
-/// errors obey (proof of theorem 1)
+/// (eq. (2c), with \f$f_k\f$ added as it is to the state: (2c′) of
+/// docs/readings/guyader_zhang.md). \f$f_k\f$ cancels in \f$\tilde x\f$, and with
+/// \f$\eta_k = \tilde x_k - \Upsilon_k\tilde\theta_k\f$ the errors obey (proof of theorem 1)
 /// \f[ \eta_{k+1} = (A_k - K_kC_k)\eta_k,\qquad
 ///     \tilde\theta_{k+1} = (I - \mu_k\Upsilon_k^TC_k^TC_k\Upsilon_k)\tilde\theta_k
 ///                         - \mu_k\Upsilon_k^TC_k^TC_k\eta_k, \f]
@@ -68,7 +70,7 @@ struct GuyaderZhangOptions {
 
 /// Guyader–Zhang adaptive observer over a discrete model (LTI or LTV).
 ///
-/// Each `update` consumes \f$(u_k, y_k, \Psi_k)\f$ and advances the estimates
+/// Each `update` consumes \f$(u_k, y_k, \Psi_k)\f$, and \f$f_k\f$ when the sample has one, and advances the estimates
 /// from step k to k + 1. The gain \f$K_k\f$ and step size \f$\mu_k\f$ are
 /// constant unless changed with `set_gain` / `set_mu` between updates. Its
 /// `output_error()` is \f$\varepsilon_k = y_k - C_k\hat x_k\f$, the innovation of
@@ -215,7 +217,7 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
     }
   };
 
-  /// One step of eq. (2a)–(2c) with the sample \f$(u_k, y_k, \Psi_k)\f$;
+  /// One step of eq. (2a)–(2c′) with the sample \f$(u_k, y_k, \Psi_k, f_k)\f$;
   /// `nonfinite_result`, changing nothing, when it would produce a NaN/Inf.
   UpdateStatus advance(const Sample& sample, const OutputMask<Dims>* present, Workspace& w) {
     const auto& system = model_.at(this->step());
@@ -257,10 +259,11 @@ class GuyaderZhangObserver : public DiscreteUpdate<GuyaderZhangObserver<Model>, 
       detail::subtract_product(w.upsilon, gain_, w.c_upsilon);
     }
 
-    /// (2c) \f$\hat x_{k+1} = A_k\hat x_k + B_ku_k + \Psi_k\hat\theta_k + K_k(y_k - C_k\hat x_k)
-    ///        + \Upsilon_{k+1}(\hat\theta_{k+1} - \hat\theta_k)\f$
+    /// (2c′) \f$\hat x_{k+1} = A_k\hat x_k + B_ku_k + f_k + \Psi_k\hat\theta_k + K_k(y_k - C_k\hat x_k)
+    ///        + \Upsilon_{k+1}(\hat\theta_{k+1} - \hat\theta_k)\f$ (eq. (2c) with Remark 1's known term)
     detail::set_product(w.x, system.A, x_);
     detail::add_product(w.x, system.B, sample.u);
+    detail::add_known_input(w.x, sample.f);
     detail::add_product(w.x, sample.Psi, theta_);
     detail::add_product(w.x, gain_, w.innovation);
     detail::add_product(w.x, w.upsilon, w.theta_step);

@@ -2,9 +2,11 @@
 /// \file
 /// Simulated discrete-time plant with unknown parameters and optional noise
 /// (Guyader & Zhang 2003, eq. (1)):
-/// \f[ \theta_{k+1} = \theta_k + e_k,\quad x_{k+1} = A_kx_k + B_ku_k + \Psi_k\theta_k + w_k,\quad
+/// \f[ \theta_{k+1} = \theta_k + e_k,\quad x_{k+1} = A_kx_k + B_ku_k + f_k + \Psi_k\theta_k + w_k,\quad
 ///     y_k = C_kx_k + v_k. \f]
-/// Inputs and regressors are user callables `input(k)` and `regressor(k, u_k)`.
+/// Inputs and regressors are user callables `input(k)` and `regressor(k, u_k)`;
+/// the known input term \f$f_k\f$ (Guyader & Zhang 2003, Remark 1), when given, is
+/// the callable `known_input(k, u_k, y_k)` of the measured \f$u_k\f$ and (noisy) \f$y_k\f$.
 
 #include <adaptobs/core/detail/products.hpp>
 #include <adaptobs/core/dimensions.hpp>
@@ -15,9 +17,14 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <type_traits>
 #include <utility>
 
 namespace adaptobs {
+
+/// The `known_input` of a `DiscreteLinearPlant` without a known input term: its
+/// samples' `f` stays empty (\f$f_k = 0\f$).
+struct NoKnownInput {};
 
 /// Noise of a simulated plant: zero mean, standard deviations per signal, from a fixed seed.
 template <typename Scalar>
@@ -30,8 +37,10 @@ struct PlantNoise {
   std::uint64_t seed = 1;
 };
 
-/// The plant of the file comment; its sample of step k is \f$(u_k, y_k, \Psi_k)\f$.
-template <DiscreteModel Model, class InputFn, class RegressorFn>
+/// The plant of the file comment; its sample of step k is \f$(u_k, y_k, \Psi_k)\f$,
+/// and \f$f_k\f$ = `known_input(k, u_k, y_k)` when a known input is given
+/// (nx entries, or none for \f$f_k = 0\f$).
+template <DiscreteModel Model, class InputFn, class RegressorFn, class KnownInputFn = NoKnownInput>
 class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, DiscreteSample<typename Model::Dims>> {
   using Base = DiscretePlantState<typename Model::Dims, DiscreteSample<typename Model::Dims>>;
   using Base::x_, Base::theta_, Base::sample_, Base::k_;
@@ -40,11 +49,12 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
   using typename Base::Scalar, typename Base::State, typename Base::Parameters, typename Base::Sample;
 
   DiscreteLinearPlant(Model model, State x0, Parameters theta, InputFn input, RegressorFn regressor,
-                      PlantNoise<Scalar> noise = {}, Scalar sampling_period = Scalar(1))
+                      PlantNoise<Scalar> noise = {}, Scalar sampling_period = Scalar(1), KnownInputFn known_input = {})
       : Base(std::move(x0), std::move(theta), sampling_period),
         model_(std::move(model)),
         input_(std::move(input)),
         regressor_(std::move(regressor)),
+        known_input_(std::move(known_input)),
         noise_(noise),
         rng_(noise.seed) {
     constexpr std::string_view who = "DiscreteLinearPlant";
@@ -65,9 +75,10 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
     theta_ = theta;
   }
 
-  /// Moves to step k + 1. An input, regressor or model matrix of the wrong
-  /// size throws a `ConfigurationError` naming the callable, and the plant
-  /// stays at step k.
+  /// Moves to step k + 1. An input, regressor, known input or model matrix of
+  /// the wrong size throws a `ConfigurationError` naming the callable, and the
+  /// plant stays at step k (its noise generator excepted, when the known input
+  /// throws: that one is called with the noisy \f$y_{k+1}\f$).
   void advance() {
     const Index k = k_ + 1;
     // What may throw comes first: the callables of step k + 1.
@@ -77,20 +88,40 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
     decltype(auto) system = model_.at(k_);
     State next = system.A * x_;
     detail::add_product(next, system.B, sample_.u);
+    detail::add_known_input(next, sample_.f);
     detail::add_product(next, sample_.Psi, theta_);
     add_noise(next, noise_.state);
-    x_ = next;
-    add_noise(theta_, noise_.parameter);
+    Parameters next_theta = theta_;
+    add_noise(next_theta, noise_.parameter);
+    next_sample.y = following.C * next;
+    add_noise(next_sample.y, noise_.output);
+    known_input_at(k, next_sample);
+    x_ = std::move(next);
+    theta_ = std::move(next_theta);
     k_ = k;
-    sample_.u = std::move(next_sample.u);
-    sample_.Psi = std::move(next_sample.Psi);
-    measure(following);
+    sample_ = std::move(next_sample);
   }
 
  private:
   void make_sample() {
     signals_at(k_, sample_);
-    measure(model_.at(k_));
+    sample_.y = model_.at(k_).C * x_;
+    add_noise(sample_.y, noise_.output);
+    known_input_at(k_, sample_);
+  }
+
+  /// \f$f_k\f$ = `known_input(k, u_k, y_k)` into the sample, its size checked; nothing without one.
+  void known_input_at(Index k, Sample& sample) {
+    if constexpr (!std::is_same_v<KnownInputFn, NoKnownInput>) {
+      constexpr std::string_view who = "DiscreteLinearPlant", callable = "known_input(k, u, y)";
+      // Checked before it is stored: with a fixed nx, `f` holds at most nx entries.
+      decltype(auto) f = known_input_(k, std::as_const(sample.u), std::as_const(sample.y));
+      require_vector(f, who, callable);
+      if (f.size() != 0 && f.size() != model_.sizes().nx)
+        fail_argument(who, callable, "must return nx entries, or none for no known input term");
+      require_finite(f, who, callable);
+      sample.f = f;
+    }
   }
 
   /// \f$u_k\f$ and \f$\Psi_k\f$ from the callables, their sizes checked.
@@ -100,12 +131,6 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
     sample.u = detail::require_returned_shape(input_(k), s.nu, 1, who, "input(k)");
     sample.Psi =
         detail::require_returned_shape(regressor_(k, std::as_const(sample.u)), s.nx, s.np, who, "regressor(k, u)");
-  }
-
-  template <class System>
-  void measure(const System& system) {
-    sample_.y = system.C * x_;
-    add_noise(sample_.y, noise_.output);
   }
 
   template <class Derived>
@@ -124,6 +149,7 @@ class DiscreteLinearPlant : public DiscretePlantState<typename Model::Dims, Disc
   Model model_;
   InputFn input_;
   RegressorFn regressor_;
+  [[no_unique_address]] KnownInputFn known_input_;
   PlantNoise<Scalar> noise_;
   std::mt19937_64 rng_;
 };
