@@ -257,6 +257,7 @@ nb::dict design_state(const MonitorDesign& d) {
   state["chi_square_scale"] = d.chi_square_options.scale;
   state["chi_square_degrees_of_freedom"] = d.chi_square_options.degrees_of_freedom;
   state["chi_square_weights"] = d.chi_square_options.weights;
+  state["chi_square_threshold"] = d.chi_square_threshold;
   state["chi_square_windows"] = d.chi_square_windows;
   state["explanation"] = d.explanation;
   nb::list correlations;
@@ -299,6 +300,7 @@ MonitorDesign design_of(const nb::dict& state) {
   // Absent from the states of designs pickled before the exact tail (their
   // threshold is then the two-moment match's, as it was).
   if (state.contains("chi_square_weights")) get("chi_square_weights", d.chi_square_options.weights);
+  if (state.contains("chi_square_threshold")) get("chi_square_threshold", d.chi_square_threshold);
   // Absent from the states of designs pickled before the stride search.
   if (state.contains("explanation")) get("explanation", d.explanation);
   if (state.contains("stride_correlations")) {

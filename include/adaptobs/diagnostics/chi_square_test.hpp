@@ -77,6 +77,11 @@ struct ChiSquareOptions {
   double degrees_of_freedom = 0;  ///< ν > 0; 0 means W n_y
   /// \f$\lambda_i \ge 0\f$, at least one positive; empty for none.
   std::vector<double> weights{};
+  /// The threshold itself when positive, in place of the one the others give at
+  /// the test's α: a `FaultMonitor` built from a design (one per seed, one per
+  /// asset) takes the design's `chi_square_threshold` so, rather than evaluate
+  /// the weighted tail's quantile again.
+  double threshold = 0;
 };
 
 template <typename Scalar, int NY = Eigen::Dynamic>
@@ -113,6 +118,12 @@ class ChiSquareTest : public ThresholdAlarm<Scalar> {
                                                       : static_cast<double>(window) * static_cast<double>(ny);
     detail::require_chi_square_degrees_of_freedom(
         dof, who, options.degrees_of_freedom > 0 ? "options.degrees_of_freedom" : "window");
+    require(options.threshold >= 0 && std::isfinite(options.threshold), who, "options.threshold",
+            "must be non-negative and finite (0: from the distribution)");
+    if (options.threshold > 0) {
+      this->threshold_ = static_cast<Scalar>(options.threshold);
+      return;
+    }
     const double alpha = static_cast<double>(false_alarm_probability);
     double threshold = options.scale * chi_square_upper_quantile(dof, alpha);
     if (!options.weights.empty()) {

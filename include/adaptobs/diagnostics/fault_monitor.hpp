@@ -110,7 +110,10 @@ struct FaultMonitorDesign {
   Index window = 1;                                       ///< samples per χ² decision
   Scalar false_alarm_probability = 0;                     ///< per χ² window
   ChiSquareOptions chi_square_options;                    ///< its weights, and T's two-moment match
-  Index chi_square_windows = 0;                           ///< fault-free windows the correction was measured on
+  /// The χ² test's threshold at `false_alarm_probability` from those options,
+  /// computed once by the design (0: a FaultMonitor computes it from them).
+  Scalar chi_square_threshold = 0;
+  Index chi_square_windows = 0;  ///< fault-free windows the correction was measured on
   /// The strides whose correlations were measured: the one given, or every one
   /// the search tried, smallest first (the last is the stride chosen).
   std::vector<StrideCorrelation<Scalar>> stride_correlations;
@@ -426,6 +429,11 @@ template <typename Scalar, int NY, int NP>
   // two-moment match above (ChiSquareOptions).
   design.chi_square_options.weights =
       detail::window_sum_weights(record.output_errors, design.output_error_covariance, window);
+  // Computed once here, not by every FaultMonitor built from the design: the
+  // weighted tail's quantile costs about 50 evaluations of the tail.
+  design.chi_square_threshold = ChiSquareTest<Scalar, NY>(design.output_error_covariance, window,
+                                                          design.false_alarm_probability, design.chi_square_options)
+                                    .threshold();
   design.chi_square_windows = windows;
   design.stride_correlations = {{.stride = stride,
                                  .lag_correlation = design.cusum.lag_correlation,
@@ -687,6 +695,14 @@ template <class Simulate>
                                                "runs");
 }
 
+namespace detail {
+/// A design's χ² options with the threshold it computed, if it did.
+inline ChiSquareOptions with_threshold(ChiSquareOptions options, double threshold) {
+  options.threshold = threshold;
+  return options;
+}
+}  // namespace detail
+
 /// Three change detectors fed together after each accepted update: two on the
 /// parameter estimates (NP entries) and one on the output errors (NY entries).
 /// By default the CUSUM, the GLR and the χ² test of a `FaultMonitorDesign`;
@@ -707,7 +723,7 @@ class FaultMonitor {
       : cusum_(design.nominal, design.cusum.scale, design.cusum.drift, design.cusum.threshold, design.cusum_options),
         glr_(design.nominal, design.cusum.scale, design.glr_window, design.glr_threshold, design.cusum_options),
         chi_square_(design.output_error_covariance, design.window, design.false_alarm_probability,
-                    design.chi_square_options),
+                    detail::with_threshold(design.chi_square_options, design.chi_square_threshold)),
         parameters_(design.nominal.size()),
         outputs_(design.output_error_covariance.rows()) {}
 
