@@ -1277,7 +1277,9 @@ TEST(WwtpFaultDetection, FalseAlarmRatesMatchDesign) {
               << " false alarms, one every " << 1 / rate << " samples (designed 2000)\n";
     EXPECT_GE(alarms, 200);
     EXPECT_GE(rate, 0.5 / 2000);
-    EXPECT_LE(rate, 2.0 / 2000);
+    // At most 1.3 times the design: the χ² test's weights alone alarmed 1.48
+    // times as often here, the larger threshold with the two-moment match 1.15.
+    EXPECT_LE(rate, 1.3 / 2000);
   }
 }
 
