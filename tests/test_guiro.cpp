@@ -266,31 +266,38 @@ TYPED_TEST(GuiroTyped, PaperExampleConverges) {
   EXPECT_LT(double((observer.state() - plant.state()).norm()) / double(plant.state().norm()), tol * 1e-2);
 }
 
-// Three states, two outputs, two parameters, a known input: φ(t) = Φ₀ + e^{−t}Φ₁
-// settles, so the design uses H̄ = H∞ (exact from the polynomial form) and
-// proposition 2.2 holds through condition (ii).
-TEST(Guiro, MimoWithKnownInputConverges) {
+// The plant of the next two tests: three states, two outputs, two parameters,
+// φ(t) = Φ₀ + e^{−t}Φ₁, which settles, sampled every T = 0.5; gains designed for
+// H̄ = H∞ (exact from the polynomial form), poles 0.2, 0.4, 0.5, 0.3 ± 0.2i.
+struct ThreeStateMimo {
   using Dims = adaptobs::Dimensions<double, 3, 1, 2, 2>;
-  Eigen::Matrix3d a;
-  a << 0, 1, 0,  //
-      0, 0, 1,   //
-      -0.2, -0.5, -0.4;
-  const Eigen::Vector3d b(0, 0, 1);
-  Eigen::Matrix<double, 2, 3> c;
-  c << 1, 0, 0,  //
-      0, 0, 1;
-  Eigen::Matrix<double, 3, 2> phi0, phi1;
-  phi0 << 0, 0, 1, 0, 0, 1;
-  phi1 << 1, 0, 0, 0, 0, -1;
-  const double T = 0.5;
-  const auto phi = [&](double t) -> Eigen::Matrix<double, 3, 2> { return phi0 + std::exp(-t) * phi1; };
-  const auto model = adaptobs::sampled_lti_model<Dims>(a, b, c, T);
-  adaptobs::RegressorIntegral<double, 3, 2> integral(a, T, {.relative_tolerance = 1e-14});
-  const adaptobs::PolynomialRegressorIntegral<double, 3, 2> constant(a, T, 0);
-  const Eigen::Matrix<double, 3, 2> h_limit = constant.integrate(std::span(&phi0, 1)).H;
-  const std::complex<double> z(0.3, 0.2);
-  const Eigen::Matrix<std::complex<double>, 5, 1> poles(0.2, 0.4, 0.5, z, std::conj(z));
-  const auto gains = adaptobs::design_guiro_gains(model.system().A, c, h_limit, poles);
+  static constexpr double T = 0.5;
+  Eigen::Matrix3d a = (Eigen::Matrix3d() << 0, 1, 0, 0, 0, 1, -0.2, -0.5, -0.4).finished();
+  Eigen::Matrix<double, 2, 3> c = (Eigen::Matrix<double, 2, 3>() << 1, 0, 0, 0, 0, 1).finished();
+  Eigen::Matrix<double, 3, 2> phi0 = (Eigen::Matrix<double, 3, 2>() << 0, 0, 1, 0, 0, 1).finished();
+  Eigen::Matrix<double, 3, 2> phi1 = (Eigen::Matrix<double, 3, 2>() << 1, 0, 0, 0, 0, -1).finished();
+  [[nodiscard]] Eigen::Matrix<double, 3, 2> phi(double t) const { return phi0 + std::exp(-t) * phi1; }
+  [[nodiscard]] auto model() const { return adaptobs::sampled_lti_model<Dims>(a, Eigen::Vector3d(0, 0, 1), c, T); }
+  [[nodiscard]] Eigen::Matrix<double, 3, 2> h_limit() const {
+    return adaptobs::PolynomialRegressorIntegral<double, 3, 2>(a, T, 0).integrate(std::span(&phi0, 1)).H;
+  }
+  [[nodiscard]] auto gains() const {
+    const std::complex<double> z(0.3, 0.2);
+    const Eigen::Matrix<std::complex<double>, 5, 1> poles(0.2, 0.4, 0.5, z, std::conj(z));
+    return adaptobs::design_guiro_gains(model().system().A, c, h_limit(), poles);
+  }
+};
+
+// With a known input, proposition 2.2 holds through condition (ii).
+TEST(Guiro, MimoWithKnownInputConverges) {
+  const ThreeStateMimo m;
+  const double T = ThreeStateMimo::T;
+  const auto& c = m.c;
+  const auto phi = [&m](double t) { return m.phi(t); };
+  const auto model = m.model();
+  adaptobs::RegressorIntegral<double, 3, 2> integral(m.a, T, {.relative_tolerance = 1e-14});
+  const Eigen::Matrix<double, 3, 2> h_limit = m.h_limit();
+  const auto gains = m.gains();
   EXPECT_LE(gains.eigenvalue_mismatch, 1e-9);
 
   const Eigen::Vector2d theta(1.5, -0.7);
@@ -315,7 +322,7 @@ TEST(Guiro, MimoWithKnownInputConverges) {
   EXPECT_TRUE(report.certified());
 }
 
-// The plant of the test above driven by a known input term as well,
+// The plant of the test above (ThreeStateMimo) driven by a known input term as well,
 // ẋ = Ax + bu + g + φ(t)θ, with g(t) = (0, 0.3 sin 2t, 0) a known forcing and
 // (0, 0, 0.2 sin y¹_k) a term of the measured output held over the period. Its
 // contribution over [kT, (k+1)T] is f_k = ∫e^{((k+1)T−s)A}(0, 0.3 sin 2s, 0)ds
@@ -324,28 +331,14 @@ TEST(Guiro, MimoWithKnownInputConverges) {
 // it: after 80 samples ‖θ̃‖ = 2.0e-15 and ‖z − x‖ = 1.3e-15 (max_k ‖f_k‖ = 0.18).
 // With f left out of the prediction they are 0.12 and 0.20.
 TEST(Guiro, KnownInputTermOfTheIntervalEntersThePredictionAndConverges) {
-  using Dims = adaptobs::Dimensions<double, 3, 1, 2, 2>;
-  Eigen::Matrix3d a;
-  a << 0, 1, 0,  //
-      0, 0, 1,   //
-      -0.2, -0.5, -0.4;
-  Eigen::Matrix<double, 2, 3> c;
-  c << 1, 0, 0,  //
-      0, 0, 1;
-  Eigen::Matrix<double, 3, 2> phi0, phi1;
-  phi0 << 0, 0, 1, 0, 0, 1;
-  phi1 << 1, 0, 0, 0, 0, -1;
-  const double T = 0.5;
-  const auto phi = [&](double t) -> Eigen::Matrix<double, 3, 2> { return phi0 + std::exp(-t) * phi1; };
-  const auto model = adaptobs::sampled_lti_model<Dims>(a, Eigen::Vector3d(0, 0, 1), c, T);
-  adaptobs::RegressorIntegral<double, 3, 2> integral(a, T, {.relative_tolerance = 1e-14});
-  adaptobs::RegressorIntegral<double, 3, 1> forcing_integral(a, T, {.relative_tolerance = 1e-14});
-  const Eigen::Matrix3d held = adaptobs::integral_of_exponential(a, T);
-  const adaptobs::PolynomialRegressorIntegral<double, 3, 2> constant(a, T, 0);
-  const std::complex<double> z(0.3, 0.2);
-  const Eigen::Matrix<std::complex<double>, 5, 1> poles(0.2, 0.4, 0.5, z, std::conj(z));
-  const auto gains =
-      adaptobs::design_guiro_gains(model.system().A, c, constant.integrate(std::span(&phi0, 1)).H, poles);
+  const ThreeStateMimo m;
+  const double T = ThreeStateMimo::T;
+  const auto phi = [&m](double t) { return m.phi(t); };
+  const auto model = m.model();
+  adaptobs::RegressorIntegral<double, 3, 2> integral(m.a, T, {.relative_tolerance = 1e-14});
+  adaptobs::RegressorIntegral<double, 3, 1> forcing_integral(m.a, T, {.relative_tolerance = 1e-14});
+  const Eigen::Matrix3d held = adaptobs::integral_of_exponential(m.a, T);
+  const auto gains = m.gains();
 
   const Eigen::Vector2d theta(1.5, -0.7);
   auto input = [](Index k) { return Eigen::Matrix<double, 1, 1>(std::sin(0.3 * double(k))); };
